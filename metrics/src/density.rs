@@ -1,0 +1,97 @@
+use crate::{FaceGeometry, FacePoint, Metric, MetricError};
+
+/// A positive scalar cost per vertex, linear on each face (weighted geodesics).
+///
+/// A segment from `a` to `b` costs the exact integral of the linear density along it:
+/// `|b − a| · (ρ(a) + ρ(b)) / 2`. A constant density `c` scales every distance by `c`.
+///
+/// Density is not a norm on a face, so the track pruning of geotracks is a heuristic for
+/// it (a very good one), not an exact rule.
+///
+/// ```
+/// use geotracks_metrics::{Density, FaceGeometry, FacePoint, Metric};
+///
+/// // One right triangle with densities 1, 3, 1 at its corners.
+/// struct OneFace;
+/// impl FaceGeometry for OneFace {
+///     fn vertex_count(&self) -> usize { 3 }
+///     fn face_count(&self) -> usize { 1 }
+///     fn face_vertices(&self, _: u32) -> [u32; 3] { [0, 1, 2] }
+///     fn face_axes(&self, _: u32) -> [[f64; 3]; 2] { [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]] }
+/// }
+/// let density = Density::new(&OneFace, vec![1.0, 3.0, 1.0]).unwrap();
+/// let a = FacePoint { uv: [0.0, 0.0], bary: [1.0, 0.0, 0.0] };
+/// let b = FacePoint { uv: [1.0, 0.0], bary: [0.0, 1.0, 0.0] };
+/// assert_eq!(density.cost(0, &a, &b), 2.0); // length 1, mean density 2
+/// assert!(Density::new(&OneFace, vec![1.0, 0.0, 1.0]).is_err());
+/// ```
+#[derive(Clone, Debug)]
+pub struct Density {
+    per_vertex: Vec<f64>,
+    /// The densities at each face's corners, so a cost needs no vertex lookup.
+    per_corner: Vec<[f64; 3]>,
+}
+
+impl Density {
+    /// Builds a density from one value per vertex.
+    ///
+    /// # Errors
+    /// [`MetricError::CountMismatch`] if `per_vertex` does not have one value per vertex;
+    /// [`MetricError::InvalidDensity`] for a value that is not finite and > 0.
+    pub fn new<G: FaceGeometry + ?Sized>(
+        mesh: &G,
+        per_vertex: Vec<f64>,
+    ) -> Result<Self, MetricError> {
+        if per_vertex.len() != mesh.vertex_count() {
+            return Err(MetricError::CountMismatch {
+                what: "density",
+                per: "vertex",
+                expected: mesh.vertex_count(),
+                found: per_vertex.len(),
+            });
+        }
+        if let Some((vertex, &value)) = per_vertex
+            .iter()
+            .enumerate()
+            .find(|(_, v)| !(v.is_finite() && **v > 0.0))
+        {
+            return Err(MetricError::InvalidDensity { vertex, value });
+        }
+        let per_corner = (0..mesh.face_count() as u32)
+            .map(|f| mesh.face_vertices(f).map(|v| per_vertex[v as usize]))
+            .collect();
+        Ok(Density {
+            per_vertex,
+            per_corner,
+        })
+    }
+
+    /// A constant density `value` on every vertex.
+    ///
+    /// # Errors
+    /// [`MetricError::InvalidDensity`] if `value` is not finite and > 0.
+    pub fn constant<G: FaceGeometry + ?Sized>(mesh: &G, value: f64) -> Result<Self, MetricError> {
+        Self::new(mesh, vec![value; mesh.vertex_count()])
+    }
+
+    /// The density at each vertex.
+    pub fn per_vertex(&self) -> &[f64] {
+        &self.per_vertex
+    }
+
+    #[inline]
+    fn at(&self, face: u32, p: &FacePoint) -> f64 {
+        let c = &self.per_corner[face as usize];
+        c[0] * p.bary[0] + c[1] * p.bary[1] + c[2] * p.bary[2]
+    }
+}
+
+impl Metric for Density {
+    #[inline]
+    fn cost(&self, face: u32, a: &FacePoint, b: &FacePoint) -> f64 {
+        a.distance(b) * 0.5 * (self.at(face, a) + self.at(face, b))
+    }
+    fn name(&self) -> &str {
+        "density"
+    }
+}

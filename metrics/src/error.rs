@@ -1,0 +1,47 @@
+use thiserror::Error;
+
+/// Why a built-in metric could not be built.
+#[derive(Debug, Error, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum MetricError {
+    /// A per-vertex or per-face array does not have one entry per vertex or face.
+    /// Fix: give exactly one value per element, in the mesh's order.
+    #[error("{what}: expected {expected} values (one per {per}), found {found}")]
+    CountMismatch {
+        /// What was being read, e.g. `"density"`.
+        what: &'static str,
+        /// `"vertex"` or `"face"`.
+        per: &'static str,
+        /// How many the mesh needs.
+        expected: usize,
+        /// How many were given.
+        found: usize,
+    },
+    /// A density is zero, negative, NaN or infinite. Densities must be finite and > 0.
+    #[error("density at vertex {vertex} is {value}; it must be finite and > 0")]
+    InvalidDensity {
+        /// The vertex index.
+        vertex: usize,
+        /// The offending value.
+        value: f64,
+    },
+    /// A tensor, once restricted to its face's plane, is not symmetric positive-definite
+    /// (or has a non-finite entry).
+    #[error("tensor of face {face} is not positive-definite in the face plane (restricted to [{m11}, {m12}; {m12}, {m22}])")]
+    NotPositiveDefinite {
+        /// The face index.
+        face: usize,
+        /// Restricted tensor, uu entry.
+        m11: f64,
+        /// Restricted tensor, uv entry.
+        m12: f64,
+        /// Restricted tensor, vv entry.
+        m22: f64,
+    },
+    /// A principal direction is zero, not finite, or perpendicular to its face's plane.
+    #[error("principal direction of face {face} is zero, not finite or normal to the face")]
+    DegenerateDirection {
+        /// The face index.
+        face: usize,
+    },
+}

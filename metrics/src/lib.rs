@@ -1,0 +1,135 @@
+//! The cost model of [geotracks](https://example.invalid/geotracks): how long a straight
+//! segment inside one triangle is.
+//!
+//! The propagation engine of geotracks never measures anything itself. Every time it
+//! needs the cost of going from one point of a face to another point of the *same* face
+//! (both on the face's closure), it asks a [`Metric`]. That is the whole contract, and
+//! it is why this crate depends on nothing of the engine: a user who plugs a custom cost
+//! implements one method on one struct.
+//!
+//! Built-ins:
+//! - [`Euclidean`]: the length of the segment.
+//! - [`Density`]: a positive scalar per vertex, linear on each face; a segment costs its
+//!   exact integral, `|b − a| · (ρ(a) + ρ(b)) / 2`.
+//! - [`Tensor`]: a symmetric positive-definite 2×2 tensor per face, in the face's plane;
+//!   a segment costs `sqrt(vᵀ M v)` with `v = b − a`.
+//!
+//! Euclidean and Tensor are norms on each face (the triangle inequality holds inside a
+//! face), so the track pruning of geotracks is exact for them. Density is not a norm:
+//! pruning is then a very good heuristic, not a proof.
+//!
+//! # Points and frames
+//! A [`FacePoint`] carries both its position in the face's local 2D frame (`uv`) and its
+//! barycentric coordinates (`bary`, in the face's vertex order). The local frame puts
+//! corner 0 at the origin, corner 1 on the positive u axis and corner 2 in the upper
+//! half plane; [`FaceGeometry::face_axes`] gives the world directions of u and v.
+//!
+//! # A custom metric
+//! ```
+//! use geotracks_metrics::{FacePoint, Metric};
+//!
+//! /// Moving costs twice as much in the v direction of every face's frame.
+//! struct Stretched;
+//!
+//! impl Metric for Stretched {
+//!     fn cost(&self, _face: u32, a: &FacePoint, b: &FacePoint) -> f64 {
+//!         let (du, dv) = (b.uv[0] - a.uv[0], b.uv[1] - a.uv[1]);
+//!         (du * du + 4.0 * dv * dv).sqrt()
+//!     }
+//! }
+//!
+//! let a = FacePoint { uv: [0.0, 0.0], bary: [1.0, 0.0, 0.0] };
+//! let b = FacePoint { uv: [0.0, 1.0], bary: [0.0, 0.0, 1.0] };
+//! assert_eq!(Stretched.cost(0, &a, &b), 2.0);
+//! ```
+#![forbid(unsafe_code)]
+
+mod density;
+mod error;
+mod euclidean;
+mod tensor;
+
+pub use density::Density;
+pub use error::MetricError;
+pub use euclidean::Euclidean;
+pub use tensor::Tensor;
+
+/// A point on the closure of one face, as the engine hands it to a [`Metric`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FacePoint {
+    /// Position in the face's local 2D frame (corner 0 at the origin, corner 1 on the
+    /// positive u axis, corner 2 in the upper half plane).
+    pub uv: [f64; 2],
+    /// Barycentric coordinates with respect to the face's corners, in the face's vertex
+    /// order; they sum to 1.
+    pub bary: [f64; 3],
+}
+
+impl FacePoint {
+    /// Euclidean length of the segment from `self` to `other` (both in one face's frame).
+    #[inline]
+    pub fn distance(&self, other: &FacePoint) -> f64 {
+        (other.uv[0] - self.uv[0]).hypot(other.uv[1] - self.uv[1])
+    }
+}
+
+/// The cost of straight segments inside faces: the one thing the engine asks of a metric.
+///
+/// Implementations must be deterministic, symmetric (`cost(f, a, b) == cost(f, b, a)`),
+/// non-negative, and zero only for `a == b`. They are called in the engine's innermost
+/// loop, so keep them cheap: precompute per-face data in the constructor.
+pub trait Metric: Sync {
+    /// Cost of the straight segment from `a` to `b`, both on the closure of face `face`.
+    fn cost(&self, face: u32, a: &FacePoint, b: &FacePoint) -> f64;
+
+    /// Whether the cost is a norm of `b − a` on each face (so the triangle inequality
+    /// holds inside a face). Track pruning is exact for such metrics. Defaults to `false`.
+    fn is_face_norm(&self) -> bool {
+        false
+    }
+
+    /// A short name for reports, e.g. `"euclidean"`.
+    fn name(&self) -> &str {
+        "custom"
+    }
+}
+
+impl<M: Metric + ?Sized> Metric for &M {
+    #[inline]
+    fn cost(&self, face: u32, a: &FacePoint, b: &FacePoint) -> f64 {
+        (**self).cost(face, a, b)
+    }
+    fn is_face_norm(&self) -> bool {
+        (**self).is_face_norm()
+    }
+    fn name(&self) -> &str {
+        (**self).name()
+    }
+}
+
+impl<M: Metric + ?Sized> Metric for Box<M> {
+    #[inline]
+    fn cost(&self, face: u32, a: &FacePoint, b: &FacePoint) -> f64 {
+        (**self).cost(face, a, b)
+    }
+    fn is_face_norm(&self) -> bool {
+        (**self).is_face_norm()
+    }
+    fn name(&self) -> &str {
+        (**self).name()
+    }
+}
+
+/// What the built-in metrics need to know about the mesh they are built for.
+///
+/// geotracks' `TriMesh` implements it; a user with another mesh type can too.
+pub trait FaceGeometry {
+    /// Number of vertices.
+    fn vertex_count(&self) -> usize;
+    /// Number of faces.
+    fn face_count(&self) -> usize;
+    /// The three vertex ids of a face, in the face's order.
+    fn face_vertices(&self, face: u32) -> [u32; 3];
+    /// World-space unit vectors of the face's local u and v axes.
+    fn face_axes(&self, face: u32) -> [[f64; 3]; 2];
+}

@@ -1,0 +1,194 @@
+use crate::{FaceGeometry, FacePoint, Metric, MetricError};
+
+/// A symmetric positive-definite tensor per face (anisotropic, direction-dependent cost).
+///
+/// Each face holds a 2×2 SPD matrix `M` in its local frame; a segment `v = b − a` costs
+/// `sqrt(vᵀ M v)`. With eigenvalues λ₁, λ₂ and θ the angle between `v` and the first
+/// principal direction that is `|v| · sqrt(λ₁ cos²θ + λ₂ sin²θ)`.
+///
+/// Three ways to build one:
+/// - [`Tensor::from_world`]: a 3×3 world-space symmetric matrix per face, restricted to
+///   the face's plane (`Mᶠ = Aᵀ M A`, `A` the face's two world axes);
+/// - [`Tensor::from_principal`]: λ₁, λ₂ and a world-space principal direction per face
+///   (projected onto the face's plane);
+/// - [`Tensor::from_local`]: the 2×2 matrices in the faces' own frames.
+///
+/// ```
+/// use geotracks_metrics::{FaceGeometry, FacePoint, Metric, Tensor};
+///
+/// struct OneFace; // a triangle in the z = 0 plane
+/// impl FaceGeometry for OneFace {
+///     fn vertex_count(&self) -> usize { 3 }
+///     fn face_count(&self) -> usize { 1 }
+///     fn face_vertices(&self, _: u32) -> [u32; 3] { [0, 1, 2] }
+///     fn face_axes(&self, _: u32) -> [[f64; 3]; 2] { [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]] }
+/// }
+/// // Moving along world y costs 3 per unit, along x 1 per unit (λ = 9 and 1).
+/// let t = Tensor::from_principal(&OneFace, &[(9.0, 1.0, [0.0, 1.0, 0.0])]).unwrap();
+/// let a = FacePoint { uv: [0.0, 0.0], bary: [1.0, 0.0, 0.0] };
+/// let b = FacePoint { uv: [0.0, 2.0], bary: [0.0, 0.0, 1.0] };
+/// assert!((t.cost(0, &a, &b) - 6.0).abs() < 1e-12);
+///
+/// // The same metric from a world-space matrix: xx xy xz yy yz zz.
+/// let w = Tensor::from_world(&OneFace, &[[1.0, 0.0, 0.0, 9.0, 0.0, 5.0]]).unwrap();
+/// assert!((w.cost(0, &a, &b) - 6.0).abs() < 1e-12);
+/// // Not positive-definite in the face plane: rejected.
+/// assert!(Tensor::from_world(&OneFace, &[[1.0, 0.0, 0.0, -1.0, 0.0, 1.0]]).is_err());
+/// ```
+#[derive(Clone, Debug)]
+pub struct Tensor {
+    /// `[m11, m12, m22]` in each face's local frame.
+    local: Vec<[f64; 3]>,
+}
+
+impl Tensor {
+    /// Builds from the 2×2 matrices `[m11, m12, m22]` in each face's local frame.
+    ///
+    /// # Errors
+    /// [`MetricError::NotPositiveDefinite`] for a matrix that is not SPD or not finite.
+    pub fn from_local(local: Vec<[f64; 3]>) -> Result<Self, MetricError> {
+        for (face, m) in local.iter().enumerate() {
+            check_spd(face, *m)?;
+        }
+        Ok(Tensor { local })
+    }
+
+    /// Builds from a world-space symmetric 3×3 matrix per face, given as its six upper
+    /// entries `[xx, xy, xz, yy, yz, zz]`, restricted to each face's plane.
+    ///
+    /// # Errors
+    /// [`MetricError::CountMismatch`] unless there is one matrix per face;
+    /// [`MetricError::NotPositiveDefinite`] if a restriction is not SPD.
+    pub fn from_world<G: FaceGeometry + ?Sized>(
+        mesh: &G,
+        world: &[[f64; 6]],
+    ) -> Result<Self, MetricError> {
+        check_count(mesh, world.len())?;
+        let local = world
+            .iter()
+            .enumerate()
+            .map(|(face, w)| {
+                let [u, v] = mesh.face_axes(face as u32);
+                let m = [[w[0], w[1], w[2]], [w[1], w[3], w[4]], [w[2], w[4], w[5]]];
+                let quad = |a: [f64; 3], b: [f64; 3]| {
+                    (0..3)
+                        .map(|i| a[i] * (0..3).map(|j| m[i][j] * b[j]).sum::<f64>())
+                        .sum::<f64>()
+                };
+                let r = [quad(u, u), quad(u, v), quad(v, v)];
+                check_spd(face, r).map(|()| r)
+            })
+            .collect::<Result<_, _>>()?;
+        Ok(Tensor { local })
+    }
+
+    /// The same world-space matrix `[xx, xy, xz, yy, yz, zz]` on every face.
+    ///
+    /// # Errors
+    /// As [`Tensor::from_world`].
+    pub fn uniform_world<G: FaceGeometry + ?Sized>(
+        mesh: &G,
+        world: [f64; 6],
+    ) -> Result<Self, MetricError> {
+        Self::from_world(mesh, &vec![world; mesh.face_count()])
+    }
+
+    /// Builds from `(λ₁, λ₂, d)` per face: cost factor λ₁ along the world direction `d`
+    /// projected onto the face, λ₂ across it.
+    ///
+    /// # Errors
+    /// [`MetricError::CountMismatch`] unless there is one entry per face;
+    /// [`MetricError::DegenerateDirection`] if `d` projects to zero;
+    /// [`MetricError::NotPositiveDefinite`] unless λ₁, λ₂ are finite and > 0.
+    pub fn from_principal<G: FaceGeometry + ?Sized>(
+        mesh: &G,
+        principal: &[(f64, f64, [f64; 3])],
+    ) -> Result<Self, MetricError> {
+        check_count(mesh, principal.len())?;
+        let local = principal
+            .iter()
+            .enumerate()
+            .map(|(face, &(l1, l2, d))| {
+                let [u, v] = mesh.face_axes(face as u32);
+                let (du, dv) = (dot(d, u), dot(d, v));
+                let norm = du.hypot(dv);
+                let scale = d.iter().map(|x| x * x).sum::<f64>().sqrt();
+                if !(norm.is_finite() && norm > 1e-12 * scale) {
+                    return Err(MetricError::DegenerateDirection { face });
+                }
+                let (c, s) = (du / norm, dv / norm);
+                // λ₁ d dᵀ + λ₂ d⊥ d⊥ᵀ
+                let r = [
+                    l1 * c * c + l2 * s * s,
+                    (l1 - l2) * c * s,
+                    l1 * s * s + l2 * c * c,
+                ];
+                if !(l1.is_finite() && l2.is_finite() && l1 > 0.0 && l2 > 0.0) {
+                    return Err(MetricError::NotPositiveDefinite {
+                        face,
+                        m11: r[0],
+                        m12: r[1],
+                        m22: r[2],
+                    });
+                }
+                Ok(r)
+            })
+            .collect::<Result<_, _>>()?;
+        Ok(Tensor { local })
+    }
+
+    /// The 2×2 matrices `[m11, m12, m22]` in each face's local frame.
+    pub fn local(&self) -> &[[f64; 3]] {
+        &self.local
+    }
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn check_count<G: FaceGeometry + ?Sized>(mesh: &G, found: usize) -> Result<(), MetricError> {
+    if found == mesh.face_count() {
+        Ok(())
+    } else {
+        Err(MetricError::CountMismatch {
+            what: "tensor",
+            per: "face",
+            expected: mesh.face_count(),
+            found,
+        })
+    }
+}
+
+fn check_spd(face: usize, [m11, m12, m22]: [f64; 3]) -> Result<(), MetricError> {
+    let finite = m11.is_finite() && m12.is_finite() && m22.is_finite();
+    // Relative test so that a nearly singular tensor counts as not positive-definite.
+    let det = m11 * m22 - m12 * m12;
+    if finite && m11 > 0.0 && m22 > 0.0 && det > 1e-12 * (m11 * m22) {
+        Ok(())
+    } else {
+        Err(MetricError::NotPositiveDefinite {
+            face,
+            m11,
+            m12,
+            m22,
+        })
+    }
+}
+
+impl Metric for Tensor {
+    #[inline]
+    fn cost(&self, face: u32, a: &FacePoint, b: &FacePoint) -> f64 {
+        let [m11, m12, m22] = self.local[face as usize];
+        let (x, y) = (b.uv[0] - a.uv[0], b.uv[1] - a.uv[1]);
+        (m11 * x * x + 2.0 * m12 * x * y + m22 * y * y)
+            .max(0.0)
+            .sqrt()
+    }
+    fn is_face_norm(&self) -> bool {
+        true
+    }
+    fn name(&self) -> &str {
+        "tensor"
+    }
+}
