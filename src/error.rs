@@ -1,0 +1,46 @@
+use crate::mesh::MeshError;
+use geotracks_metrics::MetricError;
+use thiserror::Error;
+
+/// Everything that can go wrong in geotracks, each variant naming the problem and where.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// The mesh could not be read or built.
+    #[error(transparent)]
+    Mesh(#[from] MeshError),
+    /// A metric could not be built from its data.
+    #[error(transparent)]
+    Metric(#[from] MetricError),
+    /// No source was given.
+    #[error("no source given: at least one source vertex is needed")]
+    NoSource,
+    /// A source names a vertex that does not exist.
+    #[error("source vertex {vertex} is out of range: the mesh has {vertex_count} vertices")]
+    SourceOutOfRange {
+        /// The vertex asked for.
+        vertex: u64,
+        /// How many vertices the mesh has.
+        vertex_count: usize,
+    },
+    /// The Steiner scheme asks for no points (k = 0), or a non-finite number of them.
+    #[error("invalid number of Steiner points per edge: k = {k} (it must be finite and > 0)")]
+    InvalidK {
+        /// The k asked for.
+        k: f64,
+    },
+    /// A metric returned a NaN or negative cost. Metrics must return costs ≥ 0
+    /// (`+inf` is allowed and means the segment cannot be crossed).
+    #[error("metric '{metric}' returned {value} for a segment in face {face}; costs must be ≥ 0 and not NaN")]
+    InvalidCost {
+        /// The metric's name.
+        metric: String,
+        /// The face of the segment.
+        face: u32,
+        /// The cost returned.
+        value: f64,
+    },
+    /// The method exists in the interface but is not built yet.
+    #[error("method '{0}' is not implemented yet; use --method graph or --method dijkstra")]
+    NotImplemented(&'static str),
+}

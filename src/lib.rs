@@ -1,0 +1,50 @@
+//! # geotracks
+//!
+//! Geodesic distances on triangle meshes of any topology, under pluggable metrics, with
+//! the *geodesic tracks* method: evenly spaced Steiner points on edges and a
+//! Dijkstra-like propagation between them.
+//!
+//! ## Map of the crate
+//! - [`mesh`]: [`TriMesh`](mesh::TriMesh) (an edge may have any number of faces), the
+//!   [`Topology`](mesh::Topology) trait, readers and writers ([`mesh::io`]).
+//! - [`metrics`] (re-exported crate `geotracks-metrics`): the [`Metric`] trait and the
+//!   built-ins [`Euclidean`], [`Density`], [`Tensor`].
+//! - [`steiner`]: where Steiner points go on each edge and how nodes are numbered.
+//! - [`propagate`]: the engines ([`Method`]) and [`distance_field`].
+//! - [`field`]: [`GeodesicField`], what a run returns.
+//!
+//! ## Example
+//! ```
+//! use geotracks::{distance_field, mesh::TriMesh, Euclidean, Options};
+//!
+//! // A flat 1 × 1 square made of two triangles.
+//! let mesh = TriMesh::new(
+//!     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+//!     vec![[0, 1, 2], [0, 2, 3]],
+//! )?;
+//! let field = distance_field(&mesh, &Euclidean, &[0], &Options::DEFAULT.with_k(3.0))?;
+//! assert!((field.distance(2) - 2f64.sqrt()).abs() < 1e-12);
+//! println!("{} distance tests", field.stats().distance_tests);
+//! # Ok::<(), geotracks::Error>(())
+//! ```
+#![forbid(unsafe_code)]
+
+mod error;
+pub mod field;
+pub mod mesh;
+pub mod propagate;
+pub mod steiner;
+
+/// The metric crate, `geotracks-metrics`.
+pub use geotracks_metrics as metrics;
+
+pub use error::Error;
+pub use field::{GeodesicField, Stats};
+pub use geotracks_metrics::{Density, Euclidean, FacePoint, Metric, MetricError, Tensor};
+pub use propagate::{distance_field, Method, Options};
+pub use steiner::{SteinerLayout, SteinerScheme};
+
+/// The README's code blocks, compiled and run as doctests so they stay true.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

@@ -1,0 +1,138 @@
+use std::path::PathBuf;
+use thiserror::Error;
+
+/// Why a mesh could not be read or built.
+///
+/// Every variant names the place: a file and line, a face or a vertex index.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum MeshError {
+    /// The file could not be opened or read.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// What the operating system said.
+        source: std::io::Error,
+    },
+    /// The file is empty (or holds only comments and blank lines).
+    #[error("{path}: the file is empty")]
+    EmptyFile {
+        /// The file.
+        path: PathBuf,
+    },
+    /// The file's extension names no format geotracks reads or writes.
+    #[error("{path}: unknown mesh format (expected one of {expected})")]
+    UnknownFormat {
+        /// The file.
+        path: PathBuf,
+        /// The extensions that would have been accepted.
+        expected: &'static str,
+    },
+    /// The file does not follow its format: bad number, missing field, truncated data.
+    /// `line` is 1-based, or 0 where the format has no lines (binary files).
+    #[error("{path}{}: {message}", LineSuffix(*line))]
+    Parse {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line number, 0 if unknown.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// A face refers to a vertex that does not exist.
+    #[error("face {face} refers to vertex {vertex}, but the mesh has {vertex_count} vertices")]
+    IndexOutOfRange {
+        /// The face's index in the input.
+        face: usize,
+        /// The vertex index it gave.
+        vertex: i64,
+        /// How many vertices there are.
+        vertex_count: usize,
+    },
+    /// A line element (a free edge) refers to a vertex that does not exist.
+    #[error("edge {edge} refers to vertex {vertex}, but the mesh has {vertex_count} vertices")]
+    EdgeIndexOutOfRange {
+        /// The edge's index in the input.
+        edge: usize,
+        /// The vertex index it gave.
+        vertex: i64,
+        /// How many vertices there are.
+        vertex_count: usize,
+    },
+    /// A vertex has a NaN or infinite coordinate.
+    #[error("vertex {vertex} has a non-finite coordinate {position:?}")]
+    NonFiniteVertex {
+        /// The vertex index.
+        vertex: usize,
+        /// Its coordinates as read.
+        position: [f64; 3],
+    },
+    /// Every face is degenerate (zero area or a repeated vertex), or there is none.
+    #[error("the mesh has no usable face ({faces} faces read, {degenerate} degenerate)")]
+    NoUsableFace {
+        /// Faces in the input.
+        faces: usize,
+        /// How many of them were degenerate.
+        degenerate: usize,
+    },
+    /// Wraps an error of the mesh's content with the file it came from.
+    #[error("{path}: {error}")]
+    InFile {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong in it.
+        error: Box<MeshError>,
+    },
+    /// Wraps an error of the mesh's content with the file and the 1-based line it came
+    /// from, for text formats where the line is known (an index out of range in an OBJ,
+    /// OFF or `.ma` file).
+    #[error("{path}:{line}: {error}")]
+    AtLine {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line number.
+        line: usize,
+        /// What is wrong there.
+        error: Box<MeshError>,
+    },
+    /// A per-vertex (or per-element) attribute given to a writer has the wrong length.
+    /// Pass one value per vertex.
+    #[error("{what}: expected {expected} values (one per vertex), got {found}")]
+    AttributeLength {
+        /// Which attribute.
+        what: &'static str,
+        /// How many values the mesh needs.
+        expected: usize,
+        /// How many were given.
+        found: usize,
+    },
+}
+
+impl MeshError {
+    /// Attaches the file name to a content error (no-op for errors that already name it).
+    pub fn in_file(self, path: impl Into<PathBuf>) -> MeshError {
+        match self {
+            MeshError::IndexOutOfRange { .. }
+            | MeshError::EdgeIndexOutOfRange { .. }
+            | MeshError::NonFiniteVertex { .. }
+            | MeshError::NoUsableFace { .. } => MeshError::InFile {
+                path: path.into(),
+                error: Box::new(self),
+            },
+            other => other,
+        }
+    }
+}
+
+/// `:line` for a known line, nothing for line 0 (binary data has no lines).
+struct LineSuffix(usize);
+
+impl std::fmt::Display for LineSuffix {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.0 {
+            0 => Ok(()),
+            line => write!(f, ":{line}"),
+        }
+    }
+}

@@ -1,0 +1,173 @@
+//! The medial-axis `.ma` format: a counts line `nv ne nf`, then `v x y z r`, `e i j` and
+//! `f i j k` lines (0-based), in any order.
+//!
+//! The `e` lines list every edge, those of faces included; only edges that belong to no
+//! kept face become line elements, so a medial axis's curve parts survive without
+//! duplicating its sheets' edges.
+
+use super::text::{at_line, next_number, parse_error, Lines};
+use super::MedialAxis;
+use crate::mesh::{MeshError, Topology, TriMesh};
+use std::path::Path;
+
+pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<MedialAxis, MeshError> {
+    let mut lines = Lines::new(path, bytes);
+    let Some(first) = lines.next() else {
+        return Err(MeshError::EmptyFile {
+            path: path.to_path_buf(),
+        });
+    };
+    let (header_line, text) = first?;
+    let mut tokens = text.split_whitespace();
+    let mut count = |what: &str| -> Result<usize, MeshError> {
+        next_number(&mut tokens, path, header_line, || {
+            format!("{what} count in the header `vertices edges faces`")
+        })
+    };
+    let (nv, ne, nf) = (count("vertex")?, count("edge")?, count("face")?);
+
+    // Capacity is capped: a corrupt header must not allocate before the data proves it.
+    let cap = |n: usize| n.min(1 << 20);
+    let mut positions: Vec<[f64; 3]> = Vec::with_capacity(cap(nv));
+    let mut radii: Vec<f64> = Vec::with_capacity(cap(nv));
+    let mut edges: Vec<[u32; 2]> = Vec::with_capacity(cap(ne));
+    let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(cap(nf));
+
+    // Vertices may come after the edges and faces that use them, so indices are checked
+    // against the header's count, which the end of the file then confirms.
+    let index = |token: Option<&str>, line: usize, error: &dyn Fn(i64) -> MeshError| {
+        let token = token.ok_or_else(|| parse_error(path, line, "a vertex index is missing"))?;
+        let i: i64 = token.parse().map_err(|_| {
+            parse_error(
+                path,
+                line,
+                format!("expected a vertex index, found `{token}`"),
+            )
+        })?;
+        match u32::try_from(i) {
+            Ok(v) if (v as usize) < nv => Ok(v),
+            _ => Err(at_line(path, line, error(i))),
+        }
+    };
+    let too_many = |line: usize, what: &str, n: usize| {
+        parse_error(
+            path,
+            line,
+            format!("more {what} than the {n} the header (line {header_line}) declares"),
+        )
+    };
+
+    for item in &mut lines {
+        let (line, text) = item?;
+        let mut tokens = text.split_whitespace();
+        match tokens.next() {
+            Some("v") => {
+                let v = positions.len();
+                if v == nv {
+                    return Err(too_many(line, "vertices", nv));
+                }
+                let mut p = [0.0f64; 4];
+                for (k, c) in p.iter_mut().enumerate() {
+                    *c = next_number(&mut tokens, path, line, || {
+                        format!("{} of vertex {v}", ["x", "y", "z", "radius"][k])
+                    })?;
+                }
+                let r = p[3];
+                if !(r.is_finite() && r >= 0.0) {
+                    return Err(parse_error(
+                        path,
+                        line,
+                        format!("vertex {v} has radius {r}; a radius is finite and >= 0"),
+                    ));
+                }
+                positions.push([p[0], p[1], p[2]]);
+                radii.push(r);
+            }
+            Some("e") => {
+                let e = edges.len();
+                if e == ne {
+                    return Err(too_many(line, "edges", ne));
+                }
+                let error = |vertex| MeshError::EdgeIndexOutOfRange {
+                    edge: e,
+                    vertex,
+                    vertex_count: nv,
+                };
+                edges.push([
+                    index(tokens.next(), line, &error)?,
+                    index(tokens.next(), line, &error)?,
+                ]);
+            }
+            Some("f") => {
+                let face = triangles.len();
+                if face == nf {
+                    return Err(too_many(line, "faces", nf));
+                }
+                let error = |vertex| MeshError::IndexOutOfRange {
+                    face,
+                    vertex,
+                    vertex_count: nv,
+                };
+                triangles.push([
+                    index(tokens.next(), line, &error)?,
+                    index(tokens.next(), line, &error)?,
+                    index(tokens.next(), line, &error)?,
+                ]);
+            }
+            Some(other) => {
+                return Err(parse_error(
+                    path,
+                    line,
+                    format!("unknown record `{other}` (expected `v`, `e` or `f`)"),
+                ))
+            }
+            None => {}
+        }
+    }
+
+    for (what, found, declared) in [
+        ("vertices (`v` lines)", positions.len(), nv),
+        ("edges (`e` lines)", edges.len(), ne),
+        ("faces (`f` lines)", triangles.len(), nf),
+    ] {
+        if found != declared {
+            return Err(parse_error(
+                path,
+                header_line,
+                format!(
+                    "the header declares {declared} {what} but the file has {found}: {} missing",
+                    declared - found
+                ),
+            ));
+        }
+    }
+
+    let mesh = TriMesh::new(positions.clone(), triangles.clone()).map_err(|e| e.in_file(path))?;
+    let free = free_edges(&mesh, &edges);
+    let mesh = if free.is_empty() {
+        mesh
+    } else {
+        // Built twice because which faces are degenerate (and so whose edges are free) is
+        // only known once the mesh is built; it is cheap next to reading the file.
+        TriMesh::with_line_elements(positions, triangles, free).map_err(|e| e.in_file(path))?
+    };
+    Ok(MedialAxis { mesh, radii })
+}
+
+/// The listed edges that are no edge of a kept face, each once, self-loops left out.
+fn free_edges(mesh: &TriMesh, edges: &[[u32; 2]]) -> Vec<[u32; 2]> {
+    let mut free: Vec<[u32; 2]> = edges
+        .iter()
+        .filter(|[a, b]| a != b)
+        .map(|&[a, b]| [a.min(b), a.max(b)])
+        .filter(|&[a, b]| {
+            !mesh
+                .vertex_edges(a)
+                .iter()
+                .any(|&e| mesh.edge_vertices(e) == [a, b])
+        })
+        .collect();
+    free.sort_unstable();
+    free.dedup();
+    free
+}

@@ -1,0 +1,123 @@
+//! Object File Format: an optional `OFF` header (also `COFF`, `NOFF`, `CNOFF`, `STOFF`),
+//! a counts line `nv nf [ne]`, one vertex per line, one face `n i j k …` per line.
+//!
+//! Line-based rather than a token stream: values after a vertex's `x y z` or after a
+//! face's `n` indices (colours, normals, texture coordinates) can then be skipped without
+//! knowing which variant of the format wrote them.
+
+use super::text::{at_line, next_number, parse_error, Lines};
+use crate::mesh::{MeshError, TriMesh};
+use std::path::Path;
+
+pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<TriMesh, MeshError> {
+    let mut lines = Lines::new(path, bytes);
+    let Some(first) = lines.next() else {
+        return Err(MeshError::EmptyFile {
+            path: path.to_path_buf(),
+        });
+    };
+    let (mut line, mut text) = first?;
+
+    // The header keyword, possibly followed by the counts on the same line.
+    let keyword = text.split_whitespace().next().unwrap_or("");
+    if keyword.ends_with("OFF") {
+        if keyword.contains('4') || keyword.contains('n') {
+            return Err(parse_error(
+                path,
+                line,
+                format!("`{keyword}`: only 3D OFF files are supported"),
+            ));
+        }
+        let after = text[keyword.len()..].trim();
+        if after.is_empty() {
+            match lines.next() {
+                Some(item) => (line, text) = item?,
+                None => return Err(parse_error(
+                    path,
+                    lines.end_line(),
+                    "expected the counts line `vertices faces edges`, found the end of the file",
+                )),
+            }
+        } else {
+            text = after;
+        }
+    }
+    let mut tokens = text.split_whitespace();
+    let nv: usize = next_number(&mut tokens, path, line, || "vertex count".into())?;
+    let nf: usize = next_number(&mut tokens, path, line, || "face count".into())?;
+
+    // Capacity is capped: a corrupt count must not allocate before the data proves it.
+    let mut positions: Vec<[f64; 3]> = Vec::with_capacity(nv.min(1 << 20));
+    for v in 0..nv {
+        let (line, text) = expect_line(&mut lines, path, || format!("vertex {v} of {nv}"))?;
+        let mut tokens = text.split_whitespace();
+        let mut p = [0.0; 3];
+        for (axis, c) in p.iter_mut().enumerate() {
+            *c = next_number(&mut tokens, path, line, || {
+                format!("{} coordinate of vertex {v}", ["x", "y", "z"][axis])
+            })?;
+        }
+        positions.push(p);
+    }
+
+    let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(nf.min(1 << 20));
+    let mut polygon: Vec<u32> = Vec::new();
+    for f in 0..nf {
+        let (line, text) = expect_line(&mut lines, path, || format!("face {f} of {nf}"))?;
+        let mut tokens = text.split_whitespace();
+        let n: usize = next_number(&mut tokens, path, line, || {
+            format!("vertex count of face {f}")
+        })?;
+        if n < 3 {
+            return Err(parse_error(
+                path,
+                line,
+                format!("face {f} has {n} vertices; a face needs at least 3"),
+            ));
+        }
+        polygon.clear();
+        for k in 0..n {
+            let index: i64 = next_number(&mut tokens, path, line, || {
+                format!("vertex {k} of face {f} (it declares {n})")
+            })?;
+            match u32::try_from(index) {
+                Ok(v) if (v as usize) < nv => polygon.push(v),
+                _ => {
+                    return Err(at_line(
+                        path,
+                        line,
+                        MeshError::IndexOutOfRange {
+                            face: f,
+                            vertex: index,
+                            vertex_count: nv,
+                        },
+                    ))
+                }
+            }
+        }
+        // Fan triangulation: exact for the convex polygons mesh files hold.
+        for k in 1..n - 1 {
+            triangles.push([polygon[0], polygon[k], polygon[k + 1]]);
+        }
+    }
+    TriMesh::new(positions, triangles).map_err(|e| e.in_file(path))
+}
+
+/// The next data line, or a truncation error naming what was expected and where.
+fn expect_line<'a>(
+    lines: &mut Lines<'a>,
+    path: &Path,
+    what: impl FnOnce() -> String,
+) -> Result<(usize, &'a str), MeshError> {
+    match lines.next() {
+        Some(item) => item,
+        None => Err(parse_error(
+            path,
+            lines.end_line(),
+            format!(
+                "the file is truncated: expected {}, found the end of the file",
+                what()
+            ),
+        )),
+    }
+}

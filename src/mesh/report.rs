@@ -1,0 +1,103 @@
+use super::{Topology, TriMesh};
+use std::fmt;
+
+/// What a mesh is made of, and what in it may surprise an algorithm.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct MeshReport {
+    /// Vertices, unreferenced ones included.
+    pub vertices: usize,
+    /// Kept faces.
+    pub faces: usize,
+    /// Edges that belong to at least one face.
+    pub edges: usize,
+    /// Edges with exactly one face.
+    pub boundary_edges: usize,
+    /// Edges with three or more faces.
+    pub non_manifold_edges: usize,
+    /// The most faces any edge has.
+    pub max_edge_valence: usize,
+    /// Faces dropped as degenerate (zero area or a repeated vertex).
+    pub degenerate_faces: usize,
+    /// Connected components of the faces (faces that share a vertex are connected).
+    pub components: usize,
+    /// Vertices that no kept face uses.
+    pub unreferenced_vertices: usize,
+    /// Line elements (free edges) carried along, e.g. from a medial axis.
+    pub line_edges: usize,
+}
+
+impl MeshReport {
+    pub(super) fn of(mesh: &TriMesh) -> MeshReport {
+        let valences = (0..mesh.edge_count() as u32).map(|e| mesh.edge_faces(e).len());
+        let unreferenced_vertices = (0..mesh.vertex_count() as u32)
+            .filter(|&v| mesh.vertex_faces(v).is_empty())
+            .count();
+        MeshReport {
+            vertices: mesh.vertex_count(),
+            faces: mesh.face_count(),
+            edges: mesh.edge_count(),
+            boundary_edges: valences.clone().filter(|&n| n == 1).count(),
+            non_manifold_edges: valences.clone().filter(|&n| n > 2).count(),
+            max_edge_valence: valences.max().unwrap_or(0),
+            degenerate_faces: mesh.dropped_faces().len(),
+            components: vertex_components(mesh).1 - unreferenced_vertices,
+            unreferenced_vertices,
+            line_edges: mesh.line_edges().len(),
+        }
+    }
+}
+
+/// Labels each vertex with its component (vertices joined by face edges) and counts the
+/// components, unreferenced vertices counting as one each.
+pub(crate) fn vertex_components<T: Topology>(mesh: &T) -> (Vec<u32>, usize) {
+    let n = mesh.vertex_count();
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    fn root(parent: &mut [u32], mut v: u32) -> u32 {
+        while parent[v as usize] != v {
+            let up = parent[parent[v as usize] as usize];
+            parent[v as usize] = up;
+            v = up;
+        }
+        v
+    }
+    for e in 0..mesh.edge_count() as u32 {
+        let [a, b] = mesh.edge_vertices(e);
+        let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+        if ra != rb {
+            parent[ra.max(rb) as usize] = ra.min(rb);
+        }
+    }
+    let mut label = vec![u32::MAX; n];
+    let mut count = 0;
+    for v in 0..n as u32 {
+        let r = root(&mut parent, v) as usize;
+        if label[r] == u32::MAX {
+            label[r] = count;
+            count += 1;
+        }
+        label[v as usize] = label[r];
+    }
+    (label, count as usize)
+}
+
+impl fmt::Display for MeshReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(f, "vertices              {}", self.vertices)?;
+        writeln!(f, "faces                 {}", self.faces)?;
+        writeln!(f, "edges                 {}", self.edges)?;
+        writeln!(f, "boundary edges        {}", self.boundary_edges)?;
+        writeln!(
+            f,
+            "non-manifold edges    {} (max faces on one edge: {})",
+            self.non_manifold_edges, self.max_edge_valence
+        )?;
+        writeln!(
+            f,
+            "degenerate faces      {} (dropped)",
+            self.degenerate_faces
+        )?;
+        writeln!(f, "components            {}", self.components)?;
+        writeln!(f, "unreferenced vertices {}", self.unreferenced_vertices)?;
+        write!(f, "line elements         {}", self.line_edges)
+    }
+}

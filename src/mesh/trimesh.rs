@@ -1,0 +1,394 @@
+use super::{Csr, MeshError, MeshReport, Topology};
+use geotracks_metrics::{FaceGeometry, FacePoint};
+use glam::DVec3;
+
+/// A face's local 2D frame: corner 0 at the origin, corner 1 at `(l01, 0)`, corner 2 at
+/// `(x2, y2)` with `y2 > 0`. Segment costs are computed in this frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FaceFrame {
+    /// Length of the edge from corner 0 to corner 1.
+    pub l01: f64,
+    /// u coordinate of corner 2.
+    pub x2: f64,
+    /// v coordinate of corner 2 (> 0 for a face that was kept).
+    pub y2: f64,
+}
+
+impl FaceFrame {
+    /// The three corners in the frame.
+    #[inline]
+    pub fn corners(&self) -> [[f64; 2]; 3] {
+        [[0.0, 0.0], [self.l01, 0.0], [self.x2, self.y2]]
+    }
+
+    /// The point at parameter `t` from corner `i` towards corner `(i + 1) % 3`.
+    #[inline]
+    pub fn point_on_edge(&self, i: usize, t: f64) -> FacePoint {
+        let c = self.corners();
+        let (a, b) = (c[i], c[(i + 1) % 3]);
+        let mut bary = [0.0; 3];
+        bary[i] = 1.0 - t;
+        bary[(i + 1) % 3] = t;
+        FacePoint {
+            uv: [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])],
+            bary,
+        }
+    }
+
+    /// The point with barycentric coordinates `bary`.
+    #[inline]
+    pub fn point(&self, bary: [f64; 3]) -> FacePoint {
+        FacePoint {
+            uv: [bary[1] * self.l01 + bary[2] * self.x2, bary[2] * self.y2],
+            bary,
+        }
+    }
+}
+
+/// A face that was left out because it is degenerate.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DroppedFace {
+    /// Its index in the input.
+    pub input_index: usize,
+    /// `true` if two of its corners are the same vertex, `false` if it has zero area.
+    pub repeated_vertex: bool,
+}
+
+/// A triangle mesh of any topology, with its edge table and per-face frames.
+///
+/// Build one with [`TriMesh::new`] (or read a file with [`crate::mesh::io::read_mesh`]).
+/// Degenerate faces (a repeated vertex, or zero area) are dropped and listed in
+/// [`TriMesh::dropped_faces`]; kept faces are renumbered densely, and
+/// [`TriMesh::input_face`] maps them back. Vertices are never renumbered.
+///
+/// ```
+/// use geotracks::mesh::{TriMesh, Topology};
+/// // Three faces sharing the edge 0–1: a non-manifold "book".
+/// let mesh = TriMesh::new(
+///     vec![[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]],
+///     vec![[0, 1, 2], [0, 1, 3], [0, 1, 4]],
+/// ).unwrap();
+/// let spine = mesh.face_edges(0)[0];
+/// assert_eq!(mesh.edge_faces(spine).len(), 3);
+/// assert_eq!(mesh.report().max_edge_valence, 3);
+/// ```
+#[derive(Clone, Debug)]
+pub struct TriMesh {
+    positions: Vec<DVec3>,
+    triangles: Vec<[u32; 3]>,
+    frames: Vec<FaceFrame>,
+    face_edges: Vec<[u32; 3]>,
+    edge_vertices: Vec<[u32; 2]>,
+    edge_faces: Csr,
+    vertex_faces: Csr,
+    vertex_edges: Csr,
+    line_edges: Vec<[u32; 2]>,
+    input_faces: Vec<u32>,
+    dropped: Vec<DroppedFace>,
+}
+
+impl TriMesh {
+    /// Builds a mesh from positions and triangles (0-based vertex ids).
+    ///
+    /// # Errors
+    /// [`MeshError::NonFiniteVertex`] for a NaN or infinite coordinate,
+    /// [`MeshError::IndexOutOfRange`] for a face that names a missing vertex,
+    /// [`MeshError::NoUsableFace`] if no face is left after dropping degenerate ones.
+    pub fn new(positions: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>) -> Result<Self, MeshError> {
+        Self::with_line_elements(positions, triangles, Vec::new())
+    }
+
+    /// As [`TriMesh::new`], also keeping line elements: edges that may belong to no face
+    /// (a medial axis has them). They carry no area and take no part in propagation;
+    /// line elements that are also face edges are kept as given.
+    ///
+    /// # Errors
+    /// As [`TriMesh::new`], plus [`MeshError::EdgeIndexOutOfRange`].
+    pub fn with_line_elements(
+        positions: Vec<[f64; 3]>,
+        triangles: Vec<[u32; 3]>,
+        line_edges: Vec<[u32; 2]>,
+    ) -> Result<Self, MeshError> {
+        let n = positions.len();
+        if let Some((vertex, p)) = positions
+            .iter()
+            .enumerate()
+            .find(|(_, p)| !p.iter().all(|c| c.is_finite()))
+        {
+            return Err(MeshError::NonFiniteVertex {
+                vertex,
+                position: *p,
+            });
+        }
+        for (face, t) in triangles.iter().enumerate() {
+            if let Some(&v) = t.iter().find(|&&v| v as usize >= n) {
+                return Err(MeshError::IndexOutOfRange {
+                    face,
+                    vertex: v as i64,
+                    vertex_count: n,
+                });
+            }
+        }
+        for (edge, l) in line_edges.iter().enumerate() {
+            if let Some(&v) = l.iter().find(|&&v| v as usize >= n) {
+                return Err(MeshError::EdgeIndexOutOfRange {
+                    edge,
+                    vertex: v as i64,
+                    vertex_count: n,
+                });
+            }
+        }
+        let positions: Vec<DVec3> = positions.into_iter().map(DVec3::from_array).collect();
+
+        let input_count = triangles.len();
+        let mut kept = Vec::with_capacity(input_count);
+        let mut frames = Vec::with_capacity(input_count);
+        let mut input_faces = Vec::with_capacity(input_count);
+        let mut dropped = Vec::new();
+        for (i, t) in triangles.into_iter().enumerate() {
+            let repeated_vertex = t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
+            match (!repeated_vertex)
+                .then(|| frame_of(t.map(|v| positions[v as usize])))
+                .flatten()
+            {
+                Some(frame) => {
+                    kept.push(t);
+                    frames.push(frame);
+                    input_faces.push(i as u32);
+                }
+                None => dropped.push(DroppedFace {
+                    input_index: i,
+                    repeated_vertex,
+                }),
+            }
+        }
+        if kept.is_empty() {
+            return Err(MeshError::NoUsableFace {
+                faces: input_count,
+                degenerate: dropped.len(),
+            });
+        }
+
+        let (face_edges, edge_vertices, edge_faces) = build_edges(&kept);
+        let vertex_faces = Csr::from_pairs(
+            n,
+            kept.iter()
+                .enumerate()
+                .flat_map(|(f, t)| t.iter().map(move |&v| (v, f as u32))),
+        );
+        let vertex_edges = Csr::from_pairs(
+            n,
+            edge_vertices
+                .iter()
+                .enumerate()
+                .flat_map(|(e, ev)| ev.iter().map(move |&v| (v, e as u32))),
+        );
+        Ok(TriMesh {
+            positions,
+            triangles: kept,
+            frames,
+            face_edges,
+            edge_vertices,
+            edge_faces,
+            vertex_faces,
+            vertex_edges,
+            line_edges,
+            input_faces,
+            dropped,
+        })
+    }
+
+    /// Vertex positions.
+    pub fn positions(&self) -> &[DVec3] {
+        &self.positions
+    }
+
+    /// The position of vertex `v`.
+    #[inline]
+    pub fn position(&self, v: u32) -> DVec3 {
+        self.positions[v as usize]
+    }
+
+    /// The kept triangles.
+    pub fn triangles(&self) -> &[[u32; 3]] {
+        &self.triangles
+    }
+
+    /// The local 2D frame of face `f`.
+    #[inline]
+    pub fn frame(&self, f: u32) -> &FaceFrame {
+        &self.frames[f as usize]
+    }
+
+    /// Euclidean length of edge `e`.
+    pub fn edge_length(&self, e: u32) -> f64 {
+        let [a, b] = self.edge_vertices[e as usize];
+        self.position(a).distance(self.position(b))
+    }
+
+    /// Line elements (free edges) given at construction.
+    pub fn line_edges(&self) -> &[[u32; 2]] {
+        &self.line_edges
+    }
+
+    /// The faces that were dropped as degenerate.
+    pub fn dropped_faces(&self) -> &[DroppedFace] {
+        &self.dropped
+    }
+
+    /// The input index of kept face `f` (differs from `f` once faces were dropped).
+    pub fn input_face(&self, f: u32) -> usize {
+        self.input_faces[f as usize] as usize
+    }
+
+    /// Number of faces in the input, dropped ones included.
+    pub fn input_face_count(&self) -> usize {
+        self.triangles.len() + self.dropped.len()
+    }
+
+    /// Which corner of face `f` vertex `v` is, if any.
+    #[inline]
+    pub fn corner_of(&self, f: u32, v: u32) -> Option<usize> {
+        self.triangles[f as usize].iter().position(|&c| c == v)
+    }
+
+    /// Which of face `f`'s edges `e` is, if any.
+    #[inline]
+    pub fn edge_slot(&self, f: u32, e: u32) -> Option<usize> {
+        self.face_edges[f as usize].iter().position(|&c| c == e)
+    }
+
+    /// The world position of barycentric point `bary` of face `f`.
+    pub fn point(&self, f: u32, bary: [f64; 3]) -> DVec3 {
+        let t = self.triangles[f as usize];
+        bary[0] * self.position(t[0])
+            + bary[1] * self.position(t[1])
+            + bary[2] * self.position(t[2])
+    }
+
+    /// Mean Euclidean edge length (0 for a mesh without edges).
+    pub fn mean_edge_length(&self) -> f64 {
+        let n = self.edge_vertices.len();
+        if n == 0 {
+            return 0.0;
+        }
+        (0..n as u32).map(|e| self.edge_length(e)).sum::<f64>() / n as f64
+    }
+
+    /// Labels each vertex with its connected component (vertices joined by face edges;
+    /// an unreferenced vertex is a component of its own) and returns the labels and the
+    /// number of components. Distances propagate only within a component.
+    pub fn vertex_components(&self) -> (Vec<u32>, usize) {
+        super::report::vertex_components(self)
+    }
+
+    /// Counts of elements, boundary and non-manifold edges, components and so on.
+    pub fn report(&self) -> MeshReport {
+        MeshReport::of(self)
+    }
+}
+
+/// The local frame of a triangle, or `None` if it has (numerically) zero area.
+fn frame_of([p0, p1, p2]: [DVec3; 3]) -> Option<FaceFrame> {
+    let e01 = p1 - p0;
+    let e02 = p2 - p0;
+    let l01 = e01.length();
+    let longest = l01.max(e02.length()).max((p2 - p1).length());
+    let twice_area = e01.cross(e02).length();
+    // Relative test: a sliver with aspect 1e6 is kept, an exactly flat one is not.
+    if !(longest > 0.0 && twice_area > 1e-12 * longest * longest) {
+        return None;
+    }
+    let u = e01 / l01;
+    let x2 = e02.dot(u);
+    let y2 = twice_area / l01;
+    Some(FaceFrame { l01, x2, y2 })
+}
+
+/// Numbers the undirected edges of the faces (sorted by their vertex pair) and lists the
+/// faces around each, in face order.
+fn build_edges(triangles: &[[u32; 3]]) -> (Vec<[u32; 3]>, Vec<[u32; 2]>, Csr) {
+    let key = |a: u32, b: u32| ((a.min(b) as u64) << 32) | a.max(b) as u64;
+    let mut slots: Vec<(u64, u32)> = triangles
+        .iter()
+        .enumerate()
+        .flat_map(|(f, t)| (0..3).map(move |i| (key(t[i], t[(i + 1) % 3]), (f * 3 + i) as u32)))
+        .collect();
+    slots.sort_unstable();
+    let mut face_edges = vec![[0u32; 3]; triangles.len()];
+    let mut edge_vertices: Vec<[u32; 2]> = Vec::new();
+    let mut last = u64::MAX;
+    for &(k, slot) in &slots {
+        if k != last {
+            edge_vertices.push([(k >> 32) as u32, k as u32]);
+            last = k;
+        }
+        face_edges[slot as usize / 3][slot as usize % 3] = edge_vertices.len() as u32 - 1;
+    }
+    let edge_faces = Csr::from_pairs(
+        edge_vertices.len(),
+        face_edges
+            .iter()
+            .enumerate()
+            .flat_map(|(f, es)| es.iter().map(move |&e| (e, f as u32))),
+    );
+    (face_edges, edge_vertices, edge_faces)
+}
+
+impl Topology for TriMesh {
+    #[inline]
+    fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+    #[inline]
+    fn face_count(&self) -> usize {
+        self.triangles.len()
+    }
+    #[inline]
+    fn edge_count(&self) -> usize {
+        self.edge_vertices.len()
+    }
+    #[inline]
+    fn face_vertices(&self, f: u32) -> [u32; 3] {
+        self.triangles[f as usize]
+    }
+    #[inline]
+    fn face_edges(&self, f: u32) -> [u32; 3] {
+        self.face_edges[f as usize]
+    }
+    #[inline]
+    fn edge_vertices(&self, e: u32) -> [u32; 2] {
+        self.edge_vertices[e as usize]
+    }
+    #[inline]
+    fn edge_faces(&self, e: u32) -> &[u32] {
+        self.edge_faces.row(e)
+    }
+    #[inline]
+    fn vertex_faces(&self, v: u32) -> &[u32] {
+        self.vertex_faces.row(v)
+    }
+    #[inline]
+    fn vertex_edges(&self, v: u32) -> &[u32] {
+        self.vertex_edges.row(v)
+    }
+}
+
+impl FaceGeometry for TriMesh {
+    fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+    fn face_count(&self) -> usize {
+        self.triangles.len()
+    }
+    fn face_vertices(&self, face: u32) -> [u32; 3] {
+        self.triangles[face as usize]
+    }
+    fn face_axes(&self, face: u32) -> [[f64; 3]; 2] {
+        let [p0, p1, p2] = self.triangles[face as usize].map(|v| self.position(v));
+        let u = (p1 - p0).normalize();
+        let w = p2 - p0;
+        let v = (w - w.dot(u) * u).normalize();
+        [u.to_array(), v.to_array()]
+    }
+}

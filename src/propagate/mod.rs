@@ -1,0 +1,164 @@
+//! The engines that turn sources into a [`GeodesicField`].
+//!
+//! - [`Method::Graph`]: the complete Steiner graph per face, run with Dijkstra's
+//!   algorithm on a binary heap. The graph is implicit: when a node is settled it tests
+//!   every node on the boundary of each face around it (O(k) tests per face entry,
+//!   O(k²) per face). This is the reference the fast engine must agree with.
+//! - [`Method::Dijkstra`]: Dijkstra on mesh edges only: the same graph with no Steiner
+//!   points. Fast, and several percent too long.
+//! - [`Method::Tracks`]: the track-pruned engine of the geodesic tracks paper (not built
+//!   yet).
+//!
+//! All are generic over the [`Metric`] (monomorphised: no dynamic dispatch in the loop).
+
+mod graph;
+
+use crate::field::GeodesicField;
+use crate::mesh::{Topology, TriMesh};
+use crate::steiner::{SteinerLayout, SteinerScheme};
+use crate::Error;
+use geotracks_metrics::Metric;
+use std::fmt;
+use std::str::FromStr;
+use std::sync::Arc;
+use std::time::Instant;
+
+/// Which propagation runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Method {
+    /// Track-pruned Steiner-point propagation (the geodesic tracks method).
+    Tracks,
+    /// The complete Steiner graph per face (naive; the oracle).
+    Graph,
+    /// Dijkstra on mesh edges (no Steiner points).
+    Dijkstra,
+}
+
+impl Method {
+    /// The name used on the command line and in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Tracks => "tracks",
+            Method::Graph => "graph",
+            Method::Dijkstra => "dijkstra",
+        }
+    }
+}
+
+impl fmt::Display for Method {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Method {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s {
+            "tracks" => Ok(Method::Tracks),
+            "graph" => Ok(Method::Graph),
+            "dijkstra" => Ok(Method::Dijkstra),
+            other => Err(format!(
+                "unknown method '{other}' (expected tracks, graph or dijkstra)"
+            )),
+        }
+    }
+}
+
+/// How to propagate: where Steiner points go and which engine runs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct Options {
+    /// Steiner points per edge. Default: `Interval { k: 5.0 }`.
+    pub steiner: SteinerScheme,
+    /// The engine. Default: [`Method::Graph`].
+    pub method: Method,
+}
+
+impl Options {
+    /// The defaults: interval scheme with k = 5, the Steiner graph.
+    pub const DEFAULT: Options = Options {
+        steiner: SteinerScheme::Interval { k: 5.0 },
+        method: Method::Graph,
+    };
+
+    /// Interval scheme with a mean of `k` points per edge.
+    pub fn with_k(mut self, k: f64) -> Self {
+        self.steiner = SteinerScheme::Interval { k };
+        self
+    }
+
+    /// Exactly `count` points on every edge.
+    pub fn with_fixed_count(mut self, count: u32) -> Self {
+        self.steiner = SteinerScheme::Fixed { count };
+        self
+    }
+
+    /// The engine to run.
+    pub fn with_method(mut self, method: Method) -> Self {
+        self.method = method;
+        self
+    }
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options::DEFAULT
+    }
+}
+
+/// Computes the distance from the nearest of `sources` (vertex ids) to every vertex.
+///
+/// # Errors
+/// [`Error::NoSource`], [`Error::SourceOutOfRange`], [`Error::InvalidK`],
+/// [`Error::InvalidCost`] if the metric returns NaN or a negative cost,
+/// [`Error::NotImplemented`] for [`Method::Tracks`] (until it lands).
+///
+/// # Example
+/// ```
+/// use geotracks::{distance_field, mesh::TriMesh, Euclidean, Options};
+/// // A unit square in two triangles.
+/// let mesh = TriMesh::new(
+///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+///     vec![[0, 1, 2], [0, 2, 3]],
+/// ).unwrap();
+/// let field = distance_field(&mesh, &Euclidean, &[0], &Options::DEFAULT).unwrap();
+/// assert!((field.distance(2) - 2f64.sqrt()).abs() < 1e-12);
+/// ```
+pub fn distance_field<M: Metric>(
+    mesh: &TriMesh,
+    metric: &M,
+    sources: &[u32],
+    options: &Options,
+) -> Result<GeodesicField, Error> {
+    let start = Instant::now();
+    if sources.is_empty() {
+        return Err(Error::NoSource);
+    }
+    if let Some(&vertex) = sources.iter().find(|&&v| v as usize >= mesh.vertex_count()) {
+        return Err(Error::SourceOutOfRange {
+            vertex: vertex as u64,
+            vertex_count: mesh.vertex_count(),
+        });
+    }
+    let layout = match options.method {
+        Method::Tracks => return Err(Error::NotImplemented("tracks")),
+        Method::Dijkstra => SteinerLayout::vertices_only(mesh),
+        Method::Graph => {
+            if !options.steiner.is_valid() {
+                return Err(Error::InvalidK {
+                    k: options.steiner.k(),
+                });
+            }
+            SteinerLayout::new(mesh, options.steiner)
+        }
+    };
+    graph::run(
+        mesh,
+        metric,
+        Arc::new(layout),
+        sources,
+        options.method,
+        start,
+    )
+}

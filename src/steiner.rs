@@ -1,0 +1,217 @@
+//! Where Steiner points go on each edge, and how nodes are numbered.
+//!
+//! A *node* is a vertex or a Steiner point. Node ids are dense `u32`: vertices keep their
+//! ids `0..V`, then the Steiner points of edge 0, of edge 1, and so on, each edge's
+//! points numbered from its lower-id vertex. Points are implicit: a node is an edge and
+//! an index, and its position in a face is computed when needed, never stored per face.
+
+use crate::mesh::{Topology, TriMesh};
+use geotracks_metrics::FacePoint;
+use std::ops::Range;
+
+/// How many Steiner points each edge gets.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SteinerScheme {
+    /// The paper's default: one spacing `h` for the whole mesh, chosen so that edges
+    /// carry `k` points on average; an edge of length `L` gets `round(L / h)` evenly
+    /// spaced points (none on edges shorter than `h / 2`).
+    Interval {
+        /// Target mean number of points per edge (> 0).
+        k: f64,
+    },
+    /// Exactly `count` evenly spaced points on every edge.
+    Fixed {
+        /// Points per edge (≥ 1).
+        count: u32,
+    },
+}
+
+impl SteinerScheme {
+    /// The mean points per edge this scheme aims for.
+    pub fn k(&self) -> f64 {
+        match *self {
+            SteinerScheme::Interval { k } => k,
+            SteinerScheme::Fixed { count } => count as f64,
+        }
+    }
+
+    /// Whether the scheme is usable: `k` finite and > 0, or `count` ≥ 1.
+    pub fn is_valid(&self) -> bool {
+        match *self {
+            SteinerScheme::Interval { k } => k.is_finite() && k > 0.0,
+            SteinerScheme::Fixed { count } => count >= 1,
+        }
+    }
+}
+
+/// What a node is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NodeKind {
+    /// A mesh vertex.
+    Vertex(u32),
+    /// Steiner point `index` (from the edge's lower-id vertex) of `edge`.
+    Steiner {
+        /// The edge it lies on.
+        edge: u32,
+        /// Its index along the edge, 0-based from the lower-id vertex.
+        index: u32,
+    },
+}
+
+/// The Steiner points of a mesh: how many on each edge, and the node numbering.
+#[derive(Clone, Debug)]
+pub struct SteinerLayout {
+    vertex_count: u32,
+    /// Node id of edge `e`'s first point is `vertex_count + first[e]`.
+    first: Vec<u32>,
+    /// The edge of each Steiner node (indexed by `node - vertex_count`).
+    edge_of: Vec<u32>,
+    scheme: SteinerScheme,
+}
+
+impl SteinerLayout {
+    /// Lays out Steiner points on `mesh` with `scheme` (assumed valid, see
+    /// [`SteinerScheme::is_valid`]).
+    pub fn new(mesh: &TriMesh, scheme: SteinerScheme) -> SteinerLayout {
+        let counts: Vec<u32> = match scheme {
+            SteinerScheme::Fixed { count } => vec![count; mesh.edge_count()],
+            SteinerScheme::Interval { k } => {
+                let h = mesh.mean_edge_length() / k;
+                (0..mesh.edge_count() as u32)
+                    .map(|e| (mesh.edge_length(e) / h).round() as u32)
+                    .collect()
+            }
+        };
+        Self::from_counts(mesh.vertex_count(), &counts, scheme)
+    }
+
+    /// No Steiner points at all: the nodes are the vertices.
+    pub fn vertices_only(mesh: &TriMesh) -> SteinerLayout {
+        Self::from_counts(
+            mesh.vertex_count(),
+            &vec![0; mesh.edge_count()],
+            SteinerScheme::Fixed { count: 0 },
+        )
+    }
+
+    fn from_counts(vertex_count: usize, counts: &[u32], scheme: SteinerScheme) -> SteinerLayout {
+        let mut first = Vec::with_capacity(counts.len() + 1);
+        let mut total = 0u32;
+        first.push(0);
+        for &c in counts {
+            total += c;
+            first.push(total);
+        }
+        let edge_of = counts
+            .iter()
+            .enumerate()
+            .flat_map(|(e, &c)| std::iter::repeat_n(e as u32, c as usize))
+            .collect();
+        SteinerLayout {
+            vertex_count: vertex_count as u32,
+            first,
+            edge_of,
+            scheme,
+        }
+    }
+
+    /// The scheme it was built with.
+    pub fn scheme(&self) -> SteinerScheme {
+        self.scheme
+    }
+
+    /// Vertices plus Steiner points.
+    #[inline]
+    pub fn node_count(&self) -> usize {
+        self.vertex_count as usize + self.edge_of.len()
+    }
+
+    /// Number of Steiner points (all edges).
+    pub fn steiner_count(&self) -> usize {
+        self.edge_of.len()
+    }
+
+    /// Number of mesh vertices (node ids below this are vertices).
+    #[inline]
+    pub fn vertex_count(&self) -> u32 {
+        self.vertex_count
+    }
+
+    /// How many points edge `e` carries.
+    #[inline]
+    pub fn count(&self, e: u32) -> u32 {
+        self.first[e as usize + 1] - self.first[e as usize]
+    }
+
+    /// The node ids of edge `e`'s points, from its lower-id vertex.
+    #[inline]
+    pub fn edge_nodes(&self, e: u32) -> Range<u32> {
+        self.vertex_count + self.first[e as usize]..self.vertex_count + self.first[e as usize + 1]
+    }
+
+    /// What node `node` is.
+    #[inline]
+    pub fn kind(&self, node: u32) -> NodeKind {
+        if node < self.vertex_count {
+            NodeKind::Vertex(node)
+        } else {
+            let edge = self.edge_of[(node - self.vertex_count) as usize];
+            NodeKind::Steiner {
+                edge,
+                index: node - self.vertex_count - self.first[edge as usize],
+            }
+        }
+    }
+
+    /// The parameter of point `index` of edge `e`, from its lower-id vertex.
+    #[inline]
+    pub fn param(&self, e: u32, index: u32) -> f64 {
+        (index + 1) as f64 / (self.count(e) + 1) as f64
+    }
+
+    /// Position of `node` in the frame of face `f`; the node must lie on `f`'s closure.
+    #[inline]
+    pub fn point_in_face(&self, mesh: &TriMesh, node: u32, f: u32) -> FacePoint {
+        let frame = mesh.frame(f);
+        match self.kind(node) {
+            NodeKind::Vertex(v) => {
+                let c = mesh
+                    .corner_of(f, v)
+                    .expect("vertex node is a corner of the face");
+                let mut bary = [0.0; 3];
+                bary[c] = 1.0;
+                frame.point(bary)
+            }
+            NodeKind::Steiner { edge, index } => {
+                let slot = mesh
+                    .edge_slot(f, edge)
+                    .expect("Steiner node lies on the face");
+                self.point_on_slot(mesh, f, slot, index)
+            }
+        }
+    }
+
+    /// Position of point `index` of the edge in slot `slot` of face `f`.
+    #[inline]
+    pub fn point_on_slot(&self, mesh: &TriMesh, f: u32, slot: usize, index: u32) -> FacePoint {
+        let e = mesh.face_edges(f)[slot];
+        let t = self.param(e, index);
+        // Slot `slot` runs from corner `slot` to corner `slot + 1`; the edge's points are
+        // numbered from its lower-id vertex, which may be either end.
+        let from_lower = mesh.face_vertices(f)[slot] == mesh.edge_vertices(e)[0];
+        mesh.frame(f)
+            .point_on_edge(slot, if from_lower { t } else { 1.0 - t })
+    }
+
+    /// World position of `node`.
+    pub fn position(&self, mesh: &TriMesh, node: u32) -> glam::DVec3 {
+        match self.kind(node) {
+            NodeKind::Vertex(v) => mesh.position(v),
+            NodeKind::Steiner { edge, index } => {
+                let [a, b] = mesh.edge_vertices(edge);
+                mesh.position(a)
+                    .lerp(mesh.position(b), self.param(edge, index))
+            }
+        }
+    }
+}
