@@ -1,0 +1,709 @@
+//! Mesh readers and writers: one small hand-made fixture per format (in `tests/data/io/`),
+//! bad input of every kind (written into a temporary directory), and the writers'
+//! round trip and atomicity.
+
+use geotracks::mesh::io::{
+    read_medial_axis, read_mesh, read_obj_bytes, write_atomically, write_obj_polylines,
+    write_ply_with_distance,
+};
+use geotracks::mesh::{MeshError, Topology, TriMesh};
+use std::path::{Path, PathBuf};
+
+fn fixture(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/io")
+        .join(name)
+}
+
+/// Writes `bytes` to `name` in a fresh temporary directory (kept alive by the guard).
+fn temp_file(name: &str, bytes: impl AsRef<[u8]>) -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let path = dir.path().join(name);
+    std::fs::write(&path, bytes).expect("write temporary file");
+    (dir, path)
+}
+
+/// The error under the `InFile` / `AtLine` wrappers that say where it happened.
+fn root(e: &MeshError) -> &MeshError {
+    match e {
+        MeshError::InFile { error, .. } | MeshError::AtLine { error, .. } => root(error),
+        other => other,
+    }
+}
+
+/// Reads `bytes` as a file called `name` and returns the error, checking that its message
+/// names the file.
+fn read_error(name: &str, bytes: impl AsRef<[u8]>) -> MeshError {
+    let (_dir, path) = temp_file(name, bytes);
+    let err = read_mesh(&path).expect_err("the file is bad");
+    let message = err.to_string();
+    assert!(
+        message.contains(&path.display().to_string()),
+        "`{message}` does not name {}",
+        path.display()
+    );
+    err
+}
+
+fn positions(mesh: &TriMesh) -> Vec<[f64; 3]> {
+    mesh.positions().iter().map(|p| p.to_array()).collect()
+}
+
+/// The edge joining `a` and `b`, if some face has it.
+fn edge(mesh: &TriMesh, a: u32, b: u32) -> Option<u32> {
+    let key = [a.min(b), a.max(b)];
+    mesh.vertex_edges(a)
+        .iter()
+        .copied()
+        .find(|&e| mesh.edge_vertices(e) == key)
+}
+
+const UNIT_SQUARE: [[f64; 3]; 4] = [
+    [0.0, 0.0, 0.0],
+    [1.0, 0.0, 0.0],
+    [1.0, 1.0, 0.0],
+    [0.0, 1.0, 0.0],
+];
+
+/// A unit square as two triangles: 4 vertices, 5 edges, the diagonal 0–2 shared.
+fn assert_square(mesh: &TriMesh) {
+    assert_eq!(positions(mesh), UNIT_SQUARE);
+    assert_eq!(mesh.face_count(), 2);
+    assert_eq!(mesh.edge_count(), 5);
+    let diagonal = edge(mesh, 0, 2).expect("fan triangulation from corner 0");
+    assert_eq!(mesh.edge_faces(diagonal).len(), 2);
+    assert_eq!(mesh.report().boundary_edges, 4);
+}
+
+// ---------------------------------------------------------------------------------------
+// Valid files, one per format
+
+#[test]
+fn obj_tetrahedron_is_closed() {
+    let mesh = read_mesh(fixture("tetrahedron.obj")).unwrap();
+    assert_eq!(
+        positions(&mesh),
+        [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0]
+        ]
+    );
+    assert_eq!(
+        mesh.triangles(),
+        [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]
+    );
+    let report = mesh.report();
+    assert_eq!((report.edges, report.boundary_edges), (6, 0));
+    assert_eq!((report.non_manifold_edges, report.components), (0, 1));
+}
+
+#[test]
+fn obj_keeps_file_vertex_order_across_groups() {
+    // The quad is triangulated, the two groups share vertices 2 and 3 (1-based) through
+    // the file's global vertex list, and the unreferenced vertex keeps its index.
+    let mesh = read_mesh(fixture("quad_groups.obj")).unwrap();
+    assert_eq!(mesh.vertex_count(), 6);
+    assert_eq!(mesh.position(4).to_array(), [2.0, 0.5, 0.0]);
+    assert_eq!(mesh.position(5).to_array(), [9.0, 9.0, 9.0]);
+    assert_eq!(mesh.triangles(), [[0, 1, 2], [0, 2, 3], [1, 4, 2]]);
+    let shared = edge(&mesh, 1, 2).unwrap();
+    assert_eq!(mesh.edge_faces(shared).len(), 2);
+    let report = mesh.report();
+    assert_eq!((report.components, report.unreferenced_vertices), (1, 1));
+}
+
+#[test]
+fn obj_from_memory() {
+    let bytes = std::fs::read(fixture("tetrahedron.obj")).unwrap();
+    let mesh = read_obj_bytes(&bytes).unwrap();
+    assert_eq!((mesh.vertex_count(), mesh.face_count()), (4, 4));
+}
+
+#[test]
+fn extension_is_case_insensitive() {
+    let bytes = std::fs::read(fixture("tetrahedron.obj")).unwrap();
+    let (_dir, path) = temp_file("TETRAHEDRON.Obj", bytes);
+    assert_eq!(read_mesh(&path).unwrap().face_count(), 4);
+}
+
+#[test]
+fn ply_ascii_quad_is_triangulated() {
+    assert_square(&read_mesh(fixture("square.ply")).unwrap());
+}
+
+/// A binary PLY of the unit square: float coordinates, an extra `double` property, a quad
+/// face with a `uint` index list. `big` picks the byte order.
+fn binary_square_ply(big: bool) -> Vec<u8> {
+    let order = if big { "big" } else { "little" };
+    let mut bytes = format!(
+        "ply\nformat binary_{order}_endian 1.0\nelement vertex 4\nproperty float x\n\
+         property float y\nproperty float z\nproperty double quality\nelement face 1\n\
+         property list uchar uint vertex_indices\nend_header\n"
+    )
+    .into_bytes();
+    let f32s = |x: f32| {
+        if big {
+            x.to_be_bytes()
+        } else {
+            x.to_le_bytes()
+        }
+    };
+    let u32s = |x: u32| {
+        if big {
+            x.to_be_bytes()
+        } else {
+            x.to_le_bytes()
+        }
+    };
+    for p in UNIT_SQUARE {
+        for c in p {
+            bytes.extend(f32s(c as f32));
+        }
+        bytes.extend(if big {
+            7.5f64.to_be_bytes()
+        } else {
+            7.5f64.to_le_bytes()
+        });
+    }
+    bytes.push(4);
+    for v in 0..4 {
+        bytes.extend(u32s(v));
+    }
+    bytes
+}
+
+#[test]
+fn ply_binary_little_endian() {
+    let (_dir, path) = temp_file("square.ply", binary_square_ply(false));
+    assert_square(&read_mesh(&path).unwrap());
+}
+
+#[test]
+fn ply_binary_big_endian() {
+    let (_dir, path) = temp_file("square.ply", binary_square_ply(true));
+    assert_square(&read_mesh(&path).unwrap());
+}
+
+#[test]
+fn off_quad_with_colour_is_triangulated() {
+    assert_square(&read_mesh(fixture("square.off")).unwrap());
+}
+
+#[test]
+fn off_without_header_and_counts_on_header_line() {
+    let body = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n";
+    for text in [format!("4 2 0\n{body}"), format!("OFF 4 2 0\n{body}")] {
+        let (_dir, path) = temp_file("square.off", text);
+        assert_square(&read_mesh(&path).unwrap());
+    }
+}
+
+#[test]
+fn stl_ascii_is_welded() {
+    assert_square(&read_mesh(fixture("square.stl")).unwrap());
+}
+
+/// A binary STL of `triangles`, with `header` at the start of its 80-byte header.
+fn binary_stl(header: &[u8], triangles: &[[[f32; 3]; 3]]) -> Vec<u8> {
+    let mut bytes = vec![0u8; 80];
+    bytes[..header.len()].copy_from_slice(header);
+    bytes.extend((triangles.len() as u32).to_le_bytes());
+    for t in triangles {
+        bytes.extend([0u8; 12]); // normal
+        for c in t.iter().flatten() {
+            bytes.extend(c.to_le_bytes());
+        }
+        bytes.extend([0u8; 2]); // attribute byte count
+    }
+    bytes
+}
+
+const SQUARE_TRIANGLES: [[[f32; 3]; 3]; 2] = [
+    [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0]],
+    [[0.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+];
+
+#[test]
+fn stl_binary_two_triangles_weld_to_four_vertices() {
+    let (_dir, path) = temp_file("square.stl", binary_stl(b"binary", &SQUARE_TRIANGLES));
+    assert_square(&read_mesh(&path).unwrap());
+}
+
+#[test]
+fn stl_binary_whose_header_says_solid() {
+    // Many exporters start the binary header with "solid"; the size decides.
+    let (_dir, path) = temp_file(
+        "square.stl",
+        binary_stl(b"solid exported", &SQUARE_TRIANGLES),
+    );
+    assert_square(&read_mesh(&path).unwrap());
+}
+
+#[test]
+fn ma_book_has_three_pages_on_its_spine_and_a_free_edge() {
+    let axis = read_medial_axis(fixture("book.ma")).unwrap();
+    let mesh = &axis.mesh;
+    assert_eq!(axis.radii, [0.1, 0.2, 0.3, 0.4, 0.5, 0.6]);
+    assert_eq!((mesh.vertex_count(), mesh.face_count()), (6, 3));
+    let spine = edge(mesh, 0, 1).unwrap();
+    assert_eq!(mesh.edge_faces(spine).len(), 3);
+    // The 7 listed face edges are not repeated as line elements; the free one is.
+    assert_eq!(mesh.line_edges(), [[2, 5]]);
+    let report = mesh.report();
+    assert_eq!(report.non_manifold_edges, 1);
+    assert_eq!(report.max_edge_valence, 3);
+    assert_eq!(report.line_edges, 1);
+    // Vertex 5 is only on the free edge, so no face uses it.
+    assert_eq!(report.unreferenced_vertices, 1);
+
+    let same = read_mesh(fixture("book.ma")).unwrap();
+    assert_eq!(same.triangles(), mesh.triangles());
+}
+
+#[test]
+fn ma_with_only_edges_has_no_usable_face() {
+    let err = read_error(
+        "edges.ma",
+        "3 2 0\nv 0 0 0 1\nv 1 0 0 1\nv 2 0 0 1\ne 0 1\ne 1 2\n",
+    );
+    assert!(matches!(err, MeshError::InFile { .. }), "{err:?}");
+    assert!(
+        matches!(root(&err), MeshError::NoUsableFace { faces: 0, .. }),
+        "{err:?}"
+    );
+}
+
+// ---------------------------------------------------------------------------------------
+// Bad input: each gives its own error, naming the file and the line or element.
+
+#[test]
+fn empty_file() {
+    for (name, text) in [
+        ("empty.obj", ""),
+        ("blank.ply", " \n\n"),
+        ("comments.obj", "# nothing here\n\n# at all\n"),
+        ("comments.off", "# nothing\n"),
+        ("comments.ma", "# nothing\n"),
+    ] {
+        let err = read_error(name, text);
+        assert!(
+            matches!(err, MeshError::EmptyFile { .. }),
+            "{name}: {err:?}"
+        );
+    }
+}
+
+#[test]
+fn unknown_extension() {
+    let err = read_error("mesh.xyz", "v 0 0 0\n");
+    assert!(matches!(err, MeshError::UnknownFormat { .. }), "{err:?}");
+    let err = read_error("no_extension", "v 0 0 0\n");
+    assert!(matches!(err, MeshError::UnknownFormat { .. }), "{err:?}");
+}
+
+#[test]
+fn missing_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("missing.obj");
+    let err = read_mesh(&path).unwrap_err();
+    assert!(matches!(err, MeshError::Io { .. }), "{err:?}");
+    assert!(err.to_string().contains("missing.obj"), "{err}");
+}
+
+#[test]
+fn truncated_off() {
+    // Declares 3 faces, has 1: the second face was expected on line 8.
+    let err = read_error(
+        "cut.off",
+        "OFF\n4 3 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n",
+    );
+    match &err {
+        MeshError::Parse { line, message, .. } => {
+            assert_eq!(*line, 8);
+            assert!(message.contains("face 1 of 3"), "{message}");
+        }
+        other => panic!("{other:?}"),
+    }
+    assert!(err.to_string().contains("cut.off:8:"), "{err}");
+
+    // Truncated inside the vertices.
+    let err = read_error("cut.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n");
+    assert!(
+        matches!(&err, MeshError::Parse { line: 5, message, .. } if message.contains("vertex 2 of 4")),
+        "{err:?}"
+    );
+    // A face line shorter than its declared count.
+    let err = read_error("short.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n1 1 0\n3 0 1\n");
+    assert!(matches!(err, MeshError::Parse { line: 6, .. }), "{err:?}");
+}
+
+#[test]
+fn truncated_binary_stl() {
+    let mut bytes = binary_stl(b"binary", &SQUARE_TRIANGLES);
+    bytes.truncate(bytes.len() - 10);
+    let err = read_error("cut.stl", bytes);
+    match &err {
+        MeshError::Parse {
+            line: 0, message, ..
+        } => {
+            assert!(message.contains("truncated"), "{message}");
+            assert!(message.contains("triangle 1"), "{message}");
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn truncated_ascii_stl_names_the_facet_line() {
+    let text = std::fs::read_to_string(fixture("square.stl")).unwrap();
+    let cut: String = text.lines().take(11).map(|l| format!("{l}\n")).collect();
+    let err = read_error("cut.stl", cut);
+    assert!(matches!(err, MeshError::Parse { line: 9, .. }), "{err:?}");
+}
+
+#[test]
+fn obj_face_index_out_of_range() {
+    let err = read_error("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n");
+    match &err {
+        MeshError::AtLine { line: 5, error, .. } => assert!(
+            matches!(
+                **error,
+                MeshError::IndexOutOfRange {
+                    face: 1,
+                    vertex: 9,
+                    vertex_count: 3
+                }
+            ),
+            "{error:?}"
+        ),
+        other => panic!("{other:?}"),
+    }
+    assert!(err.to_string().contains("bad.obj:5:"), "{err}");
+    assert!(err.to_string().contains("face 1"), "{err}");
+
+    // Index 0 and a relative index reaching before the first vertex.
+    for face in ["f 0 1 2", "f -4 1 2"] {
+        let err = read_error("bad.obj", format!("v 0 0 0\nv 1 0 0\nv 0 1 0\n{face}\n"));
+        assert!(
+            matches!(&err, MeshError::AtLine { line: 4, .. })
+                && matches!(root(&err), MeshError::IndexOutOfRange { .. }),
+            "{face}: {err:?}"
+        );
+    }
+    // A forward reference is fine if the vertex comes later...
+    let (_dir, path) = temp_file("fwd.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\nv 0 1 0\n");
+    assert_eq!(read_mesh(&path).unwrap().face_count(), 1);
+    // ...and an error on the face's line if it never does.
+    let err = read_error("fwd.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\nv 0 1 0\nf 1 2 5\n");
+    assert!(matches!(err, MeshError::AtLine { line: 5, .. }), "{err:?}");
+}
+
+#[test]
+fn obj_malformed_statements() {
+    let err = read_error("bad.obj", "v 0 0 0\nv 1 zero 0\n");
+    assert!(matches!(err, MeshError::Parse { line: 2, .. }), "{err:?}");
+    let err = read_error("bad.obj", "v 0 0\n");
+    assert!(matches!(err, MeshError::Parse { line: 1, .. }), "{err:?}");
+    let err = read_error("bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n");
+    assert!(matches!(err, MeshError::Parse { line: 3, .. }), "{err:?}");
+    let err = read_error("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n");
+    assert!(matches!(err, MeshError::Parse { line: 4, .. }), "{err:?}");
+}
+
+#[test]
+fn ply_face_index_out_of_range() {
+    let text = std::fs::read_to_string(fixture("square.ply")).unwrap();
+    for bad in ["4 0 1 2 4 7", "4 0 1 -1 3 7"] {
+        let err = read_error("bad.ply", text.replace("4 0 1 2 3 7", bad));
+        match &err {
+            MeshError::InFile { error, .. } => assert!(
+                matches!(
+                    **error,
+                    MeshError::IndexOutOfRange {
+                        face: 0,
+                        vertex_count: 4,
+                        ..
+                    }
+                ),
+                "{error:?}"
+            ),
+            other => panic!("{other:?}"),
+        }
+        assert!(err.to_string().contains("face 0"), "{err}");
+    }
+}
+
+#[test]
+fn ply_missing_property_or_element() {
+    let text = std::fs::read_to_string(fixture("square.ply")).unwrap();
+    let err = read_error(
+        "bad.ply",
+        text.replace("property float z\n", "property float w\n"),
+    );
+    assert!(
+        matches!(&err, MeshError::Parse { line: 4, message, .. } if message.contains("`z`")),
+        "{err:?}"
+    );
+    let err = read_error("bad.ply", text.replace("vertex_indices", "corner_list"));
+    assert!(matches!(err, MeshError::Parse { line: 9, .. }), "{err:?}");
+    let err = read_error("bad.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n");
+    assert!(matches!(err, MeshError::Parse { line: 7, .. }), "{err:?}");
+}
+
+#[test]
+fn ply_truncated_and_garbage() {
+    let text = std::fs::read_to_string(fixture("square.ply")).unwrap();
+    let cut: String = text.lines().take(14).map(|l| format!("{l}\n")).collect();
+    let err = read_error("cut.ply", cut);
+    assert!(matches!(err, MeshError::Parse { .. }), "{err:?}");
+
+    let mut bytes = binary_square_ply(false);
+    bytes.truncate(bytes.len() - 3);
+    let err = read_error("cut.ply", bytes);
+    assert!(matches!(err, MeshError::Parse { line: 0, .. }), "{err:?}");
+
+    let err = read_error("garbage.ply", "this is not a ply file\n");
+    assert!(matches!(err, MeshError::Parse { .. }), "{err:?}");
+}
+
+#[test]
+fn nan_coordinate_off_and_obj() {
+    for (name, text) in [
+        ("nan.off", "OFF\n3 1 0\n0 0 0\n1 NaN 0\n0 1 0\n3 0 1 2\n"),
+        ("nan.obj", "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n"),
+        ("inf.obj", "v 0 0 0\nv 1 inf 0\nv 0 1 0\nf 1 2 3\n"),
+    ] {
+        let err = read_error(name, text);
+        assert!(matches!(err, MeshError::InFile { .. }), "{name}: {err:?}");
+        assert!(
+            matches!(root(&err), MeshError::NonFiniteVertex { vertex: 1, .. }),
+            "{name}: {err:?}"
+        );
+        assert!(err.to_string().contains("vertex 1"), "{err}");
+    }
+}
+
+#[test]
+fn off_face_index_out_of_range() {
+    let err = read_error("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n");
+    assert!(matches!(err, MeshError::AtLine { line: 6, .. }), "{err:?}");
+    assert!(
+        matches!(
+            root(&err),
+            MeshError::IndexOutOfRange {
+                face: 0,
+                vertex: 3,
+                vertex_count: 3
+            }
+        ),
+        "{err:?}"
+    );
+}
+
+#[test]
+fn ma_edge_index_out_of_range() {
+    let text = std::fs::read_to_string(fixture("book.ma")).unwrap();
+    let bad = text.replace("e 2 5", "e 2 6");
+    let line = 1 + bad.lines().position(|l| l == "e 2 6").unwrap();
+    let err = read_error("bad.ma", bad);
+    match &err {
+        MeshError::AtLine { line: l, error, .. } => {
+            assert_eq!(*l, line);
+            assert!(
+                matches!(
+                    **error,
+                    MeshError::EdgeIndexOutOfRange {
+                        edge: 7,
+                        vertex: 6,
+                        vertex_count: 6
+                    }
+                ),
+                "{error:?}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+    assert!(
+        err.to_string().contains(&format!("bad.ma:{line}: edge 7")),
+        "{err}"
+    );
+}
+
+#[test]
+fn ma_face_index_out_of_range() {
+    let err = read_error(
+        "bad.ma",
+        "3 0 1\nv 0 0 0 1\nv 1 0 0 1\nv 0 1 0 1\nf 0 1 -2\n",
+    );
+    assert!(matches!(err, MeshError::AtLine { line: 5, .. }), "{err:?}");
+    assert!(
+        matches!(
+            root(&err),
+            MeshError::IndexOutOfRange {
+                face: 0,
+                vertex: -2,
+                ..
+            }
+        ),
+        "{err:?}"
+    );
+}
+
+#[test]
+fn ma_count_mismatch() {
+    let text = std::fs::read_to_string(fixture("book.ma")).unwrap();
+    // One edge fewer than the header's 8.
+    let err = read_error("short.ma", text.replace("e 2 5\n", ""));
+    match &err {
+        MeshError::Parse {
+            line: 1, message, ..
+        } => {
+            assert!(message.contains("8 edges"), "{message}");
+            assert!(message.contains("1 missing"), "{message}");
+        }
+        other => panic!("{other:?}"),
+    }
+    // One vertex more than the header's 6: the line of the extra one.
+    let err = read_error("long.ma", format!("{text}v 5 5 5 1\n"));
+    assert!(matches!(err, MeshError::Parse { line: 22, .. }), "{err:?}");
+    // A negative radius.
+    let err = read_error("radius.ma", text.replace("0 0 1 0.2", "0 0 1 -0.2"));
+    assert!(matches!(err, MeshError::Parse { line: 6, .. }), "{err:?}");
+}
+
+// ---------------------------------------------------------------------------------------
+// Writers
+
+#[test]
+fn ply_with_distance_round_trips() {
+    let mesh = read_mesh(fixture("tetrahedron.obj")).unwrap();
+    let distance = [0.0, 1.0, f64::INFINITY, 0.5];
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("out.ply");
+    write_ply_with_distance(&path, &mesh, &distance).unwrap();
+
+    let back = read_mesh(&path).unwrap();
+    assert_eq!(positions(&back), positions(&mesh));
+    assert_eq!(back.triangles(), mesh.triangles());
+
+    // The extra properties, read with the PLY crate itself.
+    use ply_rs_bw::ply::{DefaultElement, Property};
+    let mut file = std::fs::File::open(&path).unwrap();
+    let ply = ply_rs_bw::parser::Parser::<DefaultElement>::new()
+        .read_ply(&mut file)
+        .unwrap();
+    let vertices = &ply.payload["vertex"];
+    let get = |v: usize, name: &str| vertices[v][name].clone();
+    for (v, &d) in distance.iter().enumerate() {
+        assert_eq!(get(v, "distance"), Property::Double(d));
+    }
+    let rgb = |v: usize| ["red", "green", "blue"].map(|c| get(v, c));
+    let viridis = |t: f64| {
+        let c = colorous::VIRIDIS.eval_continuous(t);
+        [c.r, c.g, c.b].map(Property::UChar)
+    };
+    assert_eq!(rgb(0), viridis(0.0));
+    assert_eq!(rgb(1), viridis(1.0));
+    assert_eq!(rgb(2), [128u8; 3].map(Property::UChar)); // unreached
+    assert_eq!(rgb(3), viridis(0.5));
+}
+
+#[test]
+fn ply_with_distance_of_wrong_length_writes_nothing() {
+    let mesh = read_mesh(fixture("tetrahedron.obj")).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("out.ply");
+    let err = write_ply_with_distance(&path, &mesh, &[0.0; 3]).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            MeshError::AttributeLength {
+                expected: 4,
+                found: 3,
+                ..
+            }
+        ),
+        "{err:?}"
+    );
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}
+
+#[test]
+fn failed_write_leaves_no_file() {
+    let mesh = read_mesh(fixture("tetrahedron.obj")).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("no/such/dir/out.ply");
+    let err = write_ply_with_distance(&path, &mesh, &[0.0; 4]).unwrap_err();
+    assert!(matches!(err, MeshError::Io { .. }), "{err:?}");
+    assert!(err.to_string().contains("out.ply"), "{err}");
+    assert!(!path.exists());
+
+    // A writer that fails half-way: no target and no temporary file remain.
+    let path = dir.path().join("out.txt");
+    let err = write_atomically(&path, |w| {
+        w.write_all(b"partial")?;
+        Err(std::io::Error::other("disk full"))
+    })
+    .unwrap_err();
+    assert!(err.to_string().contains("disk full"), "{err}");
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}
+
+#[test]
+fn atomic_write_replaces_the_whole_file() {
+    let (dir, path) = temp_file("out.txt", "old content that is longer\n");
+    write_atomically(&path, |w| w.write_all(b"new\n")).unwrap();
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), "new\n");
+    // A failed rewrite keeps the previous file as it was.
+    write_atomically(&path, |_| Err(std::io::Error::other("no"))).unwrap_err();
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), "new\n");
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+}
+
+#[test]
+fn obj_polylines_content() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("paths.obj");
+    let polylines = vec![
+        vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0]],
+        vec![],
+        vec![[0.1, 0.2, -0.3]],
+        vec![[2.0, 0.0, 0.0], [3.0, 0.0, 0.5]],
+    ];
+    write_obj_polylines(&path, &polylines).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    let data: Vec<&str> = text.lines().filter(|l| !l.starts_with('#')).collect();
+    assert_eq!(
+        data,
+        [
+            "v 0 0 0",
+            "v 1 0 0",
+            "v 1 1 0",
+            "v 0.1 0.2 -0.3",
+            "v 2 0 0",
+            "v 3 0 0.5",
+            "l 1 2 3",
+            "p 4",
+            "l 5 6",
+        ]
+    );
+
+    let err = write_obj_polylines(&path, &[vec![[0.0, f64::NAN, 0.0]]]).unwrap_err();
+    assert!(
+        matches!(err, MeshError::NonFiniteVertex { vertex: 0, .. }),
+        "{err:?}"
+    );
+}
+
+#[test]
+fn written_ply_of_a_book_reads_back_non_manifold() {
+    let mesh = read_mesh(fixture("book.ma")).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("book.ply");
+    write_ply_with_distance(&path, &mesh, &[1.0; 6]).unwrap();
+    let back = read_mesh(&path).unwrap();
+    assert_eq!(back.report().max_edge_valence, 3);
+    assert_eq!(positions(&back), positions(&mesh));
+}
