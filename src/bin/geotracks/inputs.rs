@@ -1,0 +1,127 @@
+//! Reading the CLI's input files: the mesh (with a warning for dropped faces) and the
+//! per-vertex density or per-face tensor files.
+
+use crate::CliResult;
+use geotracks::mesh::{io, TriMesh};
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// A line of a numeric input file that could not be used.
+#[derive(Debug)]
+pub struct InputError {
+    path: PathBuf,
+    line: usize,
+    message: String,
+}
+
+impl fmt::Display for InputError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.line == 0 {
+            write!(f, "{}: {}", self.path.display(), self.message)
+        } else {
+            write!(f, "{}:{}: {}", self.path.display(), self.line, self.message)
+        }
+    }
+}
+
+impl std::error::Error for InputError {}
+
+fn input_error(path: &Path, line: usize, message: impl Into<String>) -> InputError {
+    InputError {
+        path: path.to_path_buf(),
+        line,
+        message: message.into(),
+    }
+}
+
+/// Reads a mesh and warns on stderr about degenerate faces that were dropped.
+pub fn load_mesh(path: &Path) -> CliResult<TriMesh> {
+    let mesh = io::read_mesh(path)?;
+    let dropped = mesh.dropped_faces().len();
+    if dropped > 0 {
+        eprintln!(
+            "warning: {}: dropped {dropped} degenerate face(s) (zero area or a repeated vertex)",
+            path.display()
+        );
+    }
+    Ok(mesh)
+}
+
+/// Reads rows of `width` floats, one row per non-empty line (`#` starts a comment);
+/// returns each row with its 1-based line number.
+fn read_rows(path: &Path, width: usize) -> Result<Vec<(usize, Vec<f64>)>, InputError> {
+    let text = std::fs::read_to_string(path).map_err(|e| input_error(path, 0, e.to_string()))?;
+    let mut rows = Vec::new();
+    for (i, raw) in text.lines().enumerate() {
+        let line = raw.split('#').next().unwrap_or("").trim();
+        if line.is_empty() {
+            continue;
+        }
+        let values = line
+            .split(|c: char| c.is_whitespace() || c == ',')
+            .filter(|s| !s.is_empty())
+            .map(|s| {
+                s.parse::<f64>()
+                    .map_err(|_| input_error(path, i + 1, format!("'{s}' is not a number")))
+            })
+            .collect::<Result<Vec<f64>, _>>()?;
+        if values.len() != width {
+            return Err(input_error(
+                path,
+                i + 1,
+                format!("expected {width} value(s), found {}", values.len()),
+            ));
+        }
+        rows.push((i + 1, values));
+    }
+    if rows.is_empty() {
+        return Err(input_error(path, 0, "the file is empty"));
+    }
+    Ok(rows)
+}
+
+/// One density per vertex, in vertex order.
+pub fn read_density(path: &Path, mesh: &TriMesh) -> CliResult<geotracks::Density> {
+    let rows = read_rows(path, 1)?;
+    let values: Vec<f64> = rows.iter().map(|(_, r)| r[0]).collect();
+    geotracks::Density::new(mesh, values).map_err(|e| {
+        let line = match e {
+            geotracks::MetricError::InvalidDensity { vertex, .. } => rows[vertex].0,
+            _ => 0,
+        };
+        input_error(path, line, e.to_string()).into()
+    })
+}
+
+/// One world-space tensor `xx xy xz yy yz zz` per face of the input file (faces that
+/// were dropped as degenerate skip their line).
+pub fn read_tensor(path: &Path, mesh: &TriMesh) -> CliResult<geotracks::Tensor> {
+    let rows = read_rows(path, 6)?;
+    if rows.len() != mesh.input_face_count() {
+        return Err(input_error(
+            path,
+            0,
+            format!(
+                "expected {} tensors (one per face of the mesh file), found {}",
+                mesh.input_face_count(),
+                rows.len()
+            ),
+        )
+        .into());
+    }
+    let kept: Vec<[f64; 6]> = (0..mesh.triangles().len() as u32)
+        .map(|f| {
+            let r = &rows[mesh.input_face(f)].1;
+            [r[0], r[1], r[2], r[3], r[4], r[5]]
+        })
+        .collect();
+    geotracks::Tensor::from_world(mesh, &kept).map_err(|e| {
+        let line = match e {
+            geotracks::MetricError::NotPositiveDefinite { face, .. } => {
+                rows[mesh.input_face(face as u32)].0
+            }
+            _ => 0,
+        };
+        input_error(path, line, e.to_string()).into()
+    })
+}

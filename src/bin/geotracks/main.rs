@@ -1,0 +1,60 @@
+//! The `geotracks` command-line tool: a thin layer that parses arguments, calls the
+//! library and writes files.
+
+mod distance;
+mod inputs;
+
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// Geodesic distances on triangle meshes (geodesic tracks method).
+#[derive(Parser)]
+#[command(name = "geotracks", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Compute a distance field from one or more source vertices.
+    Distance(distance::DistanceArgs),
+    /// Print what a mesh is made of: counts, boundary, non-manifold edges, components.
+    Info {
+        /// The mesh (OBJ, PLY, OFF, STL or .ma).
+        mesh: PathBuf,
+    },
+    /// Compute a distance field on the bundled Spot model and write a coloured PLY.
+    Demo {
+        /// Where to write the coloured mesh.
+        #[arg(short, long, default_value = "spot_distance.ply")]
+        output: PathBuf,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Distance(args) => distance::run(&args),
+        Command::Info { mesh } => info(&mesh),
+        Command::Demo { output } => distance::demo(&output),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Errors of the CLI: the library's, plus the CLI's own input files.
+pub(crate) type CliResult<T = ()> = Result<T, Box<dyn std::error::Error>>;
+
+fn info(path: &std::path::Path) -> CliResult {
+    let mesh = inputs::load_mesh(path)?;
+    println!("{}", path.display());
+    println!("{}", mesh.report());
+    Ok(())
+}
