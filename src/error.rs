@@ -40,7 +40,12 @@ pub enum Error {
         /// The cost returned.
         value: f64,
     },
-    /// The method exists in the interface but is not built yet.
-    #[error("method '{0}' is not implemented yet; use --method graph or --method dijkstra")]
-    NotImplemented(&'static str),
+    /// The mesh needs more state than 32-bit ids can address.
+    #[error("the mesh is too large: {count} {what} exceed the 32-bit id range; lower k")]
+    TooLarge {
+        /// What overflowed.
+        what: &'static str,
+        /// How many were needed.
+        count: u64,
+    },
 }

@@ -144,19 +144,6 @@ fn sources_and_k_are_checked() {
 }
 
 #[test]
-fn tracks_is_not_silently_replaced() {
-    let e = distance_field(
-        &square(),
-        &Euclidean,
-        &[0],
-        &Options::DEFAULT.with_method(geotracks::Method::Tracks),
-    )
-    .unwrap_err();
-    assert!(matches!(e, Error::NotImplemented("tracks")), "{e}");
-    assert!(e.to_string().contains("not implemented yet"));
-}
-
-#[test]
 fn density_must_be_finite_and_positive() {
     let mesh = square();
     for bad in [0.0, -2.0, f64::NAN, f64::INFINITY] {

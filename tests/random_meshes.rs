@@ -1,87 +1,15 @@
 //! Property tests over random meshes, including degenerate and non-manifold ones.
 
-use geotracks::mesh::{Topology, TriMesh};
+mod common;
+
+use common::{random_mesh, Rng};
+use geotracks::mesh::Topology;
 use geotracks::{distance_field, Euclidean, Method, Options, Tensor};
 use proptest::prelude::*;
 
-/// A small deterministic generator, so a failing case is reproducible from its seed.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn below(&mut self, n: usize) -> usize {
-        ((self.next() * n as f64) as usize).min(n - 1)
-    }
-}
-
-/// A jittered grid with holes, extra "fin" faces on existing edges (non-manifold),
-/// degenerate faces (repeated vertex, collinear), an unreferenced vertex, and sometimes
-/// a second disconnected component.
-fn random_mesh(seed: u64, n: usize) -> Result<TriMesh, geotracks::mesh::MeshError> {
-    let mut rng = Rng(seed | 1);
-    let mut positions = Vec::new();
-    for j in 0..=n {
-        for i in 0..=n {
-            positions.push([
-                i as f64 + 0.35 * (rng.next() - 0.5),
-                j as f64 + 0.35 * (rng.next() - 0.5),
-                0.8 * rng.next(),
-            ]);
-        }
-    }
-    let id = |i: usize, j: usize| (j * (n + 1) + i) as u32;
-    let mut triangles = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
-            if rng.next() < 0.08 {
-                continue; // a hole
-            }
-            if rng.next() < 0.5 {
-                triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-                triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
-            } else {
-                triangles.push([id(i, j), id(i + 1, j), id(i, j + 1)]);
-                triangles.push([id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
-            }
-        }
-    }
-    // Fins: new faces on existing edges, making them non-manifold.
-    for _ in 0..rng.below(4) + 1 {
-        // Two fins on one edge: it then has at least three faces.
-        let t = triangles[rng.below(triangles.len())];
-        let a = positions[t[0] as usize];
-        for _ in 0..2 {
-            let apex = positions.len() as u32;
-            positions.push([
-                a[0] + rng.next(),
-                a[1] + rng.next(),
-                a[2] + 1.0 + rng.next(),
-            ]);
-            triangles.push([t[0], t[1], apex]);
-        }
-    }
-    // Degenerate faces: a repeated vertex, and three collinear vertices.
-    triangles.push([id(0, 0), id(0, 0), id(1, 1)]);
-    let c = positions.len() as u32;
-    positions.push([-5.0, 0.0, 0.0]);
-    positions.push([-4.0, 0.0, 0.0]);
-    positions.push([-3.0, 0.0, 0.0]);
-    triangles.push([c, c + 1, c + 2]);
-    // An unreferenced vertex.
-    positions.push([9.0, 9.0, 9.0]);
-    // Sometimes a second component.
-    if rng.next() < 0.5 {
-        let b = positions.len() as u32;
-        positions.extend([[20.0, 0.0, 0.0], [21.0, 0.0, 0.0], [20.0, 1.0, 0.0]]);
-        triangles.push([b, b + 1, b + 2]);
-    }
-    TriMesh::new(positions, triangles)
-}
+/// These tests are about the Steiner graph itself (the tracks engine is checked
+/// against it in tracks_oracle.rs).
+const GRAPH: Options = Options::DEFAULT.with_method(Method::Graph);
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
@@ -95,7 +23,7 @@ proptest! {
         let (labels, _) = mesh.vertex_components();
         let a = pick.0 % mesh.vertex_count() as u32;
         let b = pick.1 % mesh.vertex_count() as u32;
-        let options = Options::DEFAULT.with_k(k as f64);
+        let options = GRAPH.with_k(k as f64);
         let from_a = distance_field(&mesh, &Euclidean, &[a], &options).unwrap();
         let from_b = distance_field(&mesh, &Euclidean, &[b], &options).unwrap();
         for (v, &d) in from_a.vertex_distances().iter().enumerate() {
@@ -111,7 +39,7 @@ proptest! {
             prop_assert!((ab - ba).abs() <= 1e-9 * ab.max(ba), "{} vs {}", ab, ba);
         }
         // Dijkstra on edges is a path in the graph too: never shorter than the graph.
-        let dijkstra = distance_field(&mesh, &Euclidean, &[a], &options.with_method(Method::Dijkstra)).unwrap();
+        let dijkstra = distance_field(&mesh, &Euclidean, &[a], &Options::DEFAULT.with_method(Method::Dijkstra).with_k(1.0)).unwrap();
         for (g, d) in from_a.vertex_distances().iter().zip(dijkstra.vertex_distances()) {
             prop_assert!(*g <= *d + 1e-12 * d.abs().min(1e300));
         }
@@ -130,8 +58,8 @@ proptest! {
         };
         let a = pick.0 % mesh.vertex_count() as u32;
         let b = pick.1 % mesh.vertex_count() as u32;
-        let from_a = distance_field(&mesh, &tensor, &[a], &Options::DEFAULT.with_k(3.0)).unwrap();
-        let from_b = distance_field(&mesh, &tensor, &[b], &Options::DEFAULT.with_k(3.0)).unwrap();
+        let from_a = distance_field(&mesh, &tensor, &[a], &GRAPH.with_k(3.0)).unwrap();
+        let from_b = distance_field(&mesh, &tensor, &[b], &GRAPH.with_k(3.0)).unwrap();
         let (ab, ba) = (from_a.distance(b), from_b.distance(a));
         if ab.is_finite() || ba.is_finite() {
             prop_assert!((ab - ba).abs() <= 1e-9 * ab.max(ba), "{} vs {}", ab, ba);

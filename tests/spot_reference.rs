@@ -7,6 +7,10 @@ use common::relative_error;
 use geotracks::mesh::io::read_mesh;
 use geotracks::{distance_field, Euclidean, Method, Options};
 
+/// These tests are about the Steiner graph itself (the tracks engine is checked
+/// against it in tracks_oracle.rs).
+const GRAPH: Options = Options::DEFAULT.with_method(Method::Graph);
+
 const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data");
 
 fn exact() -> Vec<f64> {
@@ -22,7 +26,7 @@ fn steiner_graph_at_k5_is_within_0_35_percent() {
     let mesh = read_mesh(format!("{DATA}/spot.obj")).unwrap();
     let exact = exact();
     assert_eq!(exact.len(), mesh.positions().len());
-    let graph = distance_field(&mesh, &Euclidean, &[0], &Options::DEFAULT.with_k(5.0)).unwrap();
+    let graph = distance_field(&mesh, &Euclidean, &[0], &GRAPH.with_k(5.0)).unwrap();
     let (mean, max) = relative_error(graph.vertex_distances(), &exact);
     println!(
         "graph k=5: mean {:.4} %, max {:.4} %",
@@ -54,7 +58,7 @@ fn more_steiner_points_cost_more_tests_and_err_less() {
     let runs: Vec<(u64, f64)> = [2.0, 4.0, 8.0]
         .iter()
         .map(|&k| {
-            let f = distance_field(&mesh, &Euclidean, &[0], &Options::DEFAULT.with_k(k)).unwrap();
+            let f = distance_field(&mesh, &Euclidean, &[0], &GRAPH.with_k(k)).unwrap();
             (
                 f.stats().distance_tests,
                 relative_error(f.vertex_distances(), &exact).0,

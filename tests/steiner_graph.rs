@@ -6,6 +6,10 @@ mod common;
 use common::{book, grid, relative_error};
 use geotracks::{distance_field, Density, Euclidean, Method, Metric, Options, Tensor};
 
+/// These tests are about the Steiner graph itself (the tracks engine is checked
+/// against it in tracks_oracle.rs).
+const GRAPH: Options = Options::DEFAULT.with_method(Method::Graph);
+
 fn euclid_on_grid(mesh: &geotracks::mesh::TriMesh, s: u32) -> Vec<f64> {
     let p = mesh.position(s);
     mesh.positions().iter().map(|q| q.distance(p)).collect()
@@ -19,8 +23,7 @@ fn flat_grid_error_falls_with_k() {
     let errors: Vec<(f64, f64)> = [1.0, 3.0, 8.0]
         .iter()
         .map(|&k| {
-            let f =
-                distance_field(&mesh, &Euclidean, &[source], &Options::DEFAULT.with_k(k)).unwrap();
+            let f = distance_field(&mesh, &Euclidean, &[source], &GRAPH.with_k(k)).unwrap();
             relative_error(f.vertex_distances(), &exact)
         })
         .collect();
@@ -31,7 +34,7 @@ fn flat_grid_error_falls_with_k() {
     );
     assert!(errors[2].0 < 2e-3, "{errors:?}");
     // Never shorter than the straight line (a graph path is a path on the surface).
-    let f = distance_field(&mesh, &Euclidean, &[source], &Options::DEFAULT).unwrap();
+    let f = distance_field(&mesh, &Euclidean, &[source], &GRAPH).unwrap();
     for (d, e) in f.vertex_distances().iter().zip(&exact) {
         assert!(*d >= e - 1e-12);
     }
@@ -48,7 +51,7 @@ fn dijkstra_on_edges_is_much_worse_than_the_graph() {
         &Options::DEFAULT.with_method(Method::Dijkstra),
     )
     .unwrap();
-    let graph = distance_field(&mesh, &Euclidean, &[0], &Options::DEFAULT).unwrap();
+    let graph = distance_field(&mesh, &Euclidean, &[0], &GRAPH).unwrap();
     let (dm, _) = relative_error(dijkstra.vertex_distances(), &exact);
     let (gm, _) = relative_error(graph.vertex_distances(), &exact);
     assert!(dm > 10.0 * gm, "dijkstra {dm}, graph {gm}");
@@ -63,7 +66,7 @@ fn book_pages_unfold() {
     assert_eq!(mesh.report().non_manifold_edges, 8);
     assert_eq!(mesh.report().max_edge_valence, 3);
     let source = id(0, 4, 2); // r = 0.5, z = 0.25 on page 0
-    let f = distance_field(&mesh, &Euclidean, &[source], &Options::DEFAULT.with_k(8.0)).unwrap();
+    let f = distance_field(&mesh, &Euclidean, &[source], &GRAPH.with_k(8.0)).unwrap();
     let mut worst = 0.0f64;
     for page in 1..3 {
         for j in 0..=8 {
@@ -93,10 +96,10 @@ fn book_pages_unfold() {
 #[test]
 fn constant_density_scales_distances() {
     let (mesh, _) = book(4, 1.0, 2.0, 5);
-    let base = distance_field(&mesh, &Euclidean, &[7], &Options::DEFAULT).unwrap();
+    let base = distance_field(&mesh, &Euclidean, &[7], &GRAPH).unwrap();
     for c in [0.25, 3.0] {
         let density = Density::constant(&mesh, c).unwrap();
-        let f = distance_field(&mesh, &density, &[7], &Options::DEFAULT).unwrap();
+        let f = distance_field(&mesh, &density, &[7], &GRAPH).unwrap();
         for (a, b) in f.vertex_distances().iter().zip(base.vertex_distances()) {
             assert!(
                 (a - c * b).abs() <= 1e-12 * (1.0 + c * b),
@@ -126,7 +129,7 @@ fn constant_tensor_approaches_the_analytic_norm() {
     let errors: Vec<f64> = [1.0, 3.0, 8.0]
         .iter()
         .map(|&k| {
-            let f = distance_field(&mesh, &tensor, &[source], &Options::DEFAULT.with_k(k)).unwrap();
+            let f = distance_field(&mesh, &tensor, &[source], &GRAPH.with_k(k)).unwrap();
             relative_error(f.vertex_distances(), &exact).0
         })
         .collect();

@@ -69,7 +69,10 @@ impl FacePoint {
     /// Euclidean length of the segment from `self` to `other` (both in one face's frame).
     #[inline]
     pub fn distance(&self, other: &FacePoint) -> f64 {
-        (other.uv[0] - self.uv[0]).hypot(other.uv[1] - self.uv[1])
+        // Not `hypot`: its overflow care costs several times a square root, and face
+        // coordinates are nowhere near 1e150.
+        let (du, dv) = (other.uv[0] - self.uv[0], other.uv[1] - self.uv[1]);
+        (du * du + dv * dv).sqrt()
     }
 }
 
@@ -88,6 +91,15 @@ pub trait Metric: Sync {
         false
     }
 
+    /// Whether the engine may prune by the crossing lemma inside `face`: true where the
+    /// cost is a norm of `b − a` there, or close enough that pruning stays accurate.
+    /// Defaults to [`Metric::is_face_norm`]; a metric that is a norm on some faces only
+    /// (a density that is constant on them, say) can say so face by face.
+    fn prunes_on(&self, face: u32) -> bool {
+        let _ = face;
+        self.is_face_norm()
+    }
+
     /// A short name for reports, e.g. `"euclidean"`.
     fn name(&self) -> &str {
         "custom"
@@ -102,6 +114,9 @@ impl<M: Metric + ?Sized> Metric for &M {
     fn is_face_norm(&self) -> bool {
         (**self).is_face_norm()
     }
+    fn prunes_on(&self, face: u32) -> bool {
+        (**self).prunes_on(face)
+    }
     fn name(&self) -> &str {
         (**self).name()
     }
@@ -114,6 +129,9 @@ impl<M: Metric + ?Sized> Metric for Box<M> {
     }
     fn is_face_norm(&self) -> bool {
         (**self).is_face_norm()
+    }
+    fn prunes_on(&self, face: u32) -> bool {
+        (**self).prunes_on(face)
     }
     fn name(&self) -> &str {
         (**self).name()

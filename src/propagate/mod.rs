@@ -6,14 +6,18 @@
 //!   O(k²) per face). This is the reference the fast engine must agree with.
 //! - [`Method::Dijkstra`]: Dijkstra on mesh edges only: the same graph with no Steiner
 //!   points. Fast, and several percent too long.
-//! - [`Method::Tracks`]: the track-pruned engine of the geodesic tracks paper (not built
-//!   yet).
+//! - [`Method::Tracks`] (the default): the track-pruned engine of the geodesic tracks
+//!   paper. Same distances as the graph for norms (Euclidean, Tensor: relative 1e-9, by
+//!   test), with O(1) failed tests per face entry instead of O(k).
 //!
 //! All are generic over the [`Metric`] (monomorphised: no dynamic dispatch in the loop).
 
+mod frontier;
 mod graph;
+mod queue;
+mod tracks;
 
-use crate::field::GeodesicField;
+use crate::field::{GeodesicField, Stats};
 use crate::mesh::{Topology, TriMesh};
 use crate::steiner::{SteinerLayout, SteinerScheme};
 use crate::Error;
@@ -71,31 +75,31 @@ impl FromStr for Method {
 pub struct Options {
     /// Steiner points per edge. Default: `Interval { k: 5.0 }`.
     pub steiner: SteinerScheme,
-    /// The engine. Default: [`Method::Graph`].
+    /// The engine. Default: [`Method::Tracks`].
     pub method: Method,
 }
 
 impl Options {
-    /// The defaults: interval scheme with k = 5, the Steiner graph.
+    /// The defaults: interval scheme with k = 5, the tracks engine.
     pub const DEFAULT: Options = Options {
         steiner: SteinerScheme::Interval { k: 5.0 },
-        method: Method::Graph,
+        method: Method::Tracks,
     };
 
     /// Interval scheme with a mean of `k` points per edge.
-    pub fn with_k(mut self, k: f64) -> Self {
+    pub const fn with_k(mut self, k: f64) -> Self {
         self.steiner = SteinerScheme::Interval { k };
         self
     }
 
     /// Exactly `count` points on every edge.
-    pub fn with_fixed_count(mut self, count: u32) -> Self {
+    pub const fn with_fixed_count(mut self, count: u32) -> Self {
         self.steiner = SteinerScheme::Fixed { count };
         self
     }
 
     /// The engine to run.
-    pub fn with_method(mut self, method: Method) -> Self {
+    pub const fn with_method(mut self, method: Method) -> Self {
         self.method = method;
         self
     }
@@ -111,8 +115,7 @@ impl Default for Options {
 ///
 /// # Errors
 /// [`Error::NoSource`], [`Error::SourceOutOfRange`], [`Error::InvalidK`],
-/// [`Error::InvalidCost`] if the metric returns NaN or a negative cost,
-/// [`Error::NotImplemented`] for [`Method::Tracks`] (until it lands).
+/// [`Error::InvalidCost`] if the metric returns NaN or a negative cost.
 ///
 /// # Example
 /// ```
@@ -141,24 +144,90 @@ pub fn distance_field<M: Metric>(
             vertex_count: mesh.vertex_count(),
         });
     }
-    let layout = match options.method {
-        Method::Tracks => return Err(Error::NotImplemented("tracks")),
-        Method::Dijkstra => SteinerLayout::vertices_only(mesh),
-        Method::Graph => {
-            if !options.steiner.is_valid() {
-                return Err(Error::InvalidK {
-                    k: options.steiner.k(),
-                });
-            }
-            SteinerLayout::new(mesh, options.steiner)
+    let layout = if options.method == Method::Dijkstra {
+        SteinerLayout::vertices_only(mesh)
+    } else {
+        if !options.steiner.is_valid() {
+            return Err(Error::InvalidK {
+                k: options.steiner.k(),
+            });
+        }
+        SteinerLayout::new(mesh, options.steiner)
+    };
+    let layout = Arc::new(layout);
+    let steps = frontier::edge_steps(mesh, metric, &layout);
+    let (edge_steps, step_tests) = match &steps {
+        Some((steps, tests)) => (Some(steps.as_slice()), *tests),
+        None => (None, 0),
+    };
+    let (search, setup_seconds, propagate_seconds) = match options.method {
+        Method::Tracks => {
+            let instances = tracks::Instances::new(mesh, &layout)?;
+            let width = bucket_width(mesh, metric, &layout);
+            let setup = start.elapsed().as_secs_f64();
+            let t = Instant::now();
+            let search = tracks::propagate(
+                mesh, metric, &layout, edge_steps, &instances, width, sources,
+            );
+            (search.into_state(), setup, t.elapsed().as_secs_f64())
+        }
+        Method::Graph | Method::Dijkstra => {
+            let setup = start.elapsed().as_secs_f64();
+            let t = Instant::now();
+            let search = graph::propagate(mesh, metric, &layout, edge_steps, sources);
+            (search.into_state(), setup, t.elapsed().as_secs_f64())
         }
     };
-    graph::run(
-        mesh,
-        metric,
-        Arc::new(layout),
-        sources,
-        options.method,
-        start,
-    )
+    if let Some((face, value)) = search.bad_cost {
+        return Err(Error::InvalidCost {
+            metric: metric.name().to_string(),
+            face,
+            value,
+        });
+    }
+    let stats = Stats {
+        vertices: mesh.vertex_count(),
+        faces: mesh.face_count(),
+        steiner_points: layout.steiner_count(),
+        k: if options.method == Method::Dijkstra {
+            0.0
+        } else {
+            options.steiner.k()
+        },
+        method: options.method,
+        setup_seconds,
+        propagate_seconds,
+        pushes: search.pushes,
+        distance_tests: search.tests + step_tests,
+    };
+    Ok(GeodesicField::new(
+        layout,
+        search.distance,
+        search.parent,
+        search.parent_face,
+        stats,
+    ))
+}
+
+/// The bucket queue's width: a low quantile of the cost between consecutive nodes on an
+/// edge. Nodes in one bucket are settled in no particular order, so a bucket much wider
+/// than the local spacing of nodes makes many nodes settle early and propagate again;
+/// the low quantile keeps buckets narrow where costs are low (low density, short edges).
+fn bucket_width<M: Metric>(mesh: &TriMesh, metric: &M, layout: &SteinerLayout) -> f64 {
+    let mut steps: Vec<f64> = (0..mesh.edge_count() as u32)
+        .filter_map(|e| {
+            let f = mesh.edge_faces(e)[0];
+            let [a, b] = mesh
+                .edge_vertices(e)
+                .map(|v| layout.point_in_face(mesh, v, f));
+            let step = metric.cost(f, &a, &b) / (layout.count(e) + 1) as f64;
+            (step.is_finite() && step > 0.0).then_some(step)
+        })
+        .collect();
+    if steps.is_empty() {
+        return 1.0;
+    }
+    let at = steps.len() / 10;
+    let (_, width, _) = steps.select_nth_unstable_by(at, f64::total_cmp);
+    *width
 }

@@ -92,3 +92,203 @@ pub fn relative_error(d: &[f64], exact: &[f64]) -> (f64, f64) {
     }
     (sum / n as f64, max)
 }
+
+/// A small deterministic generator, so a failing case is reproducible from its seed.
+pub struct Rng(pub u64);
+
+impl Rng {
+    pub fn next(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+    pub fn below(&mut self, n: usize) -> usize {
+        ((self.next() * n as f64) as usize).min(n - 1)
+    }
+}
+
+/// A jittered grid with holes, extra "fin" faces on existing edges (non-manifold),
+/// degenerate faces (repeated vertex, collinear), an unreferenced vertex, and sometimes
+/// a second disconnected component.
+pub fn random_mesh(seed: u64, n: usize) -> Result<TriMesh, geotracks::mesh::MeshError> {
+    let mut rng = Rng(seed | 1);
+    let mut positions = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            positions.push([
+                i as f64 + 0.35 * (rng.next() - 0.5),
+                j as f64 + 0.35 * (rng.next() - 0.5),
+                0.8 * rng.next(),
+            ]);
+        }
+    }
+    let id = |i: usize, j: usize| (j * (n + 1) + i) as u32;
+    let mut triangles = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            if rng.next() < 0.08 {
+                continue; // a hole
+            }
+            if rng.next() < 0.5 {
+                triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+                triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+            } else {
+                triangles.push([id(i, j), id(i + 1, j), id(i, j + 1)]);
+                triangles.push([id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
+            }
+        }
+    }
+    // Fins: new faces on existing edges, making them non-manifold.
+    for _ in 0..rng.below(4) + 1 {
+        // Two fins on one edge: it then has at least three faces.
+        let t = triangles[rng.below(triangles.len())];
+        let a = positions[t[0] as usize];
+        for _ in 0..2 {
+            let apex = positions.len() as u32;
+            positions.push([
+                a[0] + rng.next(),
+                a[1] + rng.next(),
+                a[2] + 1.0 + rng.next(),
+            ]);
+            triangles.push([t[0], t[1], apex]);
+        }
+    }
+    // Degenerate faces: a repeated vertex, and three collinear vertices.
+    triangles.push([id(0, 0), id(0, 0), id(1, 1)]);
+    let c = positions.len() as u32;
+    positions.push([-5.0, 0.0, 0.0]);
+    positions.push([-4.0, 0.0, 0.0]);
+    positions.push([-3.0, 0.0, 0.0]);
+    triangles.push([c, c + 1, c + 2]);
+    // An unreferenced vertex.
+    positions.push([9.0, 9.0, 9.0]);
+    // Sometimes a second component.
+    if rng.next() < 0.5 {
+        let b = positions.len() as u32;
+        positions.extend([[20.0, 0.0, 0.0], [21.0, 0.0, 0.0], [20.0, 1.0, 0.0]]);
+        triangles.push([b, b + 1, b + 2]);
+    }
+    TriMesh::new(positions, triangles)
+}
+
+/// An icosahedron subdivided `levels` times, projected on the unit sphere, with each
+/// vertex's radius jittered by up to `jitter` (relative).
+pub fn sphere(levels: usize, jitter: f64, seed: u64) -> TriMesh {
+    let t = (1.0 + 5f64.sqrt()) / 2.0;
+    let mut positions: Vec<[f64; 3]> = vec![
+        [-1.0, t, 0.0],
+        [1.0, t, 0.0],
+        [-1.0, -t, 0.0],
+        [1.0, -t, 0.0],
+        [0.0, -1.0, t],
+        [0.0, 1.0, t],
+        [0.0, -1.0, -t],
+        [0.0, 1.0, -t],
+        [t, 0.0, -1.0],
+        [t, 0.0, 1.0],
+        [-t, 0.0, -1.0],
+        [-t, 0.0, 1.0],
+    ];
+    let mut triangles: Vec<[u32; 3]> = vec![
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ];
+    for _ in 0..levels {
+        let mut midpoint = std::collections::HashMap::new();
+        let mut next = Vec::new();
+        for t in &triangles {
+            let mut mid = [0u32; 3];
+            for i in 0..3 {
+                let (a, b) = (t[i].min(t[(i + 1) % 3]), t[i].max(t[(i + 1) % 3]));
+                mid[i] = *midpoint.entry((a, b)).or_insert_with(|| {
+                    let (pa, pb) = (positions[a as usize], positions[b as usize]);
+                    positions.push([
+                        (pa[0] + pb[0]) / 2.0,
+                        (pa[1] + pb[1]) / 2.0,
+                        (pa[2] + pb[2]) / 2.0,
+                    ]);
+                    positions.len() as u32 - 1
+                });
+            }
+            next.push([t[0], mid[0], mid[2]]);
+            next.push([t[1], mid[1], mid[0]]);
+            next.push([t[2], mid[2], mid[1]]);
+            next.push(mid);
+        }
+        triangles = next;
+    }
+    let mut rng = Rng(seed | 1);
+    for p in &mut positions {
+        let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+        let s = (1.0 + jitter * (rng.next() - 0.5)) / r;
+        *p = [p[0] * s, p[1] * s, p[2] * s];
+    }
+    TriMesh::new(positions, triangles).unwrap()
+}
+
+/// A random non-manifold fan: `pages` triangulated strips of random widths and
+/// directions hinged on one spine (the z axis), plus single triangles on the spine's
+/// end vertices (an hourglass-like pinch).
+pub fn random_book(seed: u64, pages: usize, n: usize) -> TriMesh {
+    let mut rng = Rng(seed | 1);
+    let mut positions = Vec::new();
+    for j in 0..=n {
+        positions.push([0.0, 0.0, j as f64 / n as f64 + 0.02 * rng.next()]);
+    }
+    let mut triangles = Vec::new();
+    for _ in 0..pages {
+        let angle = std::f64::consts::TAU * rng.next();
+        let width = 0.3 + rng.next();
+        let cols = 1 + rng.below(3);
+        let first = positions.len() as u32;
+        for j in 0..=n {
+            for i in 1..=cols {
+                let r = width * i as f64 / cols as f64;
+                positions.push([
+                    r * angle.cos() + 0.05 * rng.next(),
+                    r * angle.sin() + 0.05 * rng.next(),
+                    j as f64 / n as f64 + 0.05 * (rng.next() - 0.5),
+                ]);
+            }
+        }
+        let id = |i: usize, j: usize| -> u32 {
+            if i == 0 {
+                j as u32
+            } else {
+                first + (j * cols + i - 1) as u32
+            }
+        };
+        for j in 0..n {
+            for i in 0..cols {
+                triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+                triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+            }
+        }
+    }
+    // A pinch: a triangle touching the spine's top vertex only.
+    let top = n as u32;
+    let b = positions.len() as u32;
+    positions.push([0.5, 0.5, 1.5]);
+    positions.push([-0.5, 0.5, 1.6]);
+    triangles.push([top, b, b + 1]);
+    TriMesh::new(positions, triangles).unwrap()
+}

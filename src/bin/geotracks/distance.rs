@@ -18,7 +18,7 @@ pub struct DistanceArgs {
     #[arg(long, default_value_t = 5.0)]
     k: f64,
     /// Propagation method.
-    #[arg(long, default_value = "graph")]
+    #[arg(long, default_value = "tracks")]
     method: Method,
     /// Per-vertex density file: one float per vertex.
     #[arg(long, conflicts_with = "tensor")]

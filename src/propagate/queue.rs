@@ -1,0 +1,178 @@
+//! The two priority queues: a binary heap (exact order, O(log n)) for the baselines, and
+//! a bucket queue (O(1), order only up to the bucket width) for the tracks engine.
+
+use super::frontier::Queue;
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+/// A heap entry ordered so that the smallest distance pops first.
+#[derive(Clone, Copy, PartialEq)]
+struct Entry(f64, u32);
+
+impl Eq for Entry {}
+impl PartialOrd for Entry {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for Entry {
+    fn cmp(&self, other: &Self) -> Ordering {
+        other.0.total_cmp(&self.0).then(other.1.cmp(&self.1))
+    }
+}
+
+/// Dijkstra's binary heap with lazy deletion: an entry is stale once its node's distance
+/// dropped below the entry's.
+#[derive(Default)]
+pub(super) struct HeapQueue(BinaryHeap<Entry>);
+
+impl Queue for HeapQueue {
+    #[inline]
+    fn push(&mut self, node: u32, value: f64, _previous: f64) -> bool {
+        self.0.push(Entry(value, node));
+        true
+    }
+
+    #[inline]
+    fn pop(&mut self, distance: &[f64]) -> Option<u32> {
+        while let Some(Entry(d, q)) = self.0.pop() {
+            if d <= distance[q as usize] {
+                return Some(q);
+            }
+        }
+        None
+    }
+}
+
+/// Buckets of width `width`: bucket `b` holds nodes with distance in
+/// `[b·width, (b+1)·width)`, unsorted. Popping takes any node of the lowest non-empty
+/// bucket, so a node may be settled before its final value; it is then queued again
+/// when it improves, and the result is still exact. Improvements never fall below the
+/// bucket being processed (costs are ≥ 0), so buckets are visited in order, once.
+///
+/// A node has at most one live entry: `pending` says it is queued in the bucket of its
+/// current distance; an improvement within the same bucket adds nothing.
+///
+/// Only a window of `WINDOW` buckets is materialised; entries beyond it wait in `far`
+/// and are re-bucketed when the window is used up, so a metric with a huge cost range
+/// cannot make the queue allocate without bound.
+pub(super) struct BucketQueue {
+    inverse_width: f64,
+    /// Absolute bucket number of `buckets[0]`.
+    base: usize,
+    buckets: Vec<Vec<u32>>,
+    /// Index into `buckets` of the bucket being processed.
+    current: usize,
+    far: Vec<u32>,
+    pending: Vec<bool>,
+    /// Emptied bucket buffers, kept to avoid allocating new ones.
+    spare: Vec<Vec<u32>>,
+}
+
+const WINDOW: usize = 1 << 16;
+
+impl BucketQueue {
+    /// An empty queue for `nodes` nodes, with buckets `width` wide (> 0).
+    pub fn new(nodes: usize, width: f64) -> BucketQueue {
+        BucketQueue {
+            inverse_width: 1.0 / width,
+            base: 0,
+            buckets: Vec::new(),
+            current: 0,
+            far: Vec::new(),
+            pending: vec![false; nodes],
+            spare: Vec::new(),
+        }
+    }
+
+    #[inline]
+    fn bucket(&self, value: f64) -> usize {
+        // Saturating float-to-int conversion: huge values share the last bucket.
+        (value * self.inverse_width) as usize
+    }
+
+    /// Files `node` under absolute bucket `b`: in the window, or in `far`.
+    #[inline]
+    fn file(&mut self, node: u32, b: usize) {
+        let slot = b - self.base;
+        if slot >= WINDOW {
+            self.far.push(node);
+            return;
+        }
+        if slot >= self.buckets.len() {
+            self.buckets.resize_with(slot + 1, Vec::new);
+        }
+        let bucket = &mut self.buckets[slot];
+        if bucket.capacity() == 0 {
+            if let Some(spare) = self.spare.pop() {
+                *bucket = spare;
+            }
+        }
+        bucket.push(node);
+    }
+
+    /// Moves the window to the lowest far bucket and re-files the far entries; returns
+    /// whether anything is left to process.
+    fn refill(&mut self, distance: &[f64]) -> bool {
+        let far = std::mem::take(&mut self.far);
+        let live = |q: &u32| self.pending[*q as usize];
+        let Some(lowest) = far
+            .iter()
+            .filter(|q| live(q))
+            .map(|&q| self.bucket(distance[q as usize]))
+            .min()
+        else {
+            return false;
+        };
+        for bucket in self.buckets.drain(..) {
+            if bucket.capacity() > 0 {
+                self.spare.push(bucket);
+            }
+        }
+        self.base = lowest;
+        self.current = 0;
+        for q in far {
+            if self.pending[q as usize] {
+                let b = self.bucket(distance[q as usize]);
+                self.file(q, b);
+            }
+        }
+        true
+    }
+}
+
+impl Queue for BucketQueue {
+    #[inline]
+    fn push(&mut self, node: u32, value: f64, previous: f64) -> bool {
+        let b = self.bucket(value);
+        if self.pending[node as usize] && self.bucket(previous) == b {
+            return false;
+        }
+        self.pending[node as usize] = true;
+        self.file(node, b);
+        true
+    }
+
+    #[inline]
+    fn pop(&mut self, distance: &[f64]) -> Option<u32> {
+        loop {
+            while self.current < self.buckets.len() {
+                let absolute = self.base + self.current;
+                while let Some(q) = self.buckets[self.current].pop() {
+                    let live =
+                        self.pending[q as usize] && self.bucket(distance[q as usize]) == absolute;
+                    if live {
+                        self.pending[q as usize] = false;
+                        return Some(q);
+                    }
+                }
+                let done = std::mem::take(&mut self.buckets[self.current]);
+                self.spare.push(done);
+                self.current += 1;
+            }
+            if !self.refill(distance) {
+                return None;
+            }
+        }
+    }
+}
