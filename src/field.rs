@@ -27,8 +27,11 @@ pub struct Stats {
     pub propagate_seconds: f64,
     /// Queue insertions.
     pub pushes: u64,
-    /// Metric evaluations.
+    /// Metric evaluations made while propagating.
     pub distance_tests: u64,
+    /// Metric evaluations made once by the solver's setup (the per-edge step costs of
+    /// a norm metric), shared by all its runs.
+    pub setup_distance_tests: u64,
 }
 
 /// A distance field over a mesh's nodes (vertices and Steiner points), with the parent of

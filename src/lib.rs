@@ -41,7 +41,7 @@ pub use geotracks_metrics as metrics;
 pub use error::Error;
 pub use field::{GeodesicField, Stats};
 pub use geotracks_metrics::{Density, Euclidean, FacePoint, Metric, MetricError, Tensor};
-pub use propagate::{distance_field, Method, Options};
+pub use propagate::{distance_field, Method, Options, Solver, Workspace};
 pub use steiner::{SteinerLayout, SteinerScheme};
 
 /// The README's code blocks, compiled and run as doctests so they stay true.

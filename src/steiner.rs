@@ -44,6 +44,14 @@ impl SteinerScheme {
     }
 }
 
+/// The parameter, from the slot's first corner, of point `i` (in slot order) of a slot
+/// with `count` points. Every engine places points with this one formula, so they all
+/// see bit-identical coordinates.
+#[inline]
+pub fn slot_param(i: u32, count: u32) -> f64 {
+    (i + 1) as f64 / (count + 1) as f64
+}
+
 /// What a node is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum NodeKind {
@@ -191,16 +199,17 @@ impl SteinerLayout {
         }
     }
 
-    /// Position of point `index` of the edge in slot `slot` of face `f`.
+    /// Position of point `index` (numbered from the edge's lower vertex) of the edge in
+    /// slot `slot` of face `f`.
     #[inline]
     pub fn point_on_slot(&self, mesh: &TriMesh, f: u32, slot: usize, index: u32) -> FacePoint {
         let e = mesh.face_edges(f)[slot];
-        let t = self.param(e, index);
+        let count = self.count(e);
         // Slot `slot` runs from corner `slot` to corner `slot + 1`; the edge's points are
         // numbered from its lower-id vertex, which may be either end.
         let from_lower = mesh.face_vertices(f)[slot] == mesh.edge_vertices(e)[0];
-        mesh.frame(f)
-            .point_on_edge(slot, if from_lower { t } else { 1.0 - t })
+        let i = if from_lower { index } else { count - 1 - index };
+        mesh.frame(f).point_on_edge(slot, slot_param(i, count))
     }
 
     /// World position of `node`.

@@ -14,69 +14,25 @@ pub(super) trait Queue {
     fn pop(&mut self, distance: &[f64]) -> Option<u32>;
 }
 
-/// What a finished run leaves: per-node distances and parents, and its counters.
-pub(super) struct State {
-    pub distance: Vec<f64>,
-    pub parent: Vec<u32>,
-    pub parent_face: Vec<u32>,
-    pub pushes: u64,
-    pub tests: u64,
-    pub bad_cost: Option<(u32, f64)>,
-}
-
-/// Per-node state and counters of one run, generic over the metric and the queue.
+/// Per-node state (borrowed from a workspace) and counters of one run, generic over the
+/// metric and the queue.
 pub(super) struct Frontier<'a, M, Q> {
     pub mesh: &'a TriMesh,
     pub metric: &'a M,
     pub layout: &'a SteinerLayout,
     /// Cost between consecutive nodes of each edge, when the metric allows caching it.
     pub edge_steps: Option<&'a [f64]>,
-    pub distance: Vec<f64>,
-    pub parent: Vec<u32>,
-    pub parent_face: Vec<u32>,
-    pub queue: Q,
+    pub distance: &'a mut [f64],
+    pub parent: &'a mut [u32],
+    pub parent_face: &'a mut [u32],
+    pub queue: &'a mut Q,
     pub pushes: u64,
     pub tests: u64,
     /// The first NaN or negative cost the metric returned, with its face.
     pub bad_cost: Option<(u32, f64)>,
 }
 
-impl<'a, M: Metric, Q: Queue> Frontier<'a, M, Q> {
-    pub fn new(
-        mesh: &'a TriMesh,
-        metric: &'a M,
-        layout: &'a SteinerLayout,
-        edge_steps: Option<&'a [f64]>,
-        queue: Q,
-    ) -> Self {
-        let n = layout.node_count();
-        Frontier {
-            mesh,
-            metric,
-            layout,
-            edge_steps,
-            distance: vec![f64::INFINITY; n],
-            parent: vec![NONE; n],
-            parent_face: vec![NONE; n],
-            queue,
-            pushes: 0,
-            tests: 0,
-            bad_cost: None,
-        }
-    }
-
-    /// The per-node results and counters, without the queue.
-    pub fn into_state(self) -> State {
-        State {
-            distance: self.distance,
-            parent: self.parent,
-            parent_face: self.parent_face,
-            pushes: self.pushes,
-            tests: self.tests,
-            bad_cost: self.bad_cost,
-        }
-    }
-
+impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
     /// The metric's cost of a segment in face `face`, counted as one distance test.
     #[inline]
     pub fn cost(&mut self, face: u32, a: &FacePoint, b: &FacePoint) -> f64 {
@@ -105,9 +61,9 @@ impl<'a, M: Metric, Q: Queue> Frontier<'a, M, Q> {
     /// edge around it; for a Steiner point, the nodes before and after it). Straight
     /// segments add up along an edge, so the next neighbour is enough; the segment costs
     /// what it costs in the cheapest face around the edge.
-    pub fn relax_along_edges(&mut self, q: u32, d: f64) {
+    pub fn relax_along_edges(&mut self, q: u32, kind: NodeKind, d: f64) {
         let (mesh, layout) = (self.mesh, self.layout);
-        match layout.kind(q) {
+        match kind {
             NodeKind::Vertex(v) => {
                 for &e in mesh.vertex_edges(v) {
                     let nodes = layout.edge_nodes(e);

@@ -6,38 +6,32 @@
 //! node is settled. With no Steiner points this is Dijkstra on mesh edges.
 
 use super::frontier::{Frontier, Queue};
-use super::queue::HeapQueue;
-use crate::mesh::{Topology, TriMesh};
-use crate::steiner::{NodeKind, SteinerLayout};
+use crate::mesh::Topology;
+use crate::steiner::NodeKind;
 use geotracks_metrics::{FacePoint, Metric};
 
-/// Runs the search from `sources` (start value 0) to the end.
-pub(super) fn propagate<'a, M: Metric>(
-    mesh: &'a TriMesh,
-    metric: &'a M,
-    layout: &'a SteinerLayout,
-    edge_steps: Option<&'a [f64]>,
-    sources: &[u32],
-) -> Frontier<'a, M, HeapQueue> {
-    let mut search = Frontier::new(mesh, metric, layout, edge_steps, HeapQueue::default());
-    for &s in sources {
-        search.relax(s, 0.0, crate::mesh::NONE, crate::mesh::NONE);
-    }
-    while let Some(q) = search.queue.pop(&search.distance) {
+/// Settles nodes until the queue is empty (or the metric misbehaves).
+pub(super) fn propagate<M: Metric, Q: Queue>(search: &mut Frontier<'_, M, Q>) {
+    while let Some(q) = search.queue.pop(search.distance) {
         let d = search.distance[q as usize];
-        search.relax_along_edges(q, d);
-        settle_in_faces(&mut search, q, d);
+        let kind = search.layout.kind(q);
+        search.relax_along_edges(q, kind, d);
+        settle_in_faces(search, q, kind, d);
         if search.bad_cost.is_some() {
             break;
         }
     }
-    search
 }
 
 /// Relaxes every node of every face around `q` that is not on `q`'s own edges.
-fn settle_in_faces<M: Metric, Q: Queue>(search: &mut Frontier<'_, M, Q>, q: u32, d: f64) {
+fn settle_in_faces<M: Metric, Q: Queue>(
+    search: &mut Frontier<'_, M, Q>,
+    q: u32,
+    kind: NodeKind,
+    d: f64,
+) {
     let (mesh, layout) = (search.mesh, search.layout);
-    match layout.kind(q) {
+    match kind {
         NodeKind::Vertex(v) => {
             for &f in mesh.vertex_faces(v) {
                 let corner = mesh

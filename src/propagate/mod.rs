@@ -15,17 +15,18 @@
 mod frontier;
 mod graph;
 mod queue;
+mod solver;
 mod tracks;
 
-use crate::field::{GeodesicField, Stats};
-use crate::mesh::{Topology, TriMesh};
-use crate::steiner::{SteinerLayout, SteinerScheme};
+pub use solver::{Solver, Workspace};
+
+use crate::field::GeodesicField;
+use crate::mesh::TriMesh;
+use crate::steiner::SteinerScheme;
 use crate::Error;
 use geotracks_metrics::Metric;
 use std::fmt;
 use std::str::FromStr;
-use std::sync::Arc;
-use std::time::Instant;
 
 /// Which propagation runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -134,100 +135,5 @@ pub fn distance_field<M: Metric>(
     sources: &[u32],
     options: &Options,
 ) -> Result<GeodesicField, Error> {
-    let start = Instant::now();
-    if sources.is_empty() {
-        return Err(Error::NoSource);
-    }
-    if let Some(&vertex) = sources.iter().find(|&&v| v as usize >= mesh.vertex_count()) {
-        return Err(Error::SourceOutOfRange {
-            vertex: vertex as u64,
-            vertex_count: mesh.vertex_count(),
-        });
-    }
-    let layout = if options.method == Method::Dijkstra {
-        SteinerLayout::vertices_only(mesh)
-    } else {
-        if !options.steiner.is_valid() {
-            return Err(Error::InvalidK {
-                k: options.steiner.k(),
-            });
-        }
-        SteinerLayout::new(mesh, options.steiner)
-    };
-    let layout = Arc::new(layout);
-    let steps = frontier::edge_steps(mesh, metric, &layout);
-    let (edge_steps, step_tests) = match &steps {
-        Some((steps, tests)) => (Some(steps.as_slice()), *tests),
-        None => (None, 0),
-    };
-    let (search, setup_seconds, propagate_seconds) = match options.method {
-        Method::Tracks => {
-            let instances = tracks::Instances::new(mesh, &layout)?;
-            let width = bucket_width(mesh, metric, &layout);
-            let setup = start.elapsed().as_secs_f64();
-            let t = Instant::now();
-            let search = tracks::propagate(
-                mesh, metric, &layout, edge_steps, &instances, width, sources,
-            );
-            (search.into_state(), setup, t.elapsed().as_secs_f64())
-        }
-        Method::Graph | Method::Dijkstra => {
-            let setup = start.elapsed().as_secs_f64();
-            let t = Instant::now();
-            let search = graph::propagate(mesh, metric, &layout, edge_steps, sources);
-            (search.into_state(), setup, t.elapsed().as_secs_f64())
-        }
-    };
-    if let Some((face, value)) = search.bad_cost {
-        return Err(Error::InvalidCost {
-            metric: metric.name().to_string(),
-            face,
-            value,
-        });
-    }
-    let stats = Stats {
-        vertices: mesh.vertex_count(),
-        faces: mesh.face_count(),
-        steiner_points: layout.steiner_count(),
-        k: if options.method == Method::Dijkstra {
-            0.0
-        } else {
-            options.steiner.k()
-        },
-        method: options.method,
-        setup_seconds,
-        propagate_seconds,
-        pushes: search.pushes,
-        distance_tests: search.tests + step_tests,
-    };
-    Ok(GeodesicField::new(
-        layout,
-        search.distance,
-        search.parent,
-        search.parent_face,
-        stats,
-    ))
-}
-
-/// The bucket queue's width: a low quantile of the cost between consecutive nodes on an
-/// edge. Nodes in one bucket are settled in no particular order, so a bucket much wider
-/// than the local spacing of nodes makes many nodes settle early and propagate again;
-/// the low quantile keeps buckets narrow where costs are low (low density, short edges).
-fn bucket_width<M: Metric>(mesh: &TriMesh, metric: &M, layout: &SteinerLayout) -> f64 {
-    let mut steps: Vec<f64> = (0..mesh.edge_count() as u32)
-        .filter_map(|e| {
-            let f = mesh.edge_faces(e)[0];
-            let [a, b] = mesh
-                .edge_vertices(e)
-                .map(|v| layout.point_in_face(mesh, v, f));
-            let step = metric.cost(f, &a, &b) / (layout.count(e) + 1) as f64;
-            (step.is_finite() && step > 0.0).then_some(step)
-        })
-        .collect();
-    if steps.is_empty() {
-        return 1.0;
-    }
-    let at = steps.len() / 10;
-    let (_, width, _) = steps.select_nth_unstable_by(at, f64::total_cmp);
-    *width
+    Solver::new(mesh, metric, options)?.solve(sources)
 }

@@ -26,6 +26,13 @@ impl Ord for Entry {
 #[derive(Default)]
 pub(super) struct HeapQueue(BinaryHeap<Entry>);
 
+impl HeapQueue {
+    /// Empties the queue, keeping its buffer.
+    pub fn reset(&mut self) {
+        self.0.clear();
+    }
+}
+
 impl Queue for HeapQueue {
     #[inline]
     fn push(&mut self, node: u32, value: f64, _previous: f64) -> bool {
@@ -56,6 +63,7 @@ impl Queue for HeapQueue {
 /// Only a window of `WINDOW` buckets is materialised; entries beyond it wait in `far`
 /// and are re-bucketed when the window is used up, so a metric with a huge cost range
 /// cannot make the queue allocate without bound.
+#[derive(Default)]
 pub(super) struct BucketQueue {
     inverse_width: f64,
     /// Absolute bucket number of `buckets[0]`.
@@ -64,6 +72,7 @@ pub(super) struct BucketQueue {
     /// Index into `buckets` of the bucket being processed.
     current: usize,
     far: Vec<u32>,
+    far_spare: Vec<u32>,
     pending: Vec<bool>,
     /// Emptied bucket buffers, kept to avoid allocating new ones.
     spare: Vec<Vec<u32>>,
@@ -72,17 +81,23 @@ pub(super) struct BucketQueue {
 const WINDOW: usize = 1 << 16;
 
 impl BucketQueue {
-    /// An empty queue for `nodes` nodes, with buckets `width` wide (> 0).
-    pub fn new(nodes: usize, width: f64) -> BucketQueue {
-        BucketQueue {
-            inverse_width: 1.0 / width,
-            base: 0,
-            buckets: Vec::new(),
-            current: 0,
-            far: Vec::new(),
-            pending: vec![false; nodes],
-            spare: Vec::new(),
+    /// Empties the queue for a run over `nodes` nodes with buckets `width` wide (> 0),
+    /// keeping every buffer it has grown.
+    pub fn reset(&mut self, nodes: usize, width: f64) {
+        self.inverse_width = 1.0 / width;
+        self.base = 0;
+        self.current = 0;
+        for bucket in self.buckets.drain(..) {
+            if bucket.capacity() > 0 {
+                self.spare.push(bucket);
+            }
         }
+        for bucket in &mut self.spare {
+            bucket.clear();
+        }
+        self.far.clear();
+        self.pending.clear();
+        self.pending.resize(nodes, false);
     }
 
     #[inline]
@@ -114,14 +129,14 @@ impl BucketQueue {
     /// Moves the window to the lowest far bucket and re-files the far entries; returns
     /// whether anything is left to process.
     fn refill(&mut self, distance: &[f64]) -> bool {
-        let far = std::mem::take(&mut self.far);
-        let live = |q: &u32| self.pending[*q as usize];
-        let Some(lowest) = far
+        let lowest = self
+            .far
             .iter()
-            .filter(|q| live(q))
+            .filter(|&&q| self.pending[q as usize])
             .map(|&q| self.bucket(distance[q as usize]))
-            .min()
-        else {
+            .min();
+        let Some(lowest) = lowest else {
+            self.far.clear();
             return false;
         };
         for bucket in self.buckets.drain(..) {
@@ -131,12 +146,17 @@ impl BucketQueue {
         }
         self.base = lowest;
         self.current = 0;
-        for q in far {
+        // Swap with the spare list so that re-filing beyond the window reuses buffers.
+        let mut far = std::mem::take(&mut self.far_spare);
+        std::mem::swap(&mut far, &mut self.far);
+        for &q in &far {
             if self.pending[q as usize] {
                 let b = self.bucket(distance[q as usize]);
                 self.file(q, b);
             }
         }
+        far.clear();
+        self.far_spare = far;
         true
     }
 }

@@ -31,85 +31,121 @@
 //! norms ([`Metric::is_face_norm`] false, e.g. `Density`) the pruning is a heuristic.
 
 use super::frontier::{Frontier, Queue};
-use super::queue::BucketQueue;
-use crate::mesh::{FaceFrame, Topology, TriMesh, NONE};
-use crate::steiner::{NodeKind, SteinerLayout};
+use crate::mesh::{Topology, TriMesh, NONE};
+use crate::steiner::{slot_param, NodeKind, SteinerLayout};
 use crate::Error;
 use geotracks_metrics::{FacePoint, Metric};
 
-/// Per-face instance storage: offsets of each face's positions in the flat arrays.
-pub(super) struct Instances {
-    /// `base[f]..base[f + 1]` are face `f`'s positions.
-    base: Vec<u32>,
+/// Everything the engine reads about one face, in one 64-byte record, so that entering
+/// a face costs one cache line instead of a dozen scattered lookups.
+#[derive(Clone, Copy, Debug)]
+struct FaceRecord {
+    /// The face's local frame: `l01, x2, y2` (see [`crate::mesh::FaceFrame`]).
+    frame: [f64; 3],
+    /// Node id of the first point (from the lower vertex) of each slot's edge.
+    lo: [u32; 3],
+    vertex: [u32; 3],
+    /// Offset of the face's instances in the flat per-instance arrays.
+    base: u32,
+    /// Points on each slot.
+    count: [u16; 3],
+    /// Bit `s`: slot `s` runs from its edge's higher vertex (points in reverse order).
+    reversed: u8,
 }
 
-impl Instances {
-    pub fn new(mesh: &TriMesh, layout: &SteinerLayout) -> Result<Instances, Error> {
-        let mut base = Vec::with_capacity(mesh.face_count() + 1);
+/// The per-face tables of the tracks engine for one mesh and Steiner layout; built once
+/// by a `Solver` and shared by all its runs.
+pub(super) struct TrackFaces {
+    records: Vec<FaceRecord>,
+    instances: usize,
+}
+
+impl TrackFaces {
+    pub fn new(mesh: &TriMesh, layout: &SteinerLayout) -> Result<TrackFaces, Error> {
         let mut total: u64 = 0;
-        base.push(0);
+        let mut records = Vec::with_capacity(mesh.face_count());
         for f in 0..mesh.face_count() as u32 {
-            total += 3 + mesh
-                .face_edges(f)
-                .iter()
-                .map(|&e| layout.count(e) as u64)
-                .sum::<u64>();
+            let vertex = mesh.face_vertices(f);
+            let edges = mesh.face_edges(f);
+            let mut count = [0u16; 3];
+            let mut reversed = 0u8;
+            for s in 0..3 {
+                let c = layout.count(edges[s]);
+                count[s] = u16::try_from(c).map_err(|_| Error::TooLarge {
+                    what: "Steiner points on one edge",
+                    count: c as u64,
+                })?;
+                if vertex[s] != mesh.edge_vertices(edges[s])[0] {
+                    reversed |= 1 << s;
+                }
+            }
+            let frame = mesh.frame(f);
+            records.push(FaceRecord {
+                frame: [frame.l01, frame.x2, frame.y2],
+                lo: edges.map(|e| layout.edge_nodes(e).start),
+                vertex,
+                base: total as u32,
+                count,
+                reversed,
+            });
+            total += 3 + count.iter().map(|&c| c as u64).sum::<u64>();
             if total >= u32::MAX as u64 {
                 return Err(Error::TooLarge {
                     what: "face-node instances",
                     count: total,
                 });
             }
-            base.push(total as u32);
         }
-        Ok(Instances { base })
+        Ok(TrackFaces {
+            records,
+            instances: total as usize,
+        })
     }
 
     /// Total number of (face, position) instances.
-    pub fn len(&self) -> usize {
-        *self.base.last().expect("base has F + 1 entries") as usize
+    pub fn instances(&self) -> usize {
+        self.instances
     }
 }
 
-/// The boundary cycle of one face, decoded once per entry.
+/// The boundary cycle of one face, decoded from its record once per entry.
 struct Boundary {
     face: u32,
-    frame: FaceFrame,
+    base: u32,
     /// Number of positions.
     n: u32,
     /// Position of corner `c`.
     corner: [u32; 3],
-    /// Points on slot `s`.
     count: [u32; 3],
-    /// Node id of the slot edge's point 0 (numbered from the edge's lower vertex).
-    first_node: [u32; 3],
-    /// Whether slot `s` runs from its edge's lower vertex.
-    from_lower: [bool; 3],
+    lo: [u32; 3],
+    reversed: [bool; 3],
     vertex: [u32; 3],
-    /// The slot's edge.
-    edge: [u32; 3],
+    /// Corner coordinates in the face frame.
+    uv: [[f64; 2]; 3],
 }
 
 impl Boundary {
     #[inline]
-    fn new(mesh: &TriMesh, layout: &SteinerLayout, f: u32) -> Boundary {
-        let vertex = mesh.face_vertices(f);
-        let edge = mesh.face_edges(f);
-        let count = edge.map(|e| layout.count(e));
-        let first_node = edge.map(|e| layout.edge_nodes(e).start);
-        let from_lower = [0, 1, 2].map(|s| vertex[s] == mesh.edge_vertices(edge[s])[0]);
+    fn new(face: u32, r: &FaceRecord) -> Boundary {
+        let count = r.count.map(u32::from);
         let corner = [0, count[0] + 1, count[0] + count[1] + 2];
+        let [l01, x2, y2] = r.frame;
         Boundary {
-            face: f,
-            frame: *mesh.frame(f),
-            n: count[0] + count[1] + count[2] + 3,
+            face,
+            base: r.base,
+            n: corner[2] + count[2] + 1,
             corner,
             count,
-            first_node,
-            from_lower,
-            vertex,
-            edge,
+            lo: r.lo,
+            reversed: [0, 1, 2].map(|s| r.reversed & (1 << s) != 0),
+            vertex: r.vertex,
+            uv: [[0.0, 0.0], [l01, 0.0], [x2, y2]],
         }
+    }
+
+    #[inline]
+    fn corner_at(&self, pos: u32) -> Option<usize> {
+        self.corner.iter().position(|&p| p == pos)
     }
 
     /// The slot of a non-corner position, and the point's index in slot order.
@@ -125,49 +161,50 @@ impl Boundary {
         (s, pos - self.corner[s] - 1)
     }
 
-    /// The edge index (from the lower vertex) of point `i` in slot order of slot `s`.
+    /// Node id and face point of boundary position `pos`. Same formula as
+    /// `SteinerLayout::point_on_slot` (through [`slot_param`]), so the tracks and the
+    /// graph engines see bit-identical coordinates.
     #[inline]
-    fn edge_index(&self, s: usize, i: u32) -> u32 {
-        if self.from_lower[s] {
-            i
-        } else {
-            self.count[s] - 1 - i
-        }
-    }
-
-    /// Node id and position in the face's frame of boundary position `pos`.
-    #[inline]
-    fn at(&self, layout: &SteinerLayout, pos: u32) -> (u32, FacePoint) {
-        if let Some(c) = self.corner.iter().position(|&p| p == pos) {
+    fn at(&self, pos: u32) -> (u32, FacePoint) {
+        if let Some(c) = self.corner_at(pos) {
             let mut bary = [0.0; 3];
             bary[c] = 1.0;
-            return (self.vertex[c], self.frame.point(bary));
+            return (
+                self.vertex[c],
+                FacePoint {
+                    uv: self.uv[c],
+                    bary,
+                },
+            );
         }
         let (s, i) = self.slot_of(pos);
-        let index = self.edge_index(s, i);
-        // Same arithmetic as SteinerLayout::point_on_slot, so both engines see the very
-        // same coordinates.
-        let t = layout.param(self.edge[s], index);
-        let point = self
-            .frame
-            .point_on_edge(s, if self.from_lower[s] { t } else { 1.0 - t });
-        (self.first_node[s] + index, point)
+        let n = self.count[s];
+        let node = self.lo[s] + if self.reversed[s] { n - 1 - i } else { i };
+        let t = slot_param(i, n);
+        let (a, b) = (self.uv[s], self.uv[(s + 1) % 3]);
+        let mut bary = [0.0; 3];
+        bary[s] = 1.0 - t;
+        bary[(s + 1) % 3] = t;
+        let uv = [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])];
+        (node, FacePoint { uv, bary })
     }
 
-    /// Position of `node`, which lies on this face's boundary.
+    /// Position of `node` (of kind `kind`), which lies on this face's boundary.
     #[inline]
-    fn position_of(&self, layout: &SteinerLayout, node: u32) -> u32 {
-        match layout.kind(node) {
+    fn position_of(&self, node: u32, kind: NodeKind) -> u32 {
+        match kind {
             NodeKind::Vertex(v) => {
                 let c = self.vertex.iter().position(|&x| x == v).expect("corner");
                 self.corner[c]
             }
-            NodeKind::Steiner { edge, index } => {
-                let s = self.edge.iter().position(|&e| e == edge).expect("slot");
-                let i = if self.from_lower[s] {
-                    index
-                } else {
+            NodeKind::Steiner { index, .. } => {
+                let s = (0..3)
+                    .find(|&s| node >= self.lo[s] && node - self.lo[s] < self.count[s])
+                    .expect("node lies on a slot of the face");
+                let i = if self.reversed[s] {
                     self.count[s] - 1 - index
+                } else {
+                    index
                 };
                 self.corner[s] + 1 + i
             }
@@ -180,7 +217,7 @@ impl Boundary {
     /// after.
     #[inline]
     fn targets(&self, pos: u32) -> (u32, u32) {
-        if let Some(c) = self.corner.iter().position(|&p| p == pos) {
+        if let Some(c) = self.corner_at(pos) {
             let s = (c + 1) % 3;
             (self.corner[s] + 1, self.count[s])
         } else {
@@ -205,7 +242,6 @@ enum Shadow {
 
 struct Entry<'b> {
     b: &'b Boundary,
-    base: u32,
     /// First target position and number of targets.
     start: u32,
     m: u32,
@@ -264,75 +300,66 @@ impl Entry<'_> {
     }
 }
 
-/// Runs the track-pruned propagation from `sources` (start value 0) to the end.
-pub(super) fn propagate<'a, M: Metric>(
-    mesh: &'a TriMesh,
-    metric: &'a M,
-    layout: &'a SteinerLayout,
-    edge_steps: Option<&'a [f64]>,
-    instances: &Instances,
-    bucket_width: f64,
-    sources: &[u32],
-) -> Frontier<'a, M, BucketQueue> {
-    let queue = BucketQueue::new(layout.node_count(), bucket_width);
+/// Settles nodes until the queue is empty (or the metric misbehaves). `value` and
+/// `from` are the per-instance tracks, reset by the caller.
+pub(super) fn propagate<M: Metric, Q: Queue>(
+    search: &mut Frontier<'_, M, Q>,
+    faces: &TrackFaces,
+    value: &mut [f64],
+    from: &mut [u32],
+) {
     let mut run = Tracks {
-        search: Frontier::new(mesh, metric, layout, edge_steps, queue),
-        base: &instances.base,
-        value: vec![f64::INFINITY; instances.len()],
-        from: vec![NONE; instances.len()],
+        search,
+        records: &faces.records,
+        value,
+        from,
     };
-    for &s in sources {
-        run.search.relax(s, 0.0, NONE, NONE);
-    }
-    while let Some(q) = run.search.queue.pop(&run.search.distance) {
+    while let Some(q) = run.search.queue.pop(run.search.distance) {
         let d = run.search.distance[q as usize];
-        run.search.relax_along_edges(q, d);
-        run.enter_faces(q, d);
+        let kind = run.search.layout.kind(q);
+        run.search.relax_along_edges(q, kind, d);
+        run.enter_faces(q, kind, d);
         if run.search.bad_cost.is_some() {
             break;
         }
     }
-    run.search
 }
 
-struct Tracks<'a, 'i, M> {
-    search: Frontier<'a, M, BucketQueue>,
-    base: &'i [u32],
+struct Tracks<'r, 'a, M, Q> {
+    search: &'r mut Frontier<'a, M, Q>,
+    records: &'r [FaceRecord],
     /// Best value through the face, per instance.
-    value: Vec<f64>,
+    value: &'r mut [f64],
     /// Position (in the same face) of the node that gave `value`; `NONE` if none.
-    from: Vec<u32>,
+    from: &'r mut [u32],
 }
 
-impl<M: Metric> Tracks<'_, '_, M> {
-    fn enter_faces(&mut self, q: u32, d: f64) {
-        let (mesh, layout) = (self.search.mesh, self.search.layout);
-        let faces = match layout.kind(q) {
+impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
+    fn enter_faces(&mut self, q: u32, kind: NodeKind, d: f64) {
+        let mesh = self.search.mesh;
+        let faces = match kind {
             NodeKind::Vertex(v) => mesh.vertex_faces(v),
             NodeKind::Steiner { edge, .. } => mesh.edge_faces(edge),
         };
         for &f in faces {
-            let b = Boundary::new(mesh, layout, f);
-            let q_pos = b.position_of(layout, q);
-            let base = self.base[f as usize];
+            let b = Boundary::new(f, &self.records[f as usize]);
+            let q_pos = b.position_of(q, kind);
             // Never back into the face the value came through.
-            if self.search.metric.prunes_on(f) && self.value[(base + q_pos) as usize] <= d {
+            if self.search.metric.prunes_on(f) && self.value[(b.base + q_pos) as usize] <= d {
                 continue;
             }
-            self.enter(&b, base, q, q_pos, d);
+            self.enter(&b, q, q_pos, d);
         }
     }
 
-    fn enter(&mut self, b: &Boundary, base: u32, q: u32, q_pos: u32, d: f64) {
+    fn enter(&mut self, b: &Boundary, q: u32, q_pos: u32, d: f64) {
         let (start, m) = b.targets(q_pos);
         if m == 0 {
             return;
         }
-        let layout = self.search.layout;
-        let (_, pq) = b.at(layout, q_pos);
+        let (_, pq) = b.at(q_pos);
         let mut e = Entry {
             b,
-            base,
             start,
             m,
             q,
@@ -378,7 +405,7 @@ impl<M: Metric> Tracks<'_, '_, M> {
     #[inline]
     fn first_guess(&self, e: &Entry<'_>) -> u32 {
         let key = |i: u32| -> u32 {
-            let p = self.from[(e.base + e.pos(i)) as usize];
+            let p = self.from[(e.b.base + e.pos(i)) as usize];
             if p == NONE {
                 return e.q_rank;
             }
@@ -406,8 +433,8 @@ impl<M: Metric> Tracks<'_, '_, M> {
     #[inline]
     fn test(&mut self, e: &Entry<'_>, i: u32) -> Option<u32> {
         let pos = e.pos(i);
-        let slot = (e.base + pos) as usize;
-        let (node, p) = e.b.at(self.search.layout, pos);
+        let slot = (e.b.base + pos) as usize;
+        let (node, p) = e.b.at(pos);
         let value = e.d + self.search.cost(e.b.face, &e.pq, &p);
         if value < self.value[slot] {
             self.value[slot] = value;

@@ -1,0 +1,284 @@
+//! [`Solver`]: everything about a (mesh, metric, options) triple that does not depend on
+//! the sources, built once; and [`Workspace`]: the per-run buffers, reused across runs.
+
+use super::frontier::{edge_steps, Frontier};
+use super::queue::{BucketQueue, HeapQueue};
+use super::tracks::TrackFaces;
+use super::{graph, tracks, Method, Options};
+use crate::field::{GeodesicField, Stats};
+use crate::mesh::{Topology, TriMesh, NONE};
+use crate::steiner::SteinerLayout;
+use crate::Error;
+use geotracks_metrics::Metric;
+use std::sync::Arc;
+use std::time::Instant;
+
+/// Answers distance queries on one mesh under one metric, many times.
+///
+/// Building a solver lays out Steiner points and the engine's per-face tables (the
+/// *setup*); each [`Solver::run`] then propagates from a set of sources into a
+/// [`Workspace`] whose buffers are reused, so a warm run allocates nothing. A solver is
+/// `Sync`: threads can share it, each with its own workspace (see
+/// [`Solver::distance_rows`]).
+///
+/// ```
+/// use geotracks::{mesh::TriMesh, Euclidean, Options, Solver};
+/// let mesh = TriMesh::new(
+///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+///     vec![[0, 1, 2], [0, 2, 3]],
+/// )?;
+/// let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT)?;
+/// let mut workspace = solver.workspace();
+/// for source in 0..4 {
+///     solver.run(&mut workspace, &[source])?;
+///     assert_eq!(workspace.vertex_distances()[source as usize], 0.0);
+/// }
+/// # Ok::<(), geotracks::Error>(())
+/// ```
+pub struct Solver<'m, M> {
+    mesh: &'m TriMesh,
+    metric: M,
+    method: Method,
+    k: f64,
+    layout: Arc<SteinerLayout>,
+    edge_steps: Option<Vec<f64>>,
+    setup_tests: u64,
+    faces: Option<TrackFaces>,
+    bucket_width: f64,
+    setup_seconds: f64,
+}
+
+/// The per-run buffers of a [`Solver`]: per-node distances and parents, per-instance
+/// tracks and the queue. After a run it holds that run's result.
+#[derive(Default)]
+pub struct Workspace {
+    vertex_count: usize,
+    distance: Vec<f64>,
+    parent: Vec<u32>,
+    parent_face: Vec<u32>,
+    value: Vec<f64>,
+    from: Vec<u32>,
+    heap: HeapQueue,
+    buckets: BucketQueue,
+}
+
+impl Workspace {
+    /// Distance at every vertex after the last run (`inf` where unreached).
+    pub fn vertex_distances(&self) -> &[f64] {
+        &self.distance[..self.vertex_count.min(self.distance.len())]
+    }
+
+    /// Distance at every node (vertices, then Steiner points) after the last run.
+    pub fn node_distances(&self) -> &[f64] {
+        &self.distance
+    }
+
+    /// Sizes and clears the buffers for a run; allocates only when they must grow.
+    fn reset(&mut self, vertex_count: usize, nodes: usize, instances: usize) {
+        self.vertex_count = vertex_count;
+        fill(&mut self.distance, nodes, f64::INFINITY);
+        fill(&mut self.parent, nodes, NONE);
+        fill(&mut self.parent_face, nodes, NONE);
+        fill(&mut self.value, instances, f64::INFINITY);
+        fill(&mut self.from, instances, NONE);
+    }
+}
+
+fn fill<T: Copy>(v: &mut Vec<T>, len: usize, value: T) {
+    v.clear();
+    v.resize(len, value);
+}
+
+impl<'m, M: Metric> Solver<'m, M> {
+    /// Prepares `mesh` for queries under `metric` with `options`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidK`] for a Steiner scheme with no points; [`Error::TooLarge`] when
+    /// the node or instance count exceeds 32-bit ids (or one edge would carry more than
+    /// 65535 points).
+    pub fn new(mesh: &'m TriMesh, metric: M, options: &Options) -> Result<Self, Error> {
+        let start = Instant::now();
+        let layout = if options.method == Method::Dijkstra {
+            SteinerLayout::vertices_only(mesh)
+        } else {
+            if !options.steiner.is_valid() {
+                return Err(Error::InvalidK {
+                    k: options.steiner.k(),
+                });
+            }
+            SteinerLayout::new(mesh, options.steiner)
+        };
+        if layout.node_count() >= NONE as usize {
+            return Err(Error::TooLarge {
+                what: "nodes",
+                count: layout.node_count() as u64,
+            });
+        }
+        let (edge_steps, setup_tests) = match edge_steps(mesh, &metric, &layout) {
+            Some((steps, tests)) => (Some(steps), tests),
+            None => (None, 0),
+        };
+        let faces = match options.method {
+            Method::Tracks => Some(TrackFaces::new(mesh, &layout)?),
+            _ => None,
+        };
+        let bucket_width = bucket_width(mesh, &metric, &layout);
+        Ok(Solver {
+            mesh,
+            metric,
+            method: options.method,
+            k: match options.method {
+                Method::Dijkstra => 0.0,
+                _ => options.steiner.k(),
+            },
+            layout: Arc::new(layout),
+            edge_steps,
+            setup_tests,
+            faces,
+            bucket_width,
+            setup_seconds: start.elapsed().as_secs_f64(),
+        })
+    }
+
+    /// A workspace for this solver's runs (buffers are sized on first use).
+    pub fn workspace(&self) -> Workspace {
+        Workspace::default()
+    }
+
+    /// The Steiner layout runs use.
+    pub fn layout(&self) -> &SteinerLayout {
+        &self.layout
+    }
+
+    /// The mesh.
+    pub fn mesh(&self) -> &TriMesh {
+        self.mesh
+    }
+
+    /// Propagates from `sources` (vertex ids, start value 0) into `workspace`.
+    ///
+    /// # Errors
+    /// [`Error::NoSource`], [`Error::SourceOutOfRange`], [`Error::InvalidCost`] if the
+    /// metric returns NaN or a negative cost.
+    pub fn run(&self, workspace: &mut Workspace, sources: &[u32]) -> Result<Stats, Error> {
+        let start = Instant::now();
+        let mesh = self.mesh;
+        if sources.is_empty() {
+            return Err(Error::NoSource);
+        }
+        if let Some(&vertex) = sources.iter().find(|&&v| v as usize >= mesh.vertex_count()) {
+            return Err(Error::SourceOutOfRange {
+                vertex: vertex as u64,
+                vertex_count: mesh.vertex_count(),
+            });
+        }
+        let instances = self.faces.as_ref().map_or(0, TrackFaces::instances);
+        workspace.reset(mesh.vertex_count(), self.layout.node_count(), instances);
+        let ws = workspace;
+        let reset_seconds = start.elapsed().as_secs_f64();
+        let propagate_start = Instant::now();
+        let (pushes, tests, bad_cost) = match &self.faces {
+            Some(faces) => {
+                ws.buckets
+                    .reset(self.layout.node_count(), self.bucket_width);
+                let mut search = Frontier {
+                    mesh,
+                    metric: &self.metric,
+                    layout: &self.layout,
+                    edge_steps: self.edge_steps.as_deref(),
+                    distance: &mut ws.distance,
+                    parent: &mut ws.parent,
+                    parent_face: &mut ws.parent_face,
+                    queue: &mut ws.buckets,
+                    pushes: 0,
+                    tests: 0,
+                    bad_cost: None,
+                };
+                for &s in sources {
+                    search.relax(s, 0.0, NONE, NONE);
+                }
+                tracks::propagate(&mut search, faces, &mut ws.value, &mut ws.from);
+                (search.pushes, search.tests, search.bad_cost)
+            }
+            None => {
+                ws.heap.reset();
+                let mut search = Frontier {
+                    mesh,
+                    metric: &self.metric,
+                    layout: &self.layout,
+                    edge_steps: self.edge_steps.as_deref(),
+                    distance: &mut ws.distance,
+                    parent: &mut ws.parent,
+                    parent_face: &mut ws.parent_face,
+                    queue: &mut ws.heap,
+                    pushes: 0,
+                    tests: 0,
+                    bad_cost: None,
+                };
+                for &s in sources {
+                    search.relax(s, 0.0, NONE, NONE);
+                }
+                graph::propagate(&mut search);
+                (search.pushes, search.tests, search.bad_cost)
+            }
+        };
+        if let Some((face, value)) = bad_cost {
+            return Err(Error::InvalidCost {
+                metric: self.metric.name().to_string(),
+                face,
+                value,
+            });
+        }
+        Ok(Stats {
+            vertices: mesh.vertex_count(),
+            faces: mesh.face_count(),
+            steiner_points: self.layout.steiner_count(),
+            k: self.k,
+            method: self.method,
+            setup_seconds: self.setup_seconds + reset_seconds,
+            propagate_seconds: propagate_start.elapsed().as_secs_f64(),
+            pushes,
+            distance_tests: tests,
+            setup_distance_tests: self.setup_tests,
+        })
+    }
+
+    /// Propagates from `sources` into a fresh workspace and returns the whole field.
+    ///
+    /// # Errors
+    /// As [`Solver::run`].
+    pub fn solve(&self, sources: &[u32]) -> Result<GeodesicField, Error> {
+        let mut ws = self.workspace();
+        let stats = self.run(&mut ws, sources)?;
+        Ok(GeodesicField::new(
+            Arc::clone(&self.layout),
+            ws.distance,
+            ws.parent,
+            ws.parent_face,
+            stats,
+        ))
+    }
+}
+
+/// The bucket queue's width: a low quantile of the cost between consecutive nodes on an
+/// edge. Nodes in one bucket are settled in no particular order, so a bucket much wider
+/// than the local spacing of nodes makes many nodes settle early and propagate again;
+/// the low quantile keeps buckets narrow where costs are low (low density, short edges).
+fn bucket_width<M: Metric>(mesh: &TriMesh, metric: &M, layout: &SteinerLayout) -> f64 {
+    let mut steps: Vec<f64> = (0..mesh.edge_count() as u32)
+        .filter_map(|e| {
+            let f = mesh.edge_faces(e)[0];
+            let [a, b] = mesh
+                .edge_vertices(e)
+                .map(|v| layout.point_in_face(mesh, v, f));
+            let step = metric.cost(f, &a, &b) / (layout.count(e) + 1) as f64;
+            (step.is_finite() && step > 0.0).then_some(step)
+        })
+        .collect();
+    if steps.is_empty() {
+        return 1.0;
+    }
+    let at = steps.len() / 10;
+    let (_, width, _) = steps.select_nth_unstable_by(at, f64::total_cmp);
+    *width
+}
