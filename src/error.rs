@@ -23,6 +23,14 @@ pub enum Error {
         /// How many vertices the mesh has.
         vertex_count: usize,
     },
+    /// A target names a vertex that does not exist.
+    #[error("target vertex {vertex} is out of range: the mesh has {vertex_count} vertices")]
+    TargetOutOfRange {
+        /// The vertex asked for.
+        vertex: u64,
+        /// How many vertices the mesh has.
+        vertex_count: usize,
+    },
     /// The Steiner scheme asks for no points (k = 0), or a non-finite number of them.
     #[error("invalid number of Steiner points per edge: k = {k} (it must be finite and > 0)")]
     InvalidK {

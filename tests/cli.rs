@@ -434,3 +434,82 @@ fn demo_writes_a_coloured_ply() {
     let spot = geotracks::mesh::io::read_mesh(SPOT).unwrap();
     assert_eq!(mesh.positions().len(), spot.positions().len());
 }
+
+#[test]
+fn matrix_writes_rows_per_source() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let mesh = mesh.to_str().unwrap();
+    let sources = dir.path().join("sources.txt");
+    std::fs::write(&sources, "0, 2\n# comment\n1\n").unwrap();
+    let targets = dir.path().join("targets.txt");
+    std::fs::write(&targets, "3 1\n").unwrap();
+    let out = dir.path().join("m.csv");
+    let o = geotracks(&[
+        "matrix",
+        mesh,
+        "--sources",
+        sources.to_str().unwrap(),
+        "--targets",
+        targets.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(&out).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines[0], "source,3,1");
+    let row = |l: &str| -> Vec<f64> { l.split(',').map(|x| x.parse().unwrap()).collect() };
+    let close = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-12);
+    assert!(close(&row(lines[1]), &[0.0, 1.0, 1.0]), "{}", lines[1]);
+    assert!(close(&row(lines[2]), &[2.0, 1.0, 1.0]), "{}", lines[2]);
+    assert!(
+        close(&row(lines[3]), &[1.0, 2f64.sqrt(), 0.0]),
+        "{}",
+        lines[3]
+    );
+    assert_eq!(lines.len(), 4);
+
+    // Every vertex as a column when no targets are given.
+    let o = geotracks(&[
+        "matrix",
+        mesh,
+        "--sources",
+        sources.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success());
+    assert!(std::fs::read_to_string(&out)
+        .unwrap()
+        .starts_with("source,0,1,2,3\n"));
+
+    let bad = dir.path().join("bad.txt");
+    std::fs::write(&bad, "0\n7\n").unwrap();
+    let out2 = dir.path().join("m2.csv");
+    assert_fails(
+        &[
+            "matrix",
+            mesh,
+            "--sources",
+            bad.to_str().unwrap(),
+            "-o",
+            out2.to_str().unwrap(),
+        ],
+        &out2,
+        "bad.txt:2: vertex 7 is out of range",
+    );
+    let out3 = dir.path().join("m3.txt");
+    assert_fails(
+        &[
+            "matrix",
+            mesh,
+            "--sources",
+            sources.to_str().unwrap(),
+            "-o",
+            out3.to_str().unwrap(),
+        ],
+        &out3,
+        "written as .csv",
+    );
+}

@@ -14,6 +14,17 @@ pub(super) trait Queue {
     fn pop(&mut self, distance: &[f64]) -> Option<u32>;
 }
 
+impl<Q: Queue> Queue for &mut Q {
+    #[inline]
+    fn push(&mut self, node: u32, value: f64, previous: f64) -> bool {
+        (**self).push(node, value, previous)
+    }
+    #[inline]
+    fn pop(&mut self, distance: &[f64]) -> Option<u32> {
+        (**self).pop(distance)
+    }
+}
+
 /// Per-node state (borrowed from a workspace) and counters of one run, generic over the
 /// metric and the queue.
 pub(super) struct Frontier<'a, M, Q> {
@@ -25,11 +36,41 @@ pub(super) struct Frontier<'a, M, Q> {
     pub distance: &'a mut [f64],
     pub parent: &'a mut [u32],
     pub parent_face: &'a mut [u32],
-    pub queue: &'a mut Q,
+    pub queue: Q,
     pub pushes: u64,
     pub tests: u64,
     /// The first NaN or negative cost the metric returned, with its face.
     pub bad_cost: Option<(u32, f64)>,
+}
+
+impl<'a, M: Metric> Frontier<'a, M, ()> {
+    /// Attaches `queue`, seeds it with `sources` (start value 0), runs `engine`, and
+    /// returns the counters and the first bad cost.
+    pub fn run<Q: Queue>(
+        self,
+        queue: Q,
+        sources: &[u32],
+        engine: impl FnOnce(&mut Frontier<'a, M, Q>),
+    ) -> (u64, u64, Option<(u32, f64)>) {
+        let mut search = Frontier {
+            mesh: self.mesh,
+            metric: self.metric,
+            layout: self.layout,
+            edge_steps: self.edge_steps,
+            distance: self.distance,
+            parent: self.parent,
+            parent_face: self.parent_face,
+            queue,
+            pushes: 0,
+            tests: 0,
+            bad_cost: None,
+        };
+        for &s in sources {
+            search.relax(s, 0.0, NONE, NONE);
+        }
+        engine(&mut search);
+        (search.pushes, search.tests, search.bad_cost)
+    }
 }
 
 impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {

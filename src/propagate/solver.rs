@@ -174,52 +174,41 @@ impl<'m, M: Metric> Solver<'m, M> {
         }
         let instances = self.faces.as_ref().map_or(0, TrackFaces::instances);
         workspace.reset(mesh.vertex_count(), self.layout.node_count(), instances);
-        let ws = workspace;
         let reset_seconds = start.elapsed().as_secs_f64();
         let propagate_start = Instant::now();
+        let Workspace {
+            distance,
+            parent,
+            parent_face,
+            value,
+            from,
+            heap,
+            buckets,
+            ..
+        } = workspace;
+        let search = Frontier {
+            mesh,
+            metric: &self.metric,
+            layout: &self.layout,
+            edge_steps: self.edge_steps.as_deref(),
+            distance,
+            parent,
+            parent_face,
+            queue: (),
+            pushes: 0,
+            tests: 0,
+            bad_cost: None,
+        };
         let (pushes, tests, bad_cost) = match &self.faces {
             Some(faces) => {
-                ws.buckets
-                    .reset(self.layout.node_count(), self.bucket_width);
-                let mut search = Frontier {
-                    mesh,
-                    metric: &self.metric,
-                    layout: &self.layout,
-                    edge_steps: self.edge_steps.as_deref(),
-                    distance: &mut ws.distance,
-                    parent: &mut ws.parent,
-                    parent_face: &mut ws.parent_face,
-                    queue: &mut ws.buckets,
-                    pushes: 0,
-                    tests: 0,
-                    bad_cost: None,
-                };
-                for &s in sources {
-                    search.relax(s, 0.0, NONE, NONE);
-                }
-                tracks::propagate(&mut search, faces, &mut ws.value, &mut ws.from);
-                (search.pushes, search.tests, search.bad_cost)
+                buckets.reset(self.layout.node_count(), self.bucket_width);
+                search.run(buckets, sources, |s| {
+                    tracks::propagate(s, faces, value, from)
+                })
             }
             None => {
-                ws.heap.reset();
-                let mut search = Frontier {
-                    mesh,
-                    metric: &self.metric,
-                    layout: &self.layout,
-                    edge_steps: self.edge_steps.as_deref(),
-                    distance: &mut ws.distance,
-                    parent: &mut ws.parent,
-                    parent_face: &mut ws.parent_face,
-                    queue: &mut ws.heap,
-                    pushes: 0,
-                    tests: 0,
-                    bad_cost: None,
-                };
-                for &s in sources {
-                    search.relax(s, 0.0, NONE, NONE);
-                }
-                graph::propagate(&mut search);
-                (search.pushes, search.tests, search.bad_cost)
+                heap.reset();
+                search.run(heap, sources, graph::propagate)
             }
         };
         if let Some((face, value)) = bad_cost {
@@ -241,6 +230,58 @@ impl<'m, M: Metric> Solver<'m, M> {
             distance_tests: tests,
             setup_distance_tests: self.setup_tests,
         })
+    }
+
+    /// One row of distances per source, computed on all cores (rayon; one workspace per
+    /// worker thread, reused across its sources): row `i` holds the distance from
+    /// `sources[i]` to each of `targets`, or to every vertex when `targets` is `None`.
+    ///
+    /// # Errors
+    /// As [`Solver::run`], plus [`Error::TargetOutOfRange`] for a target that is not a
+    /// vertex (targets are checked first, before any work).
+    ///
+    /// ```
+    /// use geotracks::{mesh::TriMesh, Euclidean, Options, Solver};
+    /// let mesh = TriMesh::new(
+    ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+    ///     vec![[0, 1, 2], [0, 2, 3]],
+    /// )?;
+    /// let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT)?;
+    /// let rows = solver.distance_rows(&[0, 2], Some(&[1, 3]))?;
+    /// assert!((rows[0][0] - 1.0).abs() < 1e-12 && (rows[1][1] - 1.0).abs() < 1e-12);
+    /// # Ok::<(), geotracks::Error>(())
+    /// ```
+    pub fn distance_rows(
+        &self,
+        sources: &[u32],
+        targets: Option<&[u32]>,
+    ) -> Result<Vec<Vec<f64>>, Error> {
+        use rayon::prelude::*;
+        let vertex_count = self.mesh.vertex_count();
+        if let Some(&vertex) = targets
+            .unwrap_or(&[])
+            .iter()
+            .find(|&&v| v as usize >= vertex_count)
+        {
+            return Err(Error::TargetOutOfRange {
+                vertex: vertex as u64,
+                vertex_count,
+            });
+        }
+        sources
+            .par_iter()
+            .map_init(
+                || self.workspace(),
+                |ws, &source| {
+                    self.run(ws, &[source])?;
+                    let d = ws.vertex_distances();
+                    Ok(match targets {
+                        Some(t) => t.iter().map(|&v| d[v as usize]).collect(),
+                        None => d.to_vec(),
+                    })
+                },
+            )
+            .collect()
     }
 
     /// Propagates from `sources` into a fresh workspace and returns the whole field.

@@ -1,9 +1,10 @@
 //! `geotracks distance` and `geotracks demo`.
 
-use crate::inputs::{load_mesh, read_density, read_tensor};
+use crate::inputs::load_mesh;
+use crate::metric_args::{MetricArgs, WithMetric};
 use crate::CliResult;
 use geotracks::mesh::{io, TriMesh};
-use geotracks::{distance_field, Euclidean, GeodesicField, Method, Metric, Options};
+use geotracks::{distance_field, Euclidean, GeodesicField, Metric, Options};
 use std::path::{Path, PathBuf};
 
 /// Arguments of `geotracks distance`.
@@ -14,18 +15,8 @@ pub struct DistanceArgs {
     /// A source vertex (0-based); repeat for several sources.
     #[arg(long = "source", required = true)]
     sources: Vec<u32>,
-    /// Mean number of Steiner points per edge.
-    #[arg(long, default_value_t = 5.0)]
-    k: f64,
-    /// Propagation method.
-    #[arg(long, default_value = "tracks")]
-    method: Method,
-    /// Per-vertex density file: one float per vertex.
-    #[arg(long, conflicts_with = "tensor")]
-    density: Option<PathBuf>,
-    /// Per-face tensor file: one line `xx xy xz yy yz zz` per face.
-    #[arg(long)]
-    tensor: Option<PathBuf>,
+    #[command(flatten)]
+    metric: MetricArgs,
     /// Output: .txt (one distance per line), .csv (vertex,distance) or .ply (coloured).
     #[arg(short, long)]
     output: PathBuf,
@@ -68,12 +59,7 @@ pub fn run(args: &DistanceArgs) -> CliResult {
         }
     }
     let mesh = load_mesh(&args.mesh)?;
-    let options = Options::DEFAULT.with_k(args.k).with_method(args.method);
-    let field = match (&args.density, &args.tensor) {
-        (Some(path), _) => compute(&mesh, &read_density(path, &mesh)?, &args.sources, &options)?,
-        (None, Some(path)) => compute(&mesh, &read_tensor(path, &mesh)?, &args.sources, &options)?,
-        (None, None) => compute(&mesh, &Euclidean, &args.sources, &options)?,
-    };
+    let field = args.metric.dispatch(&mesh, Field(&args.sources))?;
     write_field(&args.output, format, &mesh, &field)?;
     if let Some(stats) = &args.stats {
         write_stats(stats, &field)?;
@@ -89,6 +75,21 @@ pub fn run(args: &DistanceArgs) -> CliResult {
         args.output.display()
     );
     Ok(())
+}
+
+/// A distance field from these sources.
+struct Field<'s>(&'s [u32]);
+
+impl WithMetric for Field<'_> {
+    type Output = GeodesicField;
+    fn run<M: Metric>(
+        self,
+        mesh: &TriMesh,
+        metric: &M,
+        options: &Options,
+    ) -> CliResult<GeodesicField> {
+        compute(mesh, metric, self.0, options)
+    }
 }
 
 fn compute<M: Metric>(

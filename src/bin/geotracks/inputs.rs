@@ -125,3 +125,34 @@ pub fn read_tensor(path: &Path, mesh: &TriMesh) -> CliResult<geotracks::Tensor> 
         input_error(path, line, e.to_string()).into()
     })
 }
+
+/// Vertex ids, separated by white space or commas (`#` starts a comment), each below
+/// `vertex_count`.
+pub fn read_vertex_ids(path: &Path, vertex_count: usize) -> CliResult<Vec<u32>> {
+    let text = std::fs::read_to_string(path).map_err(|e| input_error(path, 0, e.to_string()))?;
+    let mut ids = Vec::new();
+    for (i, raw) in text.lines().enumerate() {
+        let line = raw.split('#').next().unwrap_or("");
+        for token in line
+            .split(|c: char| c.is_whitespace() || c == ',')
+            .filter(|s| !s.is_empty())
+        {
+            let id: u32 = token
+                .parse()
+                .map_err(|_| input_error(path, i + 1, format!("'{token}' is not a vertex id")))?;
+            if id as usize >= vertex_count {
+                return Err(input_error(
+                    path,
+                    i + 1,
+                    format!("vertex {id} is out of range: the mesh has {vertex_count} vertices"),
+                )
+                .into());
+            }
+            ids.push(id);
+        }
+    }
+    if ids.is_empty() {
+        return Err(input_error(path, 0, "the file holds no vertex id").into());
+    }
+    Ok(ids)
+}

@@ -3,6 +3,8 @@
 
 mod distance;
 mod inputs;
+mod matrix;
+mod metric_args;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -20,6 +22,9 @@ struct Cli {
 enum Command {
     /// Compute a distance field from one or more source vertices.
     Distance(distance::DistanceArgs),
+    /// Distances from many sources (rows) to every vertex or to listed targets
+    /// (columns), computed on all cores.
+    Matrix(matrix::MatrixArgs),
     /// Print what a mesh is made of: counts, boundary, non-manifold edges, components.
     Info {
         /// The mesh (OBJ, PLY, OFF, STL or .ma).
@@ -37,6 +42,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Distance(args) => distance::run(&args),
+        Command::Matrix(args) => matrix::run(&args),
         Command::Info { mesh } => info(&mesh),
         Command::Demo { output } => distance::demo(&output),
     };

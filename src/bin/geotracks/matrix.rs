@@ -1,0 +1,94 @@
+//! `geotracks matrix`: distances from many sources, computed in parallel.
+
+use crate::inputs::{load_mesh, read_vertex_ids};
+use crate::metric_args::{MetricArgs, WithMetric};
+use crate::CliResult;
+use geotracks::mesh::{io, Topology, TriMesh};
+use geotracks::{Metric, Options, Solver};
+use std::path::PathBuf;
+
+/// Arguments of `geotracks matrix`.
+#[derive(clap::Args)]
+pub struct MatrixArgs {
+    /// The mesh (OBJ, PLY, OFF, STL or .ma).
+    mesh: PathBuf,
+    /// Source vertex ids, separated by spaces, commas or new lines.
+    #[arg(long)]
+    sources: PathBuf,
+    /// Only these target vertices as columns (default: every vertex).
+    #[arg(long)]
+    targets: Option<PathBuf>,
+    #[command(flatten)]
+    metric: MetricArgs,
+    /// Output CSV: a header `source,<target ids>`, then one row per source.
+    #[arg(short, long)]
+    output: PathBuf,
+}
+
+struct Rows<'a> {
+    sources: &'a [u32],
+    targets: Option<&'a [u32]>,
+}
+
+impl WithMetric for Rows<'_> {
+    type Output = Vec<Vec<f64>>;
+    fn run<M: Metric>(
+        self,
+        mesh: &TriMesh,
+        metric: &M,
+        options: &Options,
+    ) -> CliResult<Self::Output> {
+        let solver = Solver::new(mesh, metric, options)?;
+        Ok(solver.distance_rows(self.sources, self.targets)?)
+    }
+}
+
+pub fn run(args: &MatrixArgs) -> CliResult {
+    if args.output.extension().and_then(|e| e.to_str()) != Some("csv") {
+        return Err(format!("{}: the matrix is written as .csv", args.output.display()).into());
+    }
+    let mesh = load_mesh(&args.mesh)?;
+    let sources = read_vertex_ids(&args.sources, mesh.vertex_count())?;
+    let targets = match &args.targets {
+        Some(path) => Some(read_vertex_ids(path, mesh.vertex_count())?),
+        None => None,
+    };
+    let start = std::time::Instant::now();
+    let rows = args.metric.dispatch(
+        &mesh,
+        Rows {
+            sources: &sources,
+            targets: targets.as_deref(),
+        },
+    )?;
+    let columns: Vec<u32> = targets.unwrap_or_else(|| (0..mesh.vertex_count() as u32).collect());
+    io::write_atomically(&args.output, |w| {
+        write!(w, "source")?;
+        for c in &columns {
+            write!(w, ",{c}")?;
+        }
+        writeln!(w)?;
+        for (s, row) in sources.iter().zip(&rows) {
+            write!(w, "{s}")?;
+            for d in row {
+                if d.is_infinite() {
+                    write!(w, ",inf")?;
+                } else {
+                    write!(w, ",{d}")?;
+                }
+            }
+            writeln!(w)?;
+        }
+        Ok(())
+    })?;
+    eprintln!(
+        "{}: {} sources × {} columns on {} threads in {:.3} s; wrote {}",
+        args.mesh.display(),
+        sources.len(),
+        columns.len(),
+        rayon::current_num_threads(),
+        start.elapsed().as_secs_f64(),
+        args.output.display()
+    );
+    Ok(())
+}

@@ -1,0 +1,100 @@
+//! The Solver: reusable workspaces, parallel rows, and the distance-test count that
+//! must grow about linearly in k for the tracks engine.
+
+mod common;
+
+use geotracks::mesh::io::read_mesh;
+use geotracks::mesh::{Topology, TriMesh};
+use geotracks::{Error, Euclidean, Method, Options, Solver, Tensor};
+use std::path::Path;
+
+fn spot() -> TriMesh {
+    read_mesh(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/spot.obj")).unwrap()
+}
+
+#[test]
+fn a_reused_workspace_gives_the_same_fields_as_fresh_ones() {
+    let mesh = spot();
+    let tensor = Tensor::uniform_world(&mesh, [2.0, 0.3, 0.1, 1.0, 0.2, 1.5]).unwrap();
+    let solver = Solver::new(&mesh, &tensor, &Options::DEFAULT.with_k(4.0)).unwrap();
+    let mut ws = solver.workspace();
+    for source in [0, 1000, 2000, 0] {
+        solver.run(&mut ws, &[source]).unwrap();
+        let fresh = solver.solve(&[source]).unwrap();
+        assert_eq!(ws.vertex_distances(), fresh.vertex_distances());
+        assert_eq!(ws.node_distances(), fresh.node_distances());
+    }
+}
+
+#[test]
+fn parallel_rows_equal_single_runs() {
+    let mesh = spot();
+    let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
+    let sources = [0, 17, 400, 1500, 2900, 2929];
+    let targets = [5, 0, 2929, 1234];
+    let rows = solver.distance_rows(&sources, Some(&targets)).unwrap();
+    let full = solver.distance_rows(&sources, None).unwrap();
+    for (i, &s) in sources.iter().enumerate() {
+        let field = solver.solve(&[s]).unwrap();
+        assert_eq!(full[i], field.vertex_distances());
+        for (j, &t) in targets.iter().enumerate() {
+            assert_eq!(rows[i][j], field.distance(t));
+        }
+    }
+    // Symmetric: d(a, b) = d(b, a).
+    assert!((full[0][2929] - full[5][0]).abs() <= 1e-9 * full[0][2929]);
+    let e = solver.distance_rows(&[0], Some(&[3000])).unwrap_err();
+    assert!(
+        matches!(e, Error::TargetOutOfRange { vertex: 3000, .. }),
+        "{e}"
+    );
+    let e = solver.distance_rows(&[3000], None).unwrap_err();
+    assert!(
+        matches!(e, Error::SourceOutOfRange { vertex: 3000, .. }),
+        "{e}"
+    );
+}
+
+/// Distance tests of one run from vertex 0 at `k`, with `method`.
+fn tests_at(mesh: &TriMesh, method: Method, k: f64) -> u64 {
+    let solver = Solver::new(
+        mesh,
+        Euclidean,
+        &Options::DEFAULT.with_k(k).with_method(method),
+    )
+    .unwrap();
+    solver.solve(&[0]).unwrap().stats().distance_tests
+}
+
+fn check_linear_work(mesh: &TriMesh, name: &str) {
+    let tracks =
+        tests_at(mesh, Method::Tracks, 8.0) as f64 / tests_at(mesh, Method::Tracks, 2.0) as f64;
+    let graph =
+        tests_at(mesh, Method::Graph, 8.0) as f64 / tests_at(mesh, Method::Graph, 2.0) as f64;
+    println!("{name}: tests(k=8)/tests(k=2): tracks {tracks:.2}, graph {graph:.2}");
+    assert!(tracks <= 6.0, "{name}: tracks ratio {tracks}");
+    assert!(
+        graph > 10.0,
+        "{name}: graph ratio {graph} (should be about 16)"
+    );
+}
+
+#[test]
+fn tracks_work_grows_about_linearly_in_k_on_spot() {
+    check_linear_work(&spot(), "spot");
+}
+
+/// The criterion is on the shared bunny; it runs where ../shared/data exists
+/// (CI has it; a fresh clone may not, and then this says so and checks nothing more
+/// than the Spot test above).
+#[test]
+fn tracks_work_grows_about_linearly_in_k_on_the_shared_bunny() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/meshes/bunny.obj");
+    if !path.exists() {
+        eprintln!("skipped: {} not found", path.display());
+        return;
+    }
+    let mesh = read_mesh(&path).unwrap();
+    assert_eq!(mesh.face_count(), 69451);
+    check_linear_work(&mesh, "bunny");
+}
