@@ -32,7 +32,7 @@
 
 use super::frontier::{Frontier, Queue};
 use crate::mesh::{Topology, TriMesh, NONE};
-use crate::steiner::{slot_param, NodeKind, SteinerLayout};
+use crate::steiner::{slot_param, slot_spacing, NodeKind, SteinerLayout};
 use crate::Error;
 use geotracks_metrics::{FacePoint, Metric};
 
@@ -122,6 +122,8 @@ struct Boundary {
     vertex: [u32; 3],
     /// Corner coordinates in the face frame.
     uv: [[f64; 2]; 3],
+    /// [`slot_spacing`] of each slot.
+    spacing: [f64; 3],
 }
 
 impl Boundary {
@@ -140,6 +142,7 @@ impl Boundary {
             reversed: [0, 1, 2].map(|s| r.reversed & (1 << s) != 0),
             vertex: r.vertex,
             uv: [[0.0, 0.0], [l01, 0.0], [x2, y2]],
+            spacing: count.map(slot_spacing),
         }
     }
 
@@ -180,7 +183,7 @@ impl Boundary {
         let (s, i) = self.slot_of(pos);
         let n = self.count[s];
         let node = self.lo[s] + if self.reversed[s] { n - 1 - i } else { i };
-        let t = slot_param(i, n);
+        let t = slot_param(i, self.spacing[s]);
         let (a, b) = (self.uv[s], self.uv[(s + 1) % 3]);
         let mut bary = [0.0; 3];
         bary[s] = 1.0 - t;
@@ -341,12 +344,38 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
             NodeKind::Vertex(v) => mesh.vertex_faces(v),
             NodeKind::Steiner { edge, .. } => mesh.edge_faces(edge),
         };
+        // A Steiner point whose value came along its edge from its neighbour `p` is
+        // dominated by `p` in every face where the step from `p` costs what the edge
+        // relaxation charged (the cheapest face; every face for isotropic metrics): `p`
+        // entered those faces with `d − step` and, by the triangle inequality, offers
+        // every target at most what `q` would.
+        let along = match (kind, self.search.edge_steps) {
+            (NodeKind::Steiner { edge, .. }, Some(steps))
+                if self.search.parent_face[q as usize] == NONE
+                    && self.search.parent[q as usize] != NONE =>
+            {
+                Some((self.search.parent[q as usize], steps[edge as usize]))
+            }
+            _ => None,
+        };
         for &f in faces {
             let b = Boundary::new(f, &self.records[f as usize]);
             let q_pos = b.position_of(q, kind);
-            // Never back into the face the value came through.
-            if self.search.metric.prunes_on(f) && self.value[(b.base + q_pos) as usize] <= d {
+            if !self.search.metric.prunes_on(f) {
+                self.enter(&b, q, q_pos, d);
                 continue;
+            }
+            // Never back into the face the value came through.
+            if self.value[(b.base + q_pos) as usize] <= d {
+                continue;
+            }
+            if let Some((p, step)) = along {
+                let p_pos = b.position_of(p, self.search.layout.kind(p));
+                let (_, pp) = b.at(p_pos);
+                let (_, pq) = b.at(q_pos);
+                if self.search.cost(f, &pp, &pq) <= step * (1.0 + 1e-12) {
+                    continue;
+                }
             }
             self.enter(&b, q, q_pos, d);
         }
