@@ -121,7 +121,11 @@ fn run() -> Result<(), String> {
             .ok_or("manifest entry without file")?;
         let mesh = read_mesh(args.data.join(file)).map_err(|e| e.to_string())?;
         let mut methods = vec![Options::DEFAULT.with_method(Method::Dijkstra)];
-        methods.extend(args.ks.iter().map(|&k| Options::DEFAULT.with_k(k)));
+        methods.extend(
+            args.ks
+                .iter()
+                .map(|&k| Options::DEFAULT.with_k(k).with_method(Method::Graph)),
+        );
         let mut row = format!("| {name} | {faces} |");
         for options in &methods {
             let (mut mean, mut max) = (0.0, 0.0f64);

@@ -3,7 +3,7 @@
 
 use super::frontier::{edge_steps, Frontier};
 use super::queue::{BucketQueue, HeapQueue};
-use super::tracks::TrackFaces;
+use super::tracks::{Track, TrackFaces};
 use super::{graph, tracks, Method, Options};
 use crate::field::{GeodesicField, Stats};
 use crate::mesh::{Topology, TriMesh, NONE};
@@ -56,8 +56,7 @@ pub struct Workspace {
     distance: Vec<f64>,
     parent: Vec<u32>,
     parent_face: Vec<u32>,
-    value: Vec<f64>,
-    from: Vec<u32>,
+    tracks: Vec<Track>,
     heap: HeapQueue,
     buckets: BucketQueue,
 }
@@ -79,8 +78,7 @@ impl Workspace {
         fill(&mut self.distance, nodes, f64::INFINITY);
         fill(&mut self.parent, nodes, NONE);
         fill(&mut self.parent_face, nodes, NONE);
-        fill(&mut self.value, instances, f64::INFINITY);
-        fill(&mut self.from, instances, NONE);
+        fill(&mut self.tracks, instances, Track::NONE);
     }
 }
 
@@ -180,8 +178,7 @@ impl<'m, M: Metric> Solver<'m, M> {
             distance,
             parent,
             parent_face,
-            value,
-            from,
+            tracks,
             heap,
             buckets,
             ..
@@ -202,9 +199,7 @@ impl<'m, M: Metric> Solver<'m, M> {
         let (pushes, tests, bad_cost) = match &self.faces {
             Some(faces) => {
                 buckets.reset(self.layout.node_count(), self.bucket_width);
-                search.run(buckets, sources, |s| {
-                    tracks::propagate(s, faces, value, from)
-                })
+                search.run(buckets, sources, |s| tracks::propagate(s, faces, tracks))
             }
             None => {
                 heap.reset();
@@ -232,8 +227,8 @@ impl<'m, M: Metric> Solver<'m, M> {
         })
     }
 
-    /// One row of distances per source, computed on all cores (rayon; one workspace per
-    /// worker thread, reused across its sources): row `i` holds the distance from
+    /// One row of distances per source, computed on all cores (rayon; workspaces are
+    /// pooled, at most one per worker thread, and reused across sources): row `i` holds the distance from
     /// `sources[i]` to each of `targets`, or to every vertex when `targets` is `None`.
     ///
     /// # Errors
@@ -268,19 +263,31 @@ impl<'m, M: Metric> Solver<'m, M> {
                 vertex_count,
             });
         }
+        // Workspaces are taken from and returned to a pool, so there are never more
+        // than there are worker threads (rayon's map_init may create one per split).
+        let pool = std::sync::Mutex::new(Vec::<Workspace>::new());
+        let take = || {
+            pool.lock()
+                .ok()
+                .and_then(|mut p| p.pop())
+                .unwrap_or_default()
+        };
         sources
             .par_iter()
-            .map_init(
-                || self.workspace(),
-                |ws, &source| {
-                    self.run(ws, &[source])?;
+            .map(|&source| {
+                let mut ws = take();
+                let row = self.run(&mut ws, &[source]).map(|_| {
                     let d = ws.vertex_distances();
-                    Ok(match targets {
+                    match targets {
                         Some(t) => t.iter().map(|&v| d[v as usize]).collect(),
                         None => d.to_vec(),
-                    })
-                },
-            )
+                    }
+                });
+                if let Ok(mut p) = pool.lock() {
+                    p.push(ws);
+                }
+                row
+            })
             .collect()
     }
 
