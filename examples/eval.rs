@@ -5,6 +5,14 @@
 //! cargo run --release --example eval -- ../shared/data [--max-faces N] [--k 3,5,8]
 //! ```
 //!
+//! With `--equality` it checks instead that the tracks engine returns the Steiner
+//! graph's distances at every node (relative 1e-9) for each k, from every reference's
+//! source, and exits non-zero otherwise (CI runs it on two shared meshes):
+//!
+//! ```text
+//! cargo run --release --example eval -- ../shared/data --equality [--meshes a,b] [--max-faces 100000] [--k 3,5]
+//! ```
+//!
 //! The directory holds `manifest.json` (a list of meshes with `name`, `file`, `faces`
 //! and `references`), the meshes, and `reference/<mesh>.src<v>.f64` files (exact
 //! distances from vertex `v`, little-endian f64 per vertex). Prints a Markdown table:
@@ -25,37 +33,61 @@ struct Args {
     data: PathBuf,
     max_faces: u64,
     ks: Vec<f64>,
+    equality: bool,
+    meshes: Option<Vec<String>>,
 }
 
 fn parse_args() -> Result<Args, String> {
     let mut it = std::env::args().skip(1);
     let mut data = None;
-    let mut max_faces = 400_000;
-    let mut ks = vec![3.0, 5.0, 8.0];
+    let mut max_faces = None;
+    let mut ks = None;
+    let mut equality = false;
+    let mut meshes = None;
     while let Some(a) = it.next() {
         match a.as_str() {
             "--max-faces" => {
-                max_faces = it
-                    .next()
-                    .and_then(|v| v.parse().ok())
-                    .ok_or("--max-faces takes a number")?
+                max_faces = Some(
+                    it.next()
+                        .and_then(|v| v.parse().ok())
+                        .ok_or("--max-faces takes a number")?,
+                )
             }
             "--k" => {
-                ks = it
-                    .next()
-                    .ok_or("--k takes a list like 3,5,8")?
-                    .split(',')
-                    .map(|s| s.parse::<f64>().map_err(|_| format!("bad k '{s}'")))
-                    .collect::<Result<_, _>>()?
+                ks = Some(
+                    it.next()
+                        .ok_or("--k takes a list like 3,5,8")?
+                        .split(',')
+                        .map(|s| s.parse::<f64>().map_err(|_| format!("bad k '{s}'")))
+                        .collect::<Result<_, _>>()?,
+                )
             }
+            "--meshes" => {
+                meshes = Some(
+                    it.next()
+                        .ok_or("--meshes takes a list like spot,bunny")?
+                        .split(',')
+                        .map(String::from)
+                        .collect(),
+                )
+            }
+            "--equality" => equality = true,
             _ if data.is_none() => data = Some(PathBuf::from(a)),
             other => return Err(format!("unexpected argument '{other}'")),
         }
     }
     Ok(Args {
-        data: data.ok_or("usage: eval DATA_DIR [--max-faces N] [--k 3,5,8]")?,
-        max_faces,
-        ks,
+        data: data.ok_or(
+            "usage: eval DATA_DIR [--equality] [--meshes a,b] [--max-faces N] [--k 3,5,8]",
+        )?,
+        max_faces: max_faces.unwrap_or(if equality { 100_000 } else { 400_000 }),
+        ks: ks.unwrap_or(if equality {
+            vec![3.0, 5.0]
+        } else {
+            vec![3.0, 5.0, 8.0]
+        }),
+        equality,
+        meshes,
     })
 }
 
@@ -96,7 +128,21 @@ fn run() -> Result<(), String> {
             .map_err(|e| format!("{}: {e}", manifest_path.display()))?,
     )
     .map_err(|e| format!("{}: {e}", manifest_path.display()))?;
-    let meshes = manifest.as_array().ok_or("manifest.json is not a list")?;
+    let meshes: Vec<&serde_json::Value> = manifest
+        .as_array()
+        .ok_or("manifest.json is not a list")?
+        .iter()
+        .filter(|m| match &args.meshes {
+            Some(names) => names.iter().any(|n| m["name"].as_str() == Some(n.as_str())),
+            None => true,
+        })
+        .collect();
+    if meshes.is_empty() {
+        return Err("no mesh of the manifest matches --meshes".into());
+    }
+    if args.equality {
+        return equality(&args, &meshes);
+    }
 
     let mut header = String::from("| mesh | faces | Dijkstra mean / max |");
     let mut rule = String::from("|---|---:|---:|");
@@ -140,6 +186,66 @@ fn run() -> Result<(), String> {
             row += &format!(" {:.3} % / {:.2} % |", 100.0 * mean, 100.0 * max);
         }
         println!("{row}");
+    }
+    Ok(())
+}
+
+/// Largest relative difference between the tracks engine and the Steiner graph over all
+/// nodes, per (mesh, k), from every reference's source; an error if any exceeds 1e-9.
+fn equality(args: &Args, meshes: &[&serde_json::Value]) -> Result<(), String> {
+    println!("| mesh | faces | k | sources | max relative deviation (all nodes) | graph tests / tracks tests |");
+    println!("|---|---:|---:|---:|---:|---:|");
+    let mut failures = 0;
+    for entry in meshes {
+        let name = entry["name"].as_str().unwrap_or("?");
+        let faces = entry["faces"].as_u64().unwrap_or(0);
+        if faces > args.max_faces {
+            eprintln!("skipping {name} ({faces} faces > --max-faces)");
+            continue;
+        }
+        let file = entry["file"]
+            .as_str()
+            .ok_or("manifest entry without file")?;
+        let mesh = read_mesh(args.data.join(file)).map_err(|e| e.to_string())?;
+        let sources: Vec<u32> = entry["references"]
+            .as_array()
+            .map(|r| r.iter().filter_map(|x| x.as_str()).map(source_of).collect())
+            .unwrap_or_else(|| Ok(vec![0]))?;
+        let sources = if sources.is_empty() { vec![0] } else { sources };
+        for &k in &args.ks {
+            let (mut worst, mut graph_tests, mut tracks_tests) = (0.0f64, 0u64, 0u64);
+            for &source in &sources {
+                let run = |method| {
+                    distance_field(
+                        &mesh,
+                        &Euclidean,
+                        &[source],
+                        &Options::DEFAULT.with_k(k).with_method(method),
+                    )
+                    .map_err(|e| e.to_string())
+                };
+                let (graph, tracks) = (run(Method::Graph)?, run(Method::Tracks)?);
+                graph_tests += graph.stats().distance_tests;
+                tracks_tests += tracks.stats().distance_tests;
+                for (g, t) in graph.node_distances().iter().zip(tracks.node_distances()) {
+                    let deviation = if g == t { 0.0 } else { (g - t).abs() / g.abs() };
+                    worst = worst.max(deviation);
+                }
+            }
+            let ok = worst <= 1e-9;
+            failures += usize::from(!ok);
+            println!(
+                "| {name} | {faces} | {k} | {} | {worst:.1e}{} | {:.2} |",
+                sources.len(),
+                if ok { "" } else { " FAIL" },
+                graph_tests as f64 / tracks_tests.max(1) as f64
+            );
+        }
+    }
+    if failures > 0 {
+        return Err(format!(
+            "{failures} (mesh, k) pairs where tracks differs from the graph"
+        ));
     }
     Ok(())
 }
