@@ -10,7 +10,10 @@
 //! - [`metrics`] (re-exported crate `geotracks-metrics`): the [`Metric`] trait and the
 //!   built-ins [`Euclidean`], [`Density`], [`Tensor`].
 //! - [`steiner`]: where Steiner points go on each edge and how nodes are numbered.
-//! - [`propagate`]: the engines ([`Method`]) and [`distance_field`].
+//! - [`propagate`]: the engines ([`Method`]: the track-pruned `Tracks` by default, the
+//!   complete Steiner graph `Graph` it is checked against, `Dijkstra` on edges),
+//!   [`distance_field`] for one query, and [`Solver`] / [`Workspace`] for many (reused
+//!   buffers, parallel rows).
 //! - [`field`]: [`GeodesicField`], what a run returns.
 //!
 //! ## Example

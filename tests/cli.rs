@@ -13,6 +13,23 @@ fn geotracks(args: &[&str]) -> Output {
         .expect("run geotracks")
 }
 
+/// Runs a command that must succeed; returns its output.
+fn geotracks_ok(args: &[&str]) -> Output {
+    let out = geotracks(args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{args:?}: {stderr}");
+    out
+}
+
+/// One number per line.
+fn read_values(path: &Path) -> Vec<f64> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .map(|l| l.parse().unwrap())
+        .collect()
+}
+
 fn square_obj(dir: &Path) -> PathBuf {
     let path = dir.join("square.obj");
     std::fs::write(
@@ -60,7 +77,7 @@ fn writes_txt_csv_ply_and_stats() {
     let mesh = mesh.to_str().unwrap();
     let txt = dir.path().join("d.txt");
     let stats = dir.path().join("stats.json");
-    let out = geotracks(&[
+    geotracks_ok(&[
         "distance",
         mesh,
         "--source",
@@ -72,16 +89,7 @@ fn writes_txt_csv_ply_and_stats() {
         "--stats",
         stats.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let values: Vec<f64> = std::fs::read_to_string(&txt)
-        .unwrap()
-        .lines()
-        .map(|l| l.parse().unwrap())
-        .collect();
+    let values = read_values(&txt);
     assert_eq!(values.len(), 4);
     assert_eq!(values[0], 0.0);
     assert!((values[2] - 2f64.sqrt()).abs() < 1e-12);
@@ -104,7 +112,7 @@ fn writes_txt_csv_ply_and_stats() {
     assert_eq!(json["vertices"], 4);
 
     let csv = dir.path().join("d.csv");
-    let out = geotracks(&[
+    let out = geotracks_ok(&[
         "distance",
         mesh,
         "--source",
@@ -178,7 +186,7 @@ fn density_and_tensor_files() {
     let density = dir.path().join("rho.txt");
     std::fs::write(&density, "2\n2\n2\n2\n").unwrap();
     let out_path = dir.path().join("d.txt");
-    let out = geotracks(&[
+    geotracks_ok(&[
         "distance",
         mesh,
         "--source",
@@ -188,21 +196,12 @@ fn density_and_tensor_files() {
         "-o",
         out_path.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let d: Vec<f64> = std::fs::read_to_string(&out_path)
-        .unwrap()
-        .lines()
-        .map(|l| l.parse().unwrap())
-        .collect();
+    let d = read_values(&out_path);
     assert!((d[1] - 2.0).abs() < 1e-12);
 
     let tensor = dir.path().join("m.txt");
     std::fs::write(&tensor, "4 0 0 1 0 1\n4 0 0 1 0 1\n").unwrap();
-    let out = geotracks(&[
+    geotracks_ok(&[
         "distance",
         mesh,
         "--source",
@@ -212,16 +211,7 @@ fn density_and_tensor_files() {
         "-o",
         out_path.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let d: Vec<f64> = std::fs::read_to_string(&out_path)
-        .unwrap()
-        .lines()
-        .map(|l| l.parse().unwrap())
-        .collect();
+    let d = read_values(&out_path);
     assert!((d[1] - 2.0).abs() < 1e-12, "{d:?}"); // along x: sqrt(4)
     assert!((d[3] - 1.0).abs() < 1e-12, "{d:?}"); // along y: sqrt(1)
 }
@@ -406,7 +396,7 @@ fn info_reports_non_manifold_edges() {
         "v 0 0 0\nv 0 0 1\nv 1 0 0\nv 0 1 0\nv -1 0 0\nv 9 9 9\nf 1 2 3\nf 1 2 4\nf 1 2 5\nf 1 3 3\n",
     )
     .unwrap();
-    let out = geotracks(&["info", path.to_str().unwrap()]);
+    let out = geotracks_ok(&["info", path.to_str().unwrap()]);
     assert!(out.status.success());
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(
@@ -422,12 +412,7 @@ fn info_reports_non_manifold_edges() {
 fn demo_writes_a_coloured_ply() {
     let dir = tempfile::tempdir().unwrap();
     let out_path = dir.path().join("spot.ply");
-    let out = geotracks(&["demo", "-o", out_path.to_str().unwrap()]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = geotracks_ok(&["demo", "-o", out_path.to_str().unwrap()]);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(stdout.contains("wrote"), "{stdout}");
     let mesh = geotracks::mesh::io::read_mesh(&out_path).unwrap();
