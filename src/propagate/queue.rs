@@ -109,7 +109,9 @@ impl BucketQueue {
     /// Files `node` under absolute bucket `b`: in the window, or in `far`.
     #[inline]
     fn file(&mut self, node: u32, b: usize) {
-        let slot = b - self.base;
+        // Costs are ≥ 0, so `b` is never below the bucket being processed; clamping
+        // keeps a node in play (processed now) should rounding ever say otherwise.
+        let slot = b.saturating_sub(self.base).max(self.current);
         if slot >= WINDOW {
             self.far.push(node);
             return;
