@@ -388,30 +388,40 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
                 if self.search.parent_face[q as usize] == NONE
                     && self.search.parent[q as usize] != NONE =>
             {
-                Some((self.search.parent[q as usize], steps[edge as usize]))
+                let p = self.search.parent[q as usize];
+                // `p` is a neighbour on the same edge, or one of its vertices.
+                let p_kind = if p < self.search.layout.vertex_count() {
+                    NodeKind::Vertex(p)
+                } else {
+                    NodeKind::Steiner {
+                        edge,
+                        index: p - self.search.layout.edge_nodes(edge).start,
+                    }
+                };
+                Some((p, p_kind, steps[edge as usize]))
             }
             _ => None,
         };
+        let parent_face = self.search.parent_face[q as usize];
         for &f in faces {
+            let prunes = self.search.metric.prunes_on(f);
+            // Never back into the face the value came through.
+            if prunes && parent_face == f {
+                continue;
+            }
             let b = Boundary::new(f, &self.records[f as usize]);
             let q_pos = b.position_of(q, kind);
-            if !self.search.metric.prunes_on(f) {
-                self.enter(&b, q, q_pos, d);
-                continue;
-            }
-            // Never back into the face the value came through (the track's rounded-up
-            // value may sit just above `d` then, hence the parent face).
-            if self.search.parent_face[q as usize] == f
-                || self.tracks[(b.base + q_pos) as usize].value() <= d
-            {
-                continue;
-            }
-            if let Some((p, step)) = along {
-                let p_pos = b.position_of(p, self.search.layout.kind(p));
-                let (_, pp) = b.at(p_pos);
-                let (_, pq) = b.at(q_pos);
-                if self.search.cost(f, &pp, &pq) <= step * (1.0 + 1e-12) {
+            if prunes {
+                // A tie through another face: its track already offers `d` or less.
+                if self.tracks[(b.base + q_pos) as usize].value() <= d {
                     continue;
+                }
+                if let Some((p, p_kind, step)) = along {
+                    let (_, pp) = b.at(b.position_of(p, p_kind));
+                    let (_, pq) = b.at(q_pos);
+                    if self.search.cost(f, &pp, &pq) <= step * (1.0 + 1e-12) {
+                        continue;
+                    }
                 }
             }
             self.enter(&b, q, q_pos, d);
