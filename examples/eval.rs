@@ -10,7 +10,7 @@
 //! source, and exits non-zero otherwise (CI runs it on two shared meshes):
 //!
 //! ```text
-//! cargo run --release --example eval -- ../shared/data --equality [--meshes a,b] [--max-faces 100000] [--k 3,5]
+//! cargo run --release --example eval -- ../shared/data --equality [--meshes a,ma/b.ma] [--max-faces 100000] [--k 3,5]
 //! ```
 //!
 //! The directory holds `manifest.json` (a list of meshes with `name`, `file`, `faces`
@@ -19,7 +19,8 @@
 //! mean and max relative error over the references of each mesh (|d − d*| / d* over
 //! vertices with d* > 0), and the distance tests of one run.
 
-use geotracks::{distance_field, mesh::io::read_mesh, Euclidean, Method, Options};
+use geotracks::mesh::{io::read_mesh, Topology, TriMesh};
+use geotracks::{distance_field, Euclidean, Method, Options};
 use std::path::{Path, PathBuf};
 
 fn main() {
@@ -137,11 +138,11 @@ fn run() -> Result<(), String> {
             None => true,
         })
         .collect();
-    if meshes.is_empty() {
-        return Err("no mesh of the manifest matches --meshes".into());
-    }
     if args.equality {
         return equality(&args, &meshes);
+    }
+    if meshes.is_empty() {
+        return Err("no mesh of the manifest matches --meshes".into());
     }
 
     let mut header = String::from("| mesh | faces | Dijkstra mean / max |");
@@ -191,11 +192,13 @@ fn run() -> Result<(), String> {
 }
 
 /// Largest relative difference between the tracks engine and the Steiner graph over all
-/// nodes, per (mesh, k), from every reference's source; an error if any exceeds 1e-9.
+/// nodes, per (mesh, k), from every reference's source (for the medial axes in `ma/`,
+/// which are non-manifold: the first vertex on a face and the middle vertex); an error
+/// if any exceeds 1e-9.
 fn equality(args: &Args, meshes: &[&serde_json::Value]) -> Result<(), String> {
     println!("| mesh | faces | k | sources | max relative deviation (all nodes) | graph tests / tracks tests |");
     println!("|---|---:|---:|---:|---:|---:|");
-    let mut failures = 0;
+    let mut cases: Vec<(String, TriMesh, Vec<u32>)> = Vec::new();
     for entry in meshes {
         let name = entry["name"].as_str().unwrap_or("?");
         let faces = entry["faces"].as_u64().unwrap_or(0);
@@ -212,12 +215,41 @@ fn equality(args: &Args, meshes: &[&serde_json::Value]) -> Result<(), String> {
             .map(|r| r.iter().filter_map(|x| x.as_str()).map(source_of).collect())
             .unwrap_or_else(|| Ok(vec![0]))?;
         let sources = if sources.is_empty() { vec![0] } else { sources };
+        cases.push((name.to_string(), mesh, sources));
+    }
+    {
+        let mut medial: Vec<PathBuf> = std::fs::read_dir(args.data.join("ma"))
+            .map(|d| d.filter_map(|e| e.ok()).map(|e| e.path()).collect())
+            .unwrap_or_default();
+        medial.sort();
+        for path in medial {
+            // A medial axis with edges only has no surface to measure on.
+            let Ok(mesh) = read_mesh(&path) else { continue };
+            let first = (0..mesh.vertex_count() as u32)
+                .find(|&v| !mesh.vertex_faces(v).is_empty())
+                .unwrap_or(0);
+            let name = format!(
+                "ma/{}",
+                path.file_name().unwrap_or_default().to_string_lossy()
+            );
+            if let Some(names) = &args.meshes {
+                if !names.contains(&name) {
+                    continue;
+                }
+            }
+            let middle = mesh.vertex_count() as u32 / 2;
+            cases.push((name, mesh, vec![first, middle]));
+        }
+    }
+    let mut failures = 0;
+    for (name, mesh, sources) in &cases {
+        let faces = mesh.face_count();
         for &k in &args.ks {
             let (mut worst, mut graph_tests, mut tracks_tests) = (0.0f64, 0u64, 0u64);
-            for &source in &sources {
+            for &source in sources {
                 let run = |method| {
                     distance_field(
-                        &mesh,
+                        mesh,
                         &Euclidean,
                         &[source],
                         &Options::DEFAULT.with_k(k).with_method(method),
