@@ -176,6 +176,29 @@ fn unreachable_vertices_are_inf_with_a_warning() {
     );
     let text = std::fs::read_to_string(&txt).unwrap();
     assert_eq!(text.lines().filter(|l| *l == "inf").count(), 3);
+
+    let sources = dir.path().join("s.txt");
+    std::fs::write(
+        &sources, "0 3
+",
+    )
+    .unwrap();
+    let csv = dir.path().join("m.csv");
+    let out = geotracks_ok(&[
+        "matrix",
+        mesh.to_str().unwrap(),
+        "--sources",
+        sources.to_str().unwrap(),
+        "-o",
+        csv.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("warning: 6 (source, target) pairs are not connected"),
+        "{stderr}"
+    );
+    let text = std::fs::read_to_string(&csv).unwrap();
+    assert_eq!(text.matches("inf").count(), 6);
 }
 
 #[test]

@@ -61,6 +61,12 @@ pub fn run(args: &MatrixArgs) -> CliResult {
             targets: targets.as_deref(),
         },
     )?;
+    let unreachable = rows.iter().flatten().filter(|d| d.is_infinite()).count();
+    if unreachable > 0 {
+        eprintln!(
+            "warning: {unreachable} (source, target) pairs are not connected (another component or an unreferenced vertex); written as inf"
+        );
+    }
     let columns: Vec<u32> = targets.unwrap_or_else(|| (0..mesh.vertex_count() as u32).collect());
     io::write_atomically(&args.output, |w| {
         write!(w, "source")?;
