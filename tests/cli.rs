@@ -251,24 +251,57 @@ fn bad_input_fails_cleanly() {
         std::fs::write(&p, text).unwrap();
         p.to_str().unwrap().to_string()
     };
-
-    assert_fails(
-        &["distance", "/nonexistent/m.obj", "--source", "0", "-o", o],
-        &out,
-        "/nonexistent/m.obj",
-    );
-    let empty = write("empty.obj", "");
-    assert_fails(
-        &["distance", &empty, "--source", "0", "-o", o],
-        &out,
-        "empty",
-    );
-    let unknown = write("mesh.xyz", "1 2 3\n");
-    assert_fails(
-        &["distance", &unknown, "--source", "0", "-o", o],
-        &out,
-        "unknown mesh format",
-    );
+    // Bad mesh files: (file, what the error must say).
+    let meshes = [
+        ("/nonexistent/m.obj".to_string(), "/nonexistent/m.obj"),
+        (write("empty.obj", ""), "empty"),
+        (write("mesh.xyz", "1 2 3\n"), "unknown mesh format"),
+        (write("t.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n"), "t.off:"),
+        (
+            write("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"),
+            "vertex 1",
+        ),
+        (
+            write("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"),
+            "range.obj",
+        ),
+        (
+            write("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n"),
+            "no usable face",
+        ),
+    ];
+    for (file, expected) in &meshes {
+        assert_fails(
+            &["distance", file, "--source", "0", "-o", o],
+            &out,
+            expected,
+        );
+    }
+    // Bad options and metric files on a good mesh: (extra arguments, expected).
+    let zero = write("zero.txt", "1\n1\n0\n1\n");
+    let short = write("short.txt", "1\n1\n1\n");
+    let word = write("word.txt", "1\n1\nabc\n1\n");
+    let indefinite = write("ind.txt", "1 0 0 1 0 1\n1 5 0 1 0 1\n");
+    let one = write("one.txt", "1 0 0 1 0 1\n");
+    let options: [(&[&str], &str); 8] = [
+        (&["--source", "9"], "source vertex 9 is out of range"),
+        (&["--source", "0", "--k", "0"], "k = 0"),
+        (
+            &["--source", "0", "--method", "fast"],
+            "unknown method 'fast'",
+        ),
+        (&["--source", "0", "--density", &zero], "zero.txt:3"),
+        (&["--source", "0", "--density", &short], "expected 4 values"),
+        (&["--source", "0", "--density", &word], "word.txt:3"),
+        (&["--source", "0", "--tensor", &indefinite], "ind.txt:2"),
+        (&["--source", "0", "--tensor", &one], "expected 2 tensors"),
+    ];
+    for (extra, expected) in options {
+        let mut args = vec!["distance", mesh];
+        args.extend_from_slice(extra);
+        args.extend_from_slice(&["-o", o]);
+        assert_fails(&args, &out, expected);
+    }
     let bad_out = dir.path().join("out.vtk");
     assert_fails(
         &[
@@ -281,114 +314,6 @@ fn bad_input_fails_cleanly() {
         ],
         &bad_out,
         "unknown output format",
-    );
-    assert_fails(
-        &["distance", mesh, "--source", "9", "-o", o],
-        &out,
-        "source vertex 9 is out of range",
-    );
-    assert_fails(
-        &["distance", mesh, "--source", "0", "--k", "0", "-o", o],
-        &out,
-        "k = 0",
-    );
-    assert_fails(
-        &[
-            "distance", mesh, "--source", "0", "--method", "fast", "-o", o,
-        ],
-        &out,
-        "unknown method 'fast'",
-    );
-    let truncated = write("t.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n");
-    assert_fails(
-        &["distance", &truncated, "--source", "0", "-o", o],
-        &out,
-        "t.off:",
-    );
-    let nan = write("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
-    assert_fails(
-        &["distance", &nan, "--source", "0", "-o", o],
-        &out,
-        "vertex 1",
-    );
-    let range = write("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
-    assert_fails(
-        &["distance", &range, "--source", "0", "-o", o],
-        &out,
-        "range.obj",
-    );
-    let flat = write("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
-    assert_fails(
-        &["distance", &flat, "--source", "0", "-o", o],
-        &out,
-        "no usable face",
-    );
-
-    let zero = write("zero.txt", "1\n1\n0\n1\n");
-    assert_fails(
-        &[
-            "distance",
-            mesh,
-            "--source",
-            "0",
-            "--density",
-            &zero,
-            "-o",
-            o,
-        ],
-        &out,
-        "zero.txt:3",
-    );
-    let short = write("short.txt", "1\n1\n1\n");
-    assert_fails(
-        &[
-            "distance",
-            mesh,
-            "--source",
-            "0",
-            "--density",
-            &short,
-            "-o",
-            o,
-        ],
-        &out,
-        "expected 4 values",
-    );
-    let word = write("word.txt", "1\n1\nabc\n1\n");
-    assert_fails(
-        &[
-            "distance",
-            mesh,
-            "--source",
-            "0",
-            "--density",
-            &word,
-            "-o",
-            o,
-        ],
-        &out,
-        "word.txt:3",
-    );
-    let indefinite = write("ind.txt", "1 0 0 1 0 1\n1 5 0 1 0 1\n");
-    assert_fails(
-        &[
-            "distance",
-            mesh,
-            "--source",
-            "0",
-            "--tensor",
-            &indefinite,
-            "-o",
-            o,
-        ],
-        &out,
-        "ind.txt:2",
-    );
-    let one = write("one.txt", "1 0 0 1 0 1\n");
-    assert_fails(
-        &["distance", mesh, "--source", "0", "--tensor", &one, "-o", o],
-        &out,
-        "expected 2 tensors",
     );
 }
 
