@@ -102,10 +102,9 @@ proptest! {
     }
 }
 
-/// Density is not a norm: pruning is a heuristic there. Its deviation from the graph
-/// is measured here and must stay tiny on average.
-#[test]
-fn density_deviation_is_tiny() {
+/// Worst (mean, max) relative deviation from the graph over random meshes with rough
+/// random densities (neighbouring values up to 26× apart), at a pruning tolerance.
+fn density_deviation(tolerance: f64) -> (f64, f64) {
     let mut worst_mean = 0.0f64;
     let mut worst_max = 0.0f64;
     for seed in 1..40u64 {
@@ -118,7 +117,9 @@ fn density_deviation_is_tiny() {
         let rho: Vec<f64> = (0..mesh.vertex_count())
             .map(|_| 0.2 + 5.0 * rng.next())
             .collect();
-        let density = Density::new(&mesh, rho).unwrap();
+        let density = Density::new(&mesh, rho)
+            .unwrap()
+            .with_pruning_tolerance(tolerance);
         let (max, mean) = deviation(
             &mesh,
             &density,
@@ -128,8 +129,21 @@ fn density_deviation_is_tiny() {
         worst_mean = worst_mean.max(mean);
         worst_max = worst_max.max(max);
     }
-    println!("density: worst mean relative deviation {worst_mean:e}, worst max {worst_max:e}");
-    assert!(worst_mean <= 1e-6, "{worst_mean}");
+    println!("density, tolerance {tolerance}: worst mean relative deviation {worst_mean:e}, worst max {worst_max:e}");
+    (worst_mean, worst_max)
+}
+
+/// Density is not a norm: pruning is a heuristic there. Its deviation from the graph
+/// is measured here (the numbers the README and `Density::with_pruning_tolerance`
+/// quote: `cargo test --release --test tracks_oracle density -- --nocapture`).
+#[test]
+fn density_deviation_is_tiny() {
+    let (mean, max) = density_deviation(Density::DEFAULT_PRUNING_TOLERANCE);
+    assert!(mean <= 1e-6, "{mean}");
+    assert!(max <= 1e-6, "{max}");
+    // Pruning on every face with a ratio up to 2 deviates, but little.
+    let (mean, _) = density_deviation(1.0);
+    assert!(mean <= 1e-5, "{mean}");
 }
 
 #[test]

@@ -84,8 +84,9 @@ impl Density {
     /// pruning by the crossing lemma stays accurate; on faces that vary more, every
     /// target is tested, as in the complete Steiner graph. 0 prunes only where the
     /// density is constant (exact); larger values prune more and may deviate more.
-    /// Default: 0.2 (measured: no deviation on random densities whose neighbouring
-    /// values differ up to 26×; 1.0 gave a mean relative deviation of 1e-6 there).
+    /// Default: 0.2 (measured by geotracks' `tracks_oracle` test: no deviation on random
+    /// densities whose neighbouring values differ up to 26×; 1.0 gave a mean relative
+    /// deviation of 1e-6 and a max of 8e-4 there).
     pub fn with_pruning_tolerance(mut self, tolerance: f64) -> Self {
         self.pruning_tolerance = tolerance.max(0.0);
         self
