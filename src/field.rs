@@ -30,8 +30,8 @@ pub struct Stats {
     /// Metric evaluations made while propagating.
     pub distance_tests: u64,
     /// Metric evaluations made once by the solver's setup (the per-edge step costs of
-    /// a norm metric, and one per edge to size the bucket queue), shared by all its
-    /// runs.
+    /// a norm metric; for other metrics, one per edge to size the tracks engine's
+    /// bucket queue), shared by all its runs.
     pub setup_distance_tests: u64,
 }
 

@@ -5,7 +5,8 @@
 //! points numbered from its lower-id vertex. Points are implicit: a node is an edge and
 //! an index, and its position in a face is computed when needed, never stored per face.
 
-use crate::mesh::{Topology, TriMesh};
+use crate::mesh::{Topology, TriMesh, NONE};
+use crate::Error;
 use geotracks_metrics::FacePoint;
 use std::ops::Range;
 
@@ -85,15 +86,22 @@ pub struct SteinerLayout {
 }
 
 impl SteinerLayout {
-    /// Lays out Steiner points on `mesh` with `scheme` (assumed valid, see
-    /// [`SteinerScheme::is_valid`]).
-    pub fn new(mesh: &TriMesh, scheme: SteinerScheme) -> SteinerLayout {
+    /// Lays out Steiner points on `mesh` with `scheme`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidK`] for a scheme with no points (see [`SteinerScheme::is_valid`]);
+    /// [`Error::TooLarge`] when vertices and Steiner points together would not fit
+    /// 32-bit node ids.
+    pub fn new(mesh: &TriMesh, scheme: SteinerScheme) -> Result<SteinerLayout, Error> {
+        if !scheme.is_valid() {
+            return Err(Error::InvalidK { k: scheme.k() });
+        }
         let counts: Vec<u32> = match scheme {
             SteinerScheme::Fixed { count } => vec![count; mesh.edge_count()],
             SteinerScheme::Interval { k } => {
                 let h = mesh.mean_edge_length() / k;
                 (0..mesh.edge_count() as u32)
-                    .map(|e| (mesh.edge_length(e) / h).round() as u32)
+                    .map(|e| (mesh.edge_length(e) / h).round().min(u32::MAX as f64) as u32)
                     .collect()
             }
         };
@@ -107,27 +115,40 @@ impl SteinerLayout {
             &vec![0; mesh.edge_count()],
             SteinerScheme::Fixed { count: 0 },
         )
+        .expect("a mesh's vertices fit its own u32 ids")
     }
 
-    fn from_counts(vertex_count: usize, counts: &[u32], scheme: SteinerScheme) -> SteinerLayout {
+    fn from_counts(
+        vertex_count: usize,
+        counts: &[u32],
+        scheme: SteinerScheme,
+    ) -> Result<SteinerLayout, Error> {
+        // Node ids are u32 and NONE = u32::MAX is reserved: check before allocating.
+        let total = vertex_count as u64 + counts.iter().map(|&c| c as u64).sum::<u64>();
+        if total >= NONE as u64 {
+            return Err(Error::TooLarge {
+                what: "nodes (vertices and Steiner points)",
+                count: total,
+            });
+        }
         let mut first = Vec::with_capacity(counts.len() + 1);
-        let mut total = 0u32;
+        let mut offset = 0u32;
         first.push(0);
         for &c in counts {
-            total += c;
-            first.push(total);
+            offset += c;
+            first.push(offset);
         }
         let edge_of = counts
             .iter()
             .enumerate()
             .flat_map(|(e, &c)| std::iter::repeat_n(e as u32, c as usize))
             .collect();
-        SteinerLayout {
+        Ok(SteinerLayout {
             vertex_count: vertex_count as u32,
             first,
             edge_of,
             scheme,
-        }
+        })
     }
 
     /// The scheme it was built with.

@@ -91,38 +91,28 @@ impl<'m, M: Metric> Solver<'m, M> {
     /// Prepares `mesh` for queries under `metric` with `options`.
     ///
     /// # Errors
-    /// [`Error::InvalidK`] for a Steiner scheme with no points; [`Error::TooLarge`] when
-    /// the node or instance count exceeds 32-bit ids (or one edge would carry more than
-    /// 65535 points).
+    /// As [`SteinerLayout::new`]; also [`Error::TooLarge`] when the tracks engine's
+    /// instances exceed 32-bit ids or one edge would carry more than 65535 points.
     pub fn new(mesh: &'m TriMesh, metric: M, options: &Options) -> Result<Self, Error> {
         let start = Instant::now();
         let layout = if options.method == Method::Dijkstra {
             SteinerLayout::vertices_only(mesh)
         } else {
-            if !options.steiner.is_valid() {
-                return Err(Error::InvalidK {
-                    k: options.steiner.k(),
-                });
-            }
-            SteinerLayout::new(mesh, options.steiner)
+            SteinerLayout::new(mesh, options.steiner)?
         };
-        if layout.node_count() >= NONE as usize {
-            return Err(Error::TooLarge {
-                what: "nodes",
-                count: layout.node_count() as u64,
-            });
-        }
-        let (edge_steps, setup_tests) = match edge_steps(mesh, &metric, &layout) {
+        let (edge_steps, mut setup_tests) = match edge_steps(mesh, &metric, &layout) {
             Some((steps, tests)) => (Some(steps), tests),
             None => (None, 0),
         };
-        let faces = match options.method {
-            Method::Tracks => Some(TrackFaces::new(mesh, &layout)?),
-            _ => None,
+        // Only the tracks engine uses a bucket queue (the baselines keep a heap).
+        let (faces, bucket_width) = match options.method {
+            Method::Tracks => {
+                let (width, tests) = bucket_width(mesh, &metric, &layout, edge_steps.as_deref());
+                setup_tests += tests;
+                (Some(TrackFaces::new(mesh, &layout)?), width)
+            }
+            _ => (None, 1.0),
         };
-        let bucket_width = bucket_width(mesh, &metric, &layout);
-        // bucket_width asks the metric once per edge.
-        let setup_tests = setup_tests + mesh.edge_count() as u64;
         Ok(Solver {
             mesh,
             metric,
@@ -314,21 +304,33 @@ impl<'m, M: Metric> Solver<'m, M> {
 /// edge. Nodes in one bucket are settled in no particular order, so a bucket much wider
 /// than the local spacing of nodes makes many nodes settle early and propagate again;
 /// the low quantile keeps buckets narrow where costs are low (low density, short edges).
-fn bucket_width<M: Metric>(mesh: &TriMesh, metric: &M, layout: &SteinerLayout) -> f64 {
-    let mut steps: Vec<f64> = (0..mesh.edge_count() as u32)
-        .filter_map(|e| {
-            let f = mesh.edge_faces(e)[0];
-            let [a, b] = mesh
-                .edge_vertices(e)
-                .map(|v| layout.point_in_face(mesh, v, f));
-            let step = metric.cost(f, &a, &b) / (layout.count(e) + 1) as f64;
-            (step.is_finite() && step > 0.0).then_some(step)
-        })
-        .collect();
+/// Uses the cached per-edge steps when there are some; otherwise asks the metric once
+/// per edge (in its first face). Returns the width and the metric evaluations made.
+fn bucket_width<M: Metric>(
+    mesh: &TriMesh,
+    metric: &M,
+    layout: &SteinerLayout,
+    edge_steps: Option<&[f64]>,
+) -> (f64, u64) {
+    let mut tests = 0;
+    let mut steps: Vec<f64> = match edge_steps {
+        Some(steps) => steps.to_vec(),
+        None => (0..mesh.edge_count() as u32)
+            .map(|e| {
+                tests += 1;
+                let f = mesh.edge_faces(e)[0];
+                let [a, b] = mesh
+                    .edge_vertices(e)
+                    .map(|v| layout.point_in_face(mesh, v, f));
+                metric.cost(f, &a, &b) / (layout.count(e) + 1) as f64
+            })
+            .collect(),
+    };
+    steps.retain(|s| s.is_finite() && *s > 0.0);
     if steps.is_empty() {
-        return 1.0;
+        return (1.0, tests);
     }
     let at = steps.len() / 10;
     let (_, width, _) = steps.select_nth_unstable_by(at, f64::total_cmp);
-    *width
+    (*width, tests)
 }
