@@ -31,7 +31,7 @@
 //! norms ([`Metric::is_face_norm`] false, e.g. `Density`) the pruning is a heuristic.
 
 use super::frontier::{Frontier, Queue};
-use crate::mesh::{Topology, TriMesh, NONE};
+use crate::mesh::{FaceFrame, Topology, TriMesh, NONE};
 use crate::steiner::{slot_param, slot_spacing, NodeKind, SteinerLayout};
 use crate::Error;
 use geotracks_metrics::{FacePoint, Metric};
@@ -40,8 +40,8 @@ use geotracks_metrics::{FacePoint, Metric};
 /// a face costs one cache line instead of a dozen scattered lookups.
 #[derive(Clone, Copy, Debug)]
 struct FaceRecord {
-    /// The face's local frame: `l01, x2, y2` (see [`crate::mesh::FaceFrame`]).
-    frame: [f64; 3],
+    /// The face's local frame.
+    frame: FaceFrame,
     /// Node id of the first point (from the lower vertex) of each slot's edge.
     lo: [u32; 3],
     vertex: [u32; 3],
@@ -52,6 +52,9 @@ struct FaceRecord {
     /// Bit `s`: slot `s` runs from its edge's higher vertex (points in reverse order).
     reversed: u8,
 }
+
+// The record is meant to fill exactly one cache line.
+const _: () = assert!(std::mem::size_of::<FaceRecord>() == 64);
 
 /// One instance's track: the best value that reached a boundary node through a face,
 /// and the position (in that face) of the node it came from.
@@ -117,9 +120,8 @@ impl TrackFaces {
                     reversed |= 1 << s;
                 }
             }
-            let frame = mesh.frame(f);
             records.push(FaceRecord {
-                frame: [frame.l01, frame.x2, frame.y2],
+                frame: *mesh.frame(f),
                 lo: edges.map(|e| layout.edge_nodes(e).start),
                 vertex,
                 base: total as u32,
@@ -158,8 +160,7 @@ struct Boundary {
     lo: [u32; 3],
     reversed: [bool; 3],
     vertex: [u32; 3],
-    /// Corner coordinates in the face frame.
-    uv: [[f64; 2]; 3],
+    frame: FaceFrame,
     /// [`slot_spacing`] of each slot.
     spacing: [f64; 3],
 }
@@ -169,7 +170,6 @@ impl Boundary {
     fn new(face: u32, r: &FaceRecord) -> Boundary {
         let count = r.count.map(u32::from);
         let corner = [0, count[0] + 1, count[0] + count[1] + 2];
-        let [l01, x2, y2] = r.frame;
         Boundary {
             face,
             base: r.base,
@@ -179,7 +179,7 @@ impl Boundary {
             lo: r.lo,
             reversed: [0, 1, 2].map(|s| r.reversed & (1 << s) != 0),
             vertex: r.vertex,
-            uv: [[0.0, 0.0], [l01, 0.0], [x2, y2]],
+            frame: r.frame,
             spacing: count.map(slot_spacing),
         }
     }
@@ -202,32 +202,21 @@ impl Boundary {
         (s, pos - self.corner[s] - 1)
     }
 
-    /// Node id and face point of boundary position `pos`. Same formula as
-    /// `SteinerLayout::point_on_slot` (through [`slot_param`]), so the tracks and the
-    /// graph engines see bit-identical coordinates.
+    /// Node id and face point of boundary position `pos`, placed by the face frame with
+    /// the same calls as `SteinerLayout::point_in_face`, so the tracks and the graph
+    /// engines see bit-identical coordinates.
     #[inline]
     fn at(&self, pos: u32) -> (u32, FacePoint) {
         if let Some(c) = self.corner_at(pos) {
             let mut bary = [0.0; 3];
             bary[c] = 1.0;
-            return (
-                self.vertex[c],
-                FacePoint {
-                    uv: self.uv[c],
-                    bary,
-                },
-            );
+            return (self.vertex[c], self.frame.point(bary));
         }
         let (s, i) = self.slot_of(pos);
         let n = self.count[s];
         let node = self.lo[s] + if self.reversed[s] { n - 1 - i } else { i };
-        let t = slot_param(i, self.spacing[s]);
-        let (a, b) = (self.uv[s], self.uv[(s + 1) % 3]);
-        let mut bary = [0.0; 3];
-        bary[s] = 1.0 - t;
-        bary[(s + 1) % 3] = t;
-        let uv = [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])];
-        (node, FacePoint { uv, bary })
+        let point = self.frame.point_on_edge(s, slot_param(i, self.spacing[s]));
+        (node, point)
     }
 
     /// Position of `node` (of kind `kind`), which lies on this face's boundary.
