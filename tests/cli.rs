@@ -105,6 +105,7 @@ fn writes_txt_csv_ply_and_stats() {
         "propagate_seconds",
         "pushes",
         "distance_tests",
+        "setup_distance_tests",
     ] {
         assert!(json.get(key).is_some(), "stats lack {key}: {json}");
     }
@@ -112,7 +113,7 @@ fn writes_txt_csv_ply_and_stats() {
     assert_eq!(json["vertices"], 4);
 
     let csv = dir.path().join("d.csv");
-    let out = geotracks_ok(&[
+    geotracks_ok(&[
         "distance",
         mesh,
         "--source",
@@ -122,7 +123,6 @@ fn writes_txt_csv_ply_and_stats() {
         "-o",
         csv.to_str().unwrap(),
     ]);
-    assert!(out.status.success());
     let text = std::fs::read_to_string(&csv).unwrap();
     let mut lines = text.lines();
     assert_eq!(lines.next(), Some("vertex,distance"));
@@ -135,7 +135,7 @@ fn writes_txt_csv_ply_and_stats() {
     assert_eq!(row(lines.next()), (1, 0.0));
 
     let ply = dir.path().join("d.ply");
-    let out = geotracks(&[
+    geotracks_ok(&[
         "distance",
         mesh,
         "--source",
@@ -145,7 +145,6 @@ fn writes_txt_csv_ply_and_stats() {
         "-o",
         ply.to_str().unwrap(),
     ]);
-    assert!(out.status.success());
     let back = geotracks::mesh::io::read_mesh(&ply).unwrap();
     assert_eq!(back.positions().len(), 4);
 }
@@ -160,7 +159,7 @@ fn unreachable_vertices_are_inf_with_a_warning() {
     )
     .unwrap();
     let txt = dir.path().join("d.txt");
-    let out = geotracks(&[
+    let out = geotracks_ok(&[
         "distance",
         mesh.to_str().unwrap(),
         "--source",
@@ -168,7 +167,6 @@ fn unreachable_vertices_are_inf_with_a_warning() {
         "-o",
         txt.to_str().unwrap(),
     ]);
-    assert!(out.status.success());
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
         stderr.contains("warning: 3 vertices are not reachable"),
@@ -345,7 +343,6 @@ fn info_reports_non_manifold_edges() {
     )
     .unwrap();
     let out = geotracks_ok(&["info", path.to_str().unwrap()]);
-    assert!(out.status.success());
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(
         text.contains("non-manifold edges    1 (max faces on one edge: 3)"),
@@ -378,7 +375,7 @@ fn matrix_writes_rows_per_source() {
     let targets = dir.path().join("targets.txt");
     std::fs::write(&targets, "3 1\n").unwrap();
     let out = dir.path().join("m.csv");
-    let o = geotracks(&[
+    geotracks_ok(&[
         "matrix",
         mesh,
         "--sources",
@@ -388,7 +385,6 @@ fn matrix_writes_rows_per_source() {
         "-o",
         out.to_str().unwrap(),
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let text = std::fs::read_to_string(&out).unwrap();
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(lines[0], "source,3,1");
@@ -404,7 +400,7 @@ fn matrix_writes_rows_per_source() {
     assert_eq!(lines.len(), 4);
 
     // Every vertex as a column when no targets are given.
-    let o = geotracks(&[
+    geotracks_ok(&[
         "matrix",
         mesh,
         "--sources",
@@ -412,7 +408,6 @@ fn matrix_writes_rows_per_source() {
         "-o",
         out.to_str().unwrap(),
     ]);
-    assert!(o.status.success());
     assert!(std::fs::read_to_string(&out)
         .unwrap()
         .starts_with("source,0,1,2,3\n"));

@@ -2,7 +2,7 @@
 
 use crate::inputs::load_mesh;
 use crate::metric_args::{MetricArgs, WithMetric};
-use crate::CliResult;
+use crate::{CliResult, Value};
 use geotracks::mesh::{io, TriMesh};
 use geotracks::{distance_field, Euclidean, GeodesicField, Metric, Options};
 use std::path::{Path, PathBuf};
@@ -134,19 +134,6 @@ fn write_field(
     Ok(())
 }
 
-/// A distance as text: shortest round-trip form, `inf` when unreachable.
-struct Value(f64);
-
-impl std::fmt::Display for Value {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        if self.0.is_infinite() {
-            f.write_str("inf")
-        } else {
-            write!(f, "{}", self.0)
-        }
-    }
-}
-
 fn write_stats(path: &Path, field: &GeodesicField) -> CliResult {
     let s = field.stats();
     let json = serde_json::json!({
@@ -159,6 +146,7 @@ fn write_stats(path: &Path, field: &GeodesicField) -> CliResult {
         "propagate_seconds": s.propagate_seconds,
         "pushes": s.pushes,
         "distance_tests": s.distance_tests,
+        "setup_distance_tests": s.setup_distance_tests,
         "unreachable_vertices": field.unreachable_vertices(),
     });
     io::write_atomically(path, |w| {

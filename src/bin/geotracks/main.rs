@@ -55,6 +55,19 @@ fn main() -> ExitCode {
     }
 }
 
+/// A distance as text: shortest round-trip form, `inf` when unreachable.
+pub(crate) struct Value(pub f64);
+
+impl std::fmt::Display for Value {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.0.is_infinite() {
+            f.write_str("inf")
+        } else {
+            write!(f, "{}", self.0)
+        }
+    }
+}
+
 /// Errors of the CLI: the library's, plus the CLI's own input files.
 pub(crate) type CliResult<T = ()> = Result<T, Box<dyn std::error::Error>>;
 

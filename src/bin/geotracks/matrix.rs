@@ -2,7 +2,7 @@
 
 use crate::inputs::{load_mesh, read_vertex_ids};
 use crate::metric_args::{MetricArgs, WithMetric};
-use crate::CliResult;
+use crate::{CliResult, Value};
 use geotracks::mesh::{io, Topology, TriMesh};
 use geotracks::{Metric, Options, Solver};
 use std::path::PathBuf;
@@ -76,12 +76,8 @@ pub fn run(args: &MatrixArgs) -> CliResult {
         writeln!(w)?;
         for (s, row) in sources.iter().zip(&rows) {
             write!(w, "{s}")?;
-            for d in row {
-                if d.is_infinite() {
-                    write!(w, ",inf")?;
-                } else {
-                    write!(w, ",{d}")?;
-                }
+            for &d in row {
+                write!(w, ",{}", Value(d))?;
             }
             writeln!(w)?;
         }
