@@ -27,6 +27,9 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::Instant;
 
+mod shared_data;
+use shared_data::{manifest, read_reference, relative_error, source_of};
+
 const DEFAULT_MESHES: &str = "alligator,bunny,horse,bunny_loop1,bunny_loop2";
 const USAGE: &str = "usage: bench DATA_DIR [--meshes a,b,c] [--k 3,5,8] \
                      [--methods tracks,graph,dijkstra] [--threads-demo]";
@@ -191,15 +194,16 @@ fn parent(argv: &[String]) -> Result<(), String> {
 
 /// Looks `name` up in `data/manifest.json` and checks that its files exist.
 fn entry(data: &Path, name: &str) -> Result<Entry, String> {
-    let path = data.join("manifest.json");
-    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let manifest: serde_json::Value =
-        serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
-    let list = manifest.as_array().ok_or("manifest.json is not a list")?;
+    let list = manifest(data)?;
     let m = list
         .iter()
         .find(|m| m["name"].as_str() == Some(name))
-        .ok_or_else(|| format!("mesh '{name}' is not in {}", path.display()))?;
+        .ok_or_else(|| {
+            format!(
+                "mesh '{name}' is not in {}",
+                data.join("manifest.json").display()
+            )
+        })?;
     let file = data.join(
         m["file"]
             .as_str()
@@ -208,11 +212,7 @@ fn entry(data: &Path, name: &str) -> Result<Entry, String> {
     let reference = m["references"][0]
         .as_str()
         .ok_or(format!("{name}: no reference in manifest"))?;
-    let source = reference
-        .rsplit_once(".src")
-        .and_then(|(_, s)| s.strip_suffix(".f64"))
-        .and_then(|s| s.parse().ok())
-        .ok_or(format!("cannot read the source vertex from '{reference}'"))?;
+    let source = source_of(reference)?;
     let reference = data.join(reference);
     for p in [&file, &reference] {
         if !p.is_file() {
@@ -295,16 +295,7 @@ fn child(args: &[String]) -> Result<(), String> {
             d.len()
         ));
     }
-    let (mut sum, mut max, mut n) = (0.0, 0.0f64, 0usize);
-    for (a, b) in d.iter().zip(&exact) {
-        if *b > 0.0 {
-            let e = (a - b).abs() / b;
-            sum += e;
-            max = max.max(e);
-            n += 1;
-        }
-    }
-    let mean = sum / n.max(1) as f64;
+    let (mean, max) = relative_error(&d, &exact);
     let rss_mb = peak_rss_kb()? / 1024.0;
     let f = [
         s.steiner_points as f64,
@@ -321,14 +312,6 @@ fn child(args: &[String]) -> Result<(), String> {
     let line: Vec<String> = f.iter().map(|x| x.to_string()).collect();
     println!("BENCH\t{}", line.join("\t"));
     Ok(())
-}
-
-fn read_reference(path: &Path) -> Result<Vec<f64>, String> {
-    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    Ok(bytes
-        .chunks_exact(8)
-        .map(|c| f64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
-        .collect())
 }
 
 /// This process's peak resident set (`VmHWM`), in kB.

@@ -21,7 +21,10 @@
 
 use geotracks::mesh::{io::read_mesh, Topology, TriMesh};
 use geotracks::{distance_field, Euclidean, Method, Options};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
+
+mod shared_data;
+use shared_data::{manifest, read_reference, relative_error, source_of};
 
 fn main() {
     if let Err(e) = run() {
@@ -92,46 +95,10 @@ fn parse_args() -> Result<Args, String> {
     })
 }
 
-fn read_reference(path: &Path) -> Result<Vec<f64>, String> {
-    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    Ok(bytes
-        .chunks_exact(8)
-        .map(|c| f64::from_le_bytes(c.try_into().expect("8 bytes")))
-        .collect())
-}
-
-fn source_of(reference: &str) -> Result<u32, String> {
-    reference
-        .rsplit_once(".src")
-        .and_then(|(_, s)| s.strip_suffix(".f64"))
-        .and_then(|s| s.parse().ok())
-        .ok_or_else(|| format!("cannot read the source vertex from '{reference}'"))
-}
-
-fn relative_error(d: &[f64], exact: &[f64]) -> (f64, f64) {
-    let (mut sum, mut max, mut n) = (0.0, 0.0f64, 0usize);
-    for (a, b) in d.iter().zip(exact) {
-        if *b > 0.0 {
-            let e = (a - b).abs() / b;
-            sum += e;
-            max = max.max(e);
-            n += 1;
-        }
-    }
-    (sum / n.max(1) as f64, max)
-}
-
 fn run() -> Result<(), String> {
     let args = parse_args()?;
-    let manifest_path = args.data.join("manifest.json");
-    let manifest: serde_json::Value = serde_json::from_str(
-        &std::fs::read_to_string(&manifest_path)
-            .map_err(|e| format!("{}: {e}", manifest_path.display()))?,
-    )
-    .map_err(|e| format!("{}: {e}", manifest_path.display()))?;
+    let manifest = manifest(&args.data)?;
     let meshes: Vec<&serde_json::Value> = manifest
-        .as_array()
-        .ok_or("manifest.json is not a list")?
         .iter()
         .filter(|m| match &args.meshes {
             Some(names) => names.iter().any(|n| m["name"].as_str() == Some(n.as_str())),

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::relative_error;
+use common::{read_reference, relative_error};
 use geotracks::mesh::io::read_mesh;
 use geotracks::{distance_field, Euclidean, Method, Options};
 
@@ -14,11 +14,7 @@ const GRAPH: Options = Options::DEFAULT.with_method(Method::Graph);
 const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data");
 
 fn exact() -> Vec<f64> {
-    std::fs::read(format!("{DATA}/spot.src0.f64"))
-        .unwrap()
-        .chunks_exact(8)
-        .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
-        .collect()
+    read_reference(std::path::Path::new(&format!("{DATA}/spot.src0.f64"))).unwrap()
 }
 
 #[test]

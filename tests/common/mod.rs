@@ -79,19 +79,10 @@ pub fn book(
     (TriMesh::new(positions, triangles).unwrap(), id)
 }
 
-/// Mean and max of |d − exact| / exact over entries with exact > 0.
-pub fn relative_error(d: &[f64], exact: &[f64]) -> (f64, f64) {
-    let (mut sum, mut max, mut n) = (0.0, 0.0f64, 0usize);
-    for (a, b) in d.iter().zip(exact) {
-        if *b > 0.0 {
-            let e = (a - b).abs() / b;
-            sum += e;
-            max = max.max(e);
-            n += 1;
-        }
-    }
-    (sum / n as f64, max)
-}
+#[path = "../../examples/shared_data/mod.rs"]
+mod shared_data;
+#[allow(unused_imports)] // not every test binary uses both
+pub use shared_data::{read_reference, relative_error};
 
 /// A small deterministic generator, so a failing case is reproducible from its seed.
 pub struct Rng(pub u64);

@@ -1,0 +1,50 @@
+//! Reading the shared data directory (`manifest.json`, exact references) and comparing
+//! against it; used by the `eval` and `bench` examples and by the tests.
+#![allow(dead_code)] // each user takes what it needs
+
+use std::path::Path;
+
+/// The entries of `data/manifest.json` (objects with `name`, `file`, `faces`,
+/// `references`).
+pub fn manifest(data: &Path) -> Result<Vec<serde_json::Value>, String> {
+    let path = data.join("manifest.json");
+    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let value: serde_json::Value =
+        serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    match value {
+        serde_json::Value::Array(entries) => Ok(entries),
+        _ => Err(format!("{}: not a list", path.display())),
+    }
+}
+
+/// An exact reference: one little-endian f64 per vertex.
+pub fn read_reference(path: &Path) -> Result<Vec<f64>, String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(bytes
+        .chunks_exact(8)
+        .map(|c| f64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
+        .collect())
+}
+
+/// The source vertex of a reference named `…/<mesh>.src<v>.f64`.
+pub fn source_of(reference: &str) -> Result<u32, String> {
+    reference
+        .rsplit_once(".src")
+        .and_then(|(_, s)| s.strip_suffix(".f64"))
+        .and_then(|s| s.parse().ok())
+        .ok_or_else(|| format!("cannot read the source vertex from '{reference}'"))
+}
+
+/// Mean and max of |d − d*| / d* over the vertices where d* > 0.
+pub fn relative_error(d: &[f64], exact: &[f64]) -> (f64, f64) {
+    let (mut sum, mut max, mut n) = (0.0, 0.0f64, 0usize);
+    for (a, b) in d.iter().zip(exact) {
+        if *b > 0.0 {
+            let e = (a - b).abs() / b;
+            sum += e;
+            max = max.max(e);
+            n += 1;
+        }
+    }
+    (sum / n.max(1) as f64, max)
+}
