@@ -129,15 +129,7 @@ impl TriMesh {
                 });
             }
         }
-        for (edge, l) in line_edges.iter().enumerate() {
-            if let Some(&v) = l.iter().find(|&&v| v as usize >= n) {
-                return Err(MeshError::EdgeIndexOutOfRange {
-                    edge,
-                    vertex: v as i64,
-                    vertex_count: n,
-                });
-            }
-        }
+        check_line_edges(&line_edges, n)?;
         let positions: Vec<DVec3> = positions.into_iter().map(DVec3::from_array).collect();
 
         let input_count = triangles.len();
@@ -196,6 +188,18 @@ impl TriMesh {
             input_faces,
             dropped,
         })
+    }
+
+    /// Replaces the line elements (see [`TriMesh::with_line_elements`]); useful when which
+    /// edges are free is only known once the faces are built.
+    ///
+    /// # Errors
+    /// [`MeshError::EdgeIndexOutOfRange`] for an edge that names a missing vertex; the
+    /// mesh is left unchanged then.
+    pub fn set_line_elements(&mut self, line_edges: Vec<[u32; 2]>) -> Result<(), MeshError> {
+        check_line_edges(&line_edges, self.positions.len())?;
+        self.line_edges = line_edges;
+        Ok(())
     }
 
     /// Vertex positions.
@@ -286,6 +290,19 @@ impl TriMesh {
     pub fn report(&self) -> MeshReport {
         MeshReport::of(self)
     }
+}
+
+fn check_line_edges(line_edges: &[[u32; 2]], vertex_count: usize) -> Result<(), MeshError> {
+    for (edge, l) in line_edges.iter().enumerate() {
+        if let Some(&v) = l.iter().find(|&&v| v as usize >= vertex_count) {
+            return Err(MeshError::EdgeIndexOutOfRange {
+                edge,
+                vertex: v as i64,
+                vertex_count,
+            });
+        }
+    }
+    Ok(())
 }
 
 /// The local frame of a triangle, or `None` if it has (numerically) zero area.

@@ -142,15 +142,11 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<MedialAxis, MeshError> {
         }
     }
 
-    let mesh = TriMesh::new(positions.clone(), triangles.clone()).map_err(|e| e.in_file(path))?;
+    // Which edges are free depends on which faces survive (degenerate ones are dropped),
+    // so they are attached once the faces are built.
+    let mut mesh = TriMesh::new(positions, triangles).map_err(|e| e.in_file(path))?;
     let free = free_edges(&mesh, &edges);
-    let mesh = if free.is_empty() {
-        mesh
-    } else {
-        // Built twice because which faces are degenerate (and so whose edges are free) is
-        // only known once the mesh is built; it is cheap next to reading the file.
-        TriMesh::with_line_elements(positions, triangles, free).map_err(|e| e.in_file(path))?
-    };
+    mesh.set_line_elements(free).map_err(|e| e.in_file(path))?;
     Ok(MedialAxis { mesh, radii })
 }
 
