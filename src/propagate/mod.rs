@@ -8,7 +8,9 @@
 //!   points. Fast, and several percent too long.
 //! - [`Method::Tracks`] (the default): the track-pruned engine of the geodesic tracks
 //!   paper. Same distances as the graph for norms (Euclidean, Tensor: relative 1e-9, by
-//!   test), with O(1) failed tests per face entry instead of O(k).
+//!   test), with far fewer distance tests, growing about linearly in k:
+//!   tests(k = 8) / tests(k = 2) is 5.6 on the shared bunny against 13 for the graph
+//!   (`cargo test --release --test solver -- --nocapture` prints both).
 //!
 //! All are generic over the [`Metric`] (monomorphised: no dynamic dispatch in the loop).
 

@@ -87,17 +87,20 @@ impl BucketQueue {
         self.inverse_width = 1.0 / width;
         self.base = 0;
         self.current = 0;
-        for bucket in self.buckets.drain(..) {
-            if bucket.capacity() > 0 {
-                self.spare.push(bucket);
-            }
-        }
-        for bucket in &mut self.spare {
-            bucket.clear();
-        }
+        self.recycle_window();
         self.far.clear();
         self.pending.clear();
         self.pending.resize(nodes, false);
+    }
+
+    /// Moves the window's bucket buffers to the spares (emptied) and the window to empty.
+    fn recycle_window(&mut self) {
+        for mut bucket in self.buckets.drain(..) {
+            if bucket.capacity() > 0 {
+                bucket.clear();
+                self.spare.push(bucket);
+            }
+        }
     }
 
     #[inline]
@@ -141,11 +144,7 @@ impl BucketQueue {
             self.far.clear();
             return false;
         };
-        for bucket in self.buckets.drain(..) {
-            if bucket.capacity() > 0 {
-                self.spare.push(bucket);
-            }
-        }
+        self.recycle_window();
         self.base = lowest;
         self.current = 0;
         // Swap with the spare list so that re-filing beyond the window reuses buffers.
@@ -189,7 +188,9 @@ impl Queue for BucketQueue {
                     }
                 }
                 let done = std::mem::take(&mut self.buckets[self.current]);
-                self.spare.push(done);
+                if done.capacity() > 0 {
+                    self.spare.push(done);
+                }
                 self.current += 1;
             }
             if !self.refill(distance) {
