@@ -1,11 +1,13 @@
 //! Where Steiner points go on each edge, and how nodes are numbered.
 //!
 //! A *node* is a vertex or a Steiner point. Node ids are dense `u32`: vertices keep their
-//! ids `0..V`, then the Steiner points of edge 0, of edge 1, and so on, each edge's
-//! points numbered from its lower-id vertex. Points are implicit: a node is an edge and
+//! ids `0..V`, then the Steiner points in one block per edge, each edge's points
+//! numbered from its lower-id vertex. The blocks follow a space-filling curve through
+//! the edges' midpoints, not the edge ids, so that nodes near each other on the surface
+//! are near each other in memory; [`SteinerLayout::edge_nodes`] gives an edge's block. Points are implicit: a node is an edge and
 //! an index, and its position in a face is computed when needed, never stored per face.
 
-use crate::mesh::{Topology, TriMesh, NONE};
+use crate::mesh::{morton_order, Topology, TriMesh, NONE};
 use crate::Error;
 use geotracks_metrics::FacePoint;
 use std::ops::Range;
@@ -78,10 +80,13 @@ pub enum NodeKind {
 #[derive(Clone, Debug)]
 pub struct SteinerLayout {
     vertex_count: u32,
-    /// Node id of edge `e`'s first point is `vertex_count + first[e]`.
+    /// Block `b` holds node ids `vertex_count + first[b] .. vertex_count + first[b + 1]`.
     first: Vec<u32>,
-    /// The edge of each Steiner node (indexed by `node - vertex_count`).
-    edge_of: Vec<u32>,
+    /// The block of each edge, and the edge of each block.
+    block_of_edge: Vec<u32>,
+    edge_of_block: Vec<u32>,
+    /// The block of each Steiner node (indexed by `node - vertex_count`).
+    block_of: Vec<u32>,
     scheme: SteinerScheme,
 }
 
@@ -105,7 +110,18 @@ impl SteinerLayout {
                     .collect()
             }
         };
-        Self::from_counts(mesh.vertex_count(), &counts, scheme)
+        let midpoints: Vec<glam::DVec3> = (0..mesh.edge_count() as u32)
+            .map(|e| {
+                let [a, b] = mesh.edge_vertices(e);
+                (mesh.position(a) + mesh.position(b)) * 0.5
+            })
+            .collect();
+        Self::from_counts(
+            mesh.vertex_count(),
+            &counts,
+            morton_order(&midpoints),
+            scheme,
+        )
     }
 
     /// No Steiner points at all: the nodes are the vertices.
@@ -113,14 +129,17 @@ impl SteinerLayout {
         Self::from_counts(
             mesh.vertex_count(),
             &vec![0; mesh.edge_count()],
+            (0..mesh.edge_count() as u32).collect(),
             SteinerScheme::Fixed { count: 0 },
         )
         .expect("a mesh's vertices fit its own u32 ids")
     }
 
+    /// Lays out `counts[e]` points on each edge `e`, the edges' blocks in `order`.
     fn from_counts(
         vertex_count: usize,
         counts: &[u32],
+        order: Vec<u32>,
         scheme: SteinerScheme,
     ) -> Result<SteinerLayout, Error> {
         // Node ids are u32 and NONE = u32::MAX is reserved: check before allocating.
@@ -132,21 +151,25 @@ impl SteinerLayout {
             });
         }
         let mut first = Vec::with_capacity(counts.len() + 1);
+        let mut block_of_edge = vec![0; counts.len()];
         let mut offset = 0u32;
         first.push(0);
-        for &c in counts {
-            offset += c;
+        for (block, &e) in order.iter().enumerate() {
+            block_of_edge[e as usize] = block as u32;
+            offset += counts[e as usize];
             first.push(offset);
         }
-        let edge_of = counts
+        let block_of = order
             .iter()
             .enumerate()
-            .flat_map(|(e, &c)| std::iter::repeat_n(e as u32, c as usize))
+            .flat_map(|(b, &e)| std::iter::repeat_n(b as u32, counts[e as usize] as usize))
             .collect();
         Ok(SteinerLayout {
             vertex_count: vertex_count as u32,
             first,
-            edge_of,
+            block_of_edge,
+            edge_of_block: order,
+            block_of,
             scheme,
         })
     }
@@ -159,12 +182,12 @@ impl SteinerLayout {
     /// Vertices plus Steiner points.
     #[inline]
     pub fn node_count(&self) -> usize {
-        self.vertex_count as usize + self.edge_of.len()
+        self.vertex_count as usize + self.block_of.len()
     }
 
     /// Number of Steiner points (all edges).
     pub fn steiner_count(&self) -> usize {
-        self.edge_of.len()
+        self.block_of.len()
     }
 
     /// Number of mesh vertices (node ids below this are vertices).
@@ -176,13 +199,32 @@ impl SteinerLayout {
     /// How many points edge `e` carries.
     #[inline]
     pub fn count(&self, e: u32) -> u32 {
-        self.first[e as usize + 1] - self.first[e as usize]
+        let b = self.block_of_edge[e as usize] as usize;
+        self.first[b + 1] - self.first[b]
     }
 
     /// The node ids of edge `e`'s points, from its lower-id vertex.
     #[inline]
     pub fn edge_nodes(&self, e: u32) -> Range<u32> {
-        self.vertex_count + self.first[e as usize]..self.vertex_count + self.first[e as usize + 1]
+        let b = self.block_of_edge[e as usize] as usize;
+        self.vertex_count + self.first[b]..self.vertex_count + self.first[b + 1]
+    }
+
+    /// The block of Steiner node `node` (which must not be a vertex).
+    #[inline]
+    pub(crate) fn block(&self, node: u32) -> u32 {
+        self.block_of[(node - self.vertex_count) as usize]
+    }
+
+    /// The block of edge `e`'s points.
+    #[inline]
+    pub(crate) fn block_of_edge(&self, e: u32) -> u32 {
+        self.block_of_edge[e as usize]
+    }
+
+    /// The edges in block order.
+    pub(crate) fn edges_in_block_order(&self) -> &[u32] {
+        &self.edge_of_block
     }
 
     /// What node `node` is.
@@ -191,10 +233,10 @@ impl SteinerLayout {
         if node < self.vertex_count {
             NodeKind::Vertex(node)
         } else {
-            let edge = self.edge_of[(node - self.vertex_count) as usize];
+            let block = self.block(node);
             NodeKind::Steiner {
-                edge,
-                index: node - self.vertex_count - self.first[edge as usize],
+                edge: self.edge_of_block[block as usize],
+                index: node - self.vertex_count - self.first[block as usize],
             }
         }
     }

@@ -5,13 +5,15 @@
 mod csr;
 mod error;
 pub mod io;
+mod order;
 mod report;
 mod trimesh;
 
 pub use csr::Csr;
 pub use error::MeshError;
+pub(crate) use order::morton_order;
 pub use report::MeshReport;
-pub use trimesh::{DroppedFace, FaceFrame, TriMesh};
+pub use trimesh::{DroppedFace, EdgeLine, FaceFrame, TriMesh};
 
 /// Ids are dense `u32`; this marks "none" (no parent, no face).
 pub const NONE: u32 = u32::MAX;

@@ -24,14 +24,19 @@ impl FaceFrame {
     /// The point at parameter `t` from corner `i` towards corner `(i + 1) % 3`.
     #[inline]
     pub fn point_on_edge(&self, i: usize, t: f64) -> FacePoint {
+        self.edge_line(i).point(t)
+    }
+
+    /// The edge from corner `i` to corner `(i + 1) % 3`, ready to place many points on
+    /// it: [`FaceFrame::point_on_edge`] is `edge_line(i).point(t)`.
+    #[inline]
+    pub fn edge_line(&self, i: usize) -> EdgeLine {
         let c = self.corners();
         let (a, b) = (c[i], c[(i + 1) % 3]);
-        let mut bary = [0.0; 3];
-        bary[i] = 1.0 - t;
-        bary[(i + 1) % 3] = t;
-        FacePoint {
-            uv: [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])],
-            bary,
+        EdgeLine {
+            origin: a,
+            delta: [b[0] - a[0], b[1] - a[1]],
+            corners: [i, (i + 1) % 3],
         }
     }
 
@@ -40,6 +45,32 @@ impl FaceFrame {
     pub fn point(&self, bary: [f64; 3]) -> FacePoint {
         FacePoint {
             uv: [bary[1] * self.l01 + bary[2] * self.x2, bary[2] * self.y2],
+            bary,
+        }
+    }
+}
+
+/// One edge of a face in the face's frame (see [`FaceFrame::edge_line`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EdgeLine {
+    origin: [f64; 2],
+    delta: [f64; 2],
+    /// The corners it runs from and to.
+    corners: [usize; 2],
+}
+
+impl EdgeLine {
+    /// The point at parameter `t` from the edge's first corner.
+    #[inline(always)]
+    pub fn point(&self, t: f64) -> FacePoint {
+        let mut bary = [0.0; 3];
+        bary[self.corners[0]] = 1.0 - t;
+        bary[self.corners[1]] = t;
+        FacePoint {
+            uv: [
+                self.origin[0] + t * self.delta[0],
+                self.origin[1] + t * self.delta[1],
+            ],
             bary,
         }
     }

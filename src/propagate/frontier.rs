@@ -15,7 +15,7 @@ pub(super) trait Queue {
 }
 
 impl<Q: Queue> Queue for &mut Q {
-    #[inline]
+    #[inline(always)]
     fn push(&mut self, node: u32, value: f64, previous: f64) -> bool {
         (**self).push(node, value, previous)
     }
@@ -75,7 +75,7 @@ impl<'a, M: Metric> Frontier<'a, M, ()> {
 
 impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
     /// The metric's cost of a segment in face `face`, counted as one distance test.
-    #[inline]
+    #[inline(always)]
     pub fn cost(&mut self, face: u32, a: &FacePoint, b: &FacePoint) -> f64 {
         self.tests += 1;
         let c = self.metric.cost(face, a, b);
@@ -87,7 +87,7 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
 
     /// Lowers `node`'s distance to `value` if that is an improvement, recording that it
     /// came from `from` through `face` (`NONE`: along an edge, or a source).
-    #[inline]
+    #[inline(always)]
     pub fn relax(&mut self, node: u32, value: f64, from: u32, face: u32) {
         let previous = self.distance[node as usize];
         if value < previous {

@@ -3,7 +3,7 @@
 
 use super::frontier::{edge_steps, Frontier};
 use super::queue::{BucketQueue, HeapQueue};
-use super::tracks::{Track, TrackFaces};
+use super::tracks::{Track, TrackTables};
 use super::{graph, tracks, Method, Options};
 use crate::field::{GeodesicField, Stats};
 use crate::mesh::{Topology, TriMesh, NONE};
@@ -43,7 +43,7 @@ pub struct Solver<'m, M> {
     layout: Arc<SteinerLayout>,
     edge_steps: Option<Vec<f64>>,
     setup_tests: u64,
-    faces: Option<TrackFaces>,
+    tables: Option<TrackTables>,
     bucket_width: f64,
     setup_seconds: f64,
 }
@@ -105,11 +105,12 @@ impl<'m, M: Metric> Solver<'m, M> {
             None => (None, 0),
         };
         // Only the tracks engine uses a bucket queue (the baselines keep a heap).
-        let (faces, bucket_width) = match options.method {
+        let (tables, bucket_width) = match options.method {
             Method::Tracks => {
                 let (width, tests) = bucket_width(mesh, &metric, &layout, edge_steps.as_deref());
                 setup_tests += tests;
-                (Some(TrackFaces::new(mesh, &layout)?), width)
+                let tables = TrackTables::new(mesh, &layout, edge_steps.as_deref())?;
+                (Some(tables), width)
             }
             _ => (None, 1.0),
         };
@@ -124,7 +125,7 @@ impl<'m, M: Metric> Solver<'m, M> {
             layout: Arc::new(layout),
             edge_steps,
             setup_tests,
-            faces,
+            tables,
             bucket_width,
             setup_seconds: start.elapsed().as_secs_f64(),
         })
@@ -162,7 +163,7 @@ impl<'m, M: Metric> Solver<'m, M> {
                 vertex_count: mesh.vertex_count(),
             });
         }
-        let instances = self.faces.as_ref().map_or(0, TrackFaces::instances);
+        let instances = self.tables.as_ref().map_or(0, |t| t.instances);
         workspace.reset(mesh.vertex_count(), self.layout.node_count(), instances);
         let reset_seconds = start.elapsed().as_secs_f64();
         let propagate_start = Instant::now();
@@ -188,10 +189,10 @@ impl<'m, M: Metric> Solver<'m, M> {
             tests: 0,
             bad_cost: None,
         };
-        let (pushes, tests, bad_cost) = match &self.faces {
-            Some(faces) => {
+        let (pushes, tests, bad_cost) = match &self.tables {
+            Some(tables) => {
                 buckets.reset(self.layout.node_count(), self.bucket_width);
-                search.run(buckets, sources, |s| tracks::propagate(s, faces, tracks))
+                search.run(buckets, sources, |s| tracks::propagate(s, tables, tracks))
             }
             None => {
                 heap.reset();

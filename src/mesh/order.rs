@@ -1,0 +1,64 @@
+//! A spatial order for mesh elements: sorting them along a Morton (Z-order) curve keeps
+//! elements that are close on the surface close in memory, which is what a wavefront
+//! sweeping the surface needs from its caches, whatever order the file had.
+
+use glam::DVec3;
+
+/// The indices `0..points.len()` sorted along a Morton curve through the points' bounding
+/// box (21 bits per axis; ties keep index order).
+pub(crate) fn morton_order(points: &[DVec3]) -> Vec<u32> {
+    let (lo, hi) = points.iter().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+    );
+    let extent = (hi - lo).max_element();
+    let scale = if extent > 0.0 {
+        ((1u32 << 21) - 1) as f64 / extent
+    } else {
+        0.0
+    };
+    let mut keyed: Vec<(u64, u32)> = points
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let q = (*p - lo) * scale;
+            let code = spread(q.x as u64) | spread(q.y as u64) << 1 | spread(q.z as u64) << 2;
+            (code, i as u32)
+        })
+        .collect();
+    keyed.sort_unstable();
+    keyed.into_iter().map(|(_, i)| i).collect()
+}
+
+/// The low 21 bits of `x`, spread to every third bit.
+fn spread(x: u64) -> u64 {
+    let mut x = x & 0x1f_ffff;
+    x = (x | x << 32) & 0x1f00000000ffff;
+    x = (x | x << 16) & 0x1f0000ff0000ff;
+    x = (x | x << 8) & 0x100f00f00f00f00f;
+    x = (x | x << 4) & 0x10c30c30c30c30c3;
+    (x | x << 2) & 0x1249249249249249
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spread_interleaves_bits() {
+        assert_eq!(spread(0b111), 0b1001001);
+        assert_eq!(spread(0x1f_ffff).count_ones(), 21);
+    }
+
+    #[test]
+    fn order_is_a_permutation_that_groups_near_points() {
+        // Points on a line, given shuffled: the order sorts them.
+        let xs = [5.0, 0.0, 3.0, 1.0, 4.0, 2.0];
+        let points: Vec<DVec3> = xs.iter().map(|&x| DVec3::new(x, 0.0, 0.0)).collect();
+        let order = morton_order(&points);
+        let sorted: Vec<f64> = order.iter().map(|&i| xs[i as usize]).collect();
+        assert_eq!(sorted, [0.0, 1.0, 2.0, 3.0, 4.0, 5.0]);
+        // Coincident points are fine.
+        assert_eq!(morton_order(&[DVec3::ONE; 3]), [0, 1, 2]);
+    }
+}

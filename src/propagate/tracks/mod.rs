@@ -1,0 +1,471 @@
+//! The geodesic tracks engine (paper §4): Steiner-point propagation whose broadcasts
+//! are pruned along non-crossing tracks.
+//!
+//! # State
+//! Each face's boundary is a cycle of positions: corner 0, the points of edge slot 0
+//! (corner 0 → corner 1), corner 1, slot 1, corner 2, slot 2. An *instance* is a
+//! (face, position) pair, stored face-major, and holds the best value that reached that
+//! node *through that face* and the position of the node it came from (its parent in
+//! the face: together they are the face's tracks). The read-only per-face and per-edge
+//! records live in [`tables`].
+//!
+//! # Entering a face
+//! When node `q` settles with value `d`, it enters every face around it except those
+//! through which it already has `d` (a value that improved through `f` is never sent
+//! back into `f`: the straight segment from its parent does better there). Its targets
+//! in the face are the positions not on its own edge: one contiguous arc of the cycle.
+//! `q` tests a first target found by binary search where the tracks of its neighbours
+//! meet, then walks outward in both directions while it wins.
+//!
+//! # When a walk may stop (the crossing lemma, paper Theorem 1)
+//! If `p` gave target `t` a value `val(t) ≤ d + |q t|`, then for every target `s` such
+//! that the segment `q→s` crosses `p→t`, `val(s) ≤ d + |q s|`: with `x` the crossing,
+//! `val(s) ≤ g(p) + |p s| ≤ g(p) + |p x| + |x s| ≤ d + |q x| + |x s|` (triangle
+//! inequality twice, and the first step is the invariant that every target of an
+//! entered node holds at most that node's offer). The chord `p t` cuts the cycle in
+//! two arcs; the targets on the arc that does not hold `q` are exactly those `s`. So a
+//! loss proves the rest of a walk only when that arc covers it; a corner-cutting track
+//! (its parent on another target edge) proves only the targets it spans, and the walk
+//! jumps over them or goes on, never stops there.
+//!
+//! The lemma needs the triangle inequality inside a face, so for metrics that are not
+//! norms ([`Metric::is_face_norm`] false, e.g. `Density`) the pruning is a heuristic.
+
+mod tables;
+
+use super::frontier::{Frontier, Queue};
+use crate::mesh::NONE;
+use geotracks_metrics::{FacePoint, Metric};
+use tables::{EdgeRecord, FaceRecord, Slot};
+
+pub(super) use tables::TrackTables;
+
+/// One instance's track: the best value that reached a boundary node through a face,
+/// and the position (in that face) of the node it came from.
+///
+/// The value is an `f32` rounded *up* from the exact `f64` offer, so it is never below
+/// the truth: a loss against it (`stored ≤ offer`) is a real loss, which keeps every
+/// pruning proof valid, and a spurious win within one `f32` step only costs an extra
+/// update. Node distances themselves stay exact `f64`. Eight bytes per instance instead
+/// of twelve, in one array, so a face's tracks come in one or two cache lines.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Track {
+    value: f32,
+    from: u32,
+}
+
+impl Track {
+    /// No value yet.
+    pub const NONE: Track = Track {
+        value: f32::INFINITY,
+        from: NONE,
+    };
+
+    #[inline]
+    fn value(self) -> f64 {
+        self.value as f64
+    }
+}
+
+/// `value` as an `f32` no smaller than it.
+#[inline]
+fn round_up(value: f64) -> f32 {
+    let v = value as f32;
+    if (v as f64) < value {
+        v.next_up()
+    } else {
+        v
+    }
+}
+
+/// What a lost test proves about the other targets (indices along the target arc).
+enum Shadow {
+    /// Every target after the lost one.
+    After,
+    /// Every target before the lost one.
+    Before,
+    /// The targets strictly between the lost one and this index.
+    Between(u32),
+    /// Nothing.
+    None,
+}
+
+/// The targets of one node entering one face: the arc of boundary positions not on the
+/// node's own edges. For a corner, the opposite slot's points; for a Steiner point on
+/// slot `s`, the points of slot `s + 1`, the opposite corner, then the points of slot
+/// `s + 2`. Target `i` is the `i`-th position of the arc going forward around the cycle.
+struct Arc {
+    face: u32,
+    /// Instance offset of the face.
+    base: u32,
+    /// Positions on the cycle.
+    n: u32,
+    /// First target position and number of targets.
+    start: u32,
+    m: u32,
+    first: Slot,
+    /// The opposite corner (node and point) when the arc passes one.
+    corner: Option<(u32, FacePoint)>,
+    second: Slot,
+    /// The entering node: id, position, point and value.
+    q: u32,
+    q_pos: u32,
+    pq: FacePoint,
+    d: f64,
+    /// Rank of `q`'s position in the complement of the arc (see `offset`).
+    q_rank: u32,
+}
+
+impl Arc {
+    /// The arc of `q`, at position `q_pos` on the boundary of `face`. `side` is its
+    /// corner when `corner` holds, else the slot it lies on.
+    #[inline(always)]
+    fn new(
+        face: u32,
+        r: &FaceRecord,
+        side: usize,
+        corner: bool,
+        q: u32,
+        q_pos: u32,
+        d: f64,
+    ) -> Arc {
+        let (s1, s2) = ((side + 1) % 3, (side + 2) % 3);
+        let first = r.slot(s1);
+        let (corner, second, pq) = if corner {
+            (None, first.empty(), r.corner_point(side))
+        } else {
+            let (_, pq) = r.slot(side).at(q_pos - r.corner(side) - 1);
+            (Some((r.vertex[s2], r.corner_point(s2))), r.slot(s2), pq)
+        };
+        let start = r.corner(s1) + 1;
+        let m = first.count + corner.is_some() as u32 + second.count;
+        let mut arc = Arc {
+            face,
+            base: r.base,
+            n: r.cycle_len(),
+            start,
+            m,
+            first,
+            corner,
+            second,
+            q,
+            q_pos,
+            pq,
+            d,
+            q_rank: 0,
+        };
+        arc.q_rank = arc.offset(q_pos) - m + 1;
+        arc
+    }
+
+    /// Position of target `i`.
+    #[inline]
+    fn pos(&self, i: u32) -> u32 {
+        let p = self.start + i;
+        if p >= self.n {
+            p - self.n
+        } else {
+            p
+        }
+    }
+
+    /// Node id and point of target `i`.
+    #[inline(always)]
+    fn target(&self, i: u32) -> (u32, FacePoint) {
+        if i < self.first.count {
+            return self.first.at(i);
+        }
+        let i = i - self.first.count;
+        match self.corner {
+            Some(corner) if i == 0 => corner,
+            Some(_) => self.second.at(i - 1),
+            None => self.second.at(i),
+        }
+    }
+
+    /// Offset of position `p` from the arc's start, going forward around the cycle.
+    #[inline]
+    fn offset(&self, p: u32) -> u32 {
+        if p >= self.start {
+            p - self.start
+        } else {
+            p + self.n - self.start
+        }
+    }
+
+    /// What losing target `i` to parent position `p` proves (see the module docs).
+    #[inline]
+    fn shadow(&self, i: u32, p: u32) -> Shadow {
+        if p == NONE {
+            return Shadow::None;
+        }
+        let off = self.offset(p);
+        if off < self.m {
+            return if off == i {
+                Shadow::None
+            } else {
+                Shadow::Between(off)
+            };
+        }
+        // p is outside the arc, like q: going forward from the arc's end, meeting p
+        // before q means the chord p–t separates q from every target after t.
+        let rank = off - self.m + 1;
+        match rank.cmp(&self.q_rank) {
+            std::cmp::Ordering::Less => Shadow::After,
+            std::cmp::Ordering::Greater => Shadow::Before,
+            std::cmp::Ordering::Equal => Shadow::None,
+        }
+    }
+}
+
+/// Settles nodes until the queue is empty (or the metric misbehaves). `tracks` holds
+/// one [`Track`] per instance, reset by the caller.
+pub(super) fn propagate<M: Metric, Q: Queue>(
+    search: &mut Frontier<'_, M, Q>,
+    tables: &TrackTables,
+    tracks: &mut [Track],
+) {
+    let mut run = Tracks {
+        search,
+        tables,
+        tracks,
+    };
+    let vertex_count = run.search.layout.vertex_count();
+    while let Some(q) = run.search.queue.pop(run.search.distance) {
+        let d = run.search.distance[q as usize];
+        if q < vertex_count {
+            run.settle_vertex(q, d);
+        } else {
+            run.settle_steiner(q, d);
+        }
+        if run.search.bad_cost.is_some() {
+            break;
+        }
+    }
+}
+
+struct Tracks<'r, 'a, M, Q> {
+    search: &'r mut Frontier<'a, M, Q>,
+    tables: &'r TrackTables,
+    /// Per instance: best value through the face and where it came from.
+    tracks: &'r mut [Track],
+}
+
+impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
+    fn settle_vertex(&mut self, v: u32, d: f64) {
+        let tables = self.tables;
+        for &block in tables.vertex_edges(v) {
+            let edge = &tables.edges[block as usize];
+            let (next, index) = match (edge.count, v == edge.ends[0]) {
+                (0, true) => (edge.ends[1], 1),
+                (0, false) => (edge.ends[0], 0),
+                (_, true) => (edge.first, 1),
+                (_, false) => (edge.first + edge.count - 1, edge.count),
+            };
+            let at = if v == edge.ends[0] { 0 } else { edge.count + 1 };
+            let step = self.step(edge, at, index);
+            self.search.relax(next, d + step, v, NONE);
+        }
+        let parent_face = self.search.parent_face[v as usize];
+        for &inc in tables.vertex_faces(v) {
+            let r = &tables.faces[inc.record() as usize];
+            let f = r.face;
+            let prunes = self.search.metric.prunes_on(f);
+            // Never back into the face the value came through.
+            if prunes && parent_face == f {
+                continue;
+            }
+            let c = inc.side();
+            let q_pos = r.corner(c);
+            if prunes && self.tracks[(r.base + q_pos) as usize].value() <= d {
+                continue;
+            }
+            if r.count(c_next(c)) > 0 {
+                self.enter(Arc::new(f, r, c, true, v, q_pos, d), prunes);
+            }
+        }
+    }
+
+    fn settle_steiner(&mut self, q: u32, d: f64) {
+        let tables = self.tables;
+        let edge = &tables.edges[self.search.layout.block(q) as usize];
+        let index = q - edge.first;
+        // Along the edge, to the neighbours (numbered 0..=count+1 from the lower end).
+        let prev = if index == 0 { edge.ends[0] } else { q - 1 };
+        let next = if index + 1 == edge.count {
+            edge.ends[1]
+        } else {
+            q + 1
+        };
+        let step = self.step(edge, index, index + 1);
+        self.search.relax(prev, d + step, q, NONE);
+        let step = self.step(edge, index + 1, index + 2);
+        self.search.relax(next, d + step, q, NONE);
+
+        // A Steiner point whose value came along its edge from its neighbour `p` is
+        // dominated by `p` in every face where the step from `p` costs what the edge
+        // relaxation charged (the cheapest face; every face for isotropic metrics): `p`
+        // entered those faces with `d − step` and, by the triangle inequality, offers
+        // every target at most what `q` would.
+        let parent_face = self.search.parent_face[q as usize];
+        let parent = self.search.parent[q as usize];
+        let along = (parent_face == NONE && parent != NONE && !edge.step.is_nan()).then(|| {
+            if parent == edge.ends[0] {
+                0
+            } else if parent == edge.ends[1] {
+                edge.count + 1
+            } else {
+                parent - edge.first + 1
+            }
+        });
+        for &inc in tables.edge_faces(edge) {
+            let r = &tables.faces[inc.record() as usize];
+            let f = r.face;
+            let prunes = self.search.metric.prunes_on(f);
+            // Never back into the face the value came through.
+            if prunes && parent_face == f {
+                continue;
+            }
+            let s = inc.side();
+            let q_pos = r.slot_position(s, index);
+            if prunes {
+                // A tie through another face: its track already offers `d` or less.
+                if self.tracks[(r.base + q_pos) as usize].value() <= d {
+                    continue;
+                }
+                if let Some(p_at) = along {
+                    let (_, pp) = r.at(r.edge_position(s, edge.count, p_at));
+                    let (_, pq) = r.at(q_pos);
+                    if self.search.cost(f, &pp, &pq) <= edge.step * (1.0 + 1e-12) {
+                        continue;
+                    }
+                }
+            }
+            self.enter(Arc::new(f, r, s, false, q, q_pos, d), prunes);
+        }
+    }
+
+    /// The cost between the points at `a` and `b` (numbered 0..=count+1 from the edge's
+    /// lower end, consecutive) along `edge`: the cached step, or the cheapest over the
+    /// faces around it.
+    #[inline]
+    fn step(&mut self, edge: &EdgeRecord, a: u32, b: u32) -> f64 {
+        if !edge.step.is_nan() {
+            return edge.step;
+        }
+        let mut best = f64::INFINITY;
+        for &inc in self.tables.edge_faces(edge) {
+            let r = &self.tables.faces[inc.record() as usize];
+            let s = inc.side();
+            let (_, pa) = r.at(r.edge_position(s, edge.count, a));
+            let (_, pb) = r.at(r.edge_position(s, edge.count, b));
+            best = best.min(self.search.cost(r.face, &pa, &pb));
+        }
+        best
+    }
+
+    fn enter(&mut self, arc: Arc, prune: bool) {
+        let m = arc.m;
+        let first = self.first_guess(&arc);
+
+        // Forward walk. A loss there may also prove targets below `first`; the
+        // backward walk then starts below them (or has nothing left to test).
+        let mut back_from = first;
+        let mut i = first;
+        while i < m {
+            match self.test(&arc, i) {
+                None => i += 1,
+                Some(p) => match arc.shadow(i, p) {
+                    Shadow::After if prune => break,
+                    Shadow::Between(j) if prune && j > i => i = j,
+                    Shadow::Before if prune => {
+                        back_from = 0;
+                        i += 1;
+                    }
+                    Shadow::Between(j) if prune && j < back_from => {
+                        back_from = j + 1;
+                        i += 1;
+                    }
+                    _ => i += 1,
+                },
+            }
+        }
+        // Backward walk.
+        let mut i = back_from;
+        while i > 0 {
+            i -= 1;
+            match self.test(&arc, i) {
+                None => {}
+                Some(p) => match arc.shadow(i, p) {
+                    Shadow::Before if prune => break,
+                    Shadow::Between(j) if prune && j < i => i = j + 1,
+                    _ => {}
+                },
+            }
+        }
+    }
+
+    /// Where to start: the first target whose parent lies after `q` (going forward from
+    /// the arc's end), found by binary search on the parents' ranks, which decrease
+    /// along the arc when tracks do not cross. Only speed depends on this guess.
+    #[inline]
+    fn first_guess(&self, arc: &Arc) -> u32 {
+        let key = |i: u32| -> u32 {
+            let p = self.tracks[(arc.base + arc.pos(i)) as usize].from;
+            if p == NONE {
+                return arc.q_rank;
+            }
+            let off = arc.offset(p);
+            if off < arc.m {
+                // A corner-cutting track inside the arc: one going forward sorts with
+                // the parents ahead of q, one going backward with those behind. Only the
+                // start depends on it; on the shared bunny it cut the tests at k = 8 by
+                // about a fifth against treating such tracks as neutral (an A/B run when
+                // it was introduced; `tests/solver.rs` prints the counts).
+                if off > i {
+                    0
+                } else {
+                    u32::MAX
+                }
+            } else {
+                off - arc.m + 1
+            }
+        };
+        let (mut lo, mut hi) = (0u32, arc.m);
+        while lo < hi {
+            let mid = lo + (hi - lo) / 2;
+            if key(mid) >= arc.q_rank {
+                lo = mid + 1;
+            } else {
+                hi = mid;
+            }
+        }
+        lo.saturating_sub(1).min(arc.m - 1)
+    }
+
+    /// Offers `q`'s value to target `i`; `None` if `q` won, else the position of the
+    /// parent that beat it.
+    #[inline(always)]
+    fn test(&mut self, arc: &Arc, i: u32) -> Option<u32> {
+        let slot = (arc.base + arc.pos(i)) as usize;
+        let (node, p) = arc.target(i);
+        let value = arc.d + self.search.cost(arc.face, &arc.pq, &p);
+        let track = &mut self.tracks[slot];
+        if value < track.value() {
+            *track = Track {
+                value: round_up(value),
+                from: arc.q_pos,
+            };
+            self.search.relax(node, value, arc.q, arc.face);
+            None
+        } else {
+            Some(track.from)
+        }
+    }
+}
+
+/// The slot opposite corner `c`.
+#[inline]
+fn c_next(c: usize) -> usize {
+    (c + 1) % 3
+}

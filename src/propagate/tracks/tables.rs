@@ -1,0 +1,379 @@
+//! The tracks engine's read-only tables, built once per (mesh, layout) by a `Solver`:
+//! one 64-byte record per face and one 32-byte record per edge, laid out so that
+//! settling a node reads one edge record and, per face it enters, one face record.
+//!
+//! Records are stored in a spatial order, not in the mesh's: edges in the layout's
+//! block order (a Morton curve), faces along a Morton curve through their centroids,
+//! with each face's instances in the same order. A wavefront then touches memory that
+//! is close together whatever order the input file had. Incidences name faces by their
+//! record index; the record holds the mesh's face id for the metric and the results.
+
+use crate::mesh::{morton_order, EdgeLine, FaceFrame, Topology, TriMesh, NONE};
+use crate::steiner::{slot_param, slot_spacing, SteinerLayout};
+use crate::Error;
+use geotracks_metrics::FacePoint;
+
+/// Everything the engine reads about one face.
+///
+/// Its boundary is a cycle of positions: corner 0, the points of slot 0 (the edge from
+/// corner 0 to corner 1), corner 1, slot 1, corner 2, slot 2. The face's instances (see
+/// the module docs) are stored at `base + position`.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct FaceRecord {
+    /// The face's local frame.
+    pub frame: FaceFrame,
+    /// Node id of the first point (from the edge's lower vertex) of each slot's edge.
+    pub lo: [u32; 3],
+    pub vertex: [u32; 3],
+    /// Offset of the face's instances in the per-instance arrays.
+    pub base: u32,
+    /// The face's id in the mesh.
+    pub face: u32,
+    /// Points on each slot.
+    pub count: [u16; 3],
+    /// Bit `s`: slot `s` runs from its edge's higher vertex (points in reverse order).
+    pub reversed: u8,
+}
+
+// The record is meant to fill one cache line.
+const _: () = assert!(std::mem::size_of::<FaceRecord>() <= 64);
+
+impl FaceRecord {
+    /// Points on slot `s`.
+    #[inline]
+    pub fn count(&self, s: usize) -> u32 {
+        self.count[s] as u32
+    }
+
+    /// Position of corner `c` on the boundary cycle.
+    #[inline]
+    pub fn corner(&self, c: usize) -> u32 {
+        match c {
+            0 => 0,
+            1 => self.count(0) + 1,
+            _ => self.count(0) + self.count(1) + 2,
+        }
+    }
+
+    /// Number of positions on the boundary cycle.
+    #[inline]
+    pub fn cycle_len(&self) -> u32 {
+        self.count(0) + self.count(1) + self.count(2) + 3
+    }
+
+    #[inline]
+    pub fn is_reversed(&self, s: usize) -> bool {
+        self.reversed & (1 << s) != 0
+    }
+
+    /// Position of point `index` (numbered from the edge's lower vertex) of slot `s`.
+    #[inline]
+    pub fn slot_position(&self, s: usize, index: u32) -> u32 {
+        let i = if self.is_reversed(s) {
+            self.count(s) - 1 - index
+        } else {
+            index
+        };
+        self.corner(s) + 1 + i
+    }
+
+    /// Position of the point at `i` along the edge of slot `s`, which carries `count`
+    /// points, numbered from the edge's lower vertex: 0 and `count + 1` are its vertices.
+    #[inline]
+    pub fn edge_position(&self, s: usize, count: u32, i: u32) -> u32 {
+        if i == 0 || i == count + 1 {
+            let lower_first = !self.is_reversed(s);
+            let c = if (i == 0) == lower_first {
+                s
+            } else {
+                (s + 1) % 3
+            };
+            self.corner(c)
+        } else {
+            self.slot_position(s, i - 1)
+        }
+    }
+
+    /// The points of slot `s`, in slot order (from corner `s`).
+    #[inline]
+    pub fn slot(&self, s: usize) -> Slot {
+        let count = self.count(s);
+        Slot {
+            line: self.frame.edge_line(s),
+            lo: self.lo[s],
+            count,
+            reversed: self.is_reversed(s),
+            spacing: slot_spacing(count),
+        }
+    }
+
+    /// Corner `c` as a face point.
+    #[inline]
+    pub fn corner_point(&self, c: usize) -> FacePoint {
+        let mut bary = [0.0; 3];
+        bary[c] = 1.0;
+        self.frame.point(bary)
+    }
+
+    /// Node id and face point of boundary position `pos`: the general decoding, for the
+    /// paths that are not hot.
+    pub fn at(&self, pos: u32) -> (u32, FacePoint) {
+        for c in 0..3 {
+            if pos == self.corner(c) {
+                return (self.vertex[c], self.corner_point(c));
+            }
+        }
+        let s = if pos < self.corner(1) {
+            0
+        } else if pos < self.corner(2) {
+            1
+        } else {
+            2
+        };
+        self.slot(s).at(pos - self.corner(s) - 1)
+    }
+}
+
+/// The points of one slot of a face: node ids and positions, by index in slot order.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Slot {
+    line: EdgeLine,
+    lo: u32,
+    pub count: u32,
+    reversed: bool,
+    /// [`slot_spacing`] of the slot.
+    spacing: f64,
+}
+
+impl Slot {
+    /// A slot with no points (for an arc that has only one).
+    #[inline]
+    pub fn empty(self) -> Slot {
+        Slot { count: 0, ..self }
+    }
+
+    /// Node id and face point of point `i` in slot order, placed with the same calls as
+    /// `SteinerLayout::point_in_face`, so the tracks and the graph engines see
+    /// bit-identical coordinates.
+    #[inline(always)]
+    pub fn at(&self, i: u32) -> (u32, FacePoint) {
+        let node = self.lo + if self.reversed { self.count - 1 - i } else { i };
+        (node, self.line.point(slot_param(i, self.spacing)))
+    }
+}
+
+/// A face seen from one of its edges or corners: the face's record index and which slot
+/// (or corner) of it the edge (or vertex) is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(transparent)]
+pub(super) struct Incidence(u32);
+
+impl Incidence {
+    const NONE: Incidence = Incidence(NONE);
+
+    fn new(record: u32, side: usize) -> Incidence {
+        Incidence(record << 2 | side as u32)
+    }
+
+    #[inline]
+    pub fn record(self) -> u32 {
+        self.0 >> 2
+    }
+
+    /// The slot (for an edge) or corner (for a vertex).
+    #[inline]
+    pub fn side(self) -> usize {
+        (self.0 & 3) as usize
+    }
+}
+
+/// Everything the engine reads about one edge.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct EdgeRecord {
+    /// Cost between consecutive nodes in the cheapest face, when the metric is a norm on
+    /// each face (NaN otherwise: steps are then measured one by one).
+    pub step: f64,
+    /// The edge's vertices, lower id first.
+    pub ends: [u32; 2],
+    /// Node id of its first point, and the number of points.
+    pub first: u32,
+    pub count: u32,
+    /// The faces around it when there are at most two (`Incidence::NONE` fills the
+    /// rest); otherwise `[NONE, i]`, and the faces are row `i` of the overflow table.
+    faces: [Incidence; 2],
+}
+
+const _: () = assert!(std::mem::size_of::<EdgeRecord>() == 32);
+
+/// The engine's tables for one mesh and Steiner layout, shared by all runs of a solver.
+pub(in crate::propagate) struct TrackTables {
+    /// Face records in spatial order.
+    pub(super) faces: Vec<FaceRecord>,
+    /// Edge records in the layout's block order.
+    pub(super) edges: Vec<EdgeRecord>,
+    /// Faces around edges with more than two (non-manifold edges), as rows.
+    overflow_start: Vec<u32>,
+    overflow: Vec<Incidence>,
+    /// Faces around each vertex, as rows; the side is the vertex's corner.
+    vertex_start: Vec<u32>,
+    vertex_faces: Vec<Incidence>,
+    /// Edge blocks around each vertex, as rows.
+    vertex_edge_start: Vec<u32>,
+    vertex_edges: Vec<u32>,
+    pub(in crate::propagate) instances: usize,
+}
+
+impl TrackTables {
+    /// Builds the tables; `steps` are the cached steps per edge (`None` when the metric
+    /// is not a norm on each face).
+    ///
+    /// # Errors
+    /// [`Error::TooLarge`] when instances or faces exceed what the records can index, or
+    /// an edge carries more than 65535 points.
+    pub(in crate::propagate) fn new(
+        mesh: &TriMesh,
+        layout: &SteinerLayout,
+        steps: Option<&[f64]>,
+    ) -> Result<TrackTables, Error> {
+        if mesh.face_count() >= 1 << 30 {
+            return Err(Error::TooLarge {
+                what: "faces for the tracks engine",
+                count: mesh.face_count() as u64,
+            });
+        }
+        let centroids: Vec<glam::DVec3> = (0..mesh.face_count() as u32)
+            .map(|f| mesh.point(f, [1.0 / 3.0; 3]))
+            .collect();
+        let face_order = morton_order(&centroids);
+        let mut record_of = vec![0u32; mesh.face_count()];
+        for (r, &f) in face_order.iter().enumerate() {
+            record_of[f as usize] = r as u32;
+        }
+
+        let mut total: u64 = 0;
+        let mut faces = Vec::with_capacity(mesh.face_count());
+        for &f in &face_order {
+            let vertex = mesh.face_vertices(f);
+            let edges = mesh.face_edges(f);
+            let mut count = [0u16; 3];
+            let mut reversed = 0u8;
+            for s in 0..3 {
+                let c = layout.count(edges[s]);
+                count[s] = u16::try_from(c).map_err(|_| Error::TooLarge {
+                    what: "Steiner points on one edge",
+                    count: c as u64,
+                })?;
+                if vertex[s] != mesh.edge_vertices(edges[s])[0] {
+                    reversed |= 1 << s;
+                }
+            }
+            faces.push(FaceRecord {
+                frame: *mesh.frame(f),
+                lo: edges.map(|e| layout.edge_nodes(e).start),
+                vertex,
+                base: total as u32,
+                face: f,
+                count,
+                reversed,
+            });
+            total += 3 + count.iter().map(|&c| c as u64).sum::<u64>();
+            if total >= u32::MAX as u64 {
+                return Err(Error::TooLarge {
+                    what: "face-node instances",
+                    count: total,
+                });
+            }
+        }
+
+        let mut edges = Vec::with_capacity(mesh.edge_count());
+        let mut overflow_start = vec![0];
+        let mut overflow = Vec::new();
+        for &e in layout.edges_in_block_order() {
+            let step = steps.map_or(f64::NAN, |steps| steps[e as usize]);
+            let around = mesh.edge_faces(e).iter().map(|&f| {
+                let slot = mesh.edge_slot(f, e).expect("edge of its face");
+                Incidence::new(record_of[f as usize], slot)
+            });
+            let mut faces = [Incidence::NONE; 2];
+            if mesh.edge_faces(e).len() <= 2 {
+                for (slot, inc) in faces.iter_mut().zip(around) {
+                    *slot = inc;
+                }
+            } else {
+                overflow.extend(around);
+                overflow_start.push(overflow.len() as u32);
+                faces[1] = Incidence(overflow_start.len() as u32 - 2);
+            }
+            let nodes = layout.edge_nodes(e);
+            edges.push(EdgeRecord {
+                step,
+                ends: mesh.edge_vertices(e),
+                first: nodes.start,
+                count: nodes.len() as u32,
+                faces,
+            });
+        }
+
+        let mut vertex_start = Vec::with_capacity(mesh.vertex_count() + 1);
+        let mut vertex_faces = Vec::with_capacity(mesh.face_count() * 3);
+        let mut vertex_edge_start = Vec::with_capacity(mesh.vertex_count() + 1);
+        let mut vertex_edges = Vec::with_capacity(mesh.edge_count() * 2);
+        vertex_start.push(0);
+        vertex_edge_start.push(0);
+        for v in 0..mesh.vertex_count() as u32 {
+            for &f in mesh.vertex_faces(v) {
+                let c = mesh.corner_of(f, v).expect("vertex of its face");
+                vertex_faces.push(Incidence::new(record_of[f as usize], c));
+            }
+            vertex_start.push(vertex_faces.len() as u32);
+            vertex_edges.extend(
+                mesh.vertex_edges(v)
+                    .iter()
+                    .map(|&e| layout.block_of_edge(e)),
+            );
+            vertex_edge_start.push(vertex_edges.len() as u32);
+        }
+
+        Ok(TrackTables {
+            faces,
+            edges,
+            overflow_start,
+            overflow,
+            vertex_start,
+            vertex_faces,
+            vertex_edge_start,
+            vertex_edges,
+            instances: total as usize,
+        })
+    }
+
+    /// The faces around an edge.
+    #[inline]
+    pub(super) fn edge_faces<'t>(&'t self, edge: &'t EdgeRecord) -> &'t [Incidence] {
+        if edge.faces[0] != Incidence::NONE {
+            let n = if edge.faces[1] == Incidence::NONE {
+                1
+            } else {
+                2
+            };
+            &edge.faces[..n]
+        } else {
+            let row = edge.faces[1].0 as usize;
+            &self.overflow[self.overflow_start[row] as usize..self.overflow_start[row + 1] as usize]
+        }
+    }
+
+    /// The edge blocks around a vertex.
+    #[inline]
+    pub(super) fn vertex_edges(&self, v: u32) -> &[u32] {
+        &self.vertex_edges[self.vertex_edge_start[v as usize] as usize
+            ..self.vertex_edge_start[v as usize + 1] as usize]
+    }
+
+    /// The faces around a vertex.
+    #[inline]
+    pub(super) fn vertex_faces(&self, v: u32) -> &[Incidence] {
+        &self.vertex_faces
+            [self.vertex_start[v as usize] as usize..self.vertex_start[v as usize + 1] as usize]
+    }
+}
