@@ -114,6 +114,8 @@ impl<'m, M: Metric> Solver<'m, M> {
             }
             _ => (None, 1.0),
         };
+        // The tracks engine keeps its steps in its edge records.
+        let edge_steps = edge_steps.filter(|_| tables.is_none());
         Ok(Solver {
             mesh,
             metric,

@@ -34,7 +34,7 @@
 mod tables;
 
 use super::frontier::{Frontier, Queue};
-use crate::mesh::NONE;
+use crate::mesh::{Topology, NONE};
 use geotracks_metrics::{FacePoint, Metric};
 use tables::{EdgeRecord, FaceRecord, Slot};
 
@@ -254,8 +254,9 @@ struct Tracks<'r, 'a, M, Q> {
 impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
     fn settle_vertex(&mut self, v: u32, d: f64) {
         let tables = self.tables;
-        for &block in tables.vertex_edges(v) {
-            let edge = &tables.edges[block as usize];
+        let (mesh, layout) = (self.search.mesh, self.search.layout);
+        for &e in mesh.vertex_edges(v) {
+            let edge = &tables.edges[layout.block_of_edge(e) as usize];
             let (next, index) = match (edge.count, v == edge.ends[0]) {
                 (0, true) => (edge.ends[1], 1),
                 (0, false) => (edge.ends[0], 0),
@@ -267,15 +268,20 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
             self.search.relax(next, d + step, v, NONE);
         }
         let parent_face = self.search.parent_face[v as usize];
-        for &inc in tables.vertex_faces(v) {
-            let r = &tables.faces[inc.record() as usize];
-            let f = r.face;
+        for &f in mesh.vertex_faces(v) {
             let prunes = self.search.metric.prunes_on(f);
             // Never back into the face the value came through.
             if prunes && parent_face == f {
                 continue;
             }
-            let c = inc.side();
+            let r = &tables.faces[tables.record_of(f) as usize];
+            let c = if r.vertex[0] == v {
+                0
+            } else if r.vertex[1] == v {
+                1
+            } else {
+                2
+            };
             let q_pos = r.corner(c);
             if prunes && self.tracks[(r.base + q_pos) as usize].value() <= d {
                 continue;

@@ -214,12 +214,9 @@ pub(in crate::propagate) struct TrackTables {
     /// Faces around edges with more than two (non-manifold edges), as rows.
     overflow_start: Vec<u32>,
     overflow: Vec<Incidence>,
-    /// Faces around each vertex, as rows; the side is the vertex's corner.
-    vertex_start: Vec<u32>,
-    vertex_faces: Vec<Incidence>,
-    /// Edge blocks around each vertex, as rows.
-    vertex_edge_start: Vec<u32>,
-    vertex_edges: Vec<u32>,
+    /// The record of each face (by mesh face id); the faces and edges around a vertex
+    /// come from the mesh through it and the layout's blocks.
+    record_of: Vec<u32>,
     pub(in crate::propagate) instances: usize,
 }
 
@@ -314,35 +311,12 @@ impl TrackTables {
             });
         }
 
-        let mut vertex_start = Vec::with_capacity(mesh.vertex_count() + 1);
-        let mut vertex_faces = Vec::with_capacity(mesh.face_count() * 3);
-        let mut vertex_edge_start = Vec::with_capacity(mesh.vertex_count() + 1);
-        let mut vertex_edges = Vec::with_capacity(mesh.edge_count() * 2);
-        vertex_start.push(0);
-        vertex_edge_start.push(0);
-        for v in 0..mesh.vertex_count() as u32 {
-            for &f in mesh.vertex_faces(v) {
-                let c = mesh.corner_of(f, v).expect("vertex of its face");
-                vertex_faces.push(Incidence::new(record_of[f as usize], c));
-            }
-            vertex_start.push(vertex_faces.len() as u32);
-            vertex_edges.extend(
-                mesh.vertex_edges(v)
-                    .iter()
-                    .map(|&e| layout.block_of_edge(e)),
-            );
-            vertex_edge_start.push(vertex_edges.len() as u32);
-        }
-
         Ok(TrackTables {
             faces,
             edges,
             overflow_start,
             overflow,
-            vertex_start,
-            vertex_faces,
-            vertex_edge_start,
-            vertex_edges,
+            record_of,
             instances: total as usize,
         })
     }
@@ -363,17 +337,9 @@ impl TrackTables {
         }
     }
 
-    /// The edge blocks around a vertex.
+    /// The record of mesh face `f`.
     #[inline]
-    pub(super) fn vertex_edges(&self, v: u32) -> &[u32] {
-        &self.vertex_edges[self.vertex_edge_start[v as usize] as usize
-            ..self.vertex_edge_start[v as usize + 1] as usize]
-    }
-
-    /// The faces around a vertex.
-    #[inline]
-    pub(super) fn vertex_faces(&self, v: u32) -> &[Incidence] {
-        &self.vertex_faces
-            [self.vertex_start[v as usize] as usize..self.vertex_start[v as usize + 1] as usize]
+    pub(super) fn record_of(&self, f: u32) -> u32 {
+        self.record_of[f as usize]
     }
 }
