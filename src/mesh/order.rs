@@ -5,7 +5,8 @@
 use glam::DVec3;
 
 /// The indices `0..points.len()` sorted along a Morton curve through the points' bounding
-/// box (21 bits per axis; ties keep index order).
+/// box, on a 1024³ grid (ties keep index order). Key and index share one `u64`, so the
+/// sort compares plain integers.
 pub(crate) fn morton_order(points: &[DVec3]) -> Vec<u32> {
     let (lo, hi) = points.iter().fold(
         (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
@@ -13,31 +14,33 @@ pub(crate) fn morton_order(points: &[DVec3]) -> Vec<u32> {
     );
     let extent = (hi - lo).max_element();
     let scale = if extent > 0.0 {
-        ((1u32 << 21) - 1) as f64 / extent
+        (GRID - 1) as f64 / extent
     } else {
         0.0
     };
-    let mut keyed: Vec<(u64, u32)> = points
+    let mut keyed: Vec<u64> = points
         .iter()
         .enumerate()
         .map(|(i, p)| {
             let q = (*p - lo) * scale;
             let code = spread(q.x as u64) | spread(q.y as u64) << 1 | spread(q.z as u64) << 2;
-            (code, i as u32)
+            code << 32 | i as u64
         })
         .collect();
     keyed.sort_unstable();
-    keyed.into_iter().map(|(_, i)| i).collect()
+    keyed.into_iter().map(|k| k as u32).collect()
 }
 
-/// The low 21 bits of `x`, spread to every third bit.
+/// Cells per axis of the grid the curve runs through.
+const GRID: u64 = 1 << 10;
+
+/// The low 10 bits of `x`, spread to every third bit.
 fn spread(x: u64) -> u64 {
-    let mut x = x & 0x1f_ffff;
-    x = (x | x << 32) & 0x1f00000000ffff;
-    x = (x | x << 16) & 0x1f0000ff0000ff;
-    x = (x | x << 8) & 0x100f00f00f00f00f;
-    x = (x | x << 4) & 0x10c30c30c30c30c3;
-    (x | x << 2) & 0x1249249249249249
+    let mut x = x & (GRID - 1);
+    x = (x | x << 16) & 0x30000ff;
+    x = (x | x << 8) & 0x300f00f;
+    x = (x | x << 4) & 0x30c30c3;
+    (x | x << 2) & 0x9249249
 }
 
 #[cfg(test)]
@@ -47,7 +50,8 @@ mod tests {
     #[test]
     fn spread_interleaves_bits() {
         assert_eq!(spread(0b111), 0b1001001);
-        assert_eq!(spread(0x1f_ffff).count_ones(), 21);
+        assert_eq!(spread(0b1000000001), 1 << 27 | 1);
+        assert_eq!(spread(GRID - 1).count_ones(), 10);
     }
 
     #[test]
