@@ -67,12 +67,14 @@ impl Track {
     }
 }
 
-/// `value` as an `f32` no smaller than it.
+/// `value` (≥ 0) as an `f32` no smaller than it.
 #[inline]
 fn round_up(value: f64) -> f32 {
     let v = value as f32;
     if (v as f64) < value {
-        v.next_up()
+        // For a non-negative finite `v` below `value`, the next float up is the next bit
+        // pattern (`next_up` spends a dozen instructions on signs, NaN and infinity).
+        f32::from_bits(v.to_bits() + 1)
     } else {
         v
     }
@@ -117,9 +119,10 @@ struct Arc {
 }
 
 impl Arc {
-    /// The arc of `q`, at position `q_pos` on the boundary of `face`. `side` is its
-    /// corner when `corner` holds, else the slot it lies on.
+    /// The arc of `q`, at position `q_pos` on the boundary of `face` and at point `pq`
+    /// there. `side` is its corner when `corner` holds, else the slot it lies on.
     #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
     fn new(
         face: u32,
         r: &FaceRecord,
@@ -127,22 +130,29 @@ impl Arc {
         corner: bool,
         q: u32,
         q_pos: u32,
+        pq: FacePoint,
         d: f64,
     ) -> Arc {
-        let (s1, s2) = ((side + 1) % 3, (side + 2) % 3);
+        let (s1, s2) = (NEXT[side], NEXT[NEXT[side]]);
         let first = r.slot(s1);
-        let (corner, second, pq) = if corner {
-            (None, first.empty(), r.corner_point(side))
+        let (corner, second) = if corner {
+            (None, first.empty())
         } else {
-            let (_, pq) = r.slot(side).at(q_pos - r.corner(side) - 1);
-            (Some((r.vertex[s2], r.corner_point(s2))), r.slot(s2), pq)
+            (Some((r.vertex[s2], r.corner_point(s2))), r.slot(s2))
         };
         let start = r.corner(s1) + 1;
+        let n = r.cycle_len();
         let m = first.count + corner.is_some() as u32 + second.count;
-        let mut arc = Arc {
+        // `q` lies outside the arc: its offset from the arc's start is at least `m`.
+        let q_offset = if q_pos >= start {
+            q_pos - start
+        } else {
+            q_pos + n - start
+        };
+        Arc {
             face,
             base: r.base,
-            n: r.cycle_len(),
+            n,
             start,
             m,
             first,
@@ -152,10 +162,8 @@ impl Arc {
             q_pos,
             pq,
             d,
-            q_rank: 0,
-        };
-        arc.q_rank = arc.offset(q_pos) - m + 1;
-        arc
+            q_rank: q_offset - m + 1,
+        }
     }
 
     /// Position of target `i`.
@@ -286,8 +294,9 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
             if prunes && self.tracks[(r.base + q_pos) as usize].value() <= d {
                 continue;
             }
-            if r.count(c_next(c)) > 0 {
-                self.enter(Arc::new(f, r, c, true, v, q_pos, d), prunes);
+            if r.count(NEXT[c]) > 0 {
+                let pq = r.corner_point(c);
+                self.enter(Arc::new(f, r, c, true, v, q_pos, pq, d), prunes);
             }
         }
     }
@@ -334,27 +343,41 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
             }
             let s = inc.side();
             let q_pos = r.slot_position(s, index);
-            if prunes {
+            if prunes && self.tracks[(r.base + q_pos) as usize].value() <= d {
                 // A tie through another face: its track already offers `d` or less.
-                if self.tracks[(r.base + q_pos) as usize].value() <= d {
+                continue;
+            }
+            let slot = r.slot(s);
+            // Points on the slot are numbered 0..=count+1 from corner `s`.
+            let slot_point = |j: u32| {
+                if j == 0 {
+                    r.corner_point(s)
+                } else if j == edge.count + 1 {
+                    r.corner_point(NEXT[s])
+                } else {
+                    slot.at(j - 1).1
+                }
+            };
+            let q_at = q_pos - r.corner(s);
+            let pq = slot_point(q_at);
+            if let (true, Some(p_at)) = (prunes, along) {
+                let p_at = if r.is_reversed(s) {
+                    edge.count + 1 - p_at
+                } else {
+                    p_at
+                };
+                if self.search.cost(f, &slot_point(p_at), &pq) <= edge.step * (1.0 + 1e-12) {
                     continue;
                 }
-                if let Some(p_at) = along {
-                    let (_, pp) = r.at(r.edge_position(s, edge.count, p_at));
-                    let (_, pq) = r.at(q_pos);
-                    if self.search.cost(f, &pp, &pq) <= edge.step * (1.0 + 1e-12) {
-                        continue;
-                    }
-                }
             }
-            self.enter(Arc::new(f, r, s, false, q, q_pos, d), prunes);
+            self.enter(Arc::new(f, r, s, false, q, q_pos, pq, d), prunes);
         }
     }
 
     /// The cost between the points at `a` and `b` (numbered 0..=count+1 from the edge's
     /// lower end, consecutive) along `edge`: the cached step, or the cheapest over the
     /// faces around it.
-    #[inline]
+    #[inline(always)]
     fn step(&mut self, edge: &EdgeRecord, a: u32, b: u32) -> f64 {
         if !edge.step.is_nan() {
             return edge.step;
@@ -470,8 +493,26 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
     }
 }
 
-/// The slot opposite corner `c`.
-#[inline]
-fn c_next(c: usize) -> usize {
-    (c + 1) % 3
+/// The next corner (or slot) around a face.
+const NEXT: [usize; 3] = [1, 2, 0];
+
+#[cfg(test)]
+mod tests {
+    use super::round_up;
+
+    #[test]
+    fn round_up_is_the_least_f32_not_below() {
+        for value in [0.0, 1e-300, 0.1, 1.0, 1.0 + 1e-12, 3.3e38, 12345.678901234] {
+            let up = round_up(value);
+            assert!(up as f64 >= value, "{value}");
+            assert!((up.next_down() as f64) < value || up == 0.0, "{value}");
+            let nearest = value as f32;
+            let expected = if nearest as f64 >= value {
+                nearest
+            } else {
+                nearest.next_up()
+            };
+            assert_eq!(up, expected, "{value}");
+        }
+    }
 }
