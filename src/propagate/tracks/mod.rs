@@ -263,6 +263,10 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
     fn settle_vertex(&mut self, v: u32, d: f64) {
         let tables = self.tables;
         let (mesh, layout) = (self.search.mesh, self.search.layout);
+        let parent = self.search.parent[v as usize];
+        let parent_face = self.search.parent_face[v as usize];
+        // The neighbour the value came from along an edge, and the step charged.
+        let mut along = None;
         for &e in mesh.vertex_edges(v) {
             let edge = &tables.edges[layout.block_of_edge(e) as usize];
             let (next, index) = match (edge.count, v == edge.ends[0]) {
@@ -273,9 +277,11 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
             };
             let at = if v == edge.ends[0] { 0 } else { edge.count + 1 };
             let step = self.step(edge, at, index);
+            if parent_face == NONE && next == parent && !edge.step.is_nan() {
+                along = Some((parent, step));
+            }
             self.search.relax(next, d + step, v, NONE);
         }
-        let parent_face = self.search.parent_face[v as usize];
         for &f in mesh.vertex_faces(v) {
             let prunes = self.search.metric.prunes_on(f);
             // Never back into the face the value came through.
@@ -291,13 +297,28 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
                 2
             };
             let q_pos = r.corner(c);
-            if prunes && self.tracks[(r.base + q_pos) as usize].value() <= d {
+            if r.count(NEXT[c]) == 0 {
                 continue;
             }
-            if r.count(NEXT[c]) > 0 {
-                let pq = r.corner_point(c);
-                self.enter(Arc::new(f, r, c, true, v, q_pos, pq, d), prunes);
+            let pq = r.corner_point(c);
+            if prunes {
+                // A tie through another face: its track already offers `d` or less.
+                if self.tracks[(r.base + q_pos) as usize].value() <= d {
+                    continue;
+                }
+                // Dominated by the along-edge parent, as for Steiner points: every
+                // target of a corner is a target of the points of its two edges.
+                if let Some(pp) = along.and_then(|(p, step)| {
+                    let pp = along_parent_point(r, c, p)?;
+                    Some((pp, step))
+                }) {
+                    let (pp, step) = pp;
+                    if self.search.cost(f, &pp, &pq) <= step * (1.0 + 1e-12) {
+                        continue;
+                    }
+                }
             }
+            self.enter(Arc::new(f, r, c, true, v, q_pos, pq, d), prunes);
         }
     }
 
@@ -491,6 +512,21 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
             Some(track.from)
         }
     }
+}
+
+/// The point of node `p` in face `r` if it lies on one of the two edges at corner `c`
+/// (slot `c`, from `c`, or slot `c + 2`, into `c`), its other end included.
+fn along_parent_point(r: &FaceRecord, c: usize, p: u32) -> Option<FacePoint> {
+    for s in [c, NEXT[NEXT[c]]] {
+        if p.wrapping_sub(r.lo[s]) < r.count(s) {
+            let (_, point) = r.at(r.slot_position(s, p - r.lo[s]));
+            return Some(point);
+        }
+    }
+    [NEXT[c], NEXT[NEXT[c]]]
+        .into_iter()
+        .find(|&o| r.vertex[o] == p)
+        .map(|o| r.corner_point(o))
 }
 
 /// The next corner (or slot) around a face.
