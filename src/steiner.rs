@@ -216,6 +216,18 @@ impl SteinerLayout {
         self.block_of[(node - self.vertex_count) as usize]
     }
 
+    /// The node ids of block `b`.
+    #[inline]
+    pub(crate) fn block_nodes(&self, b: u32) -> Range<u32> {
+        self.vertex_count + self.first[b as usize]..self.vertex_count + self.first[b as usize + 1]
+    }
+
+    /// The edge whose points are block `b`.
+    #[inline]
+    pub(crate) fn edge_of_block(&self, b: u32) -> u32 {
+        self.edge_of_block[b as usize]
+    }
+
     /// The block of edge `e`'s points.
     #[inline]
     pub(crate) fn block_of_edge(&self, e: u32) -> u32 {

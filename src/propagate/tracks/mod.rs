@@ -269,14 +269,17 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
         let mut along = None;
         for &e in mesh.vertex_edges(v) {
             let edge = &tables.edges[layout.block_of_edge(e) as usize];
-            let (next, index) = match (edge.count, v == edge.ends[0]) {
-                (0, true) => (edge.ends[1], 1),
-                (0, false) => (edge.ends[0], 0),
-                (_, true) => (edge.first, 1),
-                (_, false) => (edge.first + edge.count - 1, edge.count),
+            let ends = mesh.edge_vertices(e);
+            let nodes = layout.edge_nodes(e);
+            let count = nodes.len() as u32;
+            let (next, index) = match (count, v == ends[0]) {
+                (0, true) => (ends[1], 1),
+                (0, false) => (ends[0], 0),
+                (_, true) => (nodes.start, 1),
+                (_, false) => (nodes.end - 1, count),
             };
-            let at = if v == edge.ends[0] { 0 } else { edge.count + 1 };
-            let step = self.step(edge, at, index);
+            let at = if v == ends[0] { 0 } else { count + 1 };
+            let step = self.step(edge, count, at, index);
             if parent_face == NONE && next == parent && !edge.step.is_nan() {
                 along = Some((parent, step));
             }
@@ -323,19 +326,20 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
     }
 
     fn settle_steiner(&mut self, q: u32, d: f64) {
-        let tables = self.tables;
-        let edge = &tables.edges[self.search.layout.block(q) as usize];
-        let index = q - edge.first;
+        let (tables, mesh, layout) = (self.tables, self.search.mesh, self.search.layout);
+        let block = layout.block(q);
+        let edge = &tables.edges[block as usize];
+        let nodes = layout.block_nodes(block);
+        let count = nodes.len() as u32;
+        let index = q - nodes.start;
+        // The edge's vertices, read from the mesh only at its end points.
+        let ends = || mesh.edge_vertices(layout.edge_of_block(block));
         // Along the edge, to the neighbours (numbered 0..=count+1 from the lower end).
-        let prev = if index == 0 { edge.ends[0] } else { q - 1 };
-        let next = if index + 1 == edge.count {
-            edge.ends[1]
-        } else {
-            q + 1
-        };
-        let step = self.step(edge, index, index + 1);
+        let prev = if index == 0 { ends()[0] } else { q - 1 };
+        let next = if index + 1 == count { ends()[1] } else { q + 1 };
+        let step = self.step(edge, count, index, index + 1);
         self.search.relax(prev, d + step, q, NONE);
-        let step = self.step(edge, index + 1, index + 2);
+        let step = self.step(edge, count, index + 1, index + 2);
         self.search.relax(next, d + step, q, NONE);
 
         // A Steiner point whose value came along its edge from its neighbour `p` is
@@ -346,12 +350,12 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
         let parent_face = self.search.parent_face[q as usize];
         let parent = self.search.parent[q as usize];
         let along = (parent_face == NONE && parent != NONE && !edge.step.is_nan()).then(|| {
-            if parent == edge.ends[0] {
+            if nodes.contains(&parent) {
+                parent - nodes.start + 1
+            } else if parent == ends()[0] {
                 0
-            } else if parent == edge.ends[1] {
-                edge.count + 1
             } else {
-                parent - edge.first + 1
+                count + 1
             }
         });
         for &inc in tables.edge_faces(edge) {
@@ -373,7 +377,7 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
             let slot_point = |j: u32| {
                 if j == 0 {
                     r.corner_point(s)
-                } else if j == edge.count + 1 {
+                } else if j == count + 1 {
                     r.corner_point(NEXT[s])
                 } else {
                     slot.at(j - 1).1
@@ -383,7 +387,7 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
             let pq = slot_point(q_at);
             if let (true, Some(p_at)) = (prunes, along) {
                 let p_at = if r.is_reversed(s) {
-                    edge.count + 1 - p_at
+                    count + 1 - p_at
                 } else {
                     p_at
                 };
@@ -396,10 +400,10 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
     }
 
     /// The cost between the points at `a` and `b` (numbered 0..=count+1 from the edge's
-    /// lower end, consecutive) along `edge`: the cached step, or the cheapest over the
-    /// faces around it.
+    /// lower end, consecutive) along `edge`, which carries `count` points: the cached
+    /// step, or the cheapest over the faces around it.
     #[inline(always)]
-    fn step(&mut self, edge: &EdgeRecord, a: u32, b: u32) -> f64 {
+    fn step(&mut self, edge: &EdgeRecord, count: u32, a: u32, b: u32) -> f64 {
         if !edge.step.is_nan() {
             return edge.step;
         }
@@ -407,8 +411,8 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
         for &inc in self.tables.edge_faces(edge) {
             let r = &self.tables.faces[inc.record() as usize];
             let s = inc.side();
-            let (_, pa) = r.at(r.edge_position(s, edge.count, a));
-            let (_, pb) = r.at(r.edge_position(s, edge.count, b));
+            let (_, pa) = r.at(r.edge_position(s, count, a));
+            let (_, pb) = r.at(r.edge_position(s, count, b));
             best = best.min(self.search.cost(r.face, &pa, &pb));
         }
         best

@@ -1,5 +1,5 @@
 //! The tracks engine's read-only tables, built once per (mesh, layout) by a `Solver`:
-//! one 64-byte record per face and one 32-byte record per edge, laid out so that
+//! one 64-byte record per face and one 16-byte record per edge, laid out so that
 //! settling a node reads one edge record and, per face it enters, one face record.
 //!
 //! Records are stored in a spatial order, not in the mesh's: edges in the layout's
@@ -187,23 +187,19 @@ impl Incidence {
     }
 }
 
-/// Everything the engine reads about one edge.
+/// What the engine reads about one edge besides its nodes (which the layout's block
+/// gives) and its vertices (which only its end points need, from the mesh).
 #[derive(Clone, Copy, Debug)]
 pub(super) struct EdgeRecord {
     /// Cost between consecutive nodes in the cheapest face, when the metric is a norm on
     /// each face (NaN otherwise: steps are then measured one by one).
     pub step: f64,
-    /// The edge's vertices, lower id first.
-    pub ends: [u32; 2],
-    /// Node id of its first point, and the number of points.
-    pub first: u32,
-    pub count: u32,
     /// The faces around it when there are at most two (`Incidence::NONE` fills the
     /// rest); otherwise `[NONE, i]`, and the faces are row `i` of the overflow table.
     faces: [Incidence; 2],
 }
 
-const _: () = assert!(std::mem::size_of::<EdgeRecord>() == 32);
+const _: () = assert!(std::mem::size_of::<EdgeRecord>() == 16);
 
 /// The engine's tables for one mesh and Steiner layout, shared by all runs of a solver.
 pub(in crate::propagate) struct TrackTables {
@@ -301,14 +297,7 @@ impl TrackTables {
                 overflow_start.push(overflow.len() as u32);
                 faces[1] = Incidence(overflow_start.len() as u32 - 2);
             }
-            let nodes = layout.edge_nodes(e);
-            edges.push(EdgeRecord {
-                step,
-                ends: mesh.edge_vertices(e),
-                first: nodes.start,
-                count: nodes.len() as u32,
-                faces,
-            });
+            edges.push(EdgeRecord { step, faces });
         }
 
         Ok(TrackTables {
