@@ -105,17 +105,17 @@ impl BucketQueue {
 
     #[inline(always)]
     fn bucket(&self, value: f64) -> usize {
-        // Saturating float-to-int conversion: huge values share the last bucket. To
-        // `u32` because x86 converts to a signed 64-bit integer in one instruction, and to
-        // an unsigned one only with a dozen.
+        // Saturating float-to-int conversion: values beyond 2³² widths share the last
+        // bucket (still exact, only slower). To `u32` because x86 converts to a signed
+        // 64-bit integer in one instruction, and to an unsigned one only with a dozen.
         (value * self.inverse_width) as u32 as usize
     }
 
     /// Files `node` under absolute bucket `b`: in the window, or in `far`.
     #[inline(always)]
     fn file(&mut self, node: u32, b: usize) {
-        // Costs are ≥ 0, so `b` is never below the bucket being processed; clamping
-        // keeps a node in play (processed now) should rounding ever say otherwise.
+        // Costs are ≥ 0, so `b` is never below the bucket being processed; should it be,
+        // the node is filed in the current bucket, where `pop` takes it as live.
         let slot = b.saturating_sub(self.base).max(self.current);
         if slot >= WINDOW {
             self.far.push(node);
@@ -167,8 +167,10 @@ impl BucketQueue {
 impl Queue for BucketQueue {
     #[inline(always)]
     fn push(&mut self, node: u32, value: f64, previous: f64) -> bool {
-        let b = self.bucket(value);
-        if self.pending[node as usize] && self.bucket(previous) == b {
+        // Buckets below the current one are filed as the current one.
+        let now = self.base + self.current;
+        let b = self.bucket(value).max(now);
+        if self.pending[node as usize] && self.bucket(previous).max(now) == b {
             return false;
         }
         self.pending[node as usize] = true;
@@ -182,8 +184,9 @@ impl Queue for BucketQueue {
             while self.current < self.buckets.len() {
                 let absolute = self.base + self.current;
                 while let Some(q) = self.buckets[self.current].pop() {
+                    // Live: queued, and filed where its distance belongs (or below).
                     let live =
-                        self.pending[q as usize] && self.bucket(distance[q as usize]) == absolute;
+                        self.pending[q as usize] && self.bucket(distance[q as usize]) <= absolute;
                     if live {
                         self.pending[q as usize] = false;
                         return Some(q);
@@ -199,5 +202,64 @@ impl Queue for BucketQueue {
                 return None;
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Pops everything, returning the nodes in order.
+    fn drain(queue: &mut BucketQueue, distance: &[f64]) -> Vec<u32> {
+        std::iter::from_fn(|| queue.pop(distance)).collect()
+    }
+
+    #[test]
+    fn buckets_pop_in_order_and_skip_stale_entries() {
+        let mut queue = BucketQueue::default();
+        queue.reset(4, 1.0);
+        let mut distance = vec![f64::INFINITY; 4];
+        for (node, value) in [(0, 2.5), (1, 0.5), (2, 1.5), (3, 7.0)] {
+            distance[node as usize] = value;
+            assert!(queue.push(node, value, f64::INFINITY));
+        }
+        // Node 3 improves to bucket 1: its old entry in bucket 7 is stale.
+        assert!(queue.push(3, 1.2, 7.0));
+        distance[3] = 1.2;
+        // An improvement within the same bucket adds nothing.
+        assert!(!queue.push(3, 1.1, 1.2));
+        distance[3] = 1.1;
+        let order = drain(&mut queue, &distance);
+        assert_eq!(order.len(), 4);
+        assert_eq!(order[0], 1);
+        assert_eq!(order[3], 0);
+        assert!(order[1..3].contains(&2) && order[1..3].contains(&3));
+    }
+
+    #[test]
+    fn a_value_below_the_current_bucket_is_still_settled() {
+        let mut queue = BucketQueue::default();
+        queue.reset(3, 1.0);
+        let mut distance = vec![f64::INFINITY; 3];
+        distance[0] = 5.5;
+        queue.push(0, 5.5, f64::INFINITY);
+        assert_eq!(queue.pop(&distance), Some(0));
+        // Processing bucket 5 now; node 1 gets a value of bucket 2, then improves
+        // within it: it must come out once, not be taken for stale.
+        distance[1] = 2.5;
+        assert!(queue.push(1, 2.5, f64::INFINITY));
+        distance[1] = 2.2;
+        assert!(!queue.push(1, 2.2, 2.5));
+        assert_eq!(drain(&mut queue, &distance), [1]);
+    }
+
+    #[test]
+    fn far_values_wait_outside_the_window() {
+        let mut queue = BucketQueue::default();
+        queue.reset(2, 1.0);
+        let distance = [3.0, 3.0 * WINDOW as f64];
+        queue.push(1, distance[1], f64::INFINITY);
+        queue.push(0, distance[0], f64::INFINITY);
+        assert_eq!(drain(&mut queue, &distance), [0, 1]);
     }
 }
