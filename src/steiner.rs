@@ -234,11 +234,6 @@ impl SteinerLayout {
         self.block_of_edge[e as usize]
     }
 
-    /// The edges in block order.
-    pub(crate) fn edges_in_block_order(&self) -> &[u32] {
-        &self.edge_of_block
-    }
-
     /// What node `node` is.
     #[inline]
     pub fn kind(&self, node: u32) -> NodeKind {

@@ -156,22 +156,31 @@ pub(super) fn edge_steps<M: Metric>(
     if !metric.is_face_norm() {
         return None;
     }
-    let mut tests = 0;
-    let steps = (0..mesh.edge_count() as u32)
-        .map(|e| {
-            let [a, b] = mesh.edge_vertices(e);
-            let whole = mesh
-                .edge_faces(e)
-                .iter()
-                .map(|&f| {
-                    tests += 1;
-                    let pa = layout.point_in_face(mesh, a, f);
-                    let pb = layout.point_in_face(mesh, b, f);
-                    metric.cost(f, &pa, &pb)
-                })
-                .fold(f64::INFINITY, f64::min);
-            whole / (layout.count(e) + 1) as f64
-        })
+    // Face by face, so that the mesh is read in order: each slot's whole edge, from the
+    // edge's lower vertex to its higher one as a node-by-node walk would measure it.
+    let mut whole = vec![f64::INFINITY; mesh.edge_count()];
+    for f in 0..mesh.face_count() as u32 {
+        let frame = mesh.frame(f);
+        let vertex = mesh.face_vertices(f);
+        let corner = |c: usize| {
+            let mut bary = [0.0; 3];
+            bary[c] = 1.0;
+            frame.point(bary)
+        };
+        for (s, e) in mesh.face_edges(f).into_iter().enumerate() {
+            let (from, to) = (corner(s), corner((s + 1) % 3));
+            let cost = if vertex[s] == mesh.edge_vertices(e)[0] {
+                metric.cost(f, &from, &to)
+            } else {
+                metric.cost(f, &to, &from)
+            };
+            whole[e as usize] = whole[e as usize].min(cost);
+        }
+    }
+    let steps = whole
+        .into_iter()
+        .enumerate()
+        .map(|(e, whole)| whole / (layout.count(e as u32) + 1) as f64)
         .collect();
-    Some((steps, tests))
+    Some((steps, 3 * mesh.face_count() as u64))
 }

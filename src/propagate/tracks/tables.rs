@@ -39,6 +39,21 @@ pub(super) struct FaceRecord {
 const _: () = assert!(std::mem::size_of::<FaceRecord>() <= 64);
 
 impl FaceRecord {
+    /// A placeholder, overwritten while the tables are built.
+    const EMPTY: FaceRecord = FaceRecord {
+        frame: FaceFrame {
+            l01: 0.0,
+            x2: 0.0,
+            y2: 0.0,
+        },
+        lo: [0; 3],
+        vertex: [0; 3],
+        base: 0,
+        face: 0,
+        count: [0; 3],
+        reversed: 0,
+    };
+
     /// Points on slot `s`.
     #[inline]
     pub fn count(&self, s: usize) -> u32 {
@@ -243,9 +258,9 @@ impl TrackTables {
             record_of[f as usize] = r as u32;
         }
 
-        let mut total: u64 = 0;
-        let mut faces = Vec::with_capacity(mesh.face_count());
-        for &f in &face_order {
+        // Faces and edges are read in the mesh's order and written in the records' order.
+        let mut faces = vec![FaceRecord::EMPTY; mesh.face_count()];
+        for f in 0..mesh.face_count() as u32 {
             let vertex = mesh.face_vertices(f);
             let edges = mesh.face_edges(f);
             let mut count = [0u16; 3];
@@ -260,16 +275,20 @@ impl TrackTables {
                     reversed |= 1 << s;
                 }
             }
-            faces.push(FaceRecord {
+            faces[record_of[f as usize] as usize] = FaceRecord {
                 frame: *mesh.frame(f),
                 lo: edges.map(|e| layout.edge_nodes(e).start),
                 vertex,
-                base: total as u32,
+                base: 0,
                 face: f,
                 count,
                 reversed,
-            });
-            total += 3 + count.iter().map(|&c| c as u64).sum::<u64>();
+            };
+        }
+        let mut total: u64 = 0;
+        for r in &mut faces {
+            r.base = total as u32;
+            total += r.cycle_len() as u64;
             if total >= u32::MAX as u64 {
                 return Err(Error::TooLarge {
                     what: "face-node instances",
@@ -278,10 +297,16 @@ impl TrackTables {
             }
         }
 
-        let mut edges = Vec::with_capacity(mesh.edge_count());
+        let mut edges = vec![
+            EdgeRecord {
+                step: f64::NAN,
+                faces: [Incidence::NONE; 2],
+            };
+            mesh.edge_count()
+        ];
         let mut overflow_start = vec![0];
         let mut overflow = Vec::new();
-        for &e in layout.edges_in_block_order() {
+        for e in 0..mesh.edge_count() as u32 {
             let step = steps.map_or(f64::NAN, |steps| steps[e as usize]);
             let around = mesh.edge_faces(e).iter().map(|&f| {
                 let slot = mesh.edge_slot(f, e).expect("edge of its face");
@@ -297,7 +322,7 @@ impl TrackTables {
                 overflow_start.push(overflow.len() as u32);
                 faces[1] = Incidence(overflow_start.len() as u32 - 2);
             }
-            edges.push(EdgeRecord { step, faces });
+            edges[layout.block_of_edge(e) as usize] = EdgeRecord { step, faces };
         }
 
         Ok(TrackTables {
