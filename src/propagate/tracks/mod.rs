@@ -71,13 +71,10 @@ impl Track {
 #[inline]
 fn round_up(value: f64) -> f32 {
     let v = value as f32;
-    if (v as f64) < value {
-        // For a non-negative finite `v` below `value`, the next float up is the next bit
-        // pattern (`next_up` spends a dozen instructions on signs, NaN and infinity).
-        f32::from_bits(v.to_bits() + 1)
-    } else {
-        v
-    }
+    // For a non-negative finite `v` below `value`, the next float up is the next bit
+    // pattern (`next_up` spends a dozen instructions on signs, NaN and infinity); added
+    // without a branch, which would be a coin toss.
+    f32::from_bits(v.to_bits() + ((v as f64) < value) as u32)
 }
 
 /// What a lost test proves about the other targets (indices along the target arc).
@@ -485,14 +482,15 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
                 off - arc.m + 1
             }
         };
-        let (mut lo, mut hi) = (0u32, arc.m);
-        while lo < hi {
-            let mid = lo + (hi - lo) / 2;
-            if key(mid) >= arc.q_rank {
-                lo = mid + 1;
-            } else {
-                hi = mid;
-            }
+        // The first index whose key is below q's rank. The steps depend only on `m`, and
+        // each one selects instead of branching: the comparison is data, unpredictable.
+        let (mut lo, mut size) = (0u32, arc.m);
+        while size > 0 {
+            let half = size / 2;
+            let mid = lo + half;
+            let right = key(mid) >= arc.q_rank;
+            lo = if right { mid + 1 } else { lo };
+            size = if right { size - half - 1 } else { half };
         }
         lo.saturating_sub(1).min(arc.m - 1)
     }
