@@ -4,10 +4,11 @@
 //! ids `0..V`, then the Steiner points in one block per edge, each edge's points
 //! numbered from its lower-id vertex. The blocks follow a space-filling curve through
 //! the edges' midpoints, not the edge ids, so that nodes near each other on the surface
-//! are near each other in memory; [`SteinerLayout::edge_nodes`] gives an edge's block. Points are implicit: a node is an edge and
-//! an index, and its position in a face is computed when needed, never stored per face.
+//! are near each other in memory; [`SteinerLayout::edge_nodes`] gives an edge's block.
+//! Points are implicit: a node is an edge and an index, and its position in a face is
+//! computed when needed, never stored per face.
 
-use crate::mesh::{morton_order, Topology, TriMesh, NONE};
+use crate::mesh::{morton_order, EdgeLine, Topology, TriMesh, NONE};
 use crate::Error;
 use geotracks_metrics::FacePoint;
 use std::ops::Range;
@@ -60,6 +61,58 @@ pub fn slot_spacing(count: u32) -> f64 {
 #[inline]
 pub fn slot_param(i: u32, spacing: f64) -> f64 {
     (i + 1) as f64 * spacing
+}
+
+/// The Steiner points of one edge as seen along one face's slot (from corner `s` to
+/// corner `s + 1`): node ids and positions in the face's frame, by index in slot order.
+/// Every engine places points through it, so all see bit-identical coordinates.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SlotPoints {
+    line: EdgeLine,
+    /// Node id of the edge's first point (from its lower vertex).
+    first: u32,
+    pub count: u32,
+    /// The slot runs from the edge's higher vertex.
+    reversed: bool,
+    /// [`slot_spacing`] of the slot.
+    spacing: f64,
+}
+
+impl SlotPoints {
+    #[inline]
+    pub fn new(line: EdgeLine, first: u32, count: u32, reversed: bool) -> SlotPoints {
+        SlotPoints {
+            line,
+            first,
+            count,
+            reversed,
+            spacing: slot_spacing(count),
+        }
+    }
+
+    /// The same slot with no points (for a target arc that has only one slot).
+    #[inline]
+    pub fn empty(self) -> SlotPoints {
+        SlotPoints { count: 0, ..self }
+    }
+
+    /// Slot-order index of the point numbered `index` from the edge's lower vertex (the
+    /// map is its own inverse).
+    #[inline(always)]
+    pub fn slot_index(&self, index: u32) -> u32 {
+        if self.reversed {
+            self.count - 1 - index
+        } else {
+            index
+        }
+    }
+
+    /// Node id and face point of point `i` in slot order.
+    #[inline(always)]
+    pub fn at(&self, i: u32) -> (u32, FacePoint) {
+        let node = self.first + self.slot_index(i);
+        (node, self.line.point(slot_param(i, self.spacing)))
+    }
 }
 
 /// What a node is.
@@ -199,15 +252,13 @@ impl SteinerLayout {
     /// How many points edge `e` carries.
     #[inline]
     pub fn count(&self, e: u32) -> u32 {
-        let b = self.block_of_edge[e as usize] as usize;
-        self.first[b + 1] - self.first[b]
+        self.edge_nodes(e).len() as u32
     }
 
     /// The node ids of edge `e`'s points, from its lower-id vertex.
     #[inline]
     pub fn edge_nodes(&self, e: u32) -> Range<u32> {
-        let b = self.block_of_edge[e as usize] as usize;
-        self.vertex_count + self.first[b]..self.vertex_count + self.first[b + 1]
+        self.block_nodes(self.block_of_edge(e))
     }
 
     /// The block of Steiner node `node` (which must not be a vertex).
@@ -257,15 +308,12 @@ impl SteinerLayout {
     /// Position of `node` in the frame of face `f`; the node must lie on `f`'s closure.
     #[inline]
     pub fn point_in_face(&self, mesh: &TriMesh, node: u32, f: u32) -> FacePoint {
-        let frame = mesh.frame(f);
         match self.kind(node) {
             NodeKind::Vertex(v) => {
                 let c = mesh
                     .corner_of(f, v)
                     .expect("vertex node is a corner of the face");
-                let mut bary = [0.0; 3];
-                bary[c] = 1.0;
-                frame.point(bary)
+                mesh.frame(f).corner(c)
             }
             NodeKind::Steiner { edge, index } => {
                 let slot = mesh
@@ -280,14 +328,20 @@ impl SteinerLayout {
     /// slot `slot` of face `f`.
     #[inline]
     pub fn point_on_slot(&self, mesh: &TriMesh, f: u32, slot: usize, index: u32) -> FacePoint {
+        let points = self.slot_points(mesh, f, slot);
+        points.at(points.slot_index(index)).1
+    }
+
+    /// The points of the edge in slot `slot` of face `f`, as seen along the slot.
+    #[inline]
+    pub(crate) fn slot_points(&self, mesh: &TriMesh, f: u32, slot: usize) -> SlotPoints {
         let e = mesh.face_edges(f)[slot];
-        let count = self.count(e);
-        // Slot `slot` runs from corner `slot` to corner `slot + 1`; the edge's points are
-        // numbered from its lower-id vertex, which may be either end.
-        let from_lower = mesh.face_vertices(f)[slot] == mesh.edge_vertices(e)[0];
-        let i = if from_lower { index } else { count - 1 - index };
-        mesh.frame(f)
-            .point_on_edge(slot, slot_param(i, slot_spacing(count)))
+        SlotPoints::new(
+            mesh.frame(f).edge_line(slot),
+            self.edge_nodes(e).start,
+            self.count(e),
+            mesh.slot_is_reversed(f, slot),
+        )
     }
 
     /// World position of `node`.

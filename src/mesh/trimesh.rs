@@ -40,6 +40,14 @@ impl FaceFrame {
         }
     }
 
+    /// Corner `c` as a face point.
+    #[inline]
+    pub fn corner(&self, c: usize) -> FacePoint {
+        let mut bary = [0.0; 3];
+        bary[c] = 1.0;
+        self.point(bary)
+    }
+
     /// The point with barycentric coordinates `bary`.
     #[inline]
     pub fn point(&self, bary: [f64; 3]) -> FacePoint {
@@ -291,6 +299,15 @@ impl TriMesh {
     #[inline]
     pub fn edge_slot(&self, f: u32, e: u32) -> Option<usize> {
         self.face_edges[f as usize].iter().position(|&c| c == e)
+    }
+
+    /// Whether slot `s` of face `f` (from corner `s` to corner `s + 1`) runs from its
+    /// edge's higher vertex, so that the edge's points, numbered from its lower vertex,
+    /// come in reverse order along the slot.
+    #[inline]
+    pub fn slot_is_reversed(&self, f: u32, s: usize) -> bool {
+        let e = self.face_edges[f as usize][s];
+        self.triangles[f as usize][s] != self.edge_vertices[e as usize][0]
     }
 
     /// The world position of barycentric point `bary` of face `f`.

@@ -161,18 +161,12 @@ pub(super) fn edge_steps<M: Metric>(
     let mut whole = vec![f64::INFINITY; mesh.edge_count()];
     for f in 0..mesh.face_count() as u32 {
         let frame = mesh.frame(f);
-        let vertex = mesh.face_vertices(f);
-        let corner = |c: usize| {
-            let mut bary = [0.0; 3];
-            bary[c] = 1.0;
-            frame.point(bary)
-        };
         for (s, e) in mesh.face_edges(f).into_iter().enumerate() {
-            let (from, to) = (corner(s), corner((s + 1) % 3));
-            let cost = if vertex[s] == mesh.edge_vertices(e)[0] {
-                metric.cost(f, &from, &to)
-            } else {
+            let (from, to) = (frame.corner(s), frame.corner((s + 1) % 3));
+            let cost = if mesh.slot_is_reversed(f, s) {
                 metric.cost(f, &to, &from)
+            } else {
+                metric.cost(f, &from, &to)
             };
             whole[e as usize] = whole[e as usize].min(cost);
         }

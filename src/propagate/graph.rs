@@ -7,7 +7,7 @@
 
 use super::frontier::{Frontier, Queue};
 use crate::mesh::Topology;
-use crate::steiner::{slot_param, slot_spacing, NodeKind};
+use crate::steiner::NodeKind;
 use geotracks_metrics::{FacePoint, Metric};
 
 /// Settles nodes until the queue is empty (or the metric misbehaves).
@@ -65,22 +65,9 @@ fn relax_slot<M: Metric, Q: Queue>(
     pq: &FacePoint,
     d: f64,
 ) {
-    let (mesh, layout) = (search.mesh, search.layout);
-    let e = mesh.face_edges(f)[slot];
-    let nodes = layout.edge_nodes(e);
-    let count = nodes.len() as u32;
-    // The same placement as `SteinerLayout::point_on_slot`, with the per-slot part
-    // hoisted out of the loop.
-    let line = mesh.frame(f).edge_line(slot);
-    let spacing = slot_spacing(count);
-    let from_lower = mesh.face_vertices(f)[slot] == mesh.edge_vertices(e)[0];
-    for (index, node) in nodes.enumerate() {
-        let i = if from_lower {
-            index as u32
-        } else {
-            count - 1 - index as u32
-        };
-        let p = line.point(slot_param(i, spacing));
+    let points = search.layout.slot_points(search.mesh, f, slot);
+    for i in 0..points.count {
+        let (node, p) = points.at(i);
         let c = search.cost(f, pq, &p);
         search.relax(node, d + c, q, f);
     }

@@ -35,8 +35,9 @@ mod tables;
 
 use super::frontier::{Frontier, Queue};
 use crate::mesh::{Topology, NONE};
+use crate::steiner::SlotPoints;
 use geotracks_metrics::{FacePoint, Metric};
-use tables::{EdgeRecord, FaceRecord, Slot};
+use tables::{EdgeRecord, FaceRecord};
 
 pub(super) use tables::TrackTables;
 
@@ -102,10 +103,10 @@ struct Arc {
     /// First target position and number of targets.
     start: u32,
     m: u32,
-    first: Slot,
+    first: SlotPoints,
     /// The opposite corner (node and point) when the arc passes one.
     corner: Option<(u32, FacePoint)>,
-    second: Slot,
+    second: SlotPoints,
     /// The entering node: id, position, point and value.
     q: u32,
     q_pos: u32,

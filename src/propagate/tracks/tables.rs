@@ -8,8 +8,8 @@
 //! is close together whatever order the input file had. Incidences name faces by their
 //! record index; the record holds the mesh's face id for the metric and the results.
 
-use crate::mesh::{morton_order, EdgeLine, FaceFrame, Topology, TriMesh, NONE};
-use crate::steiner::{slot_param, slot_spacing, SteinerLayout};
+use crate::mesh::{morton_order, FaceFrame, Topology, TriMesh, NONE};
+use crate::steiner::{SlotPoints, SteinerLayout};
 use crate::Error;
 use geotracks_metrics::FacePoint;
 
@@ -83,12 +83,7 @@ impl FaceRecord {
     /// Position of point `index` (numbered from the edge's lower vertex) of slot `s`.
     #[inline]
     pub fn slot_position(&self, s: usize, index: u32) -> u32 {
-        let i = if self.is_reversed(s) {
-            self.count(s) - 1 - index
-        } else {
-            index
-        };
-        self.corner(s) + 1 + i
+        self.corner(s) + 1 + self.slot(s).slot_index(index)
     }
 
     /// Position of the point at `i` along the edge of slot `s`, which carries `count`
@@ -110,23 +105,19 @@ impl FaceRecord {
 
     /// The points of slot `s`, in slot order (from corner `s`).
     #[inline]
-    pub fn slot(&self, s: usize) -> Slot {
-        let count = self.count(s);
-        Slot {
-            line: self.frame.edge_line(s),
-            lo: self.lo[s],
-            count,
-            reversed: self.is_reversed(s),
-            spacing: slot_spacing(count),
-        }
+    pub fn slot(&self, s: usize) -> SlotPoints {
+        SlotPoints::new(
+            self.frame.edge_line(s),
+            self.lo[s],
+            self.count(s),
+            self.is_reversed(s),
+        )
     }
 
     /// Corner `c` as a face point.
     #[inline]
     pub fn corner_point(&self, c: usize) -> FacePoint {
-        let mut bary = [0.0; 3];
-        bary[c] = 1.0;
-        self.frame.point(bary)
+        self.frame.corner(c)
     }
 
     /// Node id and face point of boundary position `pos`: the general decoding, for the
@@ -145,34 +136,6 @@ impl FaceRecord {
             2
         };
         self.slot(s).at(pos - self.corner(s) - 1)
-    }
-}
-
-/// The points of one slot of a face: node ids and positions, by index in slot order.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct Slot {
-    line: EdgeLine,
-    lo: u32,
-    pub count: u32,
-    reversed: bool,
-    /// [`slot_spacing`] of the slot.
-    spacing: f64,
-}
-
-impl Slot {
-    /// A slot with no points (for an arc that has only one).
-    #[inline]
-    pub fn empty(self) -> Slot {
-        Slot { count: 0, ..self }
-    }
-
-    /// Node id and face point of point `i` in slot order, placed with the same calls as
-    /// `SteinerLayout::point_in_face`, so the tracks and the graph engines see
-    /// bit-identical coordinates.
-    #[inline(always)]
-    pub fn at(&self, i: u32) -> (u32, FacePoint) {
-        let node = self.lo + if self.reversed { self.count - 1 - i } else { i };
-        (node, self.line.point(slot_param(i, self.spacing)))
     }
 }
 
@@ -270,7 +233,7 @@ impl TrackTables {
                     what: "Steiner points on one edge",
                     count: c as u64,
                 })?;
-                if vertex[s] != mesh.edge_vertices(edges[s])[0] {
+                if mesh.slot_is_reversed(f, s) {
                     reversed |= 1 << s;
                 }
             }
