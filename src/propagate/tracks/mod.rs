@@ -138,20 +138,12 @@ impl Arc {
         } else {
             (Some((r.vertex[s2], r.corner_point(s2))), r.slot(s2))
         };
-        let start = r.corner(s1) + 1;
-        let n = r.cycle_len();
         let m = first.count + corner.is_some() as u32 + second.count;
-        // `q` lies outside the arc: its offset from the arc's start is at least `m`.
-        let q_offset = if q_pos >= start {
-            q_pos - start
-        } else {
-            q_pos + n - start
-        };
-        Arc {
+        let mut arc = Arc {
             face,
             base: r.base,
-            n,
-            start,
+            n: r.cycle_len(),
+            start: r.corner(s1) + 1,
             m,
             first,
             corner,
@@ -160,8 +152,11 @@ impl Arc {
             q_pos,
             pq,
             d,
-            q_rank: q_offset - m + 1,
-        }
+            q_rank: 0,
+        };
+        // `q` lies outside the arc: its offset from the arc's start is at least `m`.
+        arc.q_rank = arc.offset(q_pos) - m + 1;
+        arc
     }
 
     /// Position of target `i`.
@@ -277,7 +272,7 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
                 (_, false) => (nodes.end - 1, count),
             };
             let at = if v == ends[0] { 0 } else { count + 1 };
-            let step = self.step(edge, count, at, index);
+            let step = self.step(edge, at, index);
             if parent_face == NONE && next == parent && !edge.step.is_nan() {
                 along = Some((parent, step));
             }
@@ -309,12 +304,9 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
                 }
                 // Dominated by the along-edge parent, as for Steiner points: every
                 // target of a corner is a target of the points of its two edges.
-                if let Some(pp) = along.and_then(|(p, step)| {
-                    let pp = along_parent_point(r, c, p)?;
-                    Some((pp, step))
-                }) {
-                    let (pp, step) = pp;
-                    if self.search.cost(f, &pp, &pq) <= step * (1.0 + 1e-12) {
+                let parent = along.and_then(|(p, step)| Some((along_parent_point(r, c, p)?, step)));
+                if let Some((pp, step)) = parent {
+                    if self.dominated(f, &pp, &pq, step) {
                         continue;
                     }
                 }
@@ -335,9 +327,9 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
         // Along the edge, to the neighbours (numbered 0..=count+1 from the lower end).
         let prev = if index == 0 { ends()[0] } else { q - 1 };
         let next = if index + 1 == count { ends()[1] } else { q + 1 };
-        let step = self.step(edge, count, index, index + 1);
+        let step = self.step(edge, index, index + 1);
         self.search.relax(prev, d + step, q, NONE);
-        let step = self.step(edge, count, index + 1, index + 2);
+        let step = self.step(edge, index + 1, index + 2);
         self.search.relax(next, d + step, q, NONE);
 
         // A Steiner point whose value came along its edge from its neighbour `p` is
@@ -371,25 +363,9 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
                 continue;
             }
             let slot = r.slot(s);
-            // Points on the slot are numbered 0..=count+1 from corner `s`.
-            let slot_point = |j: u32| {
-                if j == 0 {
-                    r.corner_point(s)
-                } else if j == count + 1 {
-                    r.corner_point(NEXT[s])
-                } else {
-                    slot.at(j - 1).1
-                }
-            };
-            let q_at = q_pos - r.corner(s);
-            let pq = slot_point(q_at);
+            let pq = slot.at(slot.slot_index(index)).1;
             if let (true, Some(p_at)) = (prunes, along) {
-                let p_at = if r.is_reversed(s) {
-                    count + 1 - p_at
-                } else {
-                    p_at
-                };
-                if self.search.cost(f, &slot_point(p_at), &pq) <= edge.step * (1.0 + 1e-12) {
+                if self.dominated(f, &r.edge_point(s, p_at), &pq, edge.step) {
                     continue;
                 }
             }
@@ -397,11 +373,19 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
         }
     }
 
-    /// The cost between the points at `a` and `b` (numbered 0..=count+1 from the edge's
-    /// lower end, consecutive) along `edge`, which carries `count` points: the cached
-    /// step, or the cheapest over the faces around it.
+    /// Whether the along-edge parent at `pp`, which settled `step` before the node at
+    /// `pq`, offers every target in face `f` at most what that node would: true when the
+    /// step costs no more in `f` than the edge relaxation charged (to 1e-12), by the
+    /// triangle inequality.
+    #[inline]
+    fn dominated(&mut self, f: u32, pp: &FacePoint, pq: &FacePoint, step: f64) -> bool {
+        self.search.cost(f, pp, pq) <= step * (1.0 + 1e-12)
+    }
+
+    /// The cost between the points at `a` and `b` (numbered from the edge's lower end,
+    /// consecutive) along `edge`: the cached step, or the cheapest over its faces.
     #[inline(always)]
-    fn step(&mut self, edge: &EdgeRecord, count: u32, a: u32, b: u32) -> f64 {
+    fn step(&mut self, edge: &EdgeRecord, a: u32, b: u32) -> f64 {
         if !edge.step.is_nan() {
             return edge.step;
         }
@@ -409,8 +393,7 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
         for &inc in self.tables.edge_faces(edge) {
             let r = &self.tables.faces[inc.record() as usize];
             let s = inc.side();
-            let (_, pa) = r.at(r.edge_position(s, count, a));
-            let (_, pb) = r.at(r.edge_position(s, count, b));
+            let (pa, pb) = (r.edge_point(s, a), r.edge_point(s, b));
             best = best.min(self.search.cost(r.face, &pa, &pb));
         }
         best
@@ -522,8 +505,7 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
 fn along_parent_point(r: &FaceRecord, c: usize, p: u32) -> Option<FacePoint> {
     for s in [c, NEXT[NEXT[c]]] {
         if p.wrapping_sub(r.lo[s]) < r.count(s) {
-            let (_, point) = r.at(r.slot_position(s, p - r.lo[s]));
-            return Some(point);
+            return Some(r.edge_point(s, p - r.lo[s] + 1));
         }
     }
     [NEXT[c], NEXT[NEXT[c]]]

@@ -86,20 +86,23 @@ impl FaceRecord {
         self.corner(s) + 1 + self.slot(s).slot_index(index)
     }
 
-    /// Position of the point at `i` along the edge of slot `s`, which carries `count`
-    /// points, numbered from the edge's lower vertex: 0 and `count + 1` are its vertices.
+    /// The point numbered `i` along the edge of slot `s`, counted from the edge's lower
+    /// vertex: 0 and `count + 1` are the edge's vertices, the Steiner points between.
     #[inline]
-    pub fn edge_position(&self, s: usize, count: u32, i: u32) -> u32 {
-        if i == 0 || i == count + 1 {
-            let lower_first = !self.is_reversed(s);
-            let c = if (i == 0) == lower_first {
-                s
-            } else {
-                (s + 1) % 3
-            };
-            self.corner(c)
+    pub fn edge_point(&self, s: usize, i: u32) -> FacePoint {
+        let slot = self.slot(s);
+        // Numbered from corner `s` instead: the ends are corners `s` and `s + 1`.
+        let j = if self.is_reversed(s) {
+            slot.count + 1 - i
         } else {
-            self.slot_position(s, i - 1)
+            i
+        };
+        if j == 0 {
+            self.corner_point(s)
+        } else if j == slot.count + 1 {
+            self.corner_point((s + 1) % 3)
+        } else {
+            slot.at(j - 1).1
         }
     }
 
@@ -118,24 +121,6 @@ impl FaceRecord {
     #[inline]
     pub fn corner_point(&self, c: usize) -> FacePoint {
         self.frame.corner(c)
-    }
-
-    /// Node id and face point of boundary position `pos`: the general decoding, for the
-    /// paths that are not hot.
-    pub fn at(&self, pos: u32) -> (u32, FacePoint) {
-        for c in 0..3 {
-            if pos == self.corner(c) {
-                return (self.vertex[c], self.corner_point(c));
-            }
-        }
-        let s = if pos < self.corner(1) {
-            0
-        } else if pos < self.corner(2) {
-            1
-        } else {
-            2
-        };
-        self.slot(s).at(pos - self.corner(s) - 1)
     }
 }
 
