@@ -1,14 +1,15 @@
-/// Compressed sparse rows: for each of `n` rows a slice of `u32`, stored flat.
+/// Compressed sparse rows: for each of `n` rows a slice of items (ids by default),
+/// stored flat.
 #[derive(Clone, Debug, Default)]
-pub struct Csr {
+pub struct Csr<T = u32> {
     offsets: Vec<u32>,
-    items: Vec<u32>,
+    items: Vec<T>,
 }
 
-impl Csr {
+impl<T: Copy + Default> Csr<T> {
     /// Builds from `(row, item)` pairs by a counting sort; items of a row keep the order
     /// in which they were given.
-    pub fn from_pairs(rows: usize, pairs: impl Iterator<Item = (u32, u32)> + Clone) -> Csr {
+    pub fn from_pairs(rows: usize, pairs: impl Iterator<Item = (u32, T)> + Clone) -> Csr<T> {
         let mut offsets = vec![0u32; rows + 1];
         for (r, _) in pairs.clone() {
             offsets[r as usize + 1] += 1;
@@ -17,7 +18,7 @@ impl Csr {
             offsets[i + 1] += offsets[i];
         }
         let mut next = offsets.clone();
-        let mut items = vec![0u32; offsets[rows] as usize];
+        let mut items = vec![T::default(); offsets[rows] as usize];
         for (r, item) in pairs {
             let slot = &mut next[r as usize];
             items[*slot as usize] = item;
@@ -28,7 +29,7 @@ impl Csr {
 
     /// The items of row `r`.
     #[inline]
-    pub fn row(&self, r: u32) -> &[u32] {
+    pub fn row(&self, r: u32) -> &[T] {
         let r = r as usize;
         &self.items[self.offsets[r] as usize..self.offsets[r + 1] as usize]
     }

@@ -8,7 +8,7 @@
 //! is close together whatever order the input file had. Incidences name faces by their
 //! record index; the record holds the mesh's face id for the metric and the results.
 
-use crate::mesh::{morton_order, FaceFrame, Topology, TriMesh, NONE};
+use crate::mesh::{morton_order, Csr, FaceFrame, Topology, TriMesh, NONE};
 use crate::steiner::{SlotPoints, SteinerLayout};
 use crate::Error;
 use geotracks_metrics::FacePoint;
@@ -126,8 +126,7 @@ impl FaceRecord {
 
 /// A face seen from one of its edges or corners: the face's record index and which slot
 /// (or corner) of it the edge (or vertex) is.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[repr(transparent)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(super) struct Incidence(u32);
 
 impl Incidence {
@@ -157,7 +156,7 @@ pub(super) struct EdgeRecord {
     /// each face (NaN otherwise: steps are then measured one by one).
     pub step: f64,
     /// The faces around it when there are at most two (`Incidence::NONE` fills the
-    /// rest); otherwise `[NONE, i]`, and the faces are row `i` of the overflow table.
+    /// rest); otherwise `[NONE, i]`, and the faces are row `i` of `overflow`.
     faces: [Incidence; 2],
 }
 
@@ -169,9 +168,8 @@ pub(in crate::propagate) struct TrackTables {
     pub(super) faces: Vec<FaceRecord>,
     /// Edge records in the layout's block order.
     pub(super) edges: Vec<EdgeRecord>,
-    /// Faces around edges with more than two (non-manifold edges), as rows.
-    overflow_start: Vec<u32>,
-    overflow: Vec<Incidence>,
+    /// Faces around edges with more than two (non-manifold edges), a row each.
+    overflow: Csr<Incidence>,
     /// The record of each face (by mesh face id); the faces and edges around a vertex
     /// come from the mesh through it and the layout's blocks.
     record_of: Vec<u32>,
@@ -251,7 +249,6 @@ impl TrackTables {
             };
             mesh.edge_count()
         ];
-        let mut overflow_start = vec![0];
         let mut overflow = Vec::new();
         for e in 0..mesh.edge_count() as u32 {
             let step = steps.map_or(f64::NAN, |steps| steps[e as usize]);
@@ -265,18 +262,18 @@ impl TrackTables {
                     *slot = inc;
                 }
             } else {
-                overflow.extend(around);
-                overflow_start.push(overflow.len() as u32);
-                faces[1] = Incidence(overflow_start.len() as u32 - 2);
+                let row = overflow.last().map_or(0, |&(row, _)| row + 1);
+                overflow.extend(around.map(|inc| (row, inc)));
+                faces[1] = Incidence(row);
             }
             edges[layout.block_of_edge(e) as usize] = EdgeRecord { step, faces };
         }
 
+        let rows = overflow.last().map_or(0, |&(row, _)| row as usize + 1);
         Ok(TrackTables {
             faces,
             edges,
-            overflow_start,
-            overflow,
+            overflow: Csr::from_pairs(rows, overflow.into_iter()),
             record_of,
             instances: total as usize,
         })
@@ -293,8 +290,7 @@ impl TrackTables {
             };
             &edge.faces[..n]
         } else {
-            let row = edge.faces[1].0 as usize;
-            &self.overflow[self.overflow_start[row] as usize..self.overflow_start[row + 1] as usize]
+            self.overflow.row(edge.faces[1].0)
         }
     }
 
