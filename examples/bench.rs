@@ -195,22 +195,16 @@ fn parent(argv: &[String]) -> Result<(), String> {
 /// Looks `name` up in `data/manifest.json` and checks that its files exist.
 fn entry(data: &Path, name: &str) -> Result<Entry, String> {
     let list = manifest(data)?;
-    let m = list
-        .iter()
-        .find(|m| m["name"].as_str() == Some(name))
-        .ok_or_else(|| {
-            format!(
-                "mesh '{name}' is not in {}",
-                data.join("manifest.json").display()
-            )
-        })?;
-    let file = data.join(
-        m["file"]
-            .as_str()
-            .ok_or(format!("{name}: no 'file' in manifest"))?,
-    );
-    let reference = m["references"][0]
-        .as_str()
+    let m = list.iter().find(|m| m.name == name).ok_or_else(|| {
+        format!(
+            "mesh '{name}' is not in {}",
+            data.join("manifest.json").display()
+        )
+    })?;
+    let file = data.join(&m.file);
+    let reference = m
+        .references
+        .first()
         .ok_or(format!("{name}: no reference in manifest"))?;
     let source = source_of(reference)?;
     let reference = data.join(reference);
@@ -219,11 +213,10 @@ fn entry(data: &Path, name: &str) -> Result<Entry, String> {
             return Err(format!("{name}: missing file {}", p.display()));
         }
     }
-    let faces = m["faces"].as_u64().unwrap_or(0);
     Ok(Entry {
         name: name.to_string(),
         file,
-        faces,
+        faces: m.faces,
         reference,
         source,
     })

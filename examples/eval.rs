@@ -24,7 +24,7 @@ use geotracks::{distance_field, Euclidean, Method, Options};
 use std::path::PathBuf;
 
 mod shared_data;
-use shared_data::{manifest, read_reference, relative_error, source_of};
+use shared_data::{manifest, read_reference, relative_error, source_of, MeshEntry};
 
 fn main() {
     if let Err(e) = run() {
@@ -98,10 +98,10 @@ fn parse_args() -> Result<Args, String> {
 fn run() -> Result<(), String> {
     let args = parse_args()?;
     let manifest = manifest(&args.data)?;
-    let meshes: Vec<&serde_json::Value> = manifest
+    let meshes: Vec<&MeshEntry> = manifest
         .iter()
         .filter(|m| match &args.meshes {
-            Some(names) => names.iter().any(|n| m["name"].as_str() == Some(n.as_str())),
+            Some(names) => names.contains(&m.name),
             None => true,
         })
         .collect();
@@ -119,20 +119,17 @@ fn run() -> Result<(), String> {
         rule += "---:|";
     }
     println!("{header}\n{rule}");
-    for entry in meshes {
-        let name = entry["name"].as_str().unwrap_or("?");
-        let faces = entry["faces"].as_u64().unwrap_or(0);
-        let references: Vec<&str> = entry["references"]
-            .as_array()
-            .map(|r| r.iter().filter_map(|x| x.as_str()).collect())
-            .unwrap_or_default();
-        if faces > args.max_faces || references.is_empty() {
+    for MeshEntry {
+        name,
+        file,
+        faces,
+        references,
+    } in meshes
+    {
+        if *faces > args.max_faces || references.is_empty() {
             eprintln!("skipping {name} ({faces} faces)");
             continue;
         }
-        let file = entry["file"]
-            .as_str()
-            .ok_or("manifest entry without file")?;
         let mesh = read_mesh(args.data.join(file)).map_err(|e| e.to_string())?;
         let mut methods = vec![Options::DEFAULT.with_method(Method::Dijkstra)];
         methods.extend(
@@ -143,7 +140,7 @@ fn run() -> Result<(), String> {
         let mut row = format!("| {name} | {faces} |");
         for options in &methods {
             let (mut mean, mut max) = (0.0, 0.0f64);
-            for reference in &references {
+            for reference in references {
                 let exact = read_reference(&args.data.join(reference))?;
                 let field = distance_field(&mesh, &Euclidean, &[source_of(reference)?], options)
                     .map_err(|e| e.to_string())?;
@@ -162,27 +159,28 @@ fn run() -> Result<(), String> {
 /// nodes, per (mesh, k), from every reference's source (for the medial axes in `ma/`,
 /// which are non-manifold: the first vertex on a face and the middle vertex); an error
 /// if any exceeds 1e-9.
-fn equality(args: &Args, meshes: &[&serde_json::Value]) -> Result<(), String> {
+fn equality(args: &Args, meshes: &[&MeshEntry]) -> Result<(), String> {
     println!("| mesh | faces | k | sources | max relative deviation (all nodes) | graph tests / tracks tests |");
     println!("|---|---:|---:|---:|---:|---:|");
     let mut cases: Vec<(String, TriMesh, Vec<u32>)> = Vec::new();
-    for entry in meshes {
-        let name = entry["name"].as_str().unwrap_or("?");
-        let faces = entry["faces"].as_u64().unwrap_or(0);
-        if faces > args.max_faces {
+    for MeshEntry {
+        name,
+        file,
+        faces,
+        references,
+    } in meshes
+    {
+        if *faces > args.max_faces {
             eprintln!("skipping {name} ({faces} faces > --max-faces)");
             continue;
         }
-        let file = entry["file"]
-            .as_str()
-            .ok_or("manifest entry without file")?;
         let mesh = read_mesh(args.data.join(file)).map_err(|e| e.to_string())?;
-        let sources: Vec<u32> = entry["references"]
-            .as_array()
-            .map(|r| r.iter().filter_map(|x| x.as_str()).map(source_of).collect())
-            .unwrap_or_else(|| Ok(vec![0]))?;
+        let sources: Vec<u32> = references
+            .iter()
+            .map(|r| source_of(r))
+            .collect::<Result<_, _>>()?;
         let sources = if sources.is_empty() { vec![0] } else { sources };
-        cases.push((name.to_string(), mesh, sources));
+        cases.push((name.clone(), mesh, sources));
     }
     {
         let mut medial: Vec<PathBuf> = std::fs::read_dir(args.data.join("ma"))

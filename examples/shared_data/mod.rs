@@ -4,17 +4,50 @@
 
 use std::path::Path;
 
-/// The entries of `data/manifest.json` (objects with `name`, `file`, `faces`,
-/// `references`).
-pub fn manifest(data: &Path) -> Result<Vec<serde_json::Value>, String> {
+/// One mesh of `data/manifest.json`.
+pub struct MeshEntry {
+    pub name: String,
+    /// The mesh file, relative to the data directory.
+    pub file: String,
+    pub faces: u64,
+    /// Exact references (relative paths named `…/<mesh>.src<v>.f64`); may be empty.
+    pub references: Vec<String>,
+}
+
+/// The entries of `data/manifest.json`: objects with `name`, `file`, `faces` and
+/// `references`; an entry without a name or a file is an error.
+pub fn manifest(data: &Path) -> Result<Vec<MeshEntry>, String> {
     let path = data.join("manifest.json");
     let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
     let value: serde_json::Value =
         serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
-    match value {
-        serde_json::Value::Array(entries) => Ok(entries),
-        _ => Err(format!("{}: not a list", path.display())),
-    }
+    let serde_json::Value::Array(entries) = value else {
+        return Err(format!("{}: not a list", path.display()));
+    };
+    entries
+        .iter()
+        .map(|m| {
+            let text = |key: &str| {
+                m[key]
+                    .as_str()
+                    .map(str::to_string)
+                    .ok_or_else(|| format!("{}: an entry without '{key}'", path.display()))
+            };
+            Ok(MeshEntry {
+                name: text("name")?,
+                file: text("file")?,
+                faces: m["faces"].as_u64().unwrap_or(0),
+                references: m["references"]
+                    .as_array()
+                    .map(|r| {
+                        r.iter()
+                            .filter_map(|x| x.as_str().map(str::to_string))
+                            .collect()
+                    })
+                    .unwrap_or_default(),
+            })
+        })
+        .collect()
 }
 
 /// An exact reference: one little-endian f64 per vertex.
