@@ -2,14 +2,13 @@
 
 mod common;
 
-use common::{random_mesh, Rng};
+use common::{random_mesh, Rng, DIJKSTRA, GRAPH};
 use geotracks::mesh::Topology;
-use geotracks::{distance_field, Euclidean, Method, Options, Tensor};
+use geotracks::{distance_field, Euclidean, Tensor};
 use proptest::prelude::*;
 
-/// These tests are about the Steiner graph itself (the tracks engine is checked
-/// against it in tracks_oracle.rs).
-const GRAPH: Options = Options::DEFAULT.with_method(Method::Graph);
+// These tests are about the Steiner graph itself (the tracks engine is checked
+// against it in tracks_oracle.rs).
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
@@ -39,7 +38,7 @@ proptest! {
             prop_assert!((ab - ba).abs() <= 1e-9 * ab.max(ba), "{} vs {}", ab, ba);
         }
         // Dijkstra on edges is a path in the graph too: never shorter than the graph.
-        let dijkstra = distance_field(&mesh, &Euclidean, &[a], &Options::DEFAULT.with_method(Method::Dijkstra).with_k(1.0)).unwrap();
+        let dijkstra = distance_field(&mesh, &Euclidean, &[a], &DIJKSTRA.with_k(1.0)).unwrap();
         for (g, d) in from_a.vertex_distances().iter().zip(dijkstra.vertex_distances()) {
             prop_assert!(*g <= *d + 1e-12 * d.abs().min(1e300));
         }

@@ -3,13 +3,12 @@
 
 mod common;
 
-use common::{read_reference, relative_error};
+use common::{read_reference, relative_error, DIJKSTRA, GRAPH};
 use geotracks::mesh::io::read_mesh;
-use geotracks::{distance_field, Euclidean, Method, Options};
+use geotracks::{distance_field, Euclidean};
 
-/// These tests are about the Steiner graph itself (the tracks engine is checked
-/// against it in tracks_oracle.rs).
-const GRAPH: Options = Options::DEFAULT.with_method(Method::Graph);
+// These tests are about the Steiner graph itself (the tracks engine is checked
+// against it in tracks_oracle.rs).
 
 const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data");
 
@@ -35,13 +34,7 @@ fn steiner_graph_at_k5_is_within_0_35_percent() {
         assert!(*d >= e * (1.0 - 1e-9), "{d} < exact {e}");
     }
 
-    let dijkstra = distance_field(
-        &mesh,
-        &Euclidean,
-        &[0],
-        &Options::DEFAULT.with_method(Method::Dijkstra),
-    )
-    .unwrap();
+    let dijkstra = distance_field(&mesh, &Euclidean, &[0], &DIJKSTRA).unwrap();
     let (dmean, _) = relative_error(dijkstra.vertex_distances(), &exact);
     println!("dijkstra: mean {:.4} %", 100.0 * dmean);
     assert!(dmean > 0.02, "Dijkstra on edges mean error {dmean}");

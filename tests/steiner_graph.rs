@@ -3,12 +3,11 @@
 
 mod common;
 
-use common::{book, grid, relative_error};
-use geotracks::{distance_field, Density, Euclidean, Method, Metric, Options, Tensor};
+use common::{book, grid, relative_error, DIJKSTRA, GRAPH};
+use geotracks::{distance_field, Density, Euclidean, Metric, Tensor};
 
-/// These tests are about the Steiner graph itself (the tracks engine is checked
-/// against it in tracks_oracle.rs).
-const GRAPH: Options = Options::DEFAULT.with_method(Method::Graph);
+// These tests are about the Steiner graph itself (the tracks engine is checked
+// against it in tracks_oracle.rs).
 
 fn euclid_on_grid(mesh: &geotracks::mesh::TriMesh, s: u32) -> Vec<f64> {
     let p = mesh.position(s);
@@ -44,13 +43,7 @@ fn flat_grid_error_falls_with_k() {
 fn dijkstra_on_edges_is_much_worse_than_the_graph() {
     let mesh = grid(16, 1.0);
     let exact = euclid_on_grid(&mesh, 0);
-    let dijkstra = distance_field(
-        &mesh,
-        &Euclidean,
-        &[0],
-        &Options::DEFAULT.with_method(Method::Dijkstra),
-    )
-    .unwrap();
+    let dijkstra = distance_field(&mesh, &Euclidean, &[0], &DIJKSTRA).unwrap();
     let graph = distance_field(&mesh, &Euclidean, &[0], &GRAPH).unwrap();
     let (dm, _) = relative_error(dijkstra.vertex_distances(), &exact);
     let (gm, _) = relative_error(graph.vertex_distances(), &exact);

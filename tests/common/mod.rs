@@ -2,6 +2,12 @@
 #![allow(dead_code)]
 
 use geotracks::mesh::TriMesh;
+use geotracks::{Method, Options};
+
+/// The naive Steiner graph, the oracle.
+pub const GRAPH: Options = Options::DEFAULT.with_method(Method::Graph);
+/// Dijkstra on mesh edges.
+pub const DIJKSTRA: Options = Options::DEFAULT.with_method(Method::Dijkstra);
 
 /// A flat `n × n`-cell grid on `[0, size]²` (z = 0), each cell split along the same
 /// diagonal. Vertex `(i, j)` (column i, row j) has id `j * (n + 1) + i`.
