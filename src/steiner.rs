@@ -299,10 +299,11 @@ impl SteinerLayout {
         }
     }
 
-    /// The parameter of point `index` of edge `e`, from its lower-id vertex.
+    /// The parameter of point `index` of edge `e`, from its lower-id vertex (the formula
+    /// the engines place points with, [`slot_param`]).
     #[inline]
     pub fn param(&self, e: u32, index: u32) -> f64 {
-        (index + 1) as f64 / (self.count(e) + 1) as f64
+        slot_param(index, slot_spacing(self.count(e)))
     }
 
     /// Position of `node` in the frame of face `f`; the node must lie on `f`'s closure.
