@@ -31,6 +31,41 @@ pub enum Error {
         /// How many vertices the mesh has.
         vertex_count: usize,
     },
+    /// A source, target or query point is not a point of the mesh.
+    #[error("{what}: {error}")]
+    InvalidPoint {
+        /// Which point: "source 2", "target 0", "the query point".
+        what: String,
+        /// What is wrong with it.
+        error: crate::surface::PointError,
+    },
+    /// A number given as input is not usable (NaN, or infinite where a finite value is
+    /// needed).
+    #[error("{what} is {value}; it must be a finite number")]
+    InvalidValue {
+        /// Which value.
+        what: String,
+        /// The value given.
+        value: f64,
+    },
+    /// No source reaches the point a path or a distance was asked for.
+    #[error("{what} is not reached from any source (another component, beyond the maximum distance, or past an early stop)")]
+    Unreachable {
+        /// Which point.
+        what: String,
+    },
+    /// A field was queried with a mesh other than the one it was computed on.
+    #[error("the mesh has {vertices} vertices and {edges} edges, but the field was computed on one with {field_vertices} and {field_edges}")]
+    MeshMismatch {
+        /// The mesh given: vertices.
+        vertices: usize,
+        /// The mesh given: edges.
+        edges: usize,
+        /// The field's mesh: vertices.
+        field_vertices: usize,
+        /// The field's mesh: edges.
+        field_edges: usize,
+    },
     /// The Steiner scheme asks for no points (k = 0), or a non-finite number of them.
     #[error("invalid number of Steiner points per edge: k = {k} (it must be finite and > 0)")]
     InvalidK {

@@ -37,15 +37,19 @@ pub mod field;
 pub mod mesh;
 pub mod propagate;
 pub mod steiner;
+pub mod surface;
+pub mod trace;
 
 /// The metric crate, `geotracks-metrics`.
 pub use geotracks_metrics as metrics;
 
 pub use error::Error;
-pub use field::{GeodesicField, Stats};
+pub use field::{FieldView, GeodesicField, Stats};
 pub use geotracks_metrics::{Density, Euclidean, FacePoint, Metric, MetricError, Tensor};
-pub use propagate::{distance_field, Method, Options, Solver, Workspace};
+pub use propagate::{distance_field, Method, Options, Solver, Stop, Workspace};
 pub use steiner::{SteinerLayout, SteinerScheme};
+pub use surface::{PointError, Source, SurfacePoint};
+pub use trace::GeodesicPath;
 
 /// The README's code blocks, compiled and run as doctests so they stay true.
 #[cfg(doctest)]

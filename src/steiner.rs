@@ -9,6 +9,7 @@
 //! computed when needed, never stored per face.
 
 use crate::mesh::{morton_order, EdgeLine, Topology, TriMesh, NONE};
+use crate::surface::SurfacePoint;
 use crate::Error;
 use geotracks_metrics::FacePoint;
 use std::ops::Range;
@@ -343,6 +344,39 @@ impl SteinerLayout {
             self.count(e),
             mesh.slot_is_reversed(f, slot),
         )
+    }
+
+    /// Every node on the boundary of face `f` with its point in the face's frame: the
+    /// three corners, then each slot's Steiner points.
+    pub fn face_nodes<'s>(
+        &'s self,
+        mesh: &'s TriMesh,
+        f: u32,
+    ) -> impl Iterator<Item = (u32, FacePoint)> + 's {
+        let frame = mesh.frame(f);
+        let corners = mesh.face_vertices(f);
+        (0..3)
+            .map(move |c| (corners[c], frame.corner(c)))
+            .chain((0..3).flat_map(move |s| {
+                let points = self.slot_points(mesh, f, s);
+                (0..points.count).map(move |i| points.at(i))
+            }))
+    }
+
+    /// Edges of the mesh the layout was made for.
+    pub fn edge_count(&self) -> usize {
+        self.block_of_edge.len()
+    }
+
+    /// `node` as a point of the surface: its vertex, or its edge and parameter.
+    pub fn surface_point(&self, node: u32) -> SurfacePoint {
+        match self.kind(node) {
+            NodeKind::Vertex(v) => SurfacePoint::Vertex(v),
+            NodeKind::Steiner { edge, index } => SurfacePoint::Edge {
+                edge,
+                t: self.param(edge, index),
+            },
+        }
     }
 
     /// World position of `node`.

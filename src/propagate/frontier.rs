@@ -12,6 +12,9 @@ pub(super) trait Queue {
     fn push(&mut self, node: u32, value: f64, previous: f64) -> bool;
     /// The next node to settle, skipping stale entries (`distance` is the live state).
     fn pop(&mut self, distance: &[f64]) -> Option<u32>;
+    /// Whether a node holding `value` now keeps it: nothing queued, or queued later,
+    /// can improve on it. Asked between a pop and the settling of the popped node.
+    fn is_final(&self, value: f64) -> bool;
 }
 
 impl<Q: Queue> Queue for &mut Q {
@@ -22,6 +25,10 @@ impl<Q: Queue> Queue for &mut Q {
     #[inline]
     fn pop(&mut self, distance: &[f64]) -> Option<u32> {
         (**self).pop(distance)
+    }
+    #[inline]
+    fn is_final(&self, value: f64) -> bool {
+        (**self).is_final(value)
     }
 }
 
@@ -37,21 +44,49 @@ pub(super) struct Frontier<'a, M, Q> {
     pub parent: &'a mut [u32],
     pub parent_face: &'a mut [u32],
     pub queue: Q,
+    /// Values above this are not taken: their nodes stay unreached.
+    pub max_distance: f64,
+    /// Nodes whose final values end the run once all are final (none: run to the end).
+    pub targets: &'a [u32],
+    /// `targets[..target_cursor]` are known final.
+    pub target_cursor: usize,
     pub pushes: u64,
     pub tests: u64,
     /// The first NaN or negative cost the metric returned, with its face.
     pub bad_cost: Option<(u32, f64)>,
 }
 
+/// A node's start value from a source: the cost from the source point to the node
+/// inside `face`, plus the source's start (`face` is [`NONE`] when the node is the
+/// source vertex itself).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Seed {
+    pub node: u32,
+    pub face: u32,
+    pub value: f64,
+    /// Index of the source.
+    pub source: u32,
+}
+
+/// How a run ended.
+pub(super) struct Outcome {
+    pub pushes: u64,
+    pub tests: u64,
+    pub bad_cost: Option<(u32, f64)>,
+    /// The targets were all final before the queue ran out.
+    pub stopped_early: bool,
+}
+
 impl<'a, M: Metric> Frontier<'a, M, ()> {
-    /// Attaches `queue`, seeds it with `sources` (start value 0), runs `engine`, and
-    /// returns the counters and the first bad cost.
+    /// Attaches `queue`, gives the seeds their values, runs `engine`, and returns the
+    /// counters. A run stopped by its targets then forgets every value that was not
+    /// final yet, so that a finite value is always the exact one.
     pub fn run<Q: Queue>(
         self,
         queue: Q,
-        sources: &[u32],
+        seeds: &[Seed],
         engine: impl FnOnce(&mut Frontier<'a, M, Q>),
-    ) -> (u64, u64, Option<(u32, f64)>) {
+    ) -> Outcome {
         let mut search = Frontier {
             mesh: self.mesh,
             metric: self.metric,
@@ -61,19 +96,56 @@ impl<'a, M: Metric> Frontier<'a, M, ()> {
             parent: self.parent,
             parent_face: self.parent_face,
             queue,
+            max_distance: self.max_distance,
+            targets: self.targets,
+            target_cursor: 0,
             pushes: 0,
-            tests: 0,
-            bad_cost: None,
+            tests: self.tests,
+            bad_cost: self.bad_cost,
         };
-        for &s in sources {
-            search.relax(s, 0.0, NONE, NONE);
+        for seed in seeds {
+            search.relax(seed.node, seed.value, NONE, seed.face);
         }
         engine(&mut search);
-        (search.pushes, search.tests, search.bad_cost)
+        let stopped_early = !search.targets.is_empty()
+            && search.target_cursor == search.targets.len()
+            && search.bad_cost.is_none();
+        if stopped_early {
+            for (node, d) in search.distance.iter_mut().enumerate() {
+                if d.is_finite() && !search.queue.is_final(*d) {
+                    *d = f64::INFINITY;
+                    search.parent[node] = NONE;
+                    search.parent_face[node] = NONE;
+                }
+            }
+        }
+        Outcome {
+            pushes: search.pushes,
+            tests: search.tests,
+            bad_cost: search.bad_cost,
+            stopped_early,
+        }
     }
 }
 
 impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
+    /// Whether every target's value is final, so the run may stop (called after a pop,
+    /// before settling). Targets become final in no particular order, but stay final, so
+    /// a cursor over them makes all the checks of a run cost O(targets + pops).
+    #[inline]
+    pub fn targets_final(&mut self) -> bool {
+        if self.targets.is_empty() {
+            return false;
+        }
+        while let Some(&t) = self.targets.get(self.target_cursor) {
+            if !self.queue.is_final(self.distance[t as usize]) {
+                return false;
+            }
+            self.target_cursor += 1;
+        }
+        true
+    }
+
     /// The metric's cost of a segment in face `face`, counted as one distance test.
     #[inline(always)]
     pub fn cost(&mut self, face: u32, a: &FacePoint, b: &FacePoint) -> f64 {
@@ -90,7 +162,7 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
     #[inline(always)]
     pub fn relax(&mut self, node: u32, value: f64, from: u32, face: u32) {
         let previous = self.distance[node as usize];
-        if value < previous {
+        if value < previous && value <= self.max_distance {
             self.distance[node as usize] = value;
             self.parent[node as usize] = from;
             self.parent_face[node as usize] = face;

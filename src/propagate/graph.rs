@@ -13,6 +13,9 @@ use geotracks_metrics::{FacePoint, Metric};
 /// Settles nodes until the queue is empty (or the metric misbehaves).
 pub(super) fn propagate<M: Metric, Q: Queue>(search: &mut Frontier<'_, M, Q>) {
     while let Some(q) = search.queue.pop(search.distance) {
+        if search.targets_final() {
+            break;
+        }
         let d = search.distance[q as usize];
         let kind = search.layout.kind(q);
         search.relax_along_edges(q, kind, d);

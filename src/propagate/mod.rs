@@ -20,11 +20,13 @@ mod queue;
 mod solver;
 mod tracks;
 
+pub(crate) use frontier::Seed;
 pub use solver::{Solver, Workspace};
 
 use crate::field::GeodesicField;
 use crate::mesh::TriMesh;
 use crate::steiner::SteinerScheme;
+use crate::surface::SurfacePoint;
 use crate::Error;
 use geotracks_metrics::Metric;
 use std::fmt;
@@ -105,6 +107,58 @@ impl Options {
     pub const fn with_method(mut self, method: Method) -> Self {
         self.method = method;
         self
+    }
+}
+
+/// When a run may stop before the whole mesh is reached.
+///
+/// Both conditions leave every node they do not settle unreached (`inf`): a finite value
+/// after an early stop is always the value a full run gives.
+///
+/// ```
+/// use geotracks::{Stop, SurfacePoint};
+/// let stop = Stop::NONE
+///     .with_max_distance(2.5)
+///     .with_targets(vec![SurfacePoint::Vertex(7), "e:3:0.5".parse()?]);
+/// assert_eq!(stop.targets.len(), 2);
+/// # Ok::<(), geotracks::PointError>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct Stop {
+    /// Nodes farther than this stay unreached (`inf`); the propagation ends when nothing
+    /// closer is left. Default: `inf`.
+    pub max_distance: f64,
+    /// Stop as soon as the value at each of these points is final (the distance at a
+    /// point inside a face, or on an edge, depends on the nodes around it, so those are
+    /// waited for). Default: none, run to the end.
+    pub targets: Vec<SurfacePoint>,
+}
+
+impl Stop {
+    /// No early stop.
+    pub const NONE: Stop = Stop {
+        max_distance: f64::INFINITY,
+        targets: Vec::new(),
+    };
+
+    /// Stop at distance `max_distance`.
+    pub fn with_max_distance(self, max_distance: f64) -> Stop {
+        Stop {
+            max_distance,
+            ..self
+        }
+    }
+
+    /// Stop once `targets` are final.
+    pub fn with_targets(self, targets: Vec<SurfacePoint>) -> Stop {
+        Stop { targets, ..self }
+    }
+}
+
+impl Default for Stop {
+    fn default() -> Self {
+        Stop::NONE
     }
 }
 

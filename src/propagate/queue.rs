@@ -24,30 +24,40 @@ impl Ord for Entry {
 /// Dijkstra's binary heap with lazy deletion: an entry is stale once its node's distance
 /// dropped below the entry's.
 #[derive(Default)]
-pub(super) struct HeapQueue(BinaryHeap<Entry>);
+pub(super) struct HeapQueue {
+    heap: BinaryHeap<Entry>,
+    /// The key of the last entry popped: nothing queued later can go below it.
+    floor: f64,
+}
 
 impl HeapQueue {
     /// Empties the queue, keeping its buffer.
     pub fn reset(&mut self) {
-        self.0.clear();
+        self.heap.clear();
+        self.floor = f64::NEG_INFINITY;
     }
 }
 
 impl Queue for HeapQueue {
     #[inline]
     fn push(&mut self, node: u32, value: f64, _previous: f64) -> bool {
-        self.0.push(Entry(value, node));
+        self.heap.push(Entry(value, node));
         true
     }
 
     #[inline]
     fn pop(&mut self, distance: &[f64]) -> Option<u32> {
-        while let Some(Entry(d, q)) = self.0.pop() {
+        while let Some(Entry(d, q)) = self.heap.pop() {
             if d <= distance[q as usize] {
+                self.floor = d;
                 return Some(q);
             }
         }
         None
+    }
+
+    fn is_final(&self, value: f64) -> bool {
+        value <= self.floor
     }
 }
 
@@ -203,6 +213,12 @@ impl Queue for BucketQueue {
             }
         }
     }
+
+    fn is_final(&self, value: f64) -> bool {
+        // Everything still queued lies in the current bucket or later, and improvements
+        // never go below the bucket they come from.
+        self.bucket(value) < self.base + self.current
+    }
 }
 
 #[cfg(test)]
@@ -261,5 +277,30 @@ mod tests {
         queue.push(1, distance[1], f64::INFINITY);
         queue.push(0, distance[0], f64::INFINITY);
         assert_eq!(drain(&mut queue, &distance), [0, 1]);
+    }
+
+    #[test]
+    fn only_values_below_the_current_bucket_are_final() {
+        let mut queue = BucketQueue::default();
+        queue.reset(2, 1.0);
+        let distance = [0.5, 2.5];
+        queue.push(0, distance[0], f64::INFINITY);
+        queue.push(1, distance[1], f64::INFINITY);
+        assert_eq!(queue.pop(&distance), Some(0));
+        assert!(
+            !queue.is_final(0.5),
+            "bucket 0 may still hold smaller values"
+        );
+        assert_eq!(queue.pop(&distance), Some(1));
+        assert!(queue.is_final(0.5) && queue.is_final(1.99));
+        assert!(!queue.is_final(2.0));
+
+        let mut heap = HeapQueue::default();
+        heap.reset();
+        heap.push(0, 0.5, f64::INFINITY);
+        heap.push(1, 2.5, f64::INFINITY);
+        assert!(!heap.is_final(0.0));
+        assert_eq!(heap.pop(&distance), Some(0));
+        assert!(heap.is_final(0.5) && !heap.is_final(0.6));
     }
 }

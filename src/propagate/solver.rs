@@ -1,13 +1,14 @@
 //! [`Solver`]: everything about a (mesh, metric, options) triple that does not depend on
 //! the sources, built once; and [`Workspace`]: the per-run buffers, reused across runs.
 
-use super::frontier::{edge_steps, Frontier};
+use super::frontier::{edge_steps, Frontier, Seed};
 use super::queue::{BucketQueue, HeapQueue};
 use super::tracks::{Track, TrackTables};
-use super::{graph, tracks, Method, Options};
-use crate::field::{GeodesicField, Stats};
+use super::{graph, tracks, Method, Options, Stop};
+use crate::field::{FieldView, GeodesicField, Stats};
 use crate::mesh::{Topology, TriMesh, NONE};
 use crate::steiner::SteinerLayout;
+use crate::surface::{PointError, Source, SurfacePoint};
 use crate::Error;
 use geotracks_metrics::Metric;
 use std::sync::Arc;
@@ -59,6 +60,13 @@ pub struct Workspace {
     tracks: Vec<Track>,
     heap: HeapQueue,
     buckets: BucketQueue,
+    /// The last run's sources, validated.
+    sources: Vec<Source>,
+    /// The sources' offers to nodes; after a run, one per node that a source reached
+    /// directly, sorted by node (the *roots* paths end at).
+    seeds: Vec<Seed>,
+    /// Nodes whose values decide when the last run could stop.
+    targets: Vec<u32>,
 }
 
 impl Workspace {
@@ -70,6 +78,34 @@ impl Workspace {
     /// Distance at every node (vertices, then Steiner points) after the last run.
     pub fn node_distances(&self) -> &[f64] {
         &self.distance
+    }
+
+    /// The last run's field, borrowed: distances at any surface point, paths, labels.
+    /// `layout` is the solver's ([`Solver::layout`]).
+    ///
+    /// ```
+    /// use geotracks::{mesh::TriMesh, Euclidean, Options, Solver, SurfacePoint};
+    /// let mesh = TriMesh::new(
+    ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+    ///     vec![[0, 1, 2], [0, 2, 3]],
+    /// )?;
+    /// let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT)?;
+    /// let mut workspace = solver.workspace();
+    /// solver.run(&mut workspace, &[0])?;
+    /// let field = workspace.view(solver.layout());
+    /// let path = field.path(&mesh, &Euclidean, SurfacePoint::Vertex(2))?;
+    /// assert!((path.length - 2f64.sqrt()).abs() < 1e-12);
+    /// # Ok::<(), geotracks::Error>(())
+    /// ```
+    pub fn view<'a>(&'a self, layout: &'a SteinerLayout) -> FieldView<'a> {
+        FieldView {
+            layout,
+            distance: &self.distance,
+            parent: &self.parent,
+            parent_face: &self.parent_face,
+            sources: &self.sources,
+            roots: &self.seeds,
+        }
     }
 
     /// Sizes and clears the buffers for a run; allocates only when they must grow.
@@ -154,19 +190,92 @@ impl<'m, M: Metric> Solver<'m, M> {
     /// [`Error::NoSource`], [`Error::SourceOutOfRange`], [`Error::InvalidCost`] if the
     /// metric returns NaN or a negative cost.
     pub fn run(&self, workspace: &mut Workspace, sources: &[u32]) -> Result<Stats, Error> {
+        workspace.sources.clear();
+        workspace
+            .sources
+            .extend(sources.iter().map(|&v| Source::new(v)));
+        self.execute(workspace, &Stop::NONE)
+    }
+
+    /// Propagates from `sources` (any surface points, each with its start value) into
+    /// `workspace`, stopping early as `stop` allows.
+    ///
+    /// A source inside a face (or on an edge) offers every node on the boundary of its
+    /// face (of each face around the edge) the metric's cost of the straight segment
+    /// to it: the source is one more node of the Steiner graph.
+    ///
+    /// ```
+    /// use geotracks::{mesh::TriMesh, Euclidean, Options, Solver, Source, Stop, SurfacePoint};
+    /// let mesh = TriMesh::new(
+    ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+    ///     vec![[0, 1, 2], [0, 2, 3]],
+    /// )?;
+    /// let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT)?;
+    /// let mut workspace = solver.workspace();
+    /// let centre = SurfacePoint::Face { face: 0, bary: [1.0 / 3.0; 3] };
+    /// let sources = [Source::new(centre), Source::new(3).with_start(0.25)];
+    /// solver.run_from(&mut workspace, &sources, &Stop::NONE.with_max_distance(0.6))?;
+    /// let d = workspace.vertex_distances();
+    /// assert!((d[1] - 2f64.sqrt() / 3.0).abs() < 1e-12); // straight from the centroid
+    /// assert_eq!(d[3], 0.25);
+    /// # Ok::<(), geotracks::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::NoSource`]; [`Error::SourceOutOfRange`] for a source vertex that does not
+    /// exist; [`Error::InvalidPoint`] for any other source or target that is not a point
+    /// of the mesh; [`Error::InvalidValue`] for a start value or maximum distance that is
+    /// NaN (or an infinite start); [`Error::InvalidCost`] if the metric returns NaN or a
+    /// negative cost.
+    pub fn run_from(
+        &self,
+        workspace: &mut Workspace,
+        sources: &[Source],
+        stop: &Stop,
+    ) -> Result<Stats, Error> {
+        workspace.sources.clear();
+        workspace.sources.extend_from_slice(sources);
+        self.execute(workspace, stop)
+    }
+
+    /// Runs from `workspace.sources`.
+    fn execute(&self, workspace: &mut Workspace, stop: &Stop) -> Result<Stats, Error> {
         let start = Instant::now();
         let mesh = self.mesh;
-        if sources.is_empty() {
+        if workspace.sources.is_empty() {
             return Err(Error::NoSource);
         }
-        if let Some(&vertex) = sources.iter().find(|&&v| v as usize >= mesh.vertex_count()) {
-            return Err(Error::SourceOutOfRange {
-                vertex: vertex as u64,
-                vertex_count: mesh.vertex_count(),
+        if stop.max_distance.is_nan() {
+            return Err(Error::InvalidValue {
+                what: "the maximum distance".into(),
+                value: stop.max_distance,
             });
         }
+        self.validate_sources(&mut workspace.sources)?;
+        workspace.targets.clear();
+        for (i, target) in stop.targets.iter().enumerate() {
+            let point = target
+                .validated(mesh)
+                .map_err(|error| Error::InvalidPoint {
+                    what: format!("target {i}"),
+                    error,
+                })?;
+            match point {
+                SurfacePoint::Vertex(v) => workspace.targets.push(v),
+                _ => {
+                    for &f in point.faces(mesh).iter() {
+                        let nodes = self.layout.face_nodes(mesh, f).map(|(node, _)| node);
+                        workspace.targets.extend(nodes);
+                    }
+                }
+            }
+        }
+        workspace.targets.sort_unstable();
+        workspace.targets.dedup();
+
         let instances = self.tables.as_ref().map_or(0, |t| t.instances);
         workspace.reset(mesh.vertex_count(), self.layout.node_count(), instances);
+        let seed_tests = self.seed(workspace)?;
         let reset_seconds = start.elapsed().as_secs_f64();
         let propagate_start = Instant::now();
         let Workspace {
@@ -176,6 +285,8 @@ impl<'m, M: Metric> Solver<'m, M> {
             tracks,
             heap,
             buckets,
+            seeds,
+            targets,
             ..
         } = workspace;
         let search = Frontier {
@@ -187,27 +298,43 @@ impl<'m, M: Metric> Solver<'m, M> {
             parent,
             parent_face,
             queue: (),
+            max_distance: stop.max_distance,
+            targets,
+            target_cursor: 0,
             pushes: 0,
-            tests: 0,
+            tests: seed_tests,
             bad_cost: None,
         };
-        let (pushes, tests, bad_cost) = match &self.tables {
+        let outcome = match &self.tables {
             Some(tables) => {
                 buckets.reset(self.layout.node_count(), self.bucket_width);
-                search.run(buckets, sources, |s| tracks::propagate(s, tables, tracks))
+                search.run(buckets, seeds, |s| {
+                    tracks::propagate(s, tables, tracks, seeds)
+                })
             }
             None => {
                 heap.reset();
-                search.run(heap, sources, graph::propagate)
+                search.run(heap, seeds, graph::propagate)
             }
         };
-        if let Some((face, value)) = bad_cost {
+        if let Some((face, value)) = outcome.bad_cost {
             return Err(Error::InvalidCost {
                 metric: self.metric.name().to_string(),
                 face,
                 value,
             });
         }
+        // Keep, per node, the seed that gave it its start value (the first of the
+        // least ones, as relaxation took them): paths and labels end there.
+        // (Seeds were made in source order, so among equal values the lowest source
+        // index came first.)
+        seeds.sort_unstable_by(|a, b| {
+            a.node
+                .cmp(&b.node)
+                .then(a.value.total_cmp(&b.value))
+                .then(a.source.cmp(&b.source))
+        });
+        seeds.dedup_by_key(|s| s.node);
         Ok(Stats {
             vertices: mesh.vertex_count(),
             faces: mesh.face_count(),
@@ -216,10 +343,79 @@ impl<'m, M: Metric> Solver<'m, M> {
             method: self.method,
             setup_seconds: self.setup_seconds + reset_seconds,
             propagate_seconds: propagate_start.elapsed().as_secs_f64(),
-            pushes,
-            distance_tests: tests,
+            pushes: outcome.pushes,
+            distance_tests: outcome.tests,
             setup_distance_tests: self.setup_tests,
+            stopped_early: outcome.stopped_early,
         })
+    }
+
+    /// Checks the sources against the mesh and puts their points in canonical form.
+    fn validate_sources(&self, sources: &mut [Source]) -> Result<(), Error> {
+        for (i, source) in sources.iter_mut().enumerate() {
+            source.point = source
+                .point
+                .validated(self.mesh)
+                .map_err(|error| match error {
+                    PointError::NoSuchVertex { vertex, count } => Error::SourceOutOfRange {
+                        vertex: vertex as u64,
+                        vertex_count: count,
+                    },
+                    error => Error::InvalidPoint {
+                        what: format!("source {i}"),
+                        error,
+                    },
+                })?;
+            if !source.start.is_finite() {
+                return Err(Error::InvalidValue {
+                    what: format!("the start value of source {i}"),
+                    value: source.start,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Fills `workspace.seeds` from its (valid) sources; returns the metric evaluations.
+    fn seed(&self, workspace: &mut Workspace) -> Result<u64, Error> {
+        let (mesh, layout) = (self.mesh, &self.layout);
+        let mut tests = 0;
+        workspace.seeds.clear();
+        for (i, source) in workspace.sources.iter().enumerate() {
+            let source_index = i as u32;
+            if let SurfacePoint::Vertex(v) = source.point {
+                workspace.seeds.push(Seed {
+                    node: v,
+                    face: NONE,
+                    value: source.start,
+                    source: source_index,
+                });
+                continue;
+            }
+            for &f in source.point.faces(mesh).iter() {
+                let Some(x) = source.point.in_face(mesh, f) else {
+                    continue;
+                };
+                for (node, p) in layout.face_nodes(mesh, f) {
+                    tests += 1;
+                    let cost = self.metric.cost(f, &x, &p);
+                    if cost.is_nan() || cost < 0.0 {
+                        return Err(Error::InvalidCost {
+                            metric: self.metric.name().to_string(),
+                            face: f,
+                            value: cost,
+                        });
+                    }
+                    workspace.seeds.push(Seed {
+                        node,
+                        face: f,
+                        value: source.start + cost,
+                        source: source_index,
+                    });
+                }
+            }
+        }
+        Ok(tests)
     }
 
     /// One row of distances per source, computed on all cores (rayon; workspaces are
@@ -291,13 +487,41 @@ impl<'m, M: Metric> Solver<'m, M> {
     /// # Errors
     /// As [`Solver::run`].
     pub fn solve(&self, sources: &[u32]) -> Result<GeodesicField, Error> {
+        let sources: Vec<Source> = sources.iter().map(|&v| Source::new(v)).collect();
+        self.solve_from(&sources, &Stop::NONE)
+    }
+
+    /// Propagates from `sources` (any surface points, with start values) into a fresh
+    /// workspace, stopping as `stop` allows, and returns the whole field.
+    ///
+    /// ```
+    /// use geotracks::{mesh::TriMesh, Euclidean, Options, Solver, Source, Stop, SurfacePoint};
+    /// let mesh = TriMesh::new(
+    ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+    ///     vec![[0, 1, 2], [0, 2, 3]],
+    /// )?;
+    /// let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT)?;
+    /// let source = Source::new("e:0:0.5".parse::<SurfacePoint>()?);
+    /// let field = solver.solve_from(&[source], &Stop::NONE)?;
+    /// let target = SurfacePoint::Face { face: 1, bary: [0.2, 0.3, 0.5] };
+    /// let path = field.path(&mesh, &Euclidean, target)?;
+    /// assert_eq!(path.points[0], target);
+    /// assert!(path.length <= path.traced_length);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`Solver::run_from`].
+    pub fn solve_from(&self, sources: &[Source], stop: &Stop) -> Result<GeodesicField, Error> {
         let mut ws = self.workspace();
-        let stats = self.run(&mut ws, sources)?;
+        let stats = self.run_from(&mut ws, sources, stop)?;
         Ok(GeodesicField::new(
             Arc::clone(&self.layout),
             ws.distance,
             ws.parent,
             ws.parent_face,
+            ws.sources,
+            ws.seeds,
             stats,
         ))
     }

@@ -33,7 +33,7 @@
 
 mod tables;
 
-use super::frontier::{Frontier, Queue};
+use super::frontier::{Frontier, Queue, Seed};
 use crate::mesh::{Topology, NONE};
 use crate::steiner::SlotPoints;
 use geotracks_metrics::{FacePoint, Metric};
@@ -219,13 +219,29 @@ impl Arc {
     }
 }
 
-/// Settles nodes until the queue is empty (or the metric misbehaves). `tracks` holds
-/// one [`Track`] per instance, reset by the caller.
+/// Settles nodes until the queue is empty, the targets are final, or the metric
+/// misbehaves. `tracks` holds one [`Track`] per instance, reset by the caller; `seeds`
+/// are the sources' offers, already given to their nodes.
 pub(super) fn propagate<M: Metric, Q: Queue>(
     search: &mut Frontier<'_, M, Q>,
     tables: &TrackTables,
     tracks: &mut [Track],
+    seeds: &[Seed],
 ) {
+    // A seed through a face is that face's track at its node: the source is a parent
+    // that no walk can prove anything with, and which beats whatever it beats.
+    for seed in seeds {
+        if seed.face != NONE && seed.value <= search.max_distance {
+            let instance = tables.instance(seed.face, seed.node);
+            let track = &mut tracks[instance as usize];
+            if seed.value < track.value() {
+                *track = Track {
+                    value: round_up(seed.value),
+                    from: NONE,
+                };
+            }
+        }
+    }
     let mut run = Tracks {
         search,
         tables,
@@ -233,6 +249,9 @@ pub(super) fn propagate<M: Metric, Q: Queue>(
     };
     let vertex_count = run.search.layout.vertex_count();
     while let Some(q) = run.search.queue.pop(run.search.distance) {
+        if run.search.targets_final() {
+            break;
+        }
         let d = run.search.distance[q as usize];
         if q < vertex_count {
             run.settle_vertex(q, d);

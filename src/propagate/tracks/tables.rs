@@ -279,6 +279,22 @@ impl TrackTables {
         })
     }
 
+    /// The instance of `node` in face `face`, whose closure must hold the node.
+    pub(super) fn instance(&self, face: u32, node: u32) -> u32 {
+        let r = &self.faces[self.record_of(face) as usize];
+        let position = match (0..3).find(|&c| r.vertex[c] == node) {
+            Some(c) => r.corner(c),
+            None => {
+                let s = (0..3)
+                    .find(|&s| node.wrapping_sub(r.lo[s]) < r.count(s))
+                    .expect("the node lies on the face");
+                r.slot_position(s, node - r.lo[s])
+            }
+        };
+        debug_assert_eq!(r.face, face);
+        r.base + position
+    }
+
     /// The faces around an edge.
     #[inline]
     pub(super) fn edge_faces<'t>(&'t self, edge: &'t EdgeRecord) -> &'t [Incidence] {

@@ -1,0 +1,204 @@
+//! Geodesic paths: traced back from any surface point to its nearest source through the
+//! parents the propagation recorded, then straightened.
+//!
+//! A traced path is a polyline whose every segment lies inside one face (from a node to
+//! its parent, or along an edge), so its length in the metric is the distance the
+//! Steiner graph gives the point. [`straighten`] then shortens it locally: it slides
+//! each edge crossing along its edge, and lets the path leave a vertex where it can cut
+//! the corner, never making it longer.
+
+mod straighten;
+
+use crate::field::{FieldView, Origin};
+use crate::mesh::{Topology, TriMesh, NONE};
+use crate::steiner::NodeKind;
+use crate::surface::SurfacePoint;
+use crate::Error;
+use geotracks_metrics::Metric;
+use glam::DVec3;
+
+pub use straighten::straighten;
+
+/// A path on the surface, from a query point to a source.
+///
+/// `points[0]` is the query point and the last point the source's; segment `i` joins
+/// `points[i]` and `points[i + 1]` inside face `faces[i]` (a segment along an edge lies
+/// in each face of the edge; it names the one where it costs least).
+#[derive(Clone, Debug, PartialEq)]
+pub struct GeodesicPath {
+    /// The polyline's points, each a vertex, an edge point or a face point.
+    pub points: Vec<SurfacePoint>,
+    /// The face each segment lies in (one fewer than the points).
+    pub faces: Vec<u32>,
+    /// The index of the source the path ends at, in the run's sources.
+    pub source: u32,
+    /// The metric length of the path.
+    pub length: f64,
+    /// The metric length as traced, before any straightening (the Steiner graph's
+    /// distance at the query point).
+    pub traced_length: f64,
+}
+
+impl GeodesicPath {
+    /// World positions of the points.
+    pub fn positions(&self, mesh: &TriMesh) -> Vec<DVec3> {
+        self.points.iter().map(|p| p.position(mesh)).collect()
+    }
+
+    /// The metric cost of each segment.
+    pub fn segment_costs<M: Metric>(&self, mesh: &TriMesh, metric: &M) -> Vec<f64> {
+        (0..self.faces.len())
+            .map(|i| {
+                segment_cost(
+                    mesh,
+                    metric,
+                    self.faces[i],
+                    self.points[i],
+                    self.points[i + 1],
+                )
+            })
+            .collect()
+    }
+
+    /// The metric length: the sum of [`GeodesicPath::segment_costs`].
+    pub fn metric_length<M: Metric>(&self, mesh: &TriMesh, metric: &M) -> f64 {
+        self.segment_costs(mesh, metric).iter().sum()
+    }
+}
+
+/// The cost of the straight segment `a`–`b` inside face `f`, whose closure holds both.
+pub(crate) fn segment_cost<M: Metric>(
+    mesh: &TriMesh,
+    metric: &M,
+    f: u32,
+    a: SurfacePoint,
+    b: SurfacePoint,
+) -> f64 {
+    let pa = a.in_face(mesh, f).expect("segment end on its face");
+    let pb = b.in_face(mesh, f).expect("segment end on its face");
+    metric.cost(f, &pa, &pb)
+}
+
+impl FieldView<'_> {
+    /// The path from `point` to its nearest source, as the propagation found it: from
+    /// the point to the best node of its faces (or straight to a source in one of
+    /// them), then from parent to parent. Its length is the distance at `point`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidPoint`] for a point not on `mesh`, [`Error::MeshMismatch`] for a
+    /// mesh other than the field's, [`Error::Unreachable`] when no source reaches the
+    /// point.
+    pub fn trace<M: Metric>(
+        &self,
+        mesh: &TriMesh,
+        metric: &M,
+        point: SurfacePoint,
+    ) -> Result<GeodesicPath, Error> {
+        let (_, origin) = self.origin(mesh, metric, point)?;
+        let Some(origin) = origin else {
+            return Err(Error::Unreachable {
+                what: format!("point {point}"),
+            });
+        };
+        let mut points = vec![point.validated(mesh).expect("checked by origin")];
+        let mut faces = Vec::new();
+        let mut node = match origin {
+            Origin::Node(v) => v,
+            Origin::NodeInFace(n, f) => {
+                points.push(self.layout.surface_point(n));
+                faces.push(f);
+                n
+            }
+            Origin::SourceInFace(s, f) => {
+                points.push(self.sources[s as usize].point);
+                faces.push(f);
+                return Ok(finish(mesh, metric, points, faces, s));
+            }
+        };
+        // Parents have lower values, so the walk ends at a root; the cap guards against
+        // a metric that returns zero costs between distinct points.
+        for _ in 0..self.distance.len() {
+            let (p, pf) = (self.parent[node as usize], self.parent_face[node as usize]);
+            if p == NONE {
+                let s = self
+                    .root_source(node)
+                    .expect("a reached node without a parent was reached by a source");
+                if pf != NONE {
+                    points.push(self.sources[s as usize].point);
+                    faces.push(pf);
+                }
+                return Ok(finish(mesh, metric, points, faces, s));
+            }
+            points.push(self.layout.surface_point(p));
+            faces.push(if pf != NONE {
+                pf
+            } else {
+                self.cheapest_face_along(mesh, metric, node, p)
+            });
+            node = p;
+        }
+        Err(Error::Unreachable {
+            what: format!(
+                "point {point} (its parents form a cycle: the metric returned zero costs)"
+            ),
+        })
+    }
+
+    /// The traced path from `point`, straightened ([`straighten`]): the path users
+    /// want, at most as long as the traced one.
+    ///
+    /// # Errors
+    /// As [`FieldView::trace`].
+    pub fn path<M: Metric>(
+        &self,
+        mesh: &TriMesh,
+        metric: &M,
+        point: SurfacePoint,
+    ) -> Result<GeodesicPath, Error> {
+        let mut path = self.trace(mesh, metric, point)?;
+        straighten(&mut path, mesh, metric);
+        Ok(path)
+    }
+
+    /// The face around the edge that joins nodes `a` and `b` (neighbours along it) in
+    /// which the segment between them costs least.
+    fn cheapest_face_along<M: Metric>(&self, mesh: &TriMesh, metric: &M, a: u32, b: u32) -> u32 {
+        let edge = match (self.layout.kind(a), self.layout.kind(b)) {
+            (NodeKind::Steiner { edge, .. }, _) | (_, NodeKind::Steiner { edge, .. }) => edge,
+            (NodeKind::Vertex(u), NodeKind::Vertex(v)) => *mesh
+                .vertex_edges(u)
+                .iter()
+                .find(|&&e| mesh.edge_vertices(e).contains(&v))
+                .expect("nodes joined along an edge share it"),
+        };
+        let (pa, pb) = (self.layout.surface_point(a), self.layout.surface_point(b));
+        let faces = mesh.edge_faces(edge);
+        faces
+            .iter()
+            .copied()
+            .min_by(|&f, &g| {
+                segment_cost(mesh, metric, f, pa, pb)
+                    .total_cmp(&segment_cost(mesh, metric, g, pa, pb))
+            })
+            .unwrap_or(faces[0])
+    }
+}
+
+fn finish<M: Metric>(
+    mesh: &TriMesh,
+    metric: &M,
+    points: Vec<SurfacePoint>,
+    faces: Vec<u32>,
+    source: u32,
+) -> GeodesicPath {
+    let mut path = GeodesicPath {
+        points,
+        faces,
+        source,
+        length: 0.0,
+        traced_length: 0.0,
+    };
+    path.length = path.metric_length(mesh, metric);
+    path.traced_length = path.length;
+    path
+}

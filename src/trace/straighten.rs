@@ -1,0 +1,546 @@
+//! Local shortening of a path on the surface, for any metric and any topology.
+//!
+//! The path is a chain of segments, each inside one face; the points between them lie on
+//! edges shared by the two faces (or at vertices). Three moves, repeated while they gain:
+//! - *merge*: drop a repeated point, and a point between two segments of the same face
+//!   when the straight segment is no longer;
+//! - *unpin*: a path through a vertex that turns by less than π on one side (Euclidean
+//!   angles) is given a crossing on each edge of that side, all at the vertex, so that
+//!   sliding can move it off;
+//! - *slide*: each crossing moves along its edge to the point that minimises the metric
+//!   cost of its two segments (a golden-section search, convex for a norm), and only
+//!   when that lowers the cost. Sweeps alternate direction until they stop gaining.
+//!
+//! For the Euclidean metric on a fixed strip of faces, the sweeps are block coordinate
+//! descent on a convex function of the crossing parameters, whose minimum is the path a
+//! funnel finds in the unfolded strip: they converge to it.
+
+use super::{segment_cost, GeodesicPath};
+use crate::mesh::{Topology, TriMesh};
+use crate::surface::SurfacePoint;
+use geotracks_metrics::{FacePoint, Metric};
+use glam::DVec3;
+
+/// Rounds of merge, unpin and slide.
+const ROUNDS: usize = 8;
+/// Sliding sweeps per round at most (after Newton's method, they polish).
+const SWEEPS: usize = 30;
+/// A sweep or a round that gains less than this fraction of the length ends the work.
+const GAIN: f64 = 1e-13;
+/// Golden-section steps: the bracket shrinks to 0.618⁶⁰ ≈ 3e-13 of the edge.
+const GOLDEN_STEPS: usize = 60;
+
+/// Shortens `path` locally (see the module docs) and updates its `length`, which never
+/// grows.
+pub fn straighten<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
+    let mut length = path.metric_length(mesh, metric);
+    for _ in 0..ROUNDS {
+        let before = length;
+        merge(path, mesh, metric);
+        unpin(path, mesh);
+        newton(path, mesh, metric);
+        slide(path, mesh, metric, length);
+        canonicalise(path, mesh);
+        length = path.metric_length(mesh, metric);
+        if before - length <= GAIN * before {
+            break;
+        }
+    }
+    merge(path, mesh, metric);
+    path.length = path.metric_length(mesh, metric);
+}
+
+/// Points at an edge's end become the vertex, so that repeated points are seen.
+fn canonicalise(path: &mut GeodesicPath, mesh: &TriMesh) {
+    for p in &mut path.points {
+        *p = p.validated(mesh).unwrap_or(*p);
+    }
+}
+
+fn merge<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
+    canonicalise(path, mesh);
+    let mut i = 1;
+    while i + 1 < path.points.len() {
+        let (a, p, b) = (path.points[i - 1], path.points[i], path.points[i + 1]);
+        let (f, g) = (path.faces[i - 1], path.faces[i]);
+        if p == a {
+            // A zero-length segment: `a` lies on `g` too.
+            path.points.remove(i);
+            path.faces.remove(i - 1);
+            i = i.saturating_sub(1).max(1);
+            continue;
+        }
+        if f == g {
+            let bent = segment_cost(mesh, metric, f, a, p) + segment_cost(mesh, metric, f, p, b);
+            if segment_cost(mesh, metric, f, a, b) <= bent {
+                path.points.remove(i);
+                path.faces.remove(i);
+                i = i.saturating_sub(1).max(1);
+                continue;
+            }
+        }
+        i += 1;
+    }
+    // The last point may repeat the one before it (a source on the path's last node).
+    let n = path.points.len();
+    if n > 2 && path.points[n - 1] == path.points[n - 2] {
+        path.points.remove(n - 2);
+        path.faces.remove(n - 2);
+    }
+}
+
+/// Gives every vertex the path may cut the corner at a crossing on each edge of the
+/// side it turns around, all placed at the vertex.
+fn unpin(path: &mut GeodesicPath, mesh: &TriMesh) {
+    let mut i = 1;
+    while i + 1 < path.points.len() {
+        let SurfacePoint::Vertex(v) = path.points[i] else {
+            i += 1;
+            continue;
+        };
+        let (f, g) = (path.faces[i - 1], path.faces[i]);
+        let before = path.points[i - 1].position(mesh);
+        let after = path.points[i + 1].position(mesh);
+        let Some((turn, route)) = fan_route(mesh, v, f, g, before, after) else {
+            i += 1;
+            continue;
+        };
+        if route.is_empty() || turn >= std::f64::consts::PI - 1e-9 {
+            i += 1;
+            continue;
+        }
+        // Crossings on the route's edges, at the vertex, and the faces between them.
+        let crossings: Vec<SurfacePoint> = route
+            .iter()
+            .map(|&(e, _)| {
+                let t = if mesh.edge_vertices(e)[0] == v {
+                    0.0
+                } else {
+                    1.0
+                };
+                SurfacePoint::Edge { edge: e, t }
+            })
+            .collect();
+        let between: Vec<u32> = route[..route.len() - 1].iter().map(|&(_, h)| h).collect();
+        let m = crossings.len();
+        path.points.splice(i..=i, crossings);
+        path.faces.splice(i..i, between);
+        i += m;
+    }
+}
+
+/// The way around vertex `v` from face `f` to face `g` through faces that share edges at
+/// `v`, turning least: returns the angle swept (from the direction towards `before`,
+/// around `v`, to the direction towards `after`, Euclidean, summed face by face) and
+/// the route as `(edge crossed, face entered)` pairs, the last face being `g`. `None`
+/// when no such way exists (the faces meet only at `v`).
+fn fan_route(
+    mesh: &TriMesh,
+    v: u32,
+    f: u32,
+    g: u32,
+    before: DVec3,
+    after: DVec3,
+) -> Option<(f64, Vec<(u32, u32)>)> {
+    let pv = mesh.position(v);
+    let angle = |a: DVec3, b: DVec3| (a - pv).angle_between(b - pv);
+    let other_end = |e: u32| {
+        let [a, b] = mesh.edge_vertices(e);
+        mesh.position(if a == v { b } else { a })
+    };
+    let edges_at = |h: u32| -> [u32; 2] {
+        let mut at = [0; 2];
+        let mut n = 0;
+        for e in mesh.face_edges(h) {
+            if mesh.edge_vertices(e).contains(&v) && n < 2 {
+                at[n] = e;
+                n += 1;
+            }
+        }
+        at
+    };
+    // Dijkstra over (edge, face entered through it) states: a fan is a few faces.
+    let mut states: Vec<(f64, u32, u32, usize)> = Vec::new(); // (angle, edge, face, previous)
+    let mut done: Vec<bool> = Vec::new();
+    for e in edges_at(f) {
+        for &h in mesh.edge_faces(e) {
+            if h != f {
+                states.push((angle(before, other_end(e)), e, h, usize::MAX));
+                done.push(false);
+            }
+        }
+    }
+    let mut best: Option<(f64, usize)> = None;
+    loop {
+        let next = (0..states.len())
+            .filter(|&s| !done[s])
+            .min_by(|&a, &b| states[a].0.total_cmp(&states[b].0));
+        let Some(s) = next else { break };
+        done[s] = true;
+        let (swept, e, h, _) = states[s];
+        if best.is_some_and(|(b, _)| swept >= b) {
+            break;
+        }
+        if h == g {
+            let total = swept + angle(other_end(e), after);
+            if best.is_none_or(|(b, _)| total < b) {
+                best = Some((total, s));
+            }
+            continue;
+        }
+        if states.len() > 4 * mesh.vertex_faces(v).len() + 8 {
+            continue;
+        }
+        for e2 in edges_at(h) {
+            if e2 == e {
+                continue;
+            }
+            let through = swept + angle(other_end(e), other_end(e2));
+            for &h2 in mesh.edge_faces(e2) {
+                let seen = states.iter().any(|&(_, se, sh, _)| se == e2 && sh == h2);
+                if h2 != h && !seen {
+                    states.push((through, e2, h2, s));
+                    done.push(false);
+                }
+            }
+        }
+    }
+    let (turn, mut s) = best?;
+    let mut route = Vec::new();
+    while s != usize::MAX {
+        let (_, e, h, previous) = states[s];
+        route.push((e, h));
+        s = previous;
+    }
+    route.reverse();
+    Some((turn, route))
+}
+
+/// Newton iterations at most per round.
+const NEWTON_STEPS: usize = 100;
+/// Finite-difference step in edge parameters.
+const FD_STEP: f64 = 1e-5;
+
+/// The crossings' parameters as one vector, the path's points as functions of it.
+struct Chain {
+    /// Per point: the edge ends in the frames of the faces before and after it (for a
+    /// crossing), or its fixed positions there.
+    before: Vec<Place>,
+    after: Vec<Place>,
+    /// The crossing's parameter, or `None` for a fixed point.
+    t: Vec<Option<f64>>,
+}
+
+#[derive(Clone, Copy)]
+enum Place {
+    Fixed(FacePoint),
+    On(FacePoint, FacePoint),
+    Unused,
+}
+
+impl Place {
+    fn at(&self, t: Option<f64>) -> FacePoint {
+        match (*self, t) {
+            (Place::Fixed(p), _) => p,
+            (Place::On(a, b), Some(t)) => lerp(&a, &b, t),
+            (Place::On(a, _), None) => a,
+            (Place::Unused, _) => unreachable!("a segment's end has a place in its face"),
+        }
+    }
+}
+
+impl Chain {
+    fn new(path: &GeodesicPath, mesh: &TriMesh) -> Chain {
+        let n = path.points.len();
+        let mut chain = Chain {
+            before: vec![Place::Unused; n],
+            after: vec![Place::Unused; n],
+            t: vec![None; n],
+        };
+        for i in 0..n {
+            let p = path.points[i];
+            let movable = i > 0 && i + 1 < n && path.faces[i - 1] != path.faces[i];
+            let place = |f: u32| match p {
+                SurfacePoint::Edge { edge, .. } if movable => {
+                    let [lo, hi] = mesh.edge_vertices(edge);
+                    let c = |v: u32| {
+                        mesh.frame(f)
+                            .corner(mesh.corner_of(f, v).expect("edge of its face"))
+                    };
+                    Place::On(c(lo), c(hi))
+                }
+                _ => Place::Fixed(p.in_face(mesh, f).expect("on its face")),
+            };
+            if i > 0 {
+                chain.before[i] = place(path.faces[i - 1]);
+            }
+            if i + 1 < n {
+                chain.after[i] = place(path.faces[i]);
+            }
+            if let (true, SurfacePoint::Edge { t, .. }) = (movable, p) {
+                chain.t[i] = Some(t);
+            }
+        }
+        chain
+    }
+
+    /// Cost of segment `j` with its ends' parameters `a` and `b`.
+    fn segment<M: Metric>(
+        &self,
+        metric: &M,
+        faces: &[u32],
+        j: usize,
+        a: Option<f64>,
+        b: Option<f64>,
+    ) -> f64 {
+        metric.cost(faces[j], &self.after[j].at(a), &self.before[j + 1].at(b))
+    }
+
+    fn length<M: Metric>(&self, metric: &M, faces: &[u32], t: &[Option<f64>]) -> f64 {
+        (0..faces.len())
+            .map(|j| self.segment(metric, faces, j, t[j], t[j + 1]))
+            .sum()
+    }
+}
+
+/// Newton's method on all crossings at once. The length is a sum of segment costs, each
+/// depending on two neighbouring parameters, so the Hessian is tridiagonal; it is
+/// estimated by finite differences (any metric), damped until positive-definite, and
+/// each step is taken only as far as it shortens the path, crossings kept on their
+/// edges. Where coordinate sweeps need as many sweeps as the path has crossings
+/// squared, this takes a few dozen steps.
+fn newton<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
+    let n = path.points.len();
+    if n < 3 {
+        return;
+    }
+    let chain = Chain::new(path, mesh);
+    let faces = &path.faces;
+    let mut t = chain.t.clone();
+    let mut length = chain.length(metric, faces, &t);
+    let (mut grad, mut diag, mut off) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let mut step = vec![0.0; n];
+    let mut trial = t.clone();
+    for _ in 0..NEWTON_STEPS {
+        grad.fill(0.0);
+        diag.fill(0.0);
+        off.fill(0.0);
+        for j in 0..n - 1 {
+            let (a, b) = (t[j], t[j + 1]);
+            // Differences about a point kept a step inside the edge.
+            let centre = |x: Option<f64>| x.map(|x| x.clamp(FD_STEP, 1.0 - FD_STEP));
+            let (ca, cb) = (centre(a), centre(b));
+            let h = FD_STEP;
+            let c = |da: f64, db: f64| {
+                chain.segment(metric, faces, j, ca.map(|x| x + da), cb.map(|x| x + db))
+            };
+            let c0 = c(0.0, 0.0);
+            if a.is_some() {
+                let (p, m) = (c(h, 0.0), c(-h, 0.0));
+                grad[j] += (p - m) / (2.0 * h);
+                diag[j] += (p - 2.0 * c0 + m) / (h * h);
+            }
+            if b.is_some() {
+                let (p, m) = (c(0.0, h), c(0.0, -h));
+                grad[j + 1] += (p - m) / (2.0 * h);
+                diag[j + 1] += (p - 2.0 * c0 + m) / (h * h);
+            }
+            if a.is_some() && b.is_some() {
+                off[j] = (c(h, h) - c(h, -h) - c(-h, h) + c(-h, -h)) / (4.0 * h * h);
+            }
+        }
+        // Crossings held at an end of their edge by the gradient stay out of the step.
+        let free: Vec<bool> = (0..n)
+            .map(|i| match t[i] {
+                None => false,
+                Some(x) => !((x <= 0.0 && grad[i] > 0.0) || (x >= 1.0 && grad[i] < 0.0)),
+            })
+            .collect();
+        solve_tridiagonal(&free, &grad, &diag, &off, &mut step);
+        let mut improved = false;
+        let mut alpha = 1.0;
+        while alpha > 1e-6 {
+            for i in 0..n {
+                trial[i] = t[i].map(|x| (x - alpha * step[i]).clamp(0.0, 1.0));
+            }
+            let l = chain.length(metric, faces, &trial);
+            if l < length {
+                improved = length - l > GAIN * length;
+                length = l;
+                t.copy_from_slice(&trial);
+                break;
+            }
+            alpha *= 0.25;
+        }
+        if !improved {
+            break;
+        }
+    }
+    for (i, x) in t.iter().enumerate() {
+        if let (Some(x), SurfacePoint::Edge { edge, .. }) = (*x, path.points[i]) {
+            path.points[i] = SurfacePoint::Edge { edge, t: x };
+        }
+    }
+}
+
+/// Solves `H' x = g` for the free unknowns (the others get 0), where `H'` is the
+/// tridiagonal `H` (diagonal `diag`, `off[j]` between `j` and `j + 1`) with every pivot
+/// raised to a small positive floor: positive-definite, so `x` is a descent direction
+/// even where the length is not convex (or not smooth: at a vertex, where segments
+/// shrink to nothing, the finite differences are wild).
+fn solve_tridiagonal(free: &[bool], g: &[f64], diag: &[f64], off: &[f64], x: &mut [f64]) {
+    let n = g.len();
+    let floor = 1e-9 * diag.iter().fold(f64::MIN_POSITIVE, |m, &d| m.max(d.abs()));
+    // Thomas algorithm; a fixed unknown splits the system.
+    let mut c = vec![0.0; n];
+    let mut d = vec![0.0; n];
+    for i in 0..n {
+        if !free[i] {
+            continue;
+        }
+        let (lower, prev_c, prev_d) = if i > 0 && free[i - 1] {
+            (off[i - 1], c[i - 1], d[i - 1])
+        } else {
+            (0.0, 0.0, 0.0)
+        };
+        let pivot = diag[i] - lower * prev_c;
+        let pivot = if pivot.is_finite() && pivot > floor {
+            pivot
+        } else {
+            diag[i].abs().max(floor)
+        };
+        let upper = if i + 1 < n && free[i + 1] {
+            off[i]
+        } else {
+            0.0
+        };
+        c[i] = upper / pivot;
+        d[i] = (g[i] - lower * prev_d) / pivot;
+    }
+    for i in (0..n).rev() {
+        x[i] = if !free[i] {
+            0.0
+        } else if i + 1 < n && free[i + 1] {
+            d[i] - c[i] * x[i + 1]
+        } else {
+            d[i]
+        };
+        if !x[i].is_finite() {
+            x[i] = 0.0;
+        }
+    }
+}
+
+/// Sweeps of crossing moves until a sweep gains less than [`GAIN`] of `length`.
+fn slide<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M, length: f64) {
+    let n = path.points.len();
+    if n < 3 {
+        return;
+    }
+    for sweep in 0..SWEEPS {
+        let mut gain = 0.0;
+        let forward = sweep % 2 == 0;
+        for j in 1..n - 1 {
+            let i = if forward { j } else { n - 1 - j };
+            gain += slide_one(path, mesh, metric, i);
+        }
+        if gain <= GAIN * length {
+            break;
+        }
+    }
+}
+
+/// Moves crossing `i` along its edge to where its two segments cost least; returns the
+/// cost saved (0 when it stays).
+fn slide_one<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M, i: usize) -> f64 {
+    let SurfacePoint::Edge { edge, t } = path.points[i] else {
+        return 0.0;
+    };
+    let (f, g) = (path.faces[i - 1], path.faces[i]);
+    if f == g {
+        return 0.0;
+    }
+    let [lo, hi] = mesh.edge_vertices(edge);
+    let ends = |h: u32| {
+        let c = |v: u32| {
+            mesh.frame(h)
+                .corner(mesh.corner_of(h, v).expect("edge of its face"))
+        };
+        (c(lo), c(hi))
+    };
+    let (ef, eg) = (ends(f), ends(g));
+    let a = path.points[i - 1].in_face(mesh, f).expect("on its face");
+    let b = path.points[i + 1].in_face(mesh, g).expect("on its face");
+    let cost = |t: f64| {
+        metric.cost(f, &a, &lerp(&ef.0, &ef.1, t)) + metric.cost(g, &lerp(&eg.0, &eg.1, t), &b)
+    };
+    let now = cost(t);
+    let (best_t, best) = golden_min(cost);
+    if best < now {
+        path.points[i] = SurfacePoint::Edge { edge, t: best_t };
+        now - best
+    } else {
+        0.0
+    }
+}
+
+/// The point at `t` on the segment `a`–`b` of one face's frame.
+fn lerp(a: &FacePoint, b: &FacePoint, t: f64) -> FacePoint {
+    let s = 1.0 - t;
+    FacePoint {
+        uv: [s * a.uv[0] + t * b.uv[0], s * a.uv[1] + t * b.uv[1]],
+        bary: [
+            s * a.bary[0] + t * b.bary[0],
+            s * a.bary[1] + t * b.bary[1],
+            s * a.bary[2] + t * b.bary[2],
+        ],
+    }
+}
+
+/// The minimum of `h` on [0, 1] by golden-section search (exact for a convex `h`; for
+/// another, a local minimum), the ends included.
+fn golden_min(h: impl Fn(f64) -> f64) -> (f64, f64) {
+    const R: f64 = 0.618_033_988_749_894_9;
+    let (mut lo, mut hi) = (0.0, 1.0);
+    let mut x1 = hi - R * (hi - lo);
+    let mut x2 = lo + R * (hi - lo);
+    let (mut h1, mut h2) = (h(x1), h(x2));
+    for _ in 0..GOLDEN_STEPS {
+        if h1 <= h2 {
+            hi = x2;
+            x2 = x1;
+            h2 = h1;
+            x1 = hi - R * (hi - lo);
+            h1 = h(x1);
+        } else {
+            lo = x1;
+            x1 = x2;
+            h1 = h2;
+            x2 = lo + R * (hi - lo);
+            h2 = h(x2);
+        }
+    }
+    let mut best = if h1 <= h2 { (x1, h1) } else { (x2, h2) };
+    for end in [0.0, 1.0] {
+        let value = h(end);
+        if value < best.1 {
+            best = (end, value);
+        }
+    }
+    best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::golden_min;
+
+    #[test]
+    fn golden_section_finds_interior_and_end_minima() {
+        let (t, v) = golden_min(|t| (t - 0.3).powi(2) + 1.0);
+        assert!((t - 0.3).abs() < 1e-7 && (v - 1.0).abs() < 1e-14);
+        let (t, _) = golden_min(|t| (t + 0.5).abs());
+        assert_eq!(t, 0.0);
+        let (t, _) = golden_min(|t| (2.0 - t).abs());
+        assert_eq!(t, 1.0);
+    }
+}
