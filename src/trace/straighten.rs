@@ -34,14 +34,26 @@ const GOLDEN_STEPS: usize = 60;
 /// grows.
 pub fn straighten<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
     let mut length = path.metric_length(mesh, metric);
+    let mut unpinning = true;
     for _ in 0..ROUNDS {
         let before = length;
         merge(path, mesh, metric);
-        unpin(path, mesh);
+        let saved = unpinning.then(|| path.clone());
+        if unpinning {
+            unpin(path, mesh);
+        }
         newton(path, mesh, metric);
         slide(path, mesh, metric, length);
         canonicalise(path, mesh);
         length = path.metric_length(mesh, metric);
+        if let (Some(saved), true) = (saved, length > before) {
+            // Leaving the vertices did not pay (a metric unlike the Euclidean angles
+            // that chose the sides): back, and on without it.
+            *path = saved;
+            length = before;
+            unpinning = false;
+            continue;
+        }
         if before - length <= GAIN * before {
             break;
         }
@@ -109,19 +121,33 @@ fn unpin(path: &mut GeodesicPath, mesh: &TriMesh) {
             i += 1;
             continue;
         }
-        // Crossings on the route's edges, at the vertex, and the faces between them.
+        // Unfolded around `v`, the faces of the route lie side by side, and the points
+        // before and after `v` at angles 0 and `turn` (< π): the straight segment between
+        // them crosses each edge of the route, where the crossing goes.
+        let pv = mesh.position(v);
+        let b = DVec3::new((before - pv).length(), 0.0, 0.0);
+        let r = (after - pv).length();
+        let a = DVec3::new(r * turn.cos(), r * turn.sin(), 0.0);
+        let d = a - b;
         let crossings: Vec<SurfacePoint> = route
             .iter()
-            .map(|&(e, _)| {
+            .map(|&(e, _, theta)| {
+                let u = DVec3::new(theta.cos(), theta.sin(), 0.0);
+                let rho = b.cross(d).z / u.cross(d).z;
+                let along = (rho / mesh.edge_length(e)).clamp(0.0, 1.0);
+                let along = if along.is_finite() { along } else { 0.0 };
                 let t = if mesh.edge_vertices(e)[0] == v {
-                    0.0
+                    along
                 } else {
-                    1.0
+                    1.0 - along
                 };
                 SurfacePoint::Edge { edge: e, t }
             })
             .collect();
-        let between: Vec<u32> = route[..route.len() - 1].iter().map(|&(_, h)| h).collect();
+        let between: Vec<u32> = route[..route.len() - 1]
+            .iter()
+            .map(|&(_, h, _)| h)
+            .collect();
         let m = crossings.len();
         path.points.splice(i..=i, crossings);
         path.faces.splice(i..i, between);
@@ -129,11 +155,15 @@ fn unpin(path: &mut GeodesicPath, mesh: &TriMesh) {
     }
 }
 
+/// One step of a way around a vertex: the edge crossed, the face entered through it, and
+/// the angle swept up to the edge.
+type FanStep = (u32, u32, f64);
+
 /// The way around vertex `v` from face `f` to face `g` through faces that share edges at
 /// `v`, turning least: returns the angle swept (from the direction towards `before`,
 /// around `v`, to the direction towards `after`, Euclidean, summed face by face) and
-/// the route as `(edge crossed, face entered)` pairs, the last face being `g`. `None`
-/// when no such way exists (the faces meet only at `v`).
+/// the route as `(edge crossed, face entered, angle swept up to the edge)`, the last
+/// face being `g`. `None` when no such way exists (the faces meet only at `v`).
 fn fan_route(
     mesh: &TriMesh,
     v: u32,
@@ -141,7 +171,7 @@ fn fan_route(
     g: u32,
     before: DVec3,
     after: DVec3,
-) -> Option<(f64, Vec<(u32, u32)>)> {
+) -> Option<(f64, Vec<FanStep>)> {
     let pv = mesh.position(v);
     let angle = |a: DVec3, b: DVec3| (a - pv).angle_between(b - pv);
     let other_end = |e: u32| {
@@ -208,8 +238,8 @@ fn fan_route(
     let (turn, mut s) = best?;
     let mut route = Vec::new();
     while s != usize::MAX {
-        let (_, e, h, previous) = states[s];
-        route.push((e, h));
+        let (swept, e, h, previous) = states[s];
+        route.push((e, h, swept));
         s = previous;
     }
     route.reverse();

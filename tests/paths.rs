@@ -1,0 +1,489 @@
+//! Surface-point sources, early stops, distances at any point and geodesic paths.
+
+mod common;
+
+use common::{book, grid, random_book, random_mesh, sphere, Rng, GRAPH};
+use geotracks::mesh::{io::read_mesh, Topology, TriMesh};
+use geotracks::{
+    Error, Euclidean, GeodesicField, GeodesicPath, Metric, Options, PointError, Solver, Source,
+    Stop, SurfacePoint, Tensor,
+};
+use glam::DVec3;
+
+fn spot() -> TriMesh {
+    read_mesh(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/spot.obj")).unwrap()
+}
+
+/// A random point inside a random face.
+fn random_face_point(mesh: &TriMesh, rng: &mut Rng) -> SurfacePoint {
+    let face = rng.below(mesh.face_count()) as u32;
+    let (a, b) = (rng.next(), rng.next());
+    let (a, b) = if a + b > 1.0 {
+        (1.0 - a, 1.0 - b)
+    } else {
+        (a, b)
+    };
+    SurfacePoint::Face {
+        face,
+        bary: [1.0 - a - b, a, b],
+    }
+}
+
+fn random_edge_point(mesh: &TriMesh, rng: &mut Rng) -> SurfacePoint {
+    SurfacePoint::Edge {
+        edge: rng.below(mesh.edge_count()) as u32,
+        t: 0.05 + 0.9 * rng.next(),
+    }
+}
+
+/// Everything a path must satisfy, whatever the mesh and metric.
+fn check_path<M: Metric>(
+    mesh: &TriMesh,
+    metric: &M,
+    field: &GeodesicField,
+    target: SurfacePoint,
+    path: &GeodesicPath,
+) {
+    let target = target.validated(mesh).unwrap();
+    assert_eq!(path.points[0], target, "the path starts at the target");
+    let source = field.sources()[path.source as usize].point;
+    let end = path.points.last().unwrap();
+    assert!(
+        (end.position(mesh) - source.position(mesh)).length() < 1e-12,
+        "the path ends at its source: {end} vs {source}"
+    );
+    assert_eq!(path.faces.len() + 1, path.points.len());
+    for (i, &f) in path.faces.iter().enumerate() {
+        for p in [path.points[i], path.points[i + 1]] {
+            assert!(
+                p.bary_in(mesh, f).is_some(),
+                "segment {i}: {p} is not on face {f}"
+            );
+        }
+    }
+    let sum: f64 = path.segment_costs(mesh, metric).iter().sum();
+    assert!((sum - path.length).abs() <= 1e-12 * sum.max(1.0));
+    assert!(path.length <= path.traced_length * (1.0 + 1e-12));
+    let d = field.distance_at(mesh, metric, target).unwrap();
+    let start = field.sources()[path.source as usize].start;
+    assert!(
+        (start + path.traced_length - d).abs() <= 1e-9 * d.max(1e-300),
+        "traced {} vs distance {d}",
+        path.traced_length
+    );
+}
+
+#[test]
+fn paths_from_any_point_to_any_source_are_consistent() {
+    let mesh = spot();
+    let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
+    let mut rng = Rng(7);
+    for round in 0..6 {
+        let sources = [
+            Source::new(random_face_point(&mesh, &mut rng)),
+            Source::new(random_edge_point(&mesh, &mut rng)).with_start(0.05),
+            Source::new(rng.below(mesh.vertex_count()) as u32),
+        ];
+        let field = solver
+            .solve_from(&sources[..1 + round % 3], &Stop::NONE)
+            .unwrap();
+        for _ in 0..8 {
+            let target = match rng.below(3) {
+                0 => random_face_point(&mesh, &mut rng),
+                1 => random_edge_point(&mesh, &mut rng),
+                _ => SurfacePoint::Vertex(rng.below(mesh.vertex_count()) as u32),
+            };
+            let path = field.path(&mesh, &Euclidean, target).unwrap();
+            check_path(&mesh, &Euclidean, &field, target, &path);
+            let traced = field.view().trace(&mesh, &Euclidean, target).unwrap();
+            assert_eq!(traced.length, path.traced_length);
+        }
+    }
+}
+
+#[test]
+fn paths_under_a_tensor_metric_and_on_non_manifold_meshes() {
+    let mut rng = Rng(11);
+    for seed in 0..6u64 {
+        let mesh = if seed % 2 == 0 {
+            random_book(seed, 4, 3)
+        } else {
+            random_mesh(seed, 6).unwrap()
+        };
+        let principal: Vec<(f64, f64, [f64; 3])> = (0..mesh.face_count())
+            .map(|f| {
+                let angle = f as f64 * 0.7;
+                (1.0 + (f % 5) as f64, 1.0, [angle.cos(), angle.sin(), 0.3])
+            })
+            .collect();
+        let metric = Tensor::from_principal(&mesh, &principal).unwrap();
+        let solver = Solver::new(&mesh, &metric, &Options::DEFAULT.with_k(3.0)).unwrap();
+        let source = Source::new(random_face_point(&mesh, &mut rng));
+        let field = solver.solve_from(&[source], &Stop::NONE).unwrap();
+        for _ in 0..10 {
+            let target = random_face_point(&mesh, &mut rng);
+            match field.path(&mesh, &metric, target) {
+                Ok(path) => check_path(&mesh, &metric, &field, target, &path),
+                Err(Error::Unreachable { .. }) => {
+                    assert!(field
+                        .distance_at(&mesh, &metric, target)
+                        .unwrap()
+                        .is_infinite())
+                }
+                Err(e) => panic!("{e}"),
+            }
+        }
+    }
+}
+
+#[test]
+fn a_path_on_a_flat_grid_is_a_straight_line() {
+    let mesh = grid(12, 1.0);
+    let field = Solver::new(&mesh, Euclidean, &Options::DEFAULT.with_k(3.0))
+        .unwrap()
+        .solve_from(
+            &[Source::new(
+                SurfacePoint::nearest(&mesh, [0.07, 0.11, 0.0]).unwrap(),
+            )],
+            &Stop::NONE,
+        )
+        .unwrap();
+    let mut rng = Rng(3);
+    for _ in 0..10 {
+        let xyz = [0.1 + 0.85 * rng.next(), 0.1 + 0.85 * rng.next(), 0.0];
+        let target = SurfacePoint::nearest(&mesh, xyz).unwrap();
+        let path = field.path(&mesh, &Euclidean, target).unwrap();
+        let (a, b) = (DVec3::new(0.07, 0.11, 0.0), DVec3::from(xyz));
+        if std::env::var("DUMP").is_ok() {
+            for (i, p) in path.points.iter().enumerate() {
+                eprintln!("{p} {:?} {:?}", p.position(&mesh), path.faces.get(i));
+            }
+        }
+        let straight = a.distance(b);
+        assert!(
+            (path.length - straight).abs() <= 1e-6 * straight,
+            "length {} vs {straight}",
+            path.length
+        );
+        for p in path.positions(&mesh) {
+            let off_line = (p - a).cross((b - a).normalize()).length();
+            assert!(off_line < 1e-6, "{p} is {off_line} off the line");
+        }
+        assert!(
+            path.traced_length > path.length,
+            "the traced path zigzags a little"
+        );
+    }
+}
+
+#[test]
+fn a_path_between_pages_crosses_the_spine_where_the_unfolding_says() {
+    // Three pages of a book; two of them are 90° apart... unfolded flat, the path from a
+    // point on page 0 to a point on page 1 is a straight line across the spine.
+    let (mesh, _) = book(3, 1.0, 1.0, 6);
+    let on_page = |page: usize, r: f64, z: f64| {
+        let angle = std::f64::consts::TAU * page as f64 / 3.0;
+        SurfacePoint::nearest(&mesh, [r * angle.cos(), r * angle.sin(), z]).unwrap()
+    };
+    let (source, target) = ((0.6, 0.2), (0.3, 0.85));
+    let field = Solver::new(&mesh, Euclidean, &Options::DEFAULT)
+        .unwrap()
+        .solve_from(&[Source::new(on_page(0, source.0, source.1))], &Stop::NONE)
+        .unwrap();
+    let path = field
+        .path(&mesh, &Euclidean, on_page(1, target.0, target.1))
+        .unwrap();
+    // Unfolded: source at (−0.6, 0.2), target at (0.3, 0.85); the spine is x = 0.
+    let z_cross = source.1 + (target.1 - source.1) * source.0 / (source.0 + target.0);
+    let exact = ((source.0 + target.0).powi(2) + (target.1 - source.1).powi(2)).sqrt();
+    assert!(
+        (path.length - exact).abs() < 1e-6 * exact,
+        "{} vs {exact}",
+        path.length
+    );
+    let on_spine: Vec<DVec3> = path
+        .positions(&mesh)
+        .into_iter()
+        .filter(|p| p.x.hypot(p.y) < 1e-9)
+        .collect();
+    assert!(!on_spine.is_empty(), "the path crosses the spine");
+    for p in on_spine {
+        assert!(
+            (p.z - z_cross).abs() < 1e-6,
+            "crosses at z = {}, not {z_cross}",
+            p.z
+        );
+    }
+}
+
+/// A regular triangular prism (unit edges, height `h`): bottom and top triangles, and
+/// each side a rectangle of two triangles.
+fn prism(h: f64) -> (TriMesh, [DVec3; 3]) {
+    let base = [
+        DVec3::new(0.0, 0.0, 0.0),
+        DVec3::new(1.0, 0.0, 0.0),
+        DVec3::new(0.5, 3f64.sqrt() / 2.0, 0.0),
+    ];
+    let mut positions: Vec<[f64; 3]> = base.iter().map(|p| p.to_array()).collect();
+    positions.extend(base.iter().map(|p| [p.x, p.y, h]));
+    let mut triangles = vec![[0, 2, 1], [3, 4, 5]];
+    for i in 0..3u32 {
+        let j = (i + 1) % 3;
+        triangles.push([i, j, j + 3]);
+        triangles.push([i, j + 3, i + 3]);
+    }
+    (TriMesh::new(positions, triangles).unwrap(), base)
+}
+
+/// The paper's Fig. 9: a source inside the bottom face, targets on the top face near a
+/// ridge. The exact path crosses the side under the ridge: unfolded, a straight line.
+#[test]
+fn prism_paths_match_the_unfolding() {
+    let h = 0.8;
+    let (mesh, base) = prism(h);
+    let source_xy = (base[0] + base[1] + base[2]) / 3.0;
+    let source = SurfacePoint::nearest(&mesh, [source_xy.x, source_xy.y, 0.0]).unwrap();
+    assert!(matches!(source, SurfacePoint::Face { .. }));
+    let fields: Vec<GeodesicField> = [Options::DEFAULT, common::DIJKSTRA]
+        .iter()
+        .map(|o| {
+            Solver::new(&mesh, Euclidean, o)
+                .unwrap()
+                .solve_from(&[Source::new(source)], &Stop::NONE)
+                .unwrap()
+        })
+        .collect();
+    let mut worst_dijkstra: f64 = 0.0;
+    for (u, e) in [(0.5, 0.05), (0.3, 0.08), (0.65, 0.03), (0.45, 0.12)] {
+        // Near the ridge over the edge from base[0] to base[1] (y = 0), `e` inside.
+        let target = SurfacePoint::nearest(&mesh, [u, e, h]).unwrap();
+        // Unfolded across the side y = 0: the top face lies beyond it.
+        let exact = ((u - source_xy.x).powi(2) + (source_xy.y + h + e).powi(2)).sqrt();
+        let path = fields[0].path(&mesh, &Euclidean, target).unwrap();
+        check_path(&mesh, &Euclidean, &fields[0], target, &path);
+        assert!(
+            (path.length - exact).abs() <= 0.005 * exact,
+            "tracks path {} vs exact {exact}",
+            path.length
+        );
+        let vertex_path = fields[1].view().trace(&mesh, &Euclidean, target).unwrap();
+        worst_dijkstra = worst_dijkstra.max((vertex_path.length - exact) / exact);
+    }
+    // Following vertex values alone goes astray.
+    assert!(
+        worst_dijkstra > 0.05,
+        "dijkstra path excess {worst_dijkstra}"
+    );
+}
+
+#[test]
+fn face_and_edge_sources_give_the_graphs_distances() {
+    let mut rng = Rng(5);
+    for seed in 0..12u64 {
+        let mesh = match seed % 3 {
+            0 => random_mesh(seed, 5).unwrap(),
+            1 => sphere(1, 0.3, seed),
+            _ => random_book(seed, 5, 3),
+        };
+        let sources = [
+            Source::new(random_face_point(&mesh, &mut rng)),
+            Source::new(random_edge_point(&mesh, &mut rng)).with_start(0.3 * rng.next()),
+        ];
+        let options = Options::DEFAULT.with_k(1.0 + (seed % 5) as f64);
+        let [tracks, graph] = [options, GRAPH.with_k(options.steiner.k())].map(|o| {
+            Solver::new(&mesh, Euclidean, &o)
+                .unwrap()
+                .solve_from(&sources, &Stop::NONE)
+                .unwrap()
+        });
+        for (a, b) in tracks.node_distances().iter().zip(graph.node_distances()) {
+            assert!(
+                a == b || (a - b).abs() <= 1e-9 * b,
+                "seed {seed}: tracks {a} vs graph {b}"
+            );
+        }
+    }
+}
+
+#[test]
+fn many_sources_with_start_values_are_the_minimum_and_label_vertices() {
+    let mesh = spot();
+    let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
+    let sources = [
+        Source::new(10),
+        Source::new(SurfacePoint::Face {
+            face: 500,
+            bary: [0.2, 0.3, 0.5],
+        })
+        .with_start(0.1),
+        Source::new(SurfacePoint::Edge { edge: 900, t: 0.4 }).with_start(0.05),
+    ];
+    let together = solver.solve_from(&sources, &Stop::NONE).unwrap();
+    let alone: Vec<GeodesicField> = sources
+        .iter()
+        .map(|s| solver.solve_from(&[*s], &Stop::NONE).unwrap())
+        .collect();
+    let labels = together.vertex_labels();
+    let mut seen = [false; 3];
+    for (v, &label) in labels.iter().enumerate() {
+        let each: Vec<f64> = alone.iter().map(|f| f.distance(v as u32)).collect();
+        let best = each.iter().copied().fold(f64::INFINITY, f64::min);
+        assert!((together.distance(v as u32) - best).abs() <= 1e-12 * best.max(1.0));
+        let label = label as usize;
+        assert!(
+            (each[label] - best).abs() <= 1e-9 * best.max(1.0),
+            "vertex {v} labelled {label}"
+        );
+        seen[label] = true;
+    }
+    assert_eq!(seen, [true; 3], "every source owns some vertices");
+    // A path ends at the source that labels its start.
+    let v = (0..mesh.vertex_count() as u32)
+        .find(|&v| labels[v as usize] == 1)
+        .unwrap();
+    let path = together.path(&mesh, &Euclidean, v.into()).unwrap();
+    assert_eq!(path.source, 1);
+}
+
+#[test]
+fn early_stops_keep_the_full_runs_values() {
+    let mesh = spot();
+    let source = [Source::new(SurfacePoint::Face {
+        face: 100,
+        bary: [0.3, 0.3, 0.4],
+    })];
+    for options in [Options::DEFAULT, GRAPH] {
+        let solver = Solver::new(&mesh, Euclidean, &options).unwrap();
+        let full = solver.solve_from(&source, &Stop::NONE).unwrap();
+        let far = full.node_distances().iter().copied().fold(0.0f64, f64::max);
+        let max = 0.3 * far;
+        let mut ws = solver.workspace();
+        let bounded = solver
+            .run_from(&mut ws, &source, &Stop::NONE.with_max_distance(max))
+            .unwrap();
+        let mut reached = 0;
+        for (a, b) in ws.node_distances().iter().zip(full.node_distances()) {
+            if *b <= max {
+                assert_eq!(a, b);
+                reached += 1;
+            } else {
+                assert!(a.is_infinite());
+            }
+        }
+        assert!(reached > 0);
+        assert!(bounded.distance_tests < full.stats().distance_tests / 2);
+
+        // Targets at about a fifth of the farthest distance.
+        let near = (0..mesh.vertex_count() as u32)
+            .find(|&v| (full.distance(v) - 0.2 * far).abs() < 0.02 * far)
+            .unwrap();
+        let targets = vec![
+            SurfacePoint::Vertex(near),
+            SurfacePoint::Face {
+                face: mesh.vertex_faces(near)[0],
+                bary: [0.1, 0.1, 0.8],
+            },
+        ];
+        let stats = solver
+            .run_from(&mut ws, &source, &Stop::NONE.with_targets(targets.clone()))
+            .unwrap();
+        assert!(stats.stopped_early);
+        assert!(stats.distance_tests < full.stats().distance_tests);
+        let mut finite = 0;
+        for (a, b) in ws.node_distances().iter().zip(full.node_distances()) {
+            if a.is_finite() {
+                assert_eq!(a, b);
+                finite += 1;
+            }
+        }
+        assert!(finite < ws.node_distances().len() / 2);
+        let view = ws.view(solver.layout());
+        for t in targets {
+            let stopped = view.distance_at(&mesh, &Euclidean, t).unwrap();
+            assert_eq!(stopped, full.distance_at(&mesh, &Euclidean, t).unwrap());
+            let path = view.path(&mesh, &Euclidean, t).unwrap();
+            assert_eq!(path, full.path(&mesh, &Euclidean, t).unwrap());
+        }
+    }
+}
+
+#[test]
+fn bad_points_and_unreachable_targets_are_errors() {
+    let mesh = spot();
+    let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
+    let mut ws = solver.workspace();
+    let run = |ws: &mut geotracks::Workspace, point: SurfacePoint| {
+        solver.run_from(ws, &[Source::new(point)], &Stop::NONE)
+    };
+    let faces = mesh.face_count() as u32;
+    match run(
+        &mut ws,
+        SurfacePoint::Face {
+            face: faces,
+            bary: [1.0, 0.0, 0.0],
+        },
+    ) {
+        Err(Error::InvalidPoint {
+            what,
+            error: PointError::NoSuchFace { face, .. },
+        }) => {
+            assert_eq!((what.as_str(), face), ("source 0", faces))
+        }
+        other => panic!("{other:?}"),
+    }
+    let err = run(
+        &mut ws,
+        SurfacePoint::Face {
+            face: 0,
+            bary: [0.5, 0.5, 0.5],
+        },
+    )
+    .unwrap_err();
+    assert!(err.to_string().contains("sum to 1.5"), "{err}");
+    let err = run(&mut ws, SurfacePoint::Vertex(u32::MAX)).unwrap_err();
+    assert!(matches!(err, Error::SourceOutOfRange { .. }));
+    let start = solver
+        .run_from(&mut ws, &[Source::new(0).with_start(f64::NAN)], &Stop::NONE)
+        .unwrap_err();
+    assert!(matches!(start, Error::InvalidValue { .. }));
+    let stop = Stop::NONE.with_targets(vec![SurfacePoint::Edge { edge: 0, t: 2.0 }]);
+    let err = solver
+        .run_from(&mut ws, &[Source::new(0)], &stop)
+        .unwrap_err();
+    assert!(err.to_string().starts_with("target 0:"), "{err}");
+
+    // Two components: the second is unreachable, by distance and by path.
+    let two = TriMesh::new(
+        vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [5.0, 0.0, 0.0],
+            [6.0, 0.0, 0.0],
+            [5.0, 1.0, 0.0],
+        ],
+        vec![[0, 1, 2], [3, 4, 5]],
+    )
+    .unwrap();
+    let field = Solver::new(&two, Euclidean, &Options::DEFAULT)
+        .unwrap()
+        .solve(&[0])
+        .unwrap();
+    let far = SurfacePoint::Face {
+        face: 1,
+        bary: [0.3, 0.3, 0.4],
+    };
+    assert!(field
+        .distance_at(&two, &Euclidean, far)
+        .unwrap()
+        .is_infinite());
+    assert!(matches!(
+        field.path(&two, &Euclidean, far),
+        Err(Error::Unreachable { .. })
+    ));
+    // A field queried with another mesh.
+    assert!(matches!(
+        field.distance_at(&mesh, &Euclidean, SurfacePoint::Vertex(0)),
+        Err(Error::MeshMismatch { .. })
+    ));
+}
