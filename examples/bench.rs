@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! cargo run --release --example bench -- DATA_DIR [--meshes a,b,c] [--k 3,5,8]
-//!     [--methods tracks,graph,dijkstra] [--threads-demo]
+//!     [--methods tracks,graph,dijkstra] [--threads-demo] [--early-stops]
 //! ```
 //!
 //! `DATA_DIR` holds `manifest.json` (meshes with `name`, `file`, `faces`, `references`)
@@ -21,8 +21,16 @@
 //! `--meshes`), tracks k = 5, one solver, `Solver::distance_rows` in a rayon pool of 1
 //! then 2 threads, wall time, CPU time and speed-up. (`--methods ''` skips the main
 //! table.)
+//!
+//! `--early-stops` adds: on the last mesh of the list (default bunny_loop2), tracks k = 5
+//! from the first reference's vertex, a full run against runs that stop at a maximum
+//! distance (10 %, 25 %, 50 % of the farthest) or at one target vertex (at those
+//! fractions): propagation seconds, distance tests, and a check that every value they
+//! keep is the full run's.
 
-use geotracks::{mesh::io::read_mesh, Euclidean, Method, Options, Solver};
+use geotracks::{
+    mesh::io::read_mesh, Euclidean, Method, Options, Solver, Source, Stop, SurfacePoint,
+};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::Instant;
@@ -32,7 +40,7 @@ use shared_data::{manifest, read_reference, relative_error, source_of};
 
 const DEFAULT_MESHES: &str = "alligator,bunny,horse,bunny_loop1,bunny_loop2";
 const USAGE: &str = "usage: bench DATA_DIR [--meshes a,b,c] [--k 3,5,8] \
-                     [--methods tracks,graph,dijkstra] [--threads-demo]";
+                     [--methods tracks,graph,dijkstra] [--threads-demo] [--early-stops]";
 /// Meshes with fewer faces than this are timed as the best of `REPS` runs.
 const REPS_BELOW_FACES: u64 = 200_000;
 const REPS: u32 = 3;
@@ -82,7 +90,7 @@ fn list<T>(s: &str, what: &str, f: impl Fn(&str) -> Option<T>) -> Result<Vec<T>,
 
 fn parent(argv: &[String]) -> Result<(), String> {
     let mut it = argv.iter().skip(1);
-    let (mut data, mut meshes, mut demo) = (None, None, false);
+    let (mut data, mut meshes, mut demo, mut stops) = (None, None, false, false);
     let mut ks = vec![3.0, 5.0, 8.0];
     let mut methods = vec![Method::Tracks, Method::Graph, Method::Dijkstra];
     while let Some(a) = it.next() {
@@ -92,6 +100,7 @@ fn parent(argv: &[String]) -> Result<(), String> {
             "--k" => ks = list(value()?, "k", |s| s.parse().ok().filter(|k: &f64| *k > 0.0))?,
             "--methods" => methods = list(value()?, "method", |s| s.parse().ok())?,
             "--threads-demo" => demo = true,
+            "--early-stops" => stops = true,
             "-h" | "--help" => return Err(USAGE.into()),
             _ if data.is_none() && !a.starts_with("--") => data = Some(PathBuf::from(a)),
             other => return Err(format!("unexpected argument '{other}'\n{USAGE}")),
@@ -185,6 +194,10 @@ fn parent(argv: &[String]) -> Result<(), String> {
             "bunny_loop1"
         };
         threads_demo(&entry(&data, name)?)?;
+    }
+    if stops {
+        let last = entries.last().ok_or("no mesh")?;
+        early_stops(last)?;
     }
     if failed > 0 {
         return Err(format!("{failed} configuration(s) failed (see above)"));
@@ -415,6 +428,78 @@ fn threads_demo(e: &Entry) -> Result<(), String> {
             t / SOURCES as f64,
             times[0].0 / t
         );
+    }
+    Ok(())
+}
+
+/// Early stops against a full run on one mesh: what they save, and that they agree.
+fn early_stops(e: &Entry) -> Result<(), String> {
+    eprintln!("early stops on {} ...", e.name);
+    let mesh = read_mesh(&e.file).map_err(|err| err.to_string())?;
+    let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT.with_k(5.0))
+        .map_err(|err| err.to_string())?;
+    let source = [Source::new(e.source)];
+    let mut ws = solver.workspace();
+    let full = solver
+        .run_from(&mut ws, &source, &Stop::NONE)
+        .map_err(|err| err.to_string())?;
+    let reference: Vec<f64> = ws.node_distances().to_vec();
+    let far = ws
+        .vertex_distances()
+        .iter()
+        .copied()
+        .filter(|d| d.is_finite())
+        .fold(0.0, f64::max);
+    println!(
+        "\n## Early stops\n\n{} ({} faces), tracks k = 5, source vertex {}; farthest vertex at \
+         {far:.4}. Every value a stopped run keeps equals the full run's (checked).\n",
+        e.name, e.faces, e.source
+    );
+    println!(
+        "| run | propagate s | distance tests | of the full run's tests |\n|---|---:|---:|---:|"
+    );
+    println!(
+        "| full | {:.3} | {} | 100 % |",
+        full.propagate_seconds, full.distance_tests
+    );
+    for fraction in [0.1, 0.25, 0.5] {
+        let target = (0..mesh.positions().len() as u32)
+            .min_by(|&a, &b| {
+                let off = |v: u32| (reference[v as usize] - fraction * far).abs();
+                off(a).total_cmp(&off(b))
+            })
+            .ok_or("empty mesh")?;
+        let stops = [
+            (
+                format!("max distance {:.0} % of farthest", 100.0 * fraction),
+                Stop::NONE.with_max_distance(fraction * far),
+            ),
+            (
+                format!("target vertex {target} at {:.0} %", 100.0 * fraction),
+                Stop::NONE.with_targets(vec![SurfacePoint::Vertex(target)]),
+            ),
+        ];
+        for (name, stop) in stops {
+            let stats = solver
+                .run_from(&mut ws, &source, &stop)
+                .map_err(|err| err.to_string())?;
+            let agree = ws
+                .node_distances()
+                .iter()
+                .zip(&reference)
+                .all(|(a, b)| a.is_infinite() || a == b);
+            let missed =
+                name.starts_with("target") && ws.node_distances()[target as usize].is_infinite();
+            if !agree || missed {
+                return Err(format!("{name}: values differ from the full run"));
+            }
+            println!(
+                "| {name} | {:.3} | {} | {:.1} % |",
+                stats.propagate_seconds,
+                stats.distance_tests,
+                100.0 * stats.distance_tests as f64 / full.distance_tests as f64
+            );
+        }
     }
     Ok(())
 }

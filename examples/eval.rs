@@ -13,6 +13,15 @@
 //! cargo run --release --example eval -- ../shared/data --equality [--meshes a,ma/b.ma] [--max-faces 100000] [--k 3,5]
 //! ```
 //!
+//! With `--paths N` it measures paths instead: on every mesh with references, from each
+//! reference's source at each k (default 5), the paths from N vertices spread over the
+//! mesh, traced and straightened, against the exact distance (relative excess
+//! (length − d*) / d*, mean and max):
+//!
+//! ```text
+//! cargo run --release --example eval -- ../shared/data --paths 100 [--max-faces N] [--k 5]
+//! ```
+//!
 //! The directory holds `manifest.json` (a list of meshes with `name`, `file`, `faces`
 //! and `references`), the meshes, and `reference/<mesh>.src<v>.f64` files (exact
 //! distances from vertex `v`, little-endian f64 per vertex). Prints a Markdown table:
@@ -20,8 +29,9 @@
 //! vertices with d* > 0), and the distance tests of one run.
 
 use geotracks::mesh::{io::read_mesh, Topology, TriMesh};
-use geotracks::{distance_field, Euclidean, Method, Options};
+use geotracks::{distance_field, Euclidean, Method, Options, Solver, SurfacePoint};
 use std::path::PathBuf;
+use std::time::Instant;
 
 mod shared_data;
 use shared_data::{manifest, read_reference, relative_error, source_of, MeshEntry};
@@ -38,6 +48,7 @@ struct Args {
     max_faces: u64,
     ks: Vec<f64>,
     equality: bool,
+    paths: Option<usize>,
     meshes: Option<Vec<String>>,
 }
 
@@ -47,6 +58,7 @@ fn parse_args() -> Result<Args, String> {
     let mut max_faces = None;
     let mut ks = None;
     let mut equality = false;
+    let mut paths = None;
     let mut meshes = None;
     while let Some(a) = it.next() {
         match a.as_str() {
@@ -76,21 +88,31 @@ fn parse_args() -> Result<Args, String> {
                 )
             }
             "--equality" => equality = true,
+            "--paths" => {
+                paths = Some(
+                    it.next()
+                        .and_then(|v| v.parse().ok())
+                        .ok_or("--paths takes a number of paths per source")?,
+                )
+            }
             _ if data.is_none() => data = Some(PathBuf::from(a)),
             other => return Err(format!("unexpected argument '{other}'")),
         }
     }
     Ok(Args {
         data: data.ok_or(
-            "usage: eval DATA_DIR [--equality] [--meshes a,b] [--max-faces N] [--k 3,5,8]",
+            "usage: eval DATA_DIR [--equality | --paths N] [--meshes a,b] [--max-faces N] [--k 3,5,8]",
         )?,
         max_faces: max_faces.unwrap_or(if equality { 100_000 } else { 400_000 }),
         ks: ks.unwrap_or(if equality {
             vec![3.0, 5.0]
+        } else if paths.is_some() {
+            vec![5.0]
         } else {
             vec![3.0, 5.0, 8.0]
         }),
         equality,
+        paths,
         meshes,
     })
 }
@@ -110,6 +132,9 @@ fn run() -> Result<(), String> {
     }
     if meshes.is_empty() {
         return Err("no mesh of the manifest matches --meshes".into());
+    }
+    if let Some(count) = args.paths {
+        return paths(&args, &meshes, count);
     }
 
     let mut header = String::from("| mesh | faces | Dijkstra mean / max |");
@@ -244,5 +269,72 @@ fn equality(args: &Args, meshes: &[&MeshEntry]) -> Result<(), String> {
             "{failures} (mesh, k) pairs where tracks differs from the graph"
         ));
     }
+    Ok(())
+}
+
+/// Path lengths against exact distances: traced (the Steiner graph's) and straightened.
+fn paths(args: &Args, meshes: &[&MeshEntry], count: usize) -> Result<(), String> {
+    println!("| mesh | faces | k | paths | traced: mean / max excess | straightened: mean / max excess | ms per path |");
+    println!("|---|---:|---:|---:|---:|---:|---:|");
+    let mut all = (0usize, 0.0, 0.0);
+    for entry in meshes {
+        if entry.faces > args.max_faces || entry.references.is_empty() {
+            eprintln!("skipping {} ({} faces)", entry.name, entry.faces);
+            continue;
+        }
+        let mesh = read_mesh(args.data.join(&entry.file)).map_err(|e| e.to_string())?;
+        for &k in &args.ks {
+            let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT.with_k(k))
+                .map_err(|e| e.to_string())?;
+            let (mut n, mut traced, mut straight) = (0usize, 0.0, 0.0);
+            let (mut traced_max, mut straight_max) = (0.0f64, 0.0f64);
+            let mut seconds = 0.0;
+            for reference in &entry.references {
+                let exact = read_reference(&args.data.join(reference))?;
+                let field = solver
+                    .solve(&[source_of(reference)?])
+                    .map_err(|e| e.to_string())?;
+                // Vertices spread over the mesh by a multiplicative hash of 0, 1, 2, …
+                let vertices = mesh.vertex_count() as u64;
+                for i in 0..count as u64 {
+                    let v = ((i * 2_654_435_761) % vertices) as u32;
+                    let d = exact[v as usize];
+                    if d.is_nan() || d <= 0.0 {
+                        continue;
+                    }
+                    let start = Instant::now();
+                    let path = field
+                        .path(&mesh, &Euclidean, SurfacePoint::Vertex(v))
+                        .map_err(|e| e.to_string())?;
+                    seconds += start.elapsed().as_secs_f64();
+                    let (t, s) = ((path.traced_length - d) / d, (path.length - d) / d);
+                    traced += t;
+                    straight += s;
+                    traced_max = traced_max.max(t);
+                    straight_max = straight_max.max(s);
+                    n += 1;
+                }
+            }
+            let per = |x: f64| 100.0 * x / n.max(1) as f64;
+            println!(
+                "| {} | {} | {k} | {n} | {:.3} % / {:.2} % | {:.4} % / {:.3} % | {:.1} |",
+                entry.name,
+                entry.faces,
+                per(traced),
+                100.0 * traced_max,
+                per(straight),
+                100.0 * straight_max,
+                1e3 * seconds / n.max(1) as f64
+            );
+            all = (all.0 + n, all.1 + traced, all.2 + straight);
+        }
+    }
+    let per = |x: f64| 100.0 * x / all.0.max(1) as f64;
+    println!(
+        "| all | | | {} | {:.3} % | {:.4} % | |",
+        all.0,
+        per(all.1),
+        per(all.2)
+    );
     Ok(())
 }

@@ -441,3 +441,448 @@ fn matrix_writes_rows_per_source() {
         "written as .csv",
     );
 }
+
+/// A flat `n` × `n` grid of unit squares in the plane z = 0: vertex `j * (n + 1) + i` is
+/// at (i, j), and square (i, j) is faces `2 (j n + i)` (corners (i, j), (i + 1, j),
+/// (i + 1, j + 1)) and `2 (j n + i) + 1` (corners (i, j), (i + 1, j + 1), (i, j + 1)).
+fn grid_obj(dir: &Path, n: usize) -> PathBuf {
+    let id = |i: usize, j: usize| j * (n + 1) + i + 1; // 1-based, as OBJ counts
+    let mut text = String::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            text += &format!("v {i} {j} 0\n");
+        }
+    }
+    for j in 0..n {
+        for i in 0..n {
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            text += &format!("f {a} {b} {c}\nf {a} {c} {d}\n");
+        }
+    }
+    let path = dir.join("grid.obj");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// The last line of a command's standard output, as a number.
+fn last_value(out: &Output) -> f64 {
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let last = stdout.lines().last().unwrap_or("");
+    last.parse()
+        .unwrap_or_else(|_| panic!("last line {last:?} is not a number: {stdout}"))
+}
+
+/// The points of an OBJ polyline, checking its shape: `v` lines, then one `l` line
+/// through all of them in order.
+fn read_obj_polyline(path: &Path) -> Vec<[f64; 3]> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let (l, vs) = lines.split_last().unwrap();
+    let points: Vec<[f64; 3]> = vs
+        .iter()
+        .map(|line| {
+            let xyz: Vec<f64> = line
+                .strip_prefix("v ")
+                .unwrap_or_else(|| panic!("not a v line: {line:?}"))
+                .split(' ')
+                .map(|x| x.parse().unwrap())
+                .collect();
+            xyz.try_into().unwrap()
+        })
+        .collect();
+    assert!(points.len() >= 2, "{text}");
+    let order: Vec<String> = (1..=points.len()).map(|i| i.to_string()).collect();
+    assert_eq!(*l, format!("l {}", order.join(" ")), "{text}");
+    points
+}
+
+/// The rows of a path CSV: position and surface point; checks the header.
+fn read_csv_path(path: &Path) -> Vec<([f64; 3], geotracks::SurfacePoint)> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("x,y,z,point"));
+    lines
+        .map(|line| {
+            let mut fields = line.splitn(4, ',');
+            let xyz = [0; 3].map(|_| fields.next().unwrap().parse::<f64>().unwrap());
+            // A face point's commas are quoted.
+            let point = fields.next().unwrap().trim_matches('"');
+            (xyz, point.parse().unwrap())
+        })
+        .collect()
+}
+
+fn polyline_length(points: &[[f64; 3]]) -> f64 {
+    points
+        .windows(2)
+        .map(|w| {
+            let d = [0, 1, 2].map(|i| w[1][i] - w[0][i]);
+            (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
+        })
+        .sum()
+}
+
+fn close_to(a: [f64; 3], b: [f64; 3]) -> bool {
+    (0..3).all(|i| (a[i] - b[i]).abs() < 1e-12)
+}
+
+#[test]
+fn path_writes_obj_and_csv_from_target_to_source() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = grid_obj(dir.path(), 4);
+    let mesh = mesh.to_str().unwrap();
+    let obj = dir.path().join("p.obj");
+    // From vertex 9 at (4, 1) to vertex 0 at the origin: the path crosses faces.
+    let out = geotracks_ok(&[
+        "path",
+        mesh,
+        "--source",
+        "0",
+        "--target",
+        "9",
+        "-o",
+        obj.to_str().unwrap(),
+    ]);
+    let length = last_value(&out);
+    let points = read_obj_polyline(&obj);
+    assert!(close_to(points[0], [4.0, 1.0, 0.0]), "{points:?}");
+    assert!(close_to(*points.last().unwrap(), [0.0; 3]), "{points:?}");
+    assert!((length - polyline_length(&points)).abs() < 1e-9, "{length}");
+    // Flat and convex: the geodesic is the straight segment.
+    assert!((length - 17f64.sqrt()).abs() < 1e-6, "{length}");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("traced length"), "{stdout}");
+
+    let csv = dir.path().join("p.csv");
+    let out = geotracks_ok(&[
+        "path",
+        mesh,
+        "--source",
+        "0",
+        "--target",
+        "9",
+        "-o",
+        csv.to_str().unwrap(),
+    ]);
+    assert_eq!(last_value(&out), length);
+    let rows = read_csv_path(&csv);
+    assert_eq!(rows.len(), points.len());
+    let grid = geotracks::mesh::io::read_mesh(mesh).unwrap();
+    for ((xyz, point), p) in rows.iter().zip(&points) {
+        assert_eq!(xyz, p);
+        let at = point.position(&grid).to_array();
+        assert!(close_to(*xyz, at), "{point}: {xyz:?} vs {at:?}");
+    }
+    assert_eq!(rows[0].1, geotracks::SurfacePoint::Vertex(9));
+    assert_eq!(rows.last().unwrap().1, geotracks::SurfacePoint::Vertex(0));
+
+    // A target that is a source: one point, a zero-length polyline, length 0 (not -0).
+    let out = geotracks_ok(&[
+        "path",
+        mesh,
+        "--source",
+        "9",
+        "--source",
+        "0",
+        "--target",
+        "0",
+        "-o",
+        obj.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(stdout.lines().last(), Some("0"), "{stdout}");
+    assert_eq!(std::fs::read_to_string(&obj).unwrap(), "v 0 0 0\nl 1 1\n");
+}
+
+#[test]
+fn path_from_a_face_point_to_an_edge_point() {
+    use geotracks::mesh::Topology;
+    let dir = tempfile::tempdir().unwrap();
+    let mesh_path = grid_obj(dir.path(), 4);
+    let mesh = mesh_path.to_str().unwrap();
+    let grid = geotracks::mesh::io::read_mesh(&mesh_path).unwrap();
+    // The boundary edge from (4, 2) (vertex 14) to (4, 3) (vertex 19).
+    let edge = (0..grid.edge_count() as u32)
+        .find(|&e| grid.edge_vertices(e) == [14, 19])
+        .unwrap();
+    let target = format!("e:{edge}:0.25"); // at (4, 2.25)
+    let source = "f:0:0.2,0.3,0.5"; // at (0.8, 0.5)
+    let csv = dir.path().join("p.csv");
+    let out = geotracks_ok(&[
+        "path",
+        mesh,
+        "--source",
+        source,
+        "--target",
+        &target,
+        "-o",
+        csv.to_str().unwrap(),
+    ]);
+    let rows = read_csv_path(&csv);
+    assert_eq!(rows[0].1.to_string(), target);
+    assert!(close_to(rows[0].0, [4.0, 2.25, 0.0]), "{rows:?}");
+    let (xyz, point) = rows.last().unwrap();
+    assert_eq!(point.to_string(), source);
+    assert!(close_to(*xyz, [0.8, 0.5, 0.0]), "{rows:?}");
+    let points: Vec<[f64; 3]> = rows.iter().map(|(xyz, _)| *xyz).collect();
+    let length = last_value(&out);
+    assert!((length - polyline_length(&points)).abs() < 1e-9, "{length}");
+    let straight = (3.2f64 * 3.2 + 1.75 * 1.75).sqrt();
+    assert!((length - straight).abs() < 1e-6, "{length} vs {straight}");
+}
+
+#[test]
+fn distance_from_a_face_point() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let txt = dir.path().join("d.txt");
+    geotracks_ok(&[
+        "distance",
+        mesh.to_str().unwrap(),
+        "--source",
+        "f:0:0.5,0.25,0.25", // at (0.5, 0.25); face 0 is vertices 0, 1, 2
+        "-o",
+        txt.to_str().unwrap(),
+    ]);
+    let d = read_values(&txt);
+    let exact = |x: f64, y: f64| ((x - 0.5f64).powi(2) + (y - 0.25f64).powi(2)).sqrt();
+    // Straight within face 0.
+    assert!((d[0] - exact(0.0, 0.0)).abs() < 1e-12, "{d:?}");
+    assert!((d[1] - exact(1.0, 0.0)).abs() < 1e-12, "{d:?}");
+    assert!((d[2] - exact(1.0, 1.0)).abs() < 1e-12, "{d:?}");
+    // Through a Steiner point of the diagonal: never shorter, close.
+    let e3 = exact(0.0, 1.0);
+    assert!(d[3] >= e3 - 1e-12 && d[3] < e3 * 1.01, "{d:?}");
+}
+
+#[test]
+fn max_distance_leaves_far_vertices_inf() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = grid_obj(dir.path(), 4);
+    let mesh = mesh.to_str().unwrap();
+    let full = dir.path().join("full.txt");
+    geotracks_ok(&[
+        "distance",
+        mesh,
+        "--source",
+        "0",
+        "-o",
+        full.to_str().unwrap(),
+    ]);
+    let capped = dir.path().join("capped.txt");
+    let out = geotracks_ok(&[
+        "distance",
+        mesh,
+        "--source",
+        "0",
+        "--max-distance",
+        "2.5",
+        "-o",
+        capped.to_str().unwrap(),
+    ]);
+    let (full, capped) = (read_values(&full), read_values(&capped));
+    assert_eq!(full.len(), 25);
+    let far = full.iter().filter(|&&d| d > 2.5).count();
+    assert!(far > 0 && far < 25);
+    for (v, (&f, &c)) in full.iter().zip(&capped).enumerate() {
+        if f <= 2.5 {
+            assert_eq!(c, f, "vertex {v}");
+        } else {
+            assert!(c.is_infinite(), "vertex {v}: {c}");
+        }
+    }
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains(&format!(
+            "{far} vertices are farther than --max-distance 2.5"
+        )),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn voronoi_labels_each_vertex_with_its_nearest_source() {
+    let dir = tempfile::tempdir().unwrap();
+    let n = 4;
+    let mesh = grid_obj(dir.path(), n);
+    let mesh = mesh.to_str().unwrap();
+    let txt = dir.path().join("d.txt");
+    let voronoi = dir.path().join("v.txt");
+    // Vertex 0 at the origin, and a point at (3.75, 3.5) in the far corner's square.
+    let sources = [[0.0, 0.0], [3.75, 3.5]];
+    let last_face = 2 * n * n - 2; // corners (3, 3), (4, 3), (4, 4)
+    let face_point = format!("f:{last_face}:0.25,0.25,0.5");
+    geotracks_ok(&[
+        "distance",
+        mesh,
+        "--source",
+        "0",
+        "--source",
+        &face_point,
+        "--voronoi",
+        voronoi.to_str().unwrap(),
+        "-o",
+        txt.to_str().unwrap(),
+    ]);
+    let labels: Vec<i64> = std::fs::read_to_string(&voronoi)
+        .unwrap()
+        .lines()
+        .map(|l| l.parse().unwrap())
+        .collect();
+    assert_eq!(labels.len(), (n + 1) * (n + 1));
+    assert_eq!(labels[0], 0);
+    assert_eq!(labels[labels.len() - 1], 1);
+    // Flat and convex: distances are Euclidean; check where one source is clearly nearer.
+    for (v, &label) in labels.iter().enumerate() {
+        let (x, y) = ((v % (n + 1)) as f64, (v / (n + 1)) as f64);
+        let d = sources.map(|[sx, sy]| ((x - sx).powi(2) + (y - sy).powi(2)).sqrt());
+        if (d[0] - d[1]).abs() > 0.1 {
+            let nearest = if d[0] < d[1] { 0 } else { 1 };
+            assert_eq!(label, nearest, "vertex {v} at ({x}, {y}): {d:?}");
+        } else {
+            assert!(label == 0 || label == 1, "vertex {v}: {label}");
+        }
+    }
+
+    // Vertices no source reaches are -1.
+    let two = dir.path().join("two.obj");
+    std::fs::write(
+        &two,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 0 0\nv 6 0 0\nv 5 1 0\nf 1 2 3\nf 4 5 6\n",
+    )
+    .unwrap();
+    geotracks_ok(&[
+        "distance",
+        two.to_str().unwrap(),
+        "--source",
+        "e:0:0.5",
+        "--voronoi",
+        voronoi.to_str().unwrap(),
+        "-o",
+        txt.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        std::fs::read_to_string(&voronoi).unwrap(),
+        "0\n0\n0\n-1\n-1\n-1\n"
+    );
+}
+
+#[test]
+fn bad_surface_points_fail_cleanly() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let mesh = mesh.to_str().unwrap();
+    let txt = dir.path().join("out.txt");
+    let obj = dir.path().join("out.obj");
+    // (--source, expected) for both commands.
+    let sources = [
+        ("x", "invalid value 'x' for '--source <SP>'"),
+        ("f:0:1,0", "needs three barycentric coordinates"),
+        ("f:2:1,0,0", "--source f:2:1,0,0: face 2 does not exist"),
+        ("f:0:0.5,0.5,0.5", "--source f:0:0.5,0.5,0.5: barycentric"),
+        ("e:9:0.5", "--source e:9:0.5: edge 9 does not exist"),
+        ("e:0:1.5", "edge parameter t = 1.5 is outside [0, 1]"),
+        ("4", "source vertex 4 is out of range"),
+    ];
+    for (source, expected) in sources {
+        let args = ["distance", mesh, "--source", source];
+        assert_fails(
+            &[&args[..], &["-o", txt.to_str().unwrap()]].concat(),
+            &txt,
+            expected,
+        );
+        let args = ["path", mesh, "--source", source, "--target", "2"];
+        assert_fails(
+            &[&args[..], &["-o", obj.to_str().unwrap()]].concat(),
+            &obj,
+            expected,
+        );
+    }
+    let targets = [
+        ("f:0:0.2", "invalid value 'f:0:0.2' for '--target <SP>'"),
+        ("f:7:1,0,0", "--target f:7:1,0,0: face 7 does not exist"),
+        ("f:1:0.2,0.2,0.2", "--target f:1:0.2,0.2,0.2: barycentric"),
+        ("9", "--target 9: vertex 9 does not exist"),
+    ];
+    for (target, expected) in targets {
+        let args = ["path", mesh, "--source", "0", "--target", target];
+        assert_fails(
+            &[&args[..], &["-o", obj.to_str().unwrap()]].concat(),
+            &obj,
+            expected,
+        );
+    }
+    let vtk = dir.path().join("out.vtk");
+    assert_fails(
+        &[
+            "path",
+            mesh,
+            "--source",
+            "0",
+            "--target",
+            "2",
+            "-o",
+            vtk.to_str().unwrap(),
+        ],
+        &vtk,
+        "unknown output format (expected .obj or .csv)",
+    );
+
+    // A target on another component than every source.
+    let two = dir.path().join("two.obj");
+    std::fs::write(
+        &two,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 0 0\nv 6 0 0\nv 5 1 0\nf 1 2 3\nf 4 5 6\n",
+    )
+    .unwrap();
+    let two = two.to_str().unwrap();
+    for target in ["4", "f:1:0.2,0.3,0.5"] {
+        for out in [&obj, &dir.path().join("out.csv")] {
+            let args = ["path", two, "--source", "0", "--source", "e:0:0.5"];
+            assert_fails(
+                &[
+                    &args[..],
+                    &["--target", target, "-o", out.to_str().unwrap()],
+                ]
+                .concat(),
+                out,
+                &format!("point {target} is not reached from any source"),
+            );
+        }
+    }
+
+    // --max-distance and --voronoi.
+    let voronoi = dir.path().join("v.txt");
+    let v = voronoi.to_str().unwrap();
+    let o = txt.to_str().unwrap();
+    for (extra, expected) in [
+        (
+            ["--max-distance", "-1"],
+            "--max-distance -1: it must be a number >= 0",
+        ),
+        (["--max-distance", "nan"], "--max-distance NaN"),
+        (
+            ["--max-distance", "far"],
+            "invalid value 'far' for '--max-distance <D>'",
+        ),
+    ] {
+        let args = ["distance", mesh, "--source", "0", "--voronoi", v, "-o", o];
+        assert_fails(&[&args[..], &extra[..]].concat(), &txt, expected);
+        assert!(!voronoi.exists());
+    }
+    let bad = dir.path().join("v.csv");
+    let args = ["distance", mesh, "--source", "f:0:0.5,0.5,0.5", "-o", o];
+    assert_fails(
+        &[&args[..], &["--voronoi", v]].concat(),
+        &voronoi,
+        "barycentric",
+    );
+    assert!(!txt.exists());
+    let args = ["distance", mesh, "--source", "0", "-o", o];
+    assert_fails(
+        &[&args[..], &["--voronoi", bad.to_str().unwrap()]].concat(),
+        &bad,
+        "the --voronoi file must end in .txt",
+    );
+    assert!(!txt.exists());
+}

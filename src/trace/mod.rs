@@ -62,7 +62,10 @@ impl GeodesicPath {
 
     /// The metric length: the sum of [`GeodesicPath::segment_costs`].
     pub fn metric_length<M: Metric>(&self, mesh: &TriMesh, metric: &M) -> f64 {
-        self.segment_costs(mesh, metric).iter().sum()
+        // Folded from +0: an empty sum would be −0.
+        self.segment_costs(mesh, metric)
+            .iter()
+            .fold(0.0, |sum, c| sum + c)
     }
 }
 

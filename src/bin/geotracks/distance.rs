@@ -2,9 +2,9 @@
 
 use crate::inputs::load_mesh;
 use crate::metric_args::{MetricArgs, WithMetric};
-use crate::{CliResult, Value};
-use geotracks::mesh::{io, TriMesh};
-use geotracks::{distance_field, Euclidean, GeodesicField, Metric, Options};
+use crate::{points, CliResult, Value};
+use geotracks::mesh::{io, TriMesh, NONE};
+use geotracks::{Euclidean, GeodesicField, Metric, Options, Solver, Source, Stop, SurfacePoint};
 use std::path::{Path, PathBuf};
 
 /// Arguments of `geotracks distance`.
@@ -12,11 +12,20 @@ use std::path::{Path, PathBuf};
 pub struct DistanceArgs {
     /// The mesh (OBJ, PLY, OFF, STL or .ma).
     mesh: PathBuf,
-    /// A source vertex (0-based); repeat for several sources.
-    #[arg(long = "source", required = true)]
-    sources: Vec<u32>,
+    /// A source: a surface point SP (a vertex id, e:E:t or f:F:b0,b1,b2; see below);
+    /// repeat for several sources (the distance is to the nearest).
+    #[arg(long = "source", value_name = "SP", required = true)]
+    sources: Vec<SurfacePoint>,
     #[command(flatten)]
     metric: MetricArgs,
+    /// Stop at distance D: vertices farther away stay unreached (inf in the outputs).
+    #[arg(long, value_name = "D", allow_negative_numbers = true)]
+    max_distance: Option<f64>,
+    /// Also write each vertex's nearest source (geodesic Voronoi diagram): one line per
+    /// vertex, the 0-based index of the source in the order of the --source options, or
+    /// -1 where no source reaches it.
+    #[arg(long, value_name = "OUT.txt")]
+    voronoi: Option<PathBuf>,
     /// Output: .txt (one distance per line), .csv (vertex,distance) or .ply (coloured).
     #[arg(short, long)]
     output: PathBuf,
@@ -58,9 +67,31 @@ pub fn run(args: &DistanceArgs) -> CliResult {
             return Err(format!("{}: the stats file must end in .json", stats.display()).into());
         }
     }
+    if let Some(voronoi) = &args.voronoi {
+        if voronoi.extension().and_then(|e| e.to_str()) != Some("txt") {
+            return Err(
+                format!("{}: the --voronoi file must end in .txt", voronoi.display()).into(),
+            );
+        }
+    }
+    let max_distance = args.max_distance.unwrap_or(f64::INFINITY);
+    if max_distance.is_nan() || max_distance < 0.0 {
+        return Err(format!("--max-distance {max_distance}: it must be a number >= 0").into());
+    }
     let mesh = load_mesh(&args.mesh)?;
-    let field = args.metric.dispatch(&mesh, Field(&args.sources))?;
+    let sources = points::sources(&mesh, &args.sources)?;
+    let stop = Stop::NONE.with_max_distance(max_distance);
+    let field = args.metric.dispatch(
+        &mesh,
+        Field {
+            sources: &sources,
+            stop: &stop,
+        },
+    )?;
     write_field(&args.output, format, &mesh, &field)?;
+    if let Some(voronoi) = &args.voronoi {
+        write_labels(voronoi, &field)?;
+    }
     if let Some(stats) = &args.stats {
         write_stats(stats, &field)?;
     }
@@ -77,8 +108,11 @@ pub fn run(args: &DistanceArgs) -> CliResult {
     Ok(())
 }
 
-/// A distance field from these sources.
-struct Field<'s>(&'s [u32]);
+/// A distance field from these sources, stopping as `stop` allows.
+struct Field<'s> {
+    sources: &'s [Source],
+    stop: &'s Stop,
+}
 
 impl WithMetric for Field<'_> {
     type Output = GeodesicField;
@@ -88,24 +122,48 @@ impl WithMetric for Field<'_> {
         metric: &M,
         options: &Options,
     ) -> CliResult<GeodesicField> {
-        compute(mesh, metric, self.0, options)
+        compute(mesh, metric, self.sources, self.stop, options)
     }
 }
 
 fn compute<M: Metric>(
     mesh: &TriMesh,
     metric: &M,
-    sources: &[u32],
+    sources: &[Source],
+    stop: &Stop,
     options: &Options,
 ) -> CliResult<GeodesicField> {
-    let field = distance_field(mesh, metric, sources, options)?;
+    let field = Solver::new(mesh, metric, options)?.solve_from(sources, stop)?;
     let unreachable = field.unreachable_vertices();
     if unreachable > 0 {
-        eprintln!(
-            "warning: {unreachable} vertices are not reachable from the sources (another component or unreferenced); their distance is inf"
-        );
+        if stop.max_distance.is_finite() {
+            eprintln!(
+                "{unreachable} vertices are farther than --max-distance {} or not reachable from the sources; their distance is inf",
+                Value(stop.max_distance)
+            );
+        } else {
+            eprintln!(
+                "warning: {unreachable} vertices are not reachable from the sources (another component or unreferenced); their distance is inf"
+            );
+        }
     }
     Ok(field)
+}
+
+/// Writes the index of each vertex's nearest source, `-1` where unreached.
+fn write_labels(path: &Path, field: &GeodesicField) -> CliResult {
+    let labels = field.vertex_labels();
+    io::write_atomically(path, |w| {
+        for label in labels {
+            if label == NONE {
+                writeln!(w, "-1")?;
+            } else {
+                writeln!(w, "{label}")?;
+            }
+        }
+        Ok(())
+    })?;
+    Ok(())
 }
 
 fn write_field(
@@ -164,7 +222,13 @@ pub fn demo(output: &Path) -> CliResult {
     let mesh = io::read_obj_bytes(SPOT_OBJ)?;
     let source = 0;
     let options = Options::DEFAULT;
-    let field = compute(&mesh, &Euclidean, &[source], &options)?;
+    let field = compute(
+        &mesh,
+        &Euclidean,
+        &[Source::new(source)],
+        &Stop::NONE,
+        &options,
+    )?;
     write_field(output, format, &mesh, &field)?;
     let s = field.stats();
     let far = field

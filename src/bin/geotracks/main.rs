@@ -5,6 +5,8 @@ mod distance;
 mod inputs;
 mod matrix;
 mod metric_args;
+mod path;
+mod points;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -20,8 +22,14 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Compute a distance field from one or more source vertices.
+    /// Compute a distance field from one or more sources (vertices, or any surface
+    /// points).
+    #[command(after_help = points::SP_HELP)]
     Distance(distance::DistanceArgs),
+    /// Trace the shortest path from a target point to the nearest source and write it as
+    /// a polyline (.obj or .csv); print its length on the last line.
+    #[command(after_help = points::SP_HELP)]
+    Path(path::PathArgs),
     /// Distances from many sources (rows) to every vertex or to listed targets
     /// (columns), computed on all cores.
     Matrix(matrix::MatrixArgs),
@@ -42,6 +50,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Distance(args) => distance::run(&args),
+        Command::Path(args) => path::run(&args),
         Command::Matrix(args) => matrix::run(&args),
         Command::Info { mesh } => info(&mesh),
         Command::Demo { output } => distance::demo(&output),
@@ -55,7 +64,7 @@ fn main() -> ExitCode {
     }
 }
 
-/// A distance as text: shortest round-trip form, `inf` when unreachable.
+/// A distance as text: shortest round-trip form, `inf` when unreachable, `0` for -0.
 pub(crate) struct Value(pub f64);
 
 impl std::fmt::Display for Value {
@@ -63,7 +72,9 @@ impl std::fmt::Display for Value {
         if self.0.is_infinite() {
             f.write_str("inf")
         } else {
-            write!(f, "{}", self.0)
+            // An empty sum of floats is -0 (a path of one point); adding 0 makes it 0
+            // and leaves every other value as it is.
+            write!(f, "{}", self.0 + 0.0)
         }
     }
 }

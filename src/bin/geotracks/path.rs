@@ -1,0 +1,148 @@
+//! `geotracks path`: the shortest path from a surface point to the nearest source.
+
+use crate::inputs::load_mesh;
+use crate::metric_args::{MetricArgs, WithMetric};
+use crate::{points, CliResult, Value};
+use geotracks::mesh::{io, TriMesh};
+use geotracks::{GeodesicField, GeodesicPath, Metric, Options, Solver, Source, Stop, SurfacePoint};
+use std::path::{Path, PathBuf};
+
+/// Arguments of `geotracks path`.
+#[derive(clap::Args)]
+pub struct PathArgs {
+    /// The mesh (OBJ, PLY, OFF, STL or .ma).
+    mesh: PathBuf,
+    /// A source: a surface point SP (a vertex id, e:E:t or f:F:b0,b1,b2; see below);
+    /// repeat for several sources (the path goes to the nearest).
+    #[arg(long = "source", value_name = "SP", required = true)]
+    sources: Vec<SurfacePoint>,
+    /// Where the path starts: a surface point SP.
+    #[arg(long, value_name = "SP")]
+    target: SurfacePoint,
+    #[command(flatten)]
+    metric: MetricArgs,
+    /// Output: .obj (the polyline as `v` lines and one `l` line) or .csv (`x,y,z,point`),
+    /// from the target to the source.
+    #[arg(short, long)]
+    output: PathBuf,
+}
+
+/// The formats `-o` accepts.
+#[derive(Clone, Copy)]
+enum OutputFormat {
+    Obj,
+    Csv,
+}
+
+fn output_format(path: &Path) -> CliResult<OutputFormat> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("obj") => Ok(OutputFormat::Obj),
+        Some("csv") => Ok(OutputFormat::Csv),
+        _ => Err(format!(
+            "{}: unknown output format (expected .obj or .csv)",
+            path.display()
+        )
+        .into()),
+    }
+}
+
+/// A run that stops once the target's value is final, and the path from the target.
+struct Trace<'a> {
+    sources: &'a [Source],
+    target: SurfacePoint,
+}
+
+impl WithMetric for Trace<'_> {
+    type Output = (GeodesicField, GeodesicPath);
+    fn run<M: Metric>(
+        self,
+        mesh: &TriMesh,
+        metric: &M,
+        options: &Options,
+    ) -> CliResult<Self::Output> {
+        let solver = Solver::new(mesh, metric, options)?;
+        let stop = Stop::NONE.with_targets(vec![self.target]);
+        let field = solver.solve_from(self.sources, &stop)?;
+        let path = field.path(mesh, metric, self.target)?;
+        Ok((field, path))
+    }
+}
+
+pub fn run(args: &PathArgs) -> CliResult {
+    // Check everything that can be checked before the computation.
+    let format = output_format(&args.output)?;
+    let mesh = load_mesh(&args.mesh)?;
+    let sources = points::sources(&mesh, &args.sources)?;
+    let target = points::check(&mesh, "target", args.target)?;
+    let (field, path) = args.metric.dispatch(
+        &mesh,
+        Trace {
+            sources: &sources,
+            target,
+        },
+    )?;
+    write_path(&args.output, format, &mesh, &path)?;
+
+    let source = path.source as usize;
+    println!("target: {}", args.target);
+    println!("source: {source} ({})", args.sources[source]);
+    println!("points: {}", path.points.len());
+    println!(
+        "traced length: {} (the Steiner graph's distance, before straightening)",
+        Value(path.traced_length)
+    );
+    println!("{}", Value(path.length));
+    let s = field.stats();
+    eprintln!(
+        "{}: {} vertices, method {}, {} Steiner points, {:.3} s{}; wrote {}",
+        args.mesh.display(),
+        s.vertices,
+        s.method,
+        s.steiner_points,
+        s.setup_seconds + s.propagate_seconds,
+        if s.stopped_early {
+            ", stopped at the target"
+        } else {
+            ""
+        },
+        args.output.display()
+    );
+    Ok(())
+}
+
+/// Writes the polyline, target first.
+fn write_path(file: &Path, format: OutputFormat, mesh: &TriMesh, path: &GeodesicPath) -> CliResult {
+    let positions = path.positions(mesh);
+    match format {
+        OutputFormat::Obj => io::write_atomically(file, |w| {
+            for p in &positions {
+                writeln!(w, "v {} {} {}", p.x, p.y, p.z)?;
+            }
+            // A polyline needs two vertices: a path of one point (the target is a
+            // source) is written as a zero-length segment.
+            write!(w, "l")?;
+            for i in 1..=positions.len().max(2) {
+                write!(w, " {}", i.min(positions.len()))?;
+            }
+            writeln!(w)
+        })?,
+        OutputFormat::Csv => io::write_atomically(file, |w| {
+            writeln!(w, "x,y,z,point")?;
+            for (p, point) in positions.iter().zip(&path.points) {
+                let text = point.to_string();
+                // A face point's barycentrics hold commas: quote it (RFC 4180).
+                if text.contains(',') {
+                    writeln!(w, "{},{},{},\"{text}\"", p.x, p.y, p.z)?;
+                } else {
+                    writeln!(w, "{},{},{},{text}", p.x, p.y, p.z)?;
+                }
+            }
+            Ok(())
+        })?,
+    }
+    Ok(())
+}
