@@ -129,21 +129,27 @@ impl<'a, M: Metric> Frontier<'a, M, ()> {
 }
 
 impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
-    /// Whether every target's value is final, so the run may stop (called after a pop,
-    /// before settling). Targets become final in no particular order, but stay final, so
-    /// a cursor over them makes all the checks of a run cost O(targets + pops).
+    /// The next node to settle and its value; `None` when the run is over: the queue is
+    /// empty, the metric returned a bad cost, or every target's value is final.
+    ///
+    /// Targets become final in no particular order, but stay final, so a cursor over
+    /// them makes all the checks of a run cost O(targets + pops).
     #[inline]
-    pub fn targets_final(&mut self) -> bool {
-        if self.targets.is_empty() {
-            return false;
+    pub fn next(&mut self) -> Option<(u32, f64)> {
+        if self.bad_cost.is_some() {
+            return None;
         }
-        while let Some(&t) = self.targets.get(self.target_cursor) {
-            if !self.queue.is_final(self.distance[t as usize]) {
-                return false;
+        let q = self.queue.pop(self.distance)?;
+        if !self.targets.is_empty() {
+            while let Some(&t) = self.targets.get(self.target_cursor) {
+                if !self.queue.is_final(self.distance[t as usize]) {
+                    return Some((q, self.distance[q as usize]));
+                }
+                self.target_cursor += 1;
             }
-            self.target_cursor += 1;
+            return None;
         }
-        true
+        Some((q, self.distance[q as usize]))
     }
 
     /// The metric's cost of a segment in face `face`, counted as one distance test.

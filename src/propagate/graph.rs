@@ -10,19 +10,12 @@ use crate::mesh::Topology;
 use crate::steiner::NodeKind;
 use geotracks_metrics::{FacePoint, Metric};
 
-/// Settles nodes until the queue is empty (or the metric misbehaves).
+/// Settles nodes until the run is over ([`Frontier::next`]).
 pub(super) fn propagate<M: Metric, Q: Queue>(search: &mut Frontier<'_, M, Q>) {
-    while let Some(q) = search.queue.pop(search.distance) {
-        if search.targets_final() {
-            break;
-        }
-        let d = search.distance[q as usize];
+    while let Some((q, d)) = search.next() {
         let kind = search.layout.kind(q);
         search.relax_along_edges(q, kind, d);
         settle_in_faces(search, q, kind, d);
-        if search.bad_cost.is_some() {
-            break;
-        }
     }
 }
 

@@ -178,12 +178,9 @@ impl FieldView<'_> {
         let faces = mesh.edge_faces(edge);
         faces
             .iter()
-            .copied()
-            .min_by(|&f, &g| {
-                segment_cost(mesh, metric, f, pa, pb)
-                    .total_cmp(&segment_cost(mesh, metric, g, pa, pb))
-            })
-            .unwrap_or(faces[0])
+            .map(|&f| (segment_cost(mesh, metric, f, pa, pb), f))
+            .min_by(|x, y| x.0.total_cmp(&y.0))
+            .map_or(faces[0], |(_, f)| f)
     }
 }
 

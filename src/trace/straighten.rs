@@ -44,7 +44,6 @@ pub fn straighten<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M
         }
         newton(path, mesh, metric);
         slide(path, mesh, metric, length);
-        canonicalise(path, mesh);
         length = path.metric_length(mesh, metric);
         if let (Some(saved), true) = (saved, length > before) {
             // Leaving the vertices did not pay (a metric unlike the Euclidean angles
@@ -298,12 +297,8 @@ impl Chain {
             let movable = i > 0 && i + 1 < n && path.faces[i - 1] != path.faces[i];
             let place = |f: u32| match p {
                 SurfacePoint::Edge { edge, .. } if movable => {
-                    let [lo, hi] = mesh.edge_vertices(edge);
-                    let c = |v: u32| {
-                        mesh.frame(f)
-                            .corner(mesh.corner_of(f, v).expect("edge of its face"))
-                    };
-                    Place::On(c(lo), c(hi))
+                    let (lo, hi) = edge_ends(mesh, f, edge);
+                    Place::On(lo, hi)
                 }
                 _ => Place::Fixed(p.in_face(mesh, f).expect("on its face")),
             };
@@ -496,15 +491,7 @@ fn slide_one<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M, i: 
     if f == g {
         return 0.0;
     }
-    let [lo, hi] = mesh.edge_vertices(edge);
-    let ends = |h: u32| {
-        let c = |v: u32| {
-            mesh.frame(h)
-                .corner(mesh.corner_of(h, v).expect("edge of its face"))
-        };
-        (c(lo), c(hi))
-    };
-    let (ef, eg) = (ends(f), ends(g));
+    let (ef, eg) = (edge_ends(mesh, f, edge), edge_ends(mesh, g, edge));
     let a = path.points[i - 1].in_face(mesh, f).expect("on its face");
     let b = path.points[i + 1].in_face(mesh, g).expect("on its face");
     let cost = |t: f64| {
@@ -518,6 +505,17 @@ fn slide_one<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M, i: 
     } else {
         0.0
     }
+}
+
+/// The ends of `edge` (lower-id vertex first, as its parameter runs) in the frame of
+/// face `f`, one of its faces.
+fn edge_ends(mesh: &TriMesh, f: u32, edge: u32) -> (FacePoint, FacePoint) {
+    let corner = |v: u32| {
+        mesh.frame(f)
+            .corner(mesh.corner_of(f, v).expect("edge of its face"))
+    };
+    let [lo, hi] = mesh.edge_vertices(edge);
+    (corner(lo), corner(hi))
 }
 
 /// The point at `t` on the segment `a`–`b` of one face's frame.

@@ -43,20 +43,14 @@ enum OutputFormat {
 }
 
 fn output_format(path: &Path) -> CliResult<OutputFormat> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    match ext.as_deref() {
-        Some("txt") => Ok(OutputFormat::Txt),
-        Some("csv") => Ok(OutputFormat::Csv),
-        Some("ply") => Ok(OutputFormat::Ply),
-        _ => Err(format!(
-            "{}: unknown output format (expected .txt, .csv or .ply)",
-            path.display()
-        )
-        .into()),
-    }
+    crate::output_format(
+        path,
+        &[
+            ("txt", OutputFormat::Txt),
+            ("csv", OutputFormat::Csv),
+            ("ply", OutputFormat::Ply),
+        ],
+    )
 }
 
 pub fn run(args: &DistanceArgs) -> CliResult {

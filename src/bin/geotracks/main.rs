@@ -82,6 +82,32 @@ impl std::fmt::Display for Value {
 /// Errors of the CLI: the library's, plus the CLI's own input files.
 pub(crate) type CliResult<T = ()> = Result<T, Box<dyn std::error::Error>>;
 
+/// The format of output file `path`, by its extension (any case), among `formats`
+/// (extension, format); the error lists the extensions accepted.
+pub(crate) fn output_format<F: Copy>(
+    path: &std::path::Path,
+    formats: &[(&str, F)],
+) -> CliResult<F> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    if let Some(&(_, format)) = formats.iter().find(|(e, _)| ext.as_deref() == Some(*e)) {
+        return Ok(format);
+    }
+    let names: Vec<String> = formats.iter().map(|(e, _)| format!(".{e}")).collect();
+    let expected = match names.split_last() {
+        Some((last, [])) => last.clone(),
+        Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
+        None => String::new(),
+    };
+    Err(format!(
+        "{}: unknown output format (expected {expected})",
+        path.display()
+    )
+    .into())
+}
+
 fn info(path: &std::path::Path) -> CliResult {
     let mesh = inputs::load_mesh(path)?;
     println!("{}", path.display());

@@ -35,19 +35,10 @@ enum OutputFormat {
 }
 
 fn output_format(path: &Path) -> CliResult<OutputFormat> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    match ext.as_deref() {
-        Some("obj") => Ok(OutputFormat::Obj),
-        Some("csv") => Ok(OutputFormat::Csv),
-        _ => Err(format!(
-            "{}: unknown output format (expected .obj or .csv)",
-            path.display()
-        )
-        .into()),
-    }
+    crate::output_format(
+        path,
+        &[("obj", OutputFormat::Obj), ("csv", OutputFormat::Csv)],
+    )
 }
 
 /// A run that stops once the target's value is final, and the path from the target.

@@ -219,9 +219,9 @@ impl Arc {
     }
 }
 
-/// Settles nodes until the queue is empty, the targets are final, or the metric
-/// misbehaves. `tracks` holds one [`Track`] per instance, reset by the caller; `seeds`
-/// are the sources' offers, already given to their nodes.
+/// Settles nodes until the run is over ([`Frontier::next`]). `tracks` holds one
+/// [`Track`] per instance, reset by the caller; `seeds` are the sources' offers, already
+/// given to their nodes.
 pub(super) fn propagate<M: Metric, Q: Queue>(
     search: &mut Frontier<'_, M, Q>,
     tables: &TrackTables,
@@ -248,18 +248,11 @@ pub(super) fn propagate<M: Metric, Q: Queue>(
         tracks,
     };
     let vertex_count = run.search.layout.vertex_count();
-    while let Some(q) = run.search.queue.pop(run.search.distance) {
-        if run.search.targets_final() {
-            break;
-        }
-        let d = run.search.distance[q as usize];
+    while let Some((q, d)) = run.search.next() {
         if q < vertex_count {
             run.settle_vertex(q, d);
         } else {
             run.settle_steiner(q, d);
-        }
-        if run.search.bad_cost.is_some() {
-            break;
         }
     }
 }
