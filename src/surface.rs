@@ -262,7 +262,7 @@ impl SurfacePoint {
     /// The point of the surface nearest to `xyz` (Euclidean, in space), in canonical
     /// form; `None` for a mesh without faces.
     ///
-    /// Cost: a brute-force scan of every face, O(faces) per call (about 30 ns per face);
+    /// Cost: a brute-force scan of every face, O(faces) per call;
     /// for many queries on a large mesh, a spatial index would be the thing to add.
     pub fn nearest(mesh: &TriMesh, xyz: [f64; 3]) -> Option<SurfacePoint> {
         let p = DVec3::from(xyz);
