@@ -83,6 +83,9 @@ pub enum Error {
         /// The cost returned.
         value: f64,
     },
+    /// A grassfire needs a boundary to start from, and the surface has none.
+    #[error("the surface has no boundary (no edge with exactly one face): a grassfire has nowhere to start")]
+    NoBoundary,
     /// The mesh needs more state than 32-bit ids can address.
     #[error("the mesh is too large: {count} {what} exceed the 32-bit id range; lower k")]
     TooLarge {

@@ -295,11 +295,24 @@ impl<'a> FieldView<'a> {
     /// Found by following parents to the source that started each chain, with every
     /// node labelled once: O(nodes).
     pub fn vertex_labels(&self) -> Vec<u32> {
+        let mut label = self.labels(self.layout.vertex_count());
+        label.truncate(self.layout.vertex_count() as usize);
+        label
+    }
+
+    /// As [`FieldView::vertex_labels`], for every node (vertices, then Steiner points in
+    /// [`SteinerLayout`] order).
+    pub fn node_labels(&self) -> Vec<u32> {
+        self.labels(self.distance.len() as u32)
+    }
+
+    /// Labels of nodes `0..count` (and of the nodes their chains pass through).
+    fn labels(&self, count: u32) -> Vec<u32> {
         let n = self.distance.len();
         let mut label = vec![NONE; n];
         let mut known = vec![false; n];
         let mut chain = Vec::new();
-        for start in 0..self.layout.vertex_count() {
+        for start in 0..count {
             let mut node = start;
             // Walk up to a labelled node or a root; parents have lower values, so the
             // walk ends (a step cap guards against a metric with zero costs).
@@ -326,7 +339,6 @@ impl<'a> FieldView<'a> {
             }
             chain.clear();
         }
-        label.truncate(self.layout.vertex_count() as usize);
         label
     }
 }

@@ -15,6 +15,8 @@
 //!   [`distance_field`] for one query, and [`Solver`] / [`Workspace`] for many (reused
 //!   buffers, parallel rows).
 //! - [`field`]: [`GeodesicField`], what a run returns.
+//! - [`skeleton`]: grassfire on a medial axis from its boundary, and the skeleton of its
+//!   ridges.
 //!
 //! ## Example
 //! ```
@@ -36,6 +38,7 @@ mod error;
 pub mod field;
 pub mod mesh;
 pub mod propagate;
+pub mod skeleton;
 pub mod steiner;
 pub mod surface;
 pub mod trace;

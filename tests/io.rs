@@ -244,7 +244,9 @@ fn stl_binary_whose_header_says_solid() {
 #[test]
 fn ma_book_has_three_pages_on_its_spine_and_a_free_edge() {
     let axis = read_medial_axis(fixture("book.ma")).unwrap();
-    let mesh = &axis.mesh;
+    let mesh = axis.surface.as_ref().unwrap();
+    assert_eq!(axis.free_edges, [[2, 5]]);
+    assert_eq!(axis.positions.len(), 6);
     assert_eq!(axis.radii, [0.1, 0.2, 0.3, 0.4, 0.5, 0.6]);
     assert_eq!((mesh.vertex_count(), mesh.face_count()), (6, 3));
     let spine = edge(mesh, 0, 1).unwrap();
@@ -263,14 +265,30 @@ fn ma_book_has_three_pages_on_its_spine_and_a_free_edge() {
 }
 
 #[test]
-fn ma_with_only_edges_has_no_usable_face() {
-    let err = read_error(
-        "edges.ma",
-        "3 2 0\nv 0 0 0 1\nv 1 0 0 1\nv 2 0 0 1\ne 0 1\ne 1 2\n",
-    );
+fn ma_with_only_edges_is_a_curve_axis_but_no_mesh() {
+    let text = "3 3 1\nv 0 0 0 1\nv 1 0 0 1\nv 2 0 0 1\ne 0 1\ne 2 1\ne 1 1\nf 0 1 1\n";
+    let err = read_error("edges.ma", text);
     assert!(matches!(err, MeshError::InFile { .. }), "{err:?}");
     assert!(
-        matches!(root(&err), MeshError::NoUsableFace { faces: 0, .. }),
+        matches!(
+            root(&err),
+            MeshError::NoUsableFace {
+                faces: 1,
+                degenerate: 1
+            }
+        ),
+        "{err:?}"
+    );
+    let (_dir, path) = temp_file("edges.ma", text);
+    let axis = read_medial_axis(&path).unwrap();
+    assert!(axis.surface.is_none());
+    assert_eq!(axis.free_edges, [[0, 1], [1, 2]]);
+    assert_eq!(axis.radii, [1.0; 3]);
+    // Neither a face nor an edge: nothing at all to work on.
+    let (_dir, path) = temp_file("points.ma", "2 0 0\nv 0 0 0 1\nv 1 0 0 1\n");
+    let err = read_medial_axis(&path).unwrap_err();
+    assert!(
+        matches!(root(&err), MeshError::NoUsableFace { .. }),
         "{err:?}"
     );
 }

@@ -289,3 +289,28 @@ pub fn random_book(seed: u64, pages: usize, n: usize) -> TriMesh {
     triangles.push([top, b, b + 1]);
     TriMesh::new(positions, triangles).unwrap()
 }
+
+/// A flat `w × h` rectangle on `[0, w] × [0, h]` (z = 0) of `nx × ny` cells, each split
+/// along alternating diagonals so that no direction is favoured. Vertex `(i, j)` has id
+/// `j * (nx + 1) + i`.
+pub fn rectangle(nx: usize, ny: usize, w: f64, h: f64) -> TriMesh {
+    let mut positions = Vec::new();
+    for j in 0..=ny {
+        for i in 0..=nx {
+            positions.push([w * i as f64 / nx as f64, h * j as f64 / ny as f64, 0.0]);
+        }
+    }
+    let id = |i: usize, j: usize| (j * (nx + 1) + i) as u32;
+    let mut triangles = Vec::new();
+    for j in 0..ny {
+        for i in 0..nx {
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            if (i + j) % 2 == 0 {
+                triangles.extend([[a, b, c], [a, c, d]]);
+            } else {
+                triangles.extend([[a, b, d], [b, c, d]]);
+            }
+        }
+    }
+    TriMesh::new(positions, triangles).unwrap()
+}

@@ -10,7 +10,13 @@ use super::MedialAxis;
 use crate::mesh::{MeshError, Topology, TriMesh};
 use std::path::Path;
 
-pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<MedialAxis, MeshError> {
+/// Reads a medial axis; one of curves only (no usable face) is an error unless
+/// `allow_curves_only`.
+pub(super) fn read(
+    path: &Path,
+    bytes: &[u8],
+    allow_curves_only: bool,
+) -> Result<MedialAxis, MeshError> {
     let mut lines = Lines::new(path, bytes);
     let Some(first) = lines.next() else {
         return Err(MeshError::EmptyFile {
@@ -144,24 +150,52 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<MedialAxis, MeshError> {
 
     // Which edges are free depends on which faces survive (degenerate ones are dropped),
     // so they are attached once the faces are built.
-    let mut mesh = TriMesh::new(positions, triangles).map_err(|e| e.in_file(path))?;
-    let free = free_edges(&mesh, &edges);
-    mesh.set_line_elements(free).map_err(|e| e.in_file(path))?;
-    Ok(MedialAxis { mesh, radii })
+    let surface = match TriMesh::new(positions.clone(), triangles) {
+        Ok(mesh) => Some(mesh),
+        Err(MeshError::NoUsableFace { .. })
+            if allow_curves_only && edges.iter().any(|[a, b]| a != b) =>
+        {
+            None
+        }
+        Err(e) => return Err(e.in_file(path)),
+    };
+    let free_edges = free_edges(surface.as_ref(), &edges);
+    let surface = match surface {
+        Some(mut mesh) => {
+            mesh.set_line_elements(free_edges.clone())
+                .map_err(|e| e.in_file(path))?;
+            Some(mesh)
+        }
+        None => None,
+    };
+    Ok(MedialAxis {
+        surface,
+        positions,
+        free_edges,
+        radii,
+    })
+}
+
+/// [`read`] for a caller that needs a surface.
+pub(super) fn read_surface(path: &Path, bytes: &[u8]) -> Result<TriMesh, MeshError> {
+    let axis = read(path, bytes, false)?;
+    Ok(axis.surface.expect("a surface, or read fails"))
 }
 
 /// The listed edges that are no edge of a kept face, each once, self-loops left out.
-fn free_edges(mesh: &TriMesh, edges: &[[u32; 2]]) -> Vec<[u32; 2]> {
+fn free_edges(mesh: Option<&TriMesh>, edges: &[[u32; 2]]) -> Vec<[u32; 2]> {
+    let is_face_edge = |[a, b]: [u32; 2]| {
+        mesh.is_some_and(|mesh| {
+            mesh.vertex_edges(a)
+                .iter()
+                .any(|&e| mesh.edge_vertices(e) == [a, b])
+        })
+    };
     let mut free: Vec<[u32; 2]> = edges
         .iter()
         .filter(|[a, b]| a != b)
         .map(|&[a, b]| [a.min(b), a.max(b)])
-        .filter(|&[a, b]| {
-            !mesh
-                .vertex_edges(a)
-                .iter()
-                .any(|&e| mesh.edge_vertices(e) == [a, b])
-        })
+        .filter(|&e| !is_face_edge(e))
         .collect();
     free.sort_unstable();
     free.dedup();

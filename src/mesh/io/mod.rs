@@ -36,12 +36,18 @@ pub use write::{write_atomically, write_obj_polylines, write_ply_with_distance};
 use super::{MeshError, TriMesh};
 use std::path::Path;
 
-/// A medial axis read from a `.ma` file: its faces and free edges, and the medial ball
-/// radius at each vertex.
+/// A medial axis read from a `.ma` file: its sheets (faces), its curves (free edges) and
+/// the medial ball radius at each vertex.
 #[derive(Clone, Debug)]
 pub struct MedialAxis {
-    /// The surface; free edges (edges of no face) are its line elements.
-    pub mesh: TriMesh,
+    /// The sheets, with the free edges as line elements; `None` when no face is usable
+    /// (a medial axis made only of curves).
+    pub surface: Option<TriMesh>,
+    /// Every vertex position in file order (the surface's positions, when there is one).
+    pub positions: Vec<[f64; 3]>,
+    /// Free edges: listed edges that are no edge of a kept face, each once, as
+    /// `[lower, higher]` vertex pairs, sorted.
+    pub free_edges: Vec<[u32; 2]>,
     /// Medial ball radius per vertex.
     pub radii: Vec<f64>,
 }
@@ -76,7 +82,7 @@ pub fn read_mesh(path: impl AsRef<Path>) -> Result<TriMesh, MeshError> {
         Some("ply") => ply::read,
         Some("off") => off::read,
         Some("stl") => stl::read,
-        Some("ma") => |path, bytes| ma::read(path, bytes).map(|m| m.mesh),
+        Some("ma") => ma::read_surface,
         _ => {
             return Err(MeshError::UnknownFormat {
                 path: path.to_path_buf(),
@@ -106,11 +112,13 @@ pub fn read_obj_bytes(bytes: &[u8]) -> Result<TriMesh, MeshError> {
 ///
 /// # Errors
 /// As [`read_mesh`]; also [`MeshError::Parse`] if the counts in the header do not match
-/// the `v`, `e` and `f` lines, or a radius is negative or not finite. A medial axis with
-/// edges but no face gives [`MeshError::NoUsableFace`]: there is no surface to measure on.
+/// the `v`, `e` and `f` lines, or a radius is negative or not finite;
+/// [`MeshError::NoUsableFace`] if it has neither a usable face nor a free edge. A medial
+/// axis of curves only is read with [`MedialAxis::surface`] `None` (whereas
+/// [`read_mesh`] refuses it: there is no surface to measure on).
 pub fn read_medial_axis(path: impl AsRef<Path>) -> Result<MedialAxis, MeshError> {
     let path = path.as_ref();
-    ma::read(path, &read_bytes(path)?)
+    ma::read(path, &read_bytes(path)?, true)
 }
 
 /// The whole file: every format is parsed from memory, which also lets STL be told apart
