@@ -886,3 +886,123 @@ fn bad_surface_points_fail_cleanly() {
     );
     assert!(!txt.exists());
 }
+
+const SHEET_FINS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/ma/sheet_fins.ma");
+
+/// The `v` points and `l`/`p` polylines of an OBJ graph.
+fn read_obj_graph(path: &Path) -> (Vec<[f64; 3]>, Vec<Vec<usize>>) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let (mut points, mut lines) = (Vec::new(), Vec::new());
+    for line in text.lines() {
+        let mut t = line.split_whitespace();
+        match t.next() {
+            Some("v") => {
+                let c: Vec<f64> = t.map(|x| x.parse().unwrap()).collect();
+                points.push([c[0], c[1], c[2]]);
+            }
+            Some("l") | Some("p") => {
+                lines.push(t.map(|x| x.parse::<usize>().unwrap() - 1).collect());
+            }
+            _ => {}
+        }
+    }
+    (points, lines)
+}
+
+#[test]
+fn skeleton_writes_a_connected_obj_graph_and_the_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let (obj, ply) = (dir.path().join("skeleton.obj"), dir.path().join("fire.ply"));
+    let out = geotracks_ok(&[
+        "skeleton",
+        SHEET_FINS,
+        "--prune",
+        "0.05",
+        "-o",
+        obj.to_str().unwrap(),
+        "--field",
+        ply.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    // The sheet with its fins and tail is one part, the separate curve another.
+    assert!(stderr.contains("2 component(s)"), "{stderr}");
+    let (points, lines) = read_obj_graph(&obj);
+    assert!(points.len() > 10 && !lines.is_empty());
+    // Polylines share their junction points: joined, they make two components.
+    let mut part: Vec<usize> = (0..points.len()).collect();
+    fn root(part: &mut [usize], mut v: usize) -> usize {
+        while part[v] != v {
+            v = part[v];
+        }
+        v
+    }
+    for line in &lines {
+        for w in line.windows(2) {
+            let (a, b) = (root(&mut part, w[0]), root(&mut part, w[1]));
+            part[a] = b;
+        }
+    }
+    let mut roots: Vec<usize> = (0..points.len()).map(|v| root(&mut part, v)).collect();
+    roots.sort_unstable();
+    roots.dedup();
+    assert_eq!(roots.len(), 2);
+    // The separate curve is in the skeleton whole.
+    for p in [[3.0, 0.0, 0.0], [3.2, 0.0, 0.0], [3.4, 0.1, 0.0]] {
+        assert!(points.contains(&p), "{p:?} missing");
+    }
+    let ply_bytes = std::fs::read(&ply).unwrap();
+    assert!(ply_bytes.starts_with(b"ply\n"));
+}
+
+#[test]
+fn skeleton_bad_input_fails_cleanly() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = dir.path().join("skeleton.obj");
+    let o = obj.to_str().unwrap();
+    let curves = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/ma/curves.ma");
+    let ply = dir.path().join("fire.ply");
+    let txt = dir.path().join("skeleton.txt");
+    assert_fails(
+        &["skeleton", SHEET_FINS, "-o", txt.to_str().unwrap()],
+        &txt,
+        "unknown output format",
+    );
+    assert_fails(
+        &["skeleton", SHEET_FINS, "--prune=-1", "-o", o],
+        &obj,
+        "--prune",
+    );
+    assert_fails(
+        &["skeleton", SHEET_FINS, "--k", "0", "-o", o],
+        &obj,
+        "k = 0",
+    );
+    assert_fails(
+        &[
+            "skeleton",
+            curves,
+            "-o",
+            o,
+            "--field",
+            ply.to_str().unwrap(),
+        ],
+        &obj,
+        "no sheet",
+    );
+    assert!(!ply.exists());
+    let closed = dir.path().join("closed.ma");
+    std::fs::write(
+        &closed,
+        "4 0 4\nv 0 0 0 1\nv 1 0 0 1\nv 0 1 0 1\nv 0 0 1 1\nf 0 2 1\nf 0 1 3\nf 1 2 3\nf 0 3 2\n",
+    )
+    .unwrap();
+    assert_fails(
+        &["skeleton", closed.to_str().unwrap(), "-o", o],
+        &obj,
+        "no boundary",
+    );
+    // Curves alone are their own skeleton.
+    geotracks_ok(&["skeleton", curves, "-o", o]);
+    let (points, lines) = read_obj_graph(&obj);
+    assert_eq!((points.len(), lines.len()), (4, 3));
+}

@@ -7,6 +7,7 @@ mod matrix;
 mod metric_args;
 mod path;
 mod points;
+mod skeleton;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -33,6 +34,9 @@ enum Command {
     /// Distances from many sources (rows) to every vertex or to listed targets
     /// (columns), computed on all cores.
     Matrix(matrix::MatrixArgs),
+    /// Burn a medial axis (.ma) from its boundary and write the skeleton of its ridges,
+    /// joined with its free edges, as OBJ polylines.
+    Skeleton(skeleton::SkeletonArgs),
     /// Print what a mesh is made of: counts, boundary, non-manifold edges, components.
     Info {
         /// The mesh (OBJ, PLY, OFF, STL or .ma).
@@ -52,6 +56,7 @@ fn main() -> ExitCode {
         Command::Distance(args) => distance::run(&args),
         Command::Path(args) => path::run(&args),
         Command::Matrix(args) => matrix::run(&args),
+        Command::Skeleton(args) => skeleton::run(&args),
         Command::Info { mesh } => info(&mesh),
         Command::Demo { output } => distance::demo(&output),
     };

@@ -142,33 +142,65 @@ pub fn write_obj_polylines(
     path: impl AsRef<Path>,
     polylines: &[Vec<[f64; 3]>],
 ) -> Result<(), MeshError> {
-    if let Some((vertex, &position)) = polylines
+    let points: Vec<[f64; 3]> = polylines.iter().flatten().copied().collect();
+    let mut next = 0u32;
+    let lines: Vec<Vec<u32>> = polylines
         .iter()
-        .flatten()
+        .map(|line| {
+            let ids = (next..next + line.len() as u32).collect();
+            next += line.len() as u32;
+            ids
+        })
+        .collect();
+    write_obj_lines(path, &points, &lines)
+}
+
+/// Writes a graph of polylines over shared points as OBJ: every point once as a `v`
+/// line, then each polyline (indices into `points`) as an `l` line (a `p` line for a
+/// single point), so polylines that meet share their vertex.
+///
+/// # Errors
+/// [`MeshError::NonFiniteVertex`] for a point with a NaN or infinite coordinate;
+/// [`MeshError::IndexOutOfRange`] (face = polyline) for an index past `points`;
+/// [`MeshError::Io`] if the file cannot be written, and nothing is left behind then.
+pub fn write_obj_lines(
+    path: impl AsRef<Path>,
+    points: &[[f64; 3]],
+    lines: &[Vec<u32>],
+) -> Result<(), MeshError> {
+    if let Some((vertex, &position)) = points
+        .iter()
         .enumerate()
         .find(|(_, p)| !p.iter().all(|c| c.is_finite()))
     {
         return Err(MeshError::NonFiniteVertex { vertex, position });
     }
+    for (face, line) in lines.iter().enumerate() {
+        if let Some(&vertex) = line.iter().find(|&&i| i as usize >= points.len()) {
+            return Err(MeshError::IndexOutOfRange {
+                face,
+                vertex: vertex.into(),
+                vertex_count: points.len(),
+            });
+        }
+    }
     write_atomically(path.as_ref(), |w| {
-        writeln!(w, "# {} polylines written by geotracks", polylines.len())?;
-        for [x, y, z] in polylines.iter().flatten() {
+        writeln!(w, "# {} polylines written by geotracks", lines.len())?;
+        for [x, y, z] in points {
             writeln!(w, "v {x} {y} {z}")?;
         }
-        let mut next = 1usize;
-        for line in polylines {
-            match line.len() {
-                0 => {}
-                1 => writeln!(w, "p {next}")?,
-                len => {
+        for line in lines {
+            match line.as_slice() {
+                [] => {}
+                [i] => writeln!(w, "p {}", i + 1)?,
+                ids => {
                     w.write_all(b"l")?;
-                    for i in next..next + len {
-                        write!(w, " {i}")?;
+                    for i in ids {
+                        write!(w, " {}", i + 1)?;
                     }
                     w.write_all(b"\n")?;
                 }
             }
-            next += line.len();
         }
         Ok(())
     })

@@ -1,0 +1,95 @@
+//! `geotracks skeleton`: the skeleton of a medial axis, burnt from its boundary.
+
+use crate::CliResult;
+use geotracks::mesh::io::{read_medial_axis, write_obj_lines, write_ply_with_distance};
+use geotracks::skeleton::medial_axis_skeleton;
+use geotracks::{Method, Options};
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// How fast the grassfire burns.
+#[derive(Clone, Copy, clap::ValueEnum)]
+pub enum Speed {
+    /// The same everywhere (Euclidean distance on the sheets).
+    Uniform,
+    /// Faster where medial balls are larger (density mean(r) / r per vertex).
+    Radius,
+}
+
+/// Arguments of `geotracks skeleton`.
+#[derive(clap::Args)]
+pub struct SkeletonArgs {
+    /// The medial axis (.ma: vertices with radius, edges, faces).
+    axis: PathBuf,
+    /// Mean number of Steiner points per edge.
+    #[arg(long, default_value_t = 5.0)]
+    k: f64,
+    /// Propagation method.
+    #[arg(long, default_value = "tracks")]
+    method: Method,
+    /// Prune branch points whose two sides are less than T apart along the boundary
+    /// (in the axis's units; 0 keeps everything).
+    #[arg(long, value_name = "T", default_value_t = 0.0)]
+    prune: f64,
+    /// Grassfire speed.
+    #[arg(long, value_enum, default_value = "uniform")]
+    speed: Speed,
+    /// Output: the skeleton as OBJ polylines (`v` and `l` lines; junctions shared).
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Also write the grassfire field as a coloured PLY of the sheets.
+    #[arg(long, value_name = "FIELD.ply")]
+    field: Option<PathBuf>,
+}
+
+pub fn run(args: &SkeletonArgs) -> CliResult {
+    crate::output_format(&args.output, &[("obj", ())])?;
+    if let Some(field) = &args.field {
+        crate::output_format(field, &[("ply", ())])?;
+    }
+    if args.prune.is_nan() || args.prune < 0.0 {
+        return Err(format!("--prune {}: it must be a number >= 0", args.prune).into());
+    }
+    let start = Instant::now();
+    let axis = read_medial_axis(&args.axis)?;
+    let options = Options::DEFAULT.with_k(args.k).with_method(args.method);
+    let radius_aware = matches!(args.speed, Speed::Radius);
+    let (skeleton, fire) = medial_axis_skeleton(&axis, radius_aware, &options, args.prune)?;
+    if skeleton.closed_components > 0 {
+        eprintln!(
+            "warning: {} closed part(s) of the medial axis have no boundary to burn from and no skeleton",
+            skeleton.closed_components
+        );
+    }
+    let points: Vec<[f64; 3]> = skeleton.points.iter().map(|p| p.position).collect();
+    let lines = skeleton.polylines();
+    match (&args.field, &fire, &axis.surface) {
+        (Some(path), Some(fire), Some(mesh)) => {
+            write_ply_with_distance(path, mesh, fire.field().vertex_distances())?;
+            if let Err(e) = write_obj_lines(&args.output, &points, &lines) {
+                // Both files or neither.
+                let _ = std::fs::remove_file(path);
+                return Err(e.into());
+            }
+        }
+        (Some(path), ..) => {
+            return Err(format!(
+                "{}: the medial axis has no sheet, so no grassfire field to write",
+                path.display()
+            )
+            .into())
+        }
+        (None, ..) => write_obj_lines(&args.output, &points, &lines)?,
+    }
+    eprintln!(
+        "{}: {} skeleton points, {} polylines, {} component(s), length {:.6}, {:.3} s; wrote {}",
+        args.axis.display(),
+        skeleton.points.len(),
+        lines.len(),
+        skeleton.component_count(),
+        skeleton.length(),
+        start.elapsed().as_secs_f64(),
+        args.output.display()
+    );
+    Ok(())
+}
