@@ -917,7 +917,7 @@ fn skeleton_writes_a_connected_obj_graph_and_the_field() {
         "skeleton",
         SHEET_FINS,
         "--prune",
-        "0.05",
+        "2%",
         "-o",
         obj.to_str().unwrap(),
         "--field",

@@ -55,9 +55,10 @@ pub struct SkeletonPoint {
     /// Where it lies on the surface (a vertex for the ends of free edges).
     pub on: SurfacePoint,
     /// How far apart, along the boundary, the two origins whose fronts meet here are
-    /// (metric length); `inf` for points of free edges, of bridges between two such
-    /// points, and for the one point of a component where no ridge was found. Pruning
-    /// removes branch tips whose significance is below a threshold.
+    /// (metric length), or, for origins on two boundary curves that no walk along the
+    /// boundary joins, their straight distance; `inf` for points of free edges, and for
+    /// the one point of a surface where no ridge was found; bridge points take the
+    /// smaller of their ends'. [`Skeleton::pruned`] removes points below a threshold.
     pub significance: f64,
 }
 
@@ -172,11 +173,11 @@ impl Skeleton {
     /// The skeleton with its points of significance below `threshold` removed, least
     /// significant first, as long as removing one does not cut its piece of the graph
     /// apart: branches shrink from their tips, small loops left by the discretisation
-    /// open up, and each component keeps at least one point. Loops around holes stay
-    /// (their two sides burnt from different boundary curves: infinite significance).
+    /// open up, and each component keeps at least one point.
     /// `threshold` ≤ 0 removes nothing.
     ///
-    /// Whether a point cuts the graph is checked near it (its neighbours must stay
+    /// A loop whose points are all below the threshold opens (a ridge around a small
+    /// hole); it shrinks like a branch from there. Whether a point cuts the graph is checked near it (its neighbours must stay
     /// joined within [`Skeleton::LOCAL_HOPS`] hops), so a point on a long loop of low
     /// significance stays.
     pub fn pruned(&self, threshold: f64) -> Skeleton {

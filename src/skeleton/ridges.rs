@@ -136,7 +136,20 @@ fn meeting<M: Metric>(
     }
     let t = (dq - dp + cost) / (2.0 * cost);
     let meet = dp + t * cost;
-    let apart = fire.boundary_distance(a, b);
+    let apart = match fire.boundary_distance(a, b) {
+        // Origins on two different boundary curves (the rim of a hole and the outer
+        // rim, say): no walk along the boundary joins them, so the straight distance
+        // between them stands in; it keeps tiny holes from making loops that can never
+        // be pruned.
+        d if d.is_infinite() => {
+            let sources = fire.field().sources();
+            sources[a as usize]
+                .point
+                .position(mesh)
+                .distance(sources[b as usize].point.position(mesh))
+        }
+        d => d,
+    };
     let floor = FLOOR_STEPS * fire.boundary_step(a).max(fire.boundary_step(b));
     if !(apart > floor && apart > SPREAD * meet) {
         return None;

@@ -27,10 +27,11 @@ pub struct SkeletonArgs {
     /// Propagation method.
     #[arg(long, default_value = "tracks")]
     method: Method,
-    /// Prune branch points whose two sides are less than T apart along the boundary
-    /// (in the axis's units; 0 keeps everything).
-    #[arg(long, value_name = "T", default_value_t = 0.0)]
-    prune: f64,
+    /// Prune branch points whose two sides are less than T apart along the boundary:
+    /// a length in the axis's units, or a percentage of its bounding box diagonal
+    /// (`2%`); 0 keeps everything.
+    #[arg(long, value_name = "T", default_value = "0")]
+    prune: String,
     /// Grassfire speed.
     #[arg(long, value_enum, default_value = "uniform")]
     speed: Speed,
@@ -47,14 +48,30 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
     if let Some(field) = &args.field {
         crate::output_format(field, &[("ply", ())])?;
     }
-    if args.prune.is_nan() || args.prune < 0.0 {
-        return Err(format!("--prune {}: it must be a number >= 0", args.prune).into());
-    }
+    let (value, percent) = match args.prune.strip_suffix('%') {
+        Some(p) => (p.trim().parse::<f64>(), true),
+        None => (args.prune.trim().parse::<f64>(), false),
+    };
+    let prune = match value {
+        Ok(v) if v >= 0.0 && v.is_finite() => v,
+        _ => {
+            return Err(format!(
+                "--prune {}: expected a length >= 0 or a percentage such as 2%",
+                args.prune
+            )
+            .into())
+        }
+    };
     let start = Instant::now();
     let axis = read_medial_axis(&args.axis)?;
+    let prune = if percent {
+        prune / 100.0 * diagonal(&axis.positions)
+    } else {
+        prune
+    };
     let options = Options::DEFAULT.with_k(args.k).with_method(args.method);
     let radius_aware = matches!(args.speed, Speed::Radius);
-    let (skeleton, fire) = medial_axis_skeleton(&axis, radius_aware, &options, args.prune)?;
+    let (skeleton, fire) = medial_axis_skeleton(&axis, radius_aware, &options, prune)?;
     if skeleton.closed_components > 0 {
         eprintln!(
             "warning: {} closed part(s) of the medial axis have no boundary to burn from and no skeleton",
@@ -92,4 +109,17 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
         args.output.display()
     );
     Ok(())
+}
+
+/// Length of the diagonal of the points' bounding box.
+fn diagonal(points: &[[f64; 3]]) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in points {
+        for c in 0..3 {
+            lo[c] = lo[c].min(p[c]);
+            hi[c] = hi[c].max(p[c]);
+        }
+    }
+    (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt()
 }
