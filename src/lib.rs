@@ -15,6 +15,8 @@
 //!   [`distance_field`] for one query, and [`Solver`] / [`Workspace`] for many (reused
 //!   buffers, parallel rows).
 //! - [`field`]: [`GeodesicField`], what a run returns.
+//! - [`terrain`]: elevation grids (ESRI ASCII, GeoTIFF) as meshes, terrain costs (slope
+//!   density, impassable faces, uphill tensor) and maps of routes.
 //!
 //! ## Example
 //! ```
@@ -38,6 +40,7 @@ pub mod mesh;
 pub mod propagate;
 pub mod steiner;
 pub mod surface;
+pub mod terrain;
 pub mod trace;
 
 /// The metric crate, `geotracks-metrics`.
