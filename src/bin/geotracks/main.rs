@@ -7,6 +7,7 @@ mod matrix;
 mod metric_args;
 mod path;
 mod points;
+mod terrain;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -33,6 +34,10 @@ enum Command {
     /// Distances from many sources (rows) to every vertex or to listed targets
     /// (columns), computed on all cores.
     Matrix(matrix::MatrixArgs),
+    /// The cheapest route between two map points of an elevation grid (ESRI .asc or
+    /// GeoTIFF) under a terrain cost, written as GeoJSON or CSV, with an optional map
+    /// (.png); print its cost on the last line.
+    Terrain(terrain::TerrainArgs),
     /// Print what a mesh is made of: counts, boundary, non-manifold edges, components.
     Info {
         /// The mesh (OBJ, PLY, OFF, STL or .ma).
@@ -52,6 +57,7 @@ fn main() -> ExitCode {
         Command::Distance(args) => distance::run(&args),
         Command::Path(args) => path::run(&args),
         Command::Matrix(args) => matrix::run(&args),
+        Command::Terrain(args) => terrain::run(&args),
         Command::Info { mesh } => info(&mesh),
         Command::Demo { output } => distance::demo(&output),
     };
