@@ -154,8 +154,10 @@ pub fn uphill_tensor(mesh: &TriMesh, b: f64) -> Result<Tensor, TerrainError> {
 /// )?;
 /// let walls = Impassable::new(&mesh, Euclidean, vec![false, true])?;
 /// let field = distance_field(&mesh, &walls, &[1], &Options::DEFAULT)?;
-/// // Vertex 3 is only a corner of the blocked face: the way to it goes along its edges.
-/// assert!((field.distance(3) - 2.0).abs() < 1e-9);
+/// // The diagonal 0–2 is shared with the free face: walkable, along the wall.
+/// assert!((field.distance(2) - 1.0).abs() < 1e-12);
+/// // Vertex 3 belongs to the blocked face only: no route reaches it.
+/// assert!(field.distance(3).is_infinite());
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 #[derive(Clone, Debug)]
