@@ -17,6 +17,8 @@
 //! - [`field`]: [`GeodesicField`], what a run returns.
 //! - [`skeleton`]: grassfire on a medial axis from its boundary, and the skeleton of its
 //!   ridges.
+//! - [`terrain`]: elevation grids (ESRI ASCII, GeoTIFF) as meshes, terrain costs (slope
+//!   density, impassable faces, uphill tensor) and maps of routes.
 //!
 //! ## Example
 //! ```
@@ -41,6 +43,7 @@ pub mod propagate;
 pub mod skeleton;
 pub mod steiner;
 pub mod surface;
+pub mod terrain;
 pub mod trace;
 
 /// The metric crate, `geotracks-metrics`.

@@ -34,9 +34,59 @@ const GAIN: f64 = 1e-13;
 /// Golden-section steps: the bracket shrinks to 0.618⁶⁰ ≈ 3e-13 of the edge.
 const GOLDEN_STEPS: usize = 60;
 
+/// Crossings closer than this (in edge parameter) to an end of their edge are tried at
+/// the vertex in a second pass (see [`straighten`]).
+const SNAP: f64 = 1e-3;
+/// Snapping passes at most.
+const SNAP_PASSES: usize = 4;
+
 /// Shortens `path` locally (see the module docs) and updates its `length`, which never
 /// grows.
+///
+/// Crossings cannot move past the end of their edge, so a path that passes a vertex on
+/// the wrong side ends with crossings squeezed against it (a few 1e-5 of the edge
+/// away): a second pass puts them at the vertex, where unpinning can take the other
+/// side, and keeps the result only if it is shorter.
 pub fn straighten<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
+    rounds(path, mesh, metric);
+    for _ in 0..SNAP_PASSES {
+        let mut snapped = path.clone();
+        if !snap_to_vertices(&mut snapped, mesh) {
+            break;
+        }
+        rounds(&mut snapped, mesh, metric);
+        let gain = path.length - snapped.length;
+        if gain > 0.0 {
+            *path = snapped;
+        }
+        if gain <= GAIN * path.length {
+            break;
+        }
+    }
+}
+
+/// Crossings within [`SNAP`] of an end of their edge become that vertex; returns
+/// whether any did.
+fn snap_to_vertices(path: &mut GeodesicPath, mesh: &TriMesh) -> bool {
+    let mut any = false;
+    let n = path.points.len();
+    for p in path.points.iter_mut().take(n.saturating_sub(1)).skip(1) {
+        if let SurfacePoint::Edge { edge, t } = *p {
+            let [lo, hi] = mesh.edge_vertices(edge);
+            if t < SNAP {
+                *p = SurfacePoint::Vertex(lo);
+                any = true;
+            } else if t > 1.0 - SNAP {
+                *p = SurfacePoint::Vertex(hi);
+                any = true;
+            }
+        }
+    }
+    any
+}
+
+/// Rounds of merge, unpin and slide, until they stop gaining.
+fn rounds<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
     let mut length = path.metric_length(mesh, metric);
     let mut unpinning = true;
     for _ in 0..ROUNDS {
@@ -44,7 +94,7 @@ pub fn straighten<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M
         merge(path, mesh, metric);
         let saved = unpinning.then(|| path.clone());
         if unpinning {
-            unpin(path, mesh);
+            unpin(path, mesh, metric);
         }
         newton(path, mesh, metric);
         slide(path, mesh, metric, length);
@@ -112,7 +162,7 @@ fn merge<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
 
 /// Gives every vertex the path may cut the corner at a crossing on each edge of the
 /// side it turns around, all placed at the vertex.
-fn unpin(path: &mut GeodesicPath, mesh: &TriMesh) {
+fn unpin<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
     let mut i = 1;
     while i + 1 < path.points.len() {
         let SurfacePoint::Vertex(v) = path.points[i] else {
@@ -122,7 +172,7 @@ fn unpin(path: &mut GeodesicPath, mesh: &TriMesh) {
         let (f, g) = (path.faces[i - 1], path.faces[i]);
         let before = path.points[i - 1].position(mesh);
         let after = path.points[i + 1].position(mesh);
-        let Some((turn, route)) = fan_route(mesh, v, f, g, before, after) else {
+        let Some((turn, route)) = fan_route(mesh, metric, v, f, g, before, after) else {
             i += 1;
             continue;
         };
@@ -172,9 +222,11 @@ type FanStep = (u32, u32, f64);
 /// `v`, turning least: returns the angle swept (from the direction towards `before`,
 /// around `v`, to the direction towards `after`, Euclidean, summed face by face) and
 /// the route as `(edge crossed, face entered, angle swept up to the edge)`, the last
-/// face being `g`. `None` when no such way exists (the faces meet only at `v`).
-fn fan_route(
+/// face being `g`. `None` when no such way exists (the faces meet only at `v`). Faces
+/// the metric cannot be crossed in (infinite cost: walls) are no way around.
+fn fan_route<M: Metric>(
     mesh: &TriMesh,
+    metric: &M,
     v: u32,
     f: u32,
     g: u32,
@@ -198,12 +250,18 @@ fn fan_route(
         }
         at
     };
+    let passable = |h: u32| {
+        let frame = mesh.frame(h);
+        metric
+            .cost(h, &frame.corner(0), &frame.corner(1))
+            .is_finite()
+    };
     // Dijkstra over (edge, face entered through it) states: a fan is a few faces.
     let mut states: Vec<(f64, u32, u32, usize)> = Vec::new(); // (angle, edge, face, previous)
     let mut done: Vec<bool> = Vec::new();
     for e in edges_at(f) {
         for &h in mesh.edge_faces(e) {
-            if h != f {
+            if h != f && passable(h) {
                 states.push((angle(before, other_end(e)), e, h, usize::MAX));
                 done.push(false);
             }
@@ -237,7 +295,7 @@ fn fan_route(
             let through = swept + angle(other_end(e), other_end(e2));
             for &h2 in mesh.edge_faces(e2) {
                 let seen = states.iter().any(|&(_, se, sh, _)| se == e2 && sh == h2);
-                if h2 != h && !seen {
+                if h2 != h && !seen && passable(h2) {
                     states.push((through, e2, h2, s));
                     done.push(false);
                 }

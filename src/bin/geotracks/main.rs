@@ -8,6 +8,7 @@ mod metric_args;
 mod path;
 mod points;
 mod skeleton;
+mod terrain;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -37,6 +38,10 @@ enum Command {
     /// Burn a medial axis (.ma) from its boundary and write the skeleton of its ridges,
     /// joined with its free edges, as OBJ polylines.
     Skeleton(skeleton::SkeletonArgs),
+    /// The cheapest route between two map points of an elevation grid (ESRI .asc or
+    /// GeoTIFF) under a terrain cost, written as GeoJSON or CSV, with an optional map
+    /// (.png); print its cost on the last line.
+    Terrain(terrain::TerrainArgs),
     /// Print what a mesh is made of: counts, boundary, non-manifold edges, components.
     Info {
         /// The mesh (OBJ, PLY, OFF, STL or .ma).
@@ -57,6 +62,7 @@ fn main() -> ExitCode {
         Command::Path(args) => path::run(&args),
         Command::Matrix(args) => matrix::run(&args),
         Command::Skeleton(args) => skeleton::run(&args),
+        Command::Terrain(args) => terrain::run(&args),
         Command::Info { mesh } => info(&mesh),
         Command::Demo { output } => distance::demo(&output),
     };

@@ -1,0 +1,175 @@
+//! Terrain routes on a 1000 × 1000 grid (2M faces), end to end from the file.
+//!
+//! ```text
+//! cargo run --release --example terrain_bench [-- DIR [N]]
+//! ```
+//!
+//! Writes a synthetic N × N ESRI ASCII grid (default 1000; 10 m cells, Gaussian hills on
+//! rolling sines, deterministic) to DIR (default: a temporary directory, removed after),
+//! then for each cost and k times what `geotracks terrain` does: read, mesh, build the
+//! metric, set up the solver, propagate until the target is final, trace and
+//! straighten the route. The route runs corner to corner, so nearly the whole grid is
+//! propagated. Peak memory is the process's high-water mark (Linux).
+
+use geotracks::terrain::{read_terrain, TerrainCost, WithTerrainMetric};
+use geotracks::{Metric, Options, Solver, Source, Stop, SurfacePoint};
+use std::io::Write;
+use std::time::Instant;
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let mut args = std::env::args().skip(1);
+    let temp = tempfile::tempdir()?;
+    let dir = args.next().map_or(temp.path().to_path_buf(), Into::into);
+    let n: usize = args.next().map_or(Ok(1000), |s| s.parse())?;
+    let path = dir.join(format!("terrain{n}.asc"));
+    let start = Instant::now();
+    write_grid(&path, n)?;
+    println!(
+        "wrote {} ({:.1} MB) in {:.2} s",
+        path.display(),
+        std::fs::metadata(&path)?.len() as f64 / 1e6,
+        start.elapsed().as_secs_f64()
+    );
+    let extent = 10.0 * (n - 1) as f64;
+    let (from, to) = (
+        [0.05 * extent, 0.05 * extent],
+        [0.95 * extent, 0.93 * extent],
+    );
+    println!(
+        "route from ({}, {}) to ({}, {})",
+        from[0], from[1], to[0], to[1]
+    );
+    println!("| cost | k | read | mesh | metric | setup | propagate | path | total | cost | peak memory |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    for (cost, k) in [
+        ("none", 2.0),
+        ("slope:4", 2.0),
+        ("slope:4,max:30", 2.0),
+        ("uphill:8", 2.0),
+        ("slope:4", 5.0),
+    ] {
+        let t0 = Instant::now();
+        let grid = geotracks::terrain::read_grid(&path)?;
+        let read = t0.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let terrain = grid.to_mesh()?;
+        let mesh = t.elapsed().as_secs_f64();
+        let a = terrain.locate(from[0], from[1])?;
+        let b = terrain.locate(to[0], to[1])?;
+        let cost_model: TerrainCost = cost.parse()?;
+        let t = Instant::now();
+        let times = cost_model.with_metric(
+            &terrain.mesh,
+            Run {
+                mesh: &terrain.mesh,
+                from: a,
+                to: b,
+                k,
+                metric_start: t,
+            },
+        )?;
+        let total = t0.elapsed().as_secs_f64();
+        println!(
+            "| {cost} | {k} | {read:.2} s | {mesh:.2} s | {:.2} s | {:.2} s | {:.2} s | {:.2} s | {total:.2} s | {:.1} | {} |",
+            times.metric,
+            times.setup,
+            times.propagate,
+            times.path,
+            times.cost,
+            peak_memory().unwrap_or_else(|| "n/a".into())
+        );
+    }
+    // Checks the file reads the same way the CLI reads it.
+    let _ = read_terrain(&path)?;
+    Ok(())
+}
+
+struct Times {
+    metric: f64,
+    setup: f64,
+    propagate: f64,
+    path: f64,
+    cost: f64,
+}
+
+struct Run<'a> {
+    mesh: &'a geotracks::mesh::TriMesh,
+    from: SurfacePoint,
+    to: SurfacePoint,
+    k: f64,
+    metric_start: Instant,
+}
+
+impl WithTerrainMetric for Run<'_> {
+    type Output = Times;
+    type Error = Box<dyn std::error::Error>;
+    fn run<M: Metric>(self, metric: &M) -> Result<Times, Self::Error> {
+        let metric_time = self.metric_start.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let solver = Solver::new(self.mesh, metric, &Options::DEFAULT.with_k(self.k))?;
+        let setup = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let field = solver.solve_from(
+            &[Source::new(self.from)],
+            &Stop::NONE.with_targets(vec![self.to]),
+        )?;
+        let propagate = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let path = field.path(self.mesh, metric, self.to)?;
+        Ok(Times {
+            metric: metric_time,
+            setup,
+            propagate,
+            path: t.elapsed().as_secs_f64(),
+            cost: path.length,
+        })
+    }
+}
+
+/// Gaussian hills on rolling sines, 10 m cells, lower-left sample centre at (0, 0).
+fn write_grid(path: &std::path::Path, n: usize) -> std::io::Result<()> {
+    let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
+    writeln!(
+        out,
+        "ncols {n}\nnrows {n}\nxllcenter 0\nyllcenter 0\ncellsize 10\nNODATA_value -9999"
+    )?;
+    let extent = 10.0 * (n - 1) as f64;
+    let hills = [
+        (0.3, 0.6, 0.08, 400.0),
+        (0.6, 0.35, 0.12, 600.0),
+        (0.75, 0.75, 0.06, 300.0),
+        (0.45, 0.2, 0.05, 250.0),
+    ];
+    let mut line = String::new();
+    for row in 0..n {
+        line.clear();
+        let y = (n - 1 - row) as f64 * 10.0;
+        for col in 0..n {
+            let x = col as f64 * 10.0;
+            let (u, v) = (x / extent, y / extent);
+            let mut z = 30.0 * (u * 23.0).sin() * (v * 17.0).cos() + 50.0 * u;
+            for (cx, cy, s, h) in hills {
+                z += h * (-((u - cx).powi(2) + (v - cy).powi(2)) / (2.0 * s * s)).exp();
+            }
+            if col > 0 {
+                line.push(' ');
+            }
+            line.push_str(&format!("{z:.2}"));
+        }
+        writeln!(out, "{line}")?;
+    }
+    out.flush()
+}
+
+/// The process's peak resident memory (`VmHWM`), on Linux.
+fn peak_memory() -> Option<String> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let kb: f64 = status
+        .lines()
+        .find(|l| l.starts_with("VmHWM:"))?
+        .split_whitespace()
+        .nth(1)?
+        .parse()
+        .ok()?;
+    Some(format!("{:.0} MB", kb / 1024.0))
+}

@@ -1,0 +1,430 @@
+//! Terrain costs, all [`Metric`]s: a slope density, impassable faces, and an
+//! anisotropic cost that makes climbing the steepest line dearer than following a
+//! contour.
+//!
+//! They work on any terrain-like mesh (z up), not only on grids.
+
+use super::TerrainError;
+use crate::mesh::{Topology, TriMesh};
+use geotracks_metrics::{Density, FacePoint, Metric, Tensor};
+use glam::DVec3;
+use std::fmt;
+use std::str::FromStr;
+
+/// The unnormalised normal of face `f` (twice its area long), turned to point up.
+fn face_normal_up(mesh: &TriMesh, f: u32) -> DVec3 {
+    let [a, b, c] = mesh.face_vertices(f).map(|v| mesh.position(v));
+    let n = (b - a).cross(c - a);
+    if n.z < 0.0 {
+        -n
+    } else {
+        n
+    }
+}
+
+/// `tan²` of the angle between a normal and the vertical (infinite for a horizontal
+/// normal).
+fn tan2(n: DVec3) -> f64 {
+    (n.x * n.x + n.y * n.y) / (n.z * n.z)
+}
+
+/// The slope of every face, in degrees from the horizontal.
+pub fn face_slopes(mesh: &TriMesh) -> Vec<f64> {
+    (0..mesh.face_count() as u32)
+        .map(|f| {
+            let n = face_normal_up(mesh, f);
+            n.x.hypot(n.y).atan2(n.z).to_degrees()
+        })
+        .collect()
+}
+
+/// `tan²(slope)` at every vertex, from its area-weighted normal: the sum of its faces'
+/// normals, each turned to point up and as long as twice the face's area. A vertex of
+/// no face gets 0.
+pub fn vertex_slope_tan2(mesh: &TriMesh) -> Vec<f64> {
+    let mut normals = vec![DVec3::ZERO; mesh.vertex_count()];
+    for f in 0..mesh.face_count() as u32 {
+        let n = face_normal_up(mesh, f);
+        for v in mesh.face_vertices(f) {
+            normals[v as usize] += n;
+        }
+    }
+    normals
+        .into_iter()
+        .map(|n| if n == DVec3::ZERO { 0.0 } else { tan2(n) })
+        .collect()
+}
+
+/// The slope density `ρ = 1 + a·tan²(slope)` per vertex (see [`vertex_slope_tan2`]): a
+/// route pays more where the ground is steep, whichever way it goes there. `a = 0` is
+/// the 3D length.
+///
+/// # Errors
+/// [`TerrainError::Parameter`] unless `a` is finite and ≥ 0; [`TerrainError::Vertical`]
+/// for a vertex whose normal is horizontal.
+pub fn slope_density(mesh: &TriMesh, a: f64) -> Result<Density, TerrainError> {
+    if !(a.is_finite() && a >= 0.0) {
+        return Err(TerrainError::Parameter {
+            what: "the slope factor a",
+            value: a,
+            expected: "it must be a finite number ≥ 0",
+        });
+    }
+    let rho = vertex_slope_tan2(mesh)
+        .into_iter()
+        .enumerate()
+        .map(|(v, t)| {
+            let rho = 1.0 + a * t;
+            if rho.is_finite() {
+                Ok(rho)
+            } else {
+                Err(TerrainError::Vertical { vertex: v as u32 })
+            }
+        })
+        .collect::<Result<Vec<f64>, _>>()?;
+    Ok(Density::new(mesh, rho)?)
+}
+
+/// Faces steeper than `max_degrees`, as a per-face mask for [`Impassable`].
+///
+/// # Errors
+/// [`TerrainError::Parameter`] unless `max_degrees` is in (0, 90].
+pub fn steeper_than(mesh: &TriMesh, max_degrees: f64) -> Result<Vec<bool>, TerrainError> {
+    if !(max_degrees > 0.0 && max_degrees <= 90.0) {
+        return Err(TerrainError::Parameter {
+            what: "the maximum slope",
+            value: max_degrees,
+            expected: "it must be in degrees, above 0 and at most 90",
+        });
+    }
+    Ok(face_slopes(mesh)
+        .into_iter()
+        .map(|s| s > max_degrees)
+        .collect())
+}
+
+/// The anisotropic "uphill" tensor: per face, `M = I + b·g gᵀ` in the face's frame, with
+/// `g` the projection of the vertical onto the face (the steepest direction, with
+/// `|g| = sin(slope)`). Moving along the steepest line costs `sqrt(1 + b·sin²(slope))`
+/// per unit length, along a contour 1, in between `sqrt(1 + b·sin²(slope)·cos²φ)` with
+/// φ the angle from the steepest line.
+///
+/// The cost is the same going up or down: a metric's cost must be symmetric (the engine
+/// relies on it), so a true uphill ≠ downhill cost (a Finsler metric) is not something
+/// a [`Metric`] can express. This tensor charges the *effort of crossing the slope*
+/// in either direction.
+///
+/// # Errors
+/// [`TerrainError::Parameter`] unless `b` is finite and ≥ 0.
+pub fn uphill_tensor(mesh: &TriMesh, b: f64) -> Result<Tensor, TerrainError> {
+    if !(b.is_finite() && b >= 0.0) {
+        return Err(TerrainError::Parameter {
+            what: "the uphill factor b",
+            value: b,
+            expected: "it must be a finite number ≥ 0",
+        });
+    }
+    let local = (0..mesh.face_count() as u32)
+        .map(|f| {
+            let [u, v] = geotracks_metrics::FaceGeometry::face_axes(mesh, f);
+            // World z in the face's (u, v) frame.
+            let (gu, gv) = (u[2], v[2]);
+            [1.0 + b * gu * gu, b * gu * gv, 1.0 + b * gv * gv]
+        })
+        .collect();
+    Ok(Tensor::from_local(local)?)
+}
+
+/// A metric with walls: faces that no route may cross.
+///
+/// A segment of positive length in a blocked face costs `+inf`, which every engine
+/// treats as "no way through" (a zero-length segment costs 0). Elsewhere the inner
+/// metric decides. The edges of a blocked face that it shares with a free face stay
+/// walkable (walking *along* a wall is allowed); an edge between two blocked faces is
+/// not. So a wall is watertight where its faces share edges; two blocked faces that
+/// only touch at a vertex leave a gap there.
+///
+/// ```
+/// use geotracks::terrain::Impassable;
+/// use geotracks::{distance_field, mesh::TriMesh, Euclidean, Options};
+/// // Two triangles of a unit square; block the upper one.
+/// let mesh = TriMesh::new(
+///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+///     vec![[0, 1, 2], [0, 2, 3]],
+/// )?;
+/// let walls = Impassable::new(&mesh, Euclidean, vec![false, true])?;
+/// let field = distance_field(&mesh, &walls, &[1], &Options::DEFAULT)?;
+/// // The diagonal 0–2 is shared with the free face: walkable, along the wall.
+/// assert!((field.distance(2) - 1.0).abs() < 1e-12);
+/// // Vertex 3 belongs to the blocked face only: no route reaches it.
+/// assert!(field.distance(3).is_infinite());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct Impassable<M> {
+    inner: M,
+    blocked: Vec<bool>,
+}
+
+impl<M: Metric> Impassable<M> {
+    /// `inner`, with the faces whose entry in `blocked` is true made impassable.
+    ///
+    /// # Errors
+    /// [`TerrainError::CountMismatch`] unless `blocked` has one entry per face.
+    pub fn new<G: geotracks_metrics::FaceGeometry + ?Sized>(
+        mesh: &G,
+        inner: M,
+        blocked: Vec<bool>,
+    ) -> Result<Self, TerrainError> {
+        if blocked.len() != mesh.face_count() {
+            return Err(TerrainError::CountMismatch {
+                what: "the blocked-face mask",
+                per: "faces",
+                expected: mesh.face_count(),
+                found: blocked.len(),
+            });
+        }
+        Ok(Impassable { inner, blocked })
+    }
+
+    /// `inner`, with every face around a blocked vertex made impassable (the outer edges
+    /// of those faces stay walkable, see the type's docs).
+    ///
+    /// # Errors
+    /// [`TerrainError::CountMismatch`] unless `blocked_vertices` has one entry per
+    /// vertex.
+    pub fn from_vertices(
+        mesh: &TriMesh,
+        inner: M,
+        blocked_vertices: &[bool],
+    ) -> Result<Self, TerrainError> {
+        if blocked_vertices.len() != mesh.vertex_count() {
+            return Err(TerrainError::CountMismatch {
+                what: "the blocked-vertex mask",
+                per: "vertices",
+                expected: mesh.vertex_count(),
+                found: blocked_vertices.len(),
+            });
+        }
+        let blocked = (0..mesh.face_count() as u32)
+            .map(|f| {
+                mesh.face_vertices(f)
+                    .iter()
+                    .any(|&v| blocked_vertices[v as usize])
+            })
+            .collect();
+        Ok(Impassable { inner, blocked })
+    }
+
+    /// Also blocks the faces whose entry in `more` is true (same length as the mask).
+    pub fn block(mut self, more: &[bool]) -> Self {
+        for (b, &m) in self.blocked.iter_mut().zip(more) {
+            *b |= m;
+        }
+        self
+    }
+
+    /// Whether face `f` is blocked.
+    pub fn is_blocked(&self, f: u32) -> bool {
+        self.blocked[f as usize]
+    }
+
+    /// How many faces are blocked.
+    pub fn blocked_count(&self) -> usize {
+        self.blocked.iter().filter(|&&b| b).count()
+    }
+
+    /// The metric on free faces.
+    pub fn inner(&self) -> &M {
+        &self.inner
+    }
+}
+
+impl<M: Metric> Metric for Impassable<M> {
+    #[inline]
+    fn cost(&self, face: u32, a: &FacePoint, b: &FacePoint) -> f64 {
+        if self.blocked[face as usize] {
+            if a.uv == b.uv {
+                0.0
+            } else {
+                f64::INFINITY
+            }
+        } else {
+            self.inner.cost(face, a, b)
+        }
+    }
+    // An infinite cost on a blocked face keeps the triangle inequality there, so the
+    // inner metric's pruning stays valid (the engines test every target of a blocked
+    // face and all of them lose).
+    fn is_face_norm(&self) -> bool {
+        self.inner.is_face_norm()
+    }
+    fn prunes_on(&self, face: u32) -> bool {
+        self.inner.prunes_on(face)
+    }
+    fn name(&self) -> &str {
+        "impassable"
+    }
+}
+
+/// A terrain cost as the command line names it: `none`, `slope:A[,max:DEG]` or
+/// `uphill:B`.
+///
+/// ```
+/// use geotracks::terrain::TerrainCost;
+/// let cost: TerrainCost = "slope:4,max:35".parse()?;
+/// assert_eq!(cost, TerrainCost::Slope { a: 4.0, max_degrees: Some(35.0) });
+/// assert_eq!(cost.to_string(), "slope:4,max:35");
+/// assert!("slope:-1".parse::<TerrainCost>().is_err());
+/// # Ok::<(), geotracks::terrain::TerrainError>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub enum TerrainCost {
+    /// The 3D length ([`geotracks_metrics::Euclidean`]).
+    #[default]
+    None,
+    /// [`slope_density`] with factor `a`, and faces steeper than `max_degrees`
+    /// impassable ([`steeper_than`], [`Impassable`]).
+    Slope {
+        /// The factor of `tan²(slope)`.
+        a: f64,
+        /// The steepest passable slope, in degrees.
+        max_degrees: Option<f64>,
+    },
+    /// [`uphill_tensor`] with factor `b`.
+    Uphill {
+        /// The factor of `sin²(slope)` along the steepest line.
+        b: f64,
+    },
+}
+
+impl fmt::Display for TerrainCost {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            TerrainCost::None => f.write_str("none"),
+            TerrainCost::Slope { a, max_degrees } => {
+                write!(f, "slope:{a}")?;
+                if let Some(m) = max_degrees {
+                    write!(f, ",max:{m}")?;
+                }
+                Ok(())
+            }
+            TerrainCost::Uphill { b } => write!(f, "uphill:{b}"),
+        }
+    }
+}
+
+impl FromStr for TerrainCost {
+    type Err = TerrainError;
+    fn from_str(text: &str) -> Result<Self, Self::Err> {
+        let fail = |reason: String| TerrainError::CostSpec {
+            text: text.to_string(),
+            reason,
+        };
+        let number = |s: &str, what: &str| {
+            s.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| fail(format!("{what} '{s}' is not a finite number")))
+        };
+        let (kind, rest) = text.trim().split_once(':').unwrap_or((text.trim(), ""));
+        let cost = match kind {
+            "none" if rest.is_empty() => TerrainCost::None,
+            "slope" => {
+                let mut parts = rest.split(',');
+                let a = number(parts.next().unwrap_or(""), "the factor")?;
+                let max_degrees = match parts.next() {
+                    None => None,
+                    Some(m) => match m.trim().split_once(':') {
+                        Some(("max", deg)) => Some(number(deg, "the maximum slope")?),
+                        _ => return Err(fail(format!("'{m}' is not max:DEG"))),
+                    },
+                };
+                if let Some(extra) = parts.next() {
+                    return Err(fail(format!("unexpected '{extra}'")));
+                }
+                TerrainCost::Slope { a, max_degrees }
+            }
+            "uphill" => TerrainCost::Uphill {
+                b: number(rest, "the factor")?,
+            },
+            _ => return Err(fail("unknown cost".into())),
+        };
+        cost.check().map_err(|e| fail(e.to_string()))?;
+        Ok(cost)
+    }
+}
+
+impl TerrainCost {
+    /// Checks the parameters' ranges (as the builders do, without a mesh).
+    ///
+    /// # Errors
+    /// [`TerrainError::Parameter`] for a negative or non-finite factor, or a maximum
+    /// slope outside (0, 90].
+    pub fn check(&self) -> Result<(), TerrainError> {
+        let factor = |what, value: f64| {
+            if value.is_finite() && value >= 0.0 {
+                Ok(())
+            } else {
+                Err(TerrainError::Parameter {
+                    what,
+                    value,
+                    expected: "it must be a finite number ≥ 0",
+                })
+            }
+        };
+        match *self {
+            TerrainCost::None => Ok(()),
+            TerrainCost::Slope { a, max_degrees } => {
+                factor("the slope factor a", a)?;
+                match max_degrees {
+                    Some(m) if !(m > 0.0 && m <= 90.0) => Err(TerrainError::Parameter {
+                        what: "the maximum slope",
+                        value: m,
+                        expected: "it must be in degrees, above 0 and at most 90",
+                    }),
+                    _ => Ok(()),
+                }
+            }
+            TerrainCost::Uphill { b } => factor("the uphill factor b", b),
+        }
+    }
+
+    /// Builds the metric on `mesh` and runs `work` with it (each cost is its own type,
+    /// so the engine stays monomorphised).
+    ///
+    /// # Errors
+    /// What building the metric returns, or what `work` returns.
+    pub fn with_metric<W: WithTerrainMetric>(
+        &self,
+        mesh: &TriMesh,
+        work: W,
+    ) -> Result<W::Output, W::Error> {
+        match *self {
+            TerrainCost::None => work.run(&geotracks_metrics::Euclidean),
+            TerrainCost::Slope {
+                a,
+                max_degrees: None,
+            } => work.run(&slope_density(mesh, a)?),
+            TerrainCost::Slope {
+                a,
+                max_degrees: Some(m),
+            } => {
+                let density = slope_density(mesh, a)?;
+                work.run(&Impassable::new(mesh, density, steeper_than(mesh, m)?)?)
+            }
+            TerrainCost::Uphill { b } => work.run(&uphill_tensor(mesh, b)?),
+        }
+    }
+}
+
+/// Work to run with the metric a [`TerrainCost`] builds ([`TerrainCost::with_metric`]).
+pub trait WithTerrainMetric {
+    /// What the work returns.
+    type Output;
+    /// Its error, which must hold the terrain's.
+    type Error: From<TerrainError>;
+    /// Runs the work with `metric`.
+    fn run<M: Metric>(self, metric: &M) -> Result<Self::Output, Self::Error>;
+}

@@ -1,0 +1,195 @@
+//! Single-band GeoTIFF elevation grids (the `tiff` crate decodes; this reads the
+//! georeference).
+//!
+//! Georeference: `ModelPixelScaleTag` (33550) and `ModelTiepointTag` (33922), or a
+//! `ModelTransformationTag` (34264) without rotation. The raster type
+//! (`GTRasterTypeGeoKey`, 1025, in the `GeoKeyDirectoryTag`) says what a raster
+//! position means: `PixelIsArea` (the default) puts raster position (0, 0) at the
+//! corner of the first pixel, so sample centres sit half a pixel in; `PixelIsPoint`
+//! puts it at the first sample's centre. NODATA comes from `GDAL_NODATA` (42113); NaN
+//! samples are missing too.
+//!
+//! Refused, with a message saying what to do: several bands, colour images, a rotated
+//! or sheared transformation, no georeference at all (positions would be in pixels
+//! and slopes meaningless), and geographic coordinates (x and y in degrees while
+//! elevations are in metres; reproject first, e.g. `gdalwarp -t_srs EPSG:32632`).
+
+use super::grid::{ElevationGrid, GridGeometry};
+use super::TerrainError;
+use std::io::BufReader;
+use std::path::Path;
+use tiff::decoder::{Decoder, DecodingResult, Limits};
+use tiff::tags::Tag;
+use tiff::ColorType;
+
+/// `GTModelTypeGeoKey`: 2 is a geographic (latitude/longitude) coordinate system.
+const MODEL_TYPE_KEY: u16 = 1024;
+const MODEL_TYPE_GEOGRAPHIC: u16 = 2;
+/// `GTRasterTypeGeoKey`: 1 is PixelIsArea, 2 PixelIsPoint.
+const RASTER_TYPE_KEY: u16 = 1025;
+const PIXEL_IS_POINT: u16 = 2;
+
+/// Reads a single-band GeoTIFF (8-, 16-, 32- or 64-bit integer or 32- or 64-bit float
+/// samples; uncompressed, deflate or LZW; strips or tiles).
+///
+/// # Errors
+/// [`TerrainError::Io`], [`TerrainError::Tiff`] for a file the decoder rejects,
+/// [`TerrainError::Unsupported`] for what this reader refuses (see the module docs),
+/// [`TerrainError::CellSize`], [`TerrainError::InvalidGrid`] for an infinite sample.
+pub fn read_geotiff(path: impl AsRef<Path>) -> Result<ElevationGrid, TerrainError> {
+    let path = path.as_ref();
+    let file = std::fs::File::open(path).map_err(|source| TerrainError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let tiff_error = |source| TerrainError::Tiff {
+        path: path.to_path_buf(),
+        source,
+    };
+    let unsupported = |message: String| TerrainError::Unsupported {
+        path: path.to_path_buf(),
+        message,
+    };
+    let mut limits = Limits::default();
+    // DEMs are large single images; 4 GiB still bounds a corrupt header's claims.
+    limits.decoding_buffer_size = 1 << 32;
+    let mut decoder = Decoder::new(BufReader::new(file))
+        .map_err(tiff_error)?
+        .with_limits(limits);
+    let (ncols, nrows) = decoder.dimensions().map_err(tiff_error)?;
+    match decoder.colortype().map_err(tiff_error)? {
+        ColorType::Gray(_) => {}
+        ColorType::Multiband { num_samples, .. } => {
+            return Err(unsupported(format!(
+                "the image has {num_samples} bands; an elevation grid has one (extract it, e.g. gdal_translate -b 1)"
+            )))
+        }
+        other => {
+            return Err(unsupported(format!(
+                "the image is {other:?}, not a single band of elevations"
+            )))
+        }
+    }
+
+    let geo_keys = decoder
+        .find_tag(Tag::GeoKeyDirectoryTag)
+        .map_err(tiff_error)?
+        .map(|v| v.into_u16_vec())
+        .transpose()
+        .map_err(tiff_error)?
+        .unwrap_or_default();
+    let geo_key = |id: u16| -> Option<u16> {
+        // Header of 4 shorts, then entries (key, location, count, value); location 0
+        // means the value is inline.
+        geo_keys
+            .get(4..)?
+            .chunks_exact(4)
+            .find(|e| e[0] == id && e[1] == 0)
+            .map(|e| e[3])
+    };
+    if geo_key(MODEL_TYPE_KEY) == Some(MODEL_TYPE_GEOGRAPHIC) {
+        return Err(unsupported(
+            "the grid is in geographic coordinates (degrees); distances and slopes need x, y in \
+             the same unit as the elevations: reproject it first (e.g. gdalwarp -t_srs EPSG:<UTM zone>)"
+                .into(),
+        ));
+    }
+    let pixel_is_point = geo_key(RASTER_TYPE_KEY) == Some(PIXEL_IS_POINT);
+
+    let f64_tag = |decoder: &mut Decoder<_>, tag| -> Result<Option<Vec<f64>>, TerrainError> {
+        decoder
+            .find_tag(tag)
+            .map_err(tiff_error)?
+            .map(|v| v.into_f64_vec())
+            .transpose()
+            .map_err(tiff_error)
+    };
+    let scale = f64_tag(&mut decoder, Tag::ModelPixelScaleTag)?;
+    let tie = f64_tag(&mut decoder, Tag::ModelTiepointTag)?;
+    let transform = f64_tag(&mut decoder, Tag::ModelTransformationTag)?;
+    // Raster position (i, j) maps to (x0 + i·sx, y0 − j·sy).
+    let (x0, y0, sx, sy) = match (scale, tie, transform) {
+        (Some(s), Some(t), _) if s.len() >= 2 && t.len() >= 6 => {
+            (t[3] - t[0] * s[0], t[4] + t[1] * s[1], s[0], s[1])
+        }
+        (_, _, Some(m)) if m.len() >= 16 => {
+            if m[1] != 0.0 || m[4] != 0.0 {
+                return Err(unsupported(
+                    "the raster is rotated or sheared (ModelTransformationTag); warp it to a \
+                     north-up grid first (gdalwarp)"
+                        .into(),
+                ));
+            }
+            (m[3], m[7], m[0], -m[5])
+        }
+        _ => {
+            return Err(unsupported(
+                "the TIFF has no georeference (ModelPixelScaleTag and ModelTiepointTag, or \
+                 ModelTransformationTag): without it the sample spacing is unknown"
+                    .into(),
+            ))
+        }
+    };
+    if sy < 0.0 && sx > 0.0 {
+        return Err(unsupported(
+            "the raster's rows run south to north (negative y scale); flip it to north-up first"
+                .into(),
+        ));
+    }
+    for value in [sx, sy] {
+        if !(value.is_finite() && value > 0.0) {
+            return Err(TerrainError::CellSize {
+                path: Some(path.to_path_buf()),
+                value,
+            });
+        }
+    }
+    // Raster position of the first sample's centre.
+    let half = if pixel_is_point { 0.0 } else { 0.5 };
+    let top_left = [x0 + half * sx, y0 - half * sy];
+    let geometry = GridGeometry {
+        ncols: ncols as usize,
+        nrows: nrows as usize,
+        lower_left: [top_left[0], top_left[1] - (nrows as f64 - 1.0) * sy],
+        spacing: [sx, sy],
+    };
+    if !(geometry.lower_left[0].is_finite() && geometry.lower_left[1].is_finite()) {
+        return Err(unsupported("the georeference is not finite".into()));
+    }
+
+    let nodata = decoder
+        .find_tag(Tag::GdalNodata)
+        .map_err(tiff_error)?
+        .and_then(|v| v.into_string().ok())
+        .and_then(|s| {
+            s.trim_matches(|c: char| c == '\0' || c.is_whitespace())
+                .parse::<f64>()
+                .ok()
+        });
+
+    let samples = decoder.read_image().map_err(tiff_error)?;
+    let single = matches!(samples, DecodingResult::F32(_));
+    let values: Vec<f64> = match samples {
+        DecodingResult::U8(v) => v.into_iter().map(f64::from).collect(),
+        DecodingResult::U16(v) => v.into_iter().map(f64::from).collect(),
+        DecodingResult::U32(v) => v.into_iter().map(f64::from).collect(),
+        DecodingResult::U64(v) => v.into_iter().map(|x| x as f64).collect(),
+        DecodingResult::I8(v) => v.into_iter().map(f64::from).collect(),
+        DecodingResult::I16(v) => v.into_iter().map(f64::from).collect(),
+        DecodingResult::I32(v) => v.into_iter().map(f64::from).collect(),
+        DecodingResult::I64(v) => v.into_iter().map(|x| x as f64).collect(),
+        DecodingResult::F16(v) => v.into_iter().map(f64::from).collect(),
+        DecodingResult::F32(v) => v.into_iter().map(f64::from).collect(),
+        DecodingResult::F64(v) => v,
+    };
+    let values = values
+        .into_iter()
+        .map(|z| match nodata {
+            // GDAL writes the NODATA value as decimal text, which may not round-trip
+            // to the f64 of an f32 sample: compare f32 samples at their own precision.
+            Some(n) if z == n || (single && (z as f32) == (n as f32)) => f64::NAN,
+            _ => z,
+        })
+        .collect();
+    ElevationGrid::checked(geometry, values)
+}

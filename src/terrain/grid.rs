@@ -1,0 +1,424 @@
+//! [`ElevationGrid`]: samples on a regular grid, and the triangle mesh made from them
+//! ([`TerrainMesh`]), which also finds the triangle under any map point in O(1).
+
+use super::TerrainError;
+use crate::mesh::{Topology, TriMesh, NONE};
+use crate::surface::SurfacePoint;
+
+/// Where a grid's samples are: how many, where the first one is and how far apart.
+///
+/// Rows run from north to south (row 0 is the northernmost, as in image files and ESRI
+/// ASCII grids), columns from west to east. Positions are *sample centres*, in the
+/// grid's own units (those of its coordinate system; elevations should be in the same
+/// unit, or slopes mean nothing).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GridGeometry {
+    /// Samples per row (west to east).
+    pub ncols: usize,
+    /// Rows (north to south).
+    pub nrows: usize,
+    /// Map position `[x, y]` of the centre of the south-west sample (column 0, last row).
+    pub lower_left: [f64; 2],
+    /// Distance between neighbouring samples along x (east) and y (north), both > 0.
+    pub spacing: [f64; 2],
+}
+
+impl GridGeometry {
+    /// Map position of the centre of sample `(col, row)`.
+    #[inline]
+    pub fn position(&self, col: usize, row: usize) -> [f64; 2] {
+        [
+            self.lower_left[0] + col as f64 * self.spacing[0],
+            self.lower_left[1] + (self.nrows - 1 - row) as f64 * self.spacing[1],
+        ]
+    }
+
+    /// The extent of the sample centres: `[x_min, y_min, x_max, y_max]`.
+    pub fn bounds(&self) -> [f64; 4] {
+        let [x, y] = self.lower_left;
+        [
+            x,
+            y,
+            x + (self.ncols.max(1) - 1) as f64 * self.spacing[0],
+            y + (self.nrows.max(1) - 1) as f64 * self.spacing[1],
+        ]
+    }
+
+    /// Fractional `(column, row)` of map point `(x, y)`: 0 at the first sample centre,
+    /// 1 at the next.
+    #[inline]
+    pub fn to_grid(&self, x: f64, y: f64) -> (f64, f64) {
+        let [_, _, _, y_max] = self.bounds();
+        (
+            (x - self.lower_left[0]) / self.spacing[0],
+            (y_max - y) / self.spacing[1],
+        )
+    }
+
+    fn check(&self, path: Option<&std::path::Path>) -> Result<(), TerrainError> {
+        for value in self.spacing {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(TerrainError::CellSize {
+                    path: path.map(|p| p.to_path_buf()),
+                    value,
+                });
+            }
+        }
+        if !(self.lower_left[0].is_finite() && self.lower_left[1].is_finite()) {
+            return Err(TerrainError::InvalidGrid {
+                message: format!("the grid's origin {:?} is not finite", self.lower_left),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Elevations on a regular grid, with missing samples (NODATA).
+///
+/// ```
+/// use geotracks::terrain::{ElevationGrid, GridGeometry};
+/// // 3 × 2 samples 10 m apart; the south-west sample centre at (100, 200).
+/// let geometry = GridGeometry { ncols: 3, nrows: 2, lower_left: [100.0, 200.0], spacing: [10.0, 10.0] };
+/// let grid = ElevationGrid::new(geometry, vec![
+///     5.0, 6.0, f64::NAN, // the northern row (y = 210); NaN: no data
+///     4.0, 5.0, 6.0,      // the southern row (y = 200)
+/// ])?;
+/// assert_eq!(grid.elevation(0, 1), Some(4.0));
+/// assert_eq!(grid.elevation(2, 0), None);
+/// let terrain = grid.to_mesh()?;
+/// assert_eq!(terrain.mesh.face_count(), 3); // two in the full cell, one in the other
+/// let p = terrain.locate(105.0, 205.0)?;    // the middle of the first cell
+/// assert!((p.position(&terrain.mesh).z - 5.0).abs() < 1e-12);
+/// # use geotracks::mesh::Topology;
+/// # Ok::<(), geotracks::terrain::TerrainError>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct ElevationGrid {
+    geometry: GridGeometry,
+    /// Row-major from the northern row; NaN where missing.
+    values: Vec<f64>,
+}
+
+impl ElevationGrid {
+    /// A grid from its geometry and `ncols × nrows` values, row by row from the northern
+    /// row, each row west to east. NaN marks a missing sample (NODATA).
+    ///
+    /// # Errors
+    /// [`TerrainError::InvalidGrid`] if the count is wrong or a value is ±inf;
+    /// [`TerrainError::CellSize`] for a spacing that is not finite and > 0.
+    pub fn new(geometry: GridGeometry, values: Vec<f64>) -> Result<Self, TerrainError> {
+        geometry.check(None)?;
+        Self::checked(geometry, values)
+    }
+
+    /// As [`ElevationGrid::new`] for a geometry the caller has checked.
+    pub(crate) fn checked(geometry: GridGeometry, values: Vec<f64>) -> Result<Self, TerrainError> {
+        let expected = geometry.ncols.checked_mul(geometry.nrows);
+        if expected != Some(values.len()) {
+            return Err(TerrainError::InvalidGrid {
+                message: format!(
+                    "{} × {} samples need {} values, found {}",
+                    geometry.ncols,
+                    geometry.nrows,
+                    expected.map_or("too many".to_string(), |n| n.to_string()),
+                    values.len()
+                ),
+            });
+        }
+        if let Some(i) = values.iter().position(|v| v.is_infinite()) {
+            return Err(TerrainError::InvalidGrid {
+                message: format!(
+                    "the sample at row {}, column {} is {}",
+                    i / geometry.ncols,
+                    i % geometry.ncols,
+                    values[i]
+                ),
+            });
+        }
+        Ok(ElevationGrid { geometry, values })
+    }
+
+    /// A grid whose elevation at each sample centre `(x, y)` is `f(x, y)` (`None`: no
+    /// data).
+    ///
+    /// # Errors
+    /// As [`ElevationGrid::new`].
+    pub fn from_fn(
+        geometry: GridGeometry,
+        mut f: impl FnMut(f64, f64) -> Option<f64>,
+    ) -> Result<Self, TerrainError> {
+        geometry.check(None)?;
+        let mut values = Vec::with_capacity(geometry.ncols * geometry.nrows);
+        for row in 0..geometry.nrows {
+            for col in 0..geometry.ncols {
+                let [x, y] = geometry.position(col, row);
+                values.push(f(x, y).unwrap_or(f64::NAN));
+            }
+        }
+        Self::checked(geometry, values)
+    }
+
+    /// Where the samples are.
+    pub fn geometry(&self) -> &GridGeometry {
+        &self.geometry
+    }
+
+    /// The elevation at sample `(col, row)` (row 0 the northernmost); `None` where the
+    /// sample is missing or out of range.
+    #[inline]
+    pub fn elevation(&self, col: usize, row: usize) -> Option<f64> {
+        if col >= self.geometry.ncols || row >= self.geometry.nrows {
+            return None;
+        }
+        let z = self.values[row * self.geometry.ncols + col];
+        (!z.is_nan()).then_some(z)
+    }
+
+    /// All samples, row by row from the north, NaN where missing.
+    pub fn values(&self) -> &[f64] {
+        &self.values
+    }
+
+    /// How many samples are not missing.
+    pub fn valid_count(&self) -> usize {
+        self.values.iter().filter(|v| !v.is_nan()).count()
+    }
+
+    /// The lowest and highest elevation (`None` if every sample is missing).
+    pub fn elevation_range(&self) -> Option<(f64, f64)> {
+        self.values
+            .iter()
+            .filter(|v| !v.is_nan())
+            .fold(None, |acc, &z| match acc {
+                None => Some((z, z)),
+                Some((lo, hi)) => Some((z.min(lo), z.max(hi))),
+            })
+    }
+
+    /// The triangle mesh of the grid: a vertex at each valid sample centre (`z` the
+    /// elevation, positions in the grid's units), two triangles per cell of four valid
+    /// samples, and the one triangle three valid samples of a cell make. Cells with
+    /// fewer valid samples are left out, so NODATA holes stay holes and islands stay
+    /// islands. Triangles are counter-clockwise seen from above.
+    ///
+    /// A cell is split along the diagonal whose two ends differ less in elevation (the
+    /// shorter diagonal in 3D, so the triangles follow ridges and valleys that run along
+    /// it instead of cutting across them), the north-west–south-east one on a tie, so
+    /// that a flat grid or a plane tilted along an axis is split the same way in every
+    /// cell.
+    ///
+    /// # Errors
+    /// [`TerrainError::TooSmall`] when no cell has three valid samples.
+    pub fn to_mesh(&self) -> Result<TerrainMesh, TerrainError> {
+        self.to_mesh_named(None)
+    }
+
+    pub(crate) fn to_mesh_named(
+        &self,
+        path: Option<&std::path::Path>,
+    ) -> Result<TerrainMesh, TerrainError> {
+        let g = self.geometry;
+        let (ncols, nrows) = (g.ncols, g.nrows);
+        let too_small = || TerrainError::TooSmall {
+            path: path.map(|p| p.to_path_buf()),
+            ncols,
+            nrows,
+            valid: self.valid_count(),
+        };
+        if ncols < 2 || nrows < 2 {
+            return Err(too_small());
+        }
+        if ncols * nrows > NONE as usize {
+            return Err(TerrainError::InvalidGrid {
+                message: format!("{ncols} × {nrows} samples exceed the 32-bit vertex ids"),
+            });
+        }
+        let mut sample_vertex = vec![NONE; ncols * nrows];
+        let mut positions = Vec::with_capacity(ncols * nrows);
+        for row in 0..nrows {
+            for col in 0..ncols {
+                let z = self.values[row * ncols + col];
+                if !z.is_nan() {
+                    sample_vertex[row * ncols + col] = positions.len() as u32;
+                    let [x, y] = g.position(col, row);
+                    positions.push([x, y, z]);
+                }
+            }
+        }
+        let cells = (ncols - 1) * (nrows - 1);
+        let mut cell_faces = vec![[NONE; 2]; cells];
+        let mut triangles = Vec::with_capacity(2 * cells);
+        for row in 0..nrows - 1 {
+            for col in 0..ncols - 1 {
+                let at = |c: usize, r: usize| sample_vertex[r * ncols + c];
+                let z = |c: usize, r: usize| self.values[r * ncols + c];
+                let (nw, ne, sw, se) = (
+                    at(col, row),
+                    at(col + 1, row),
+                    at(col, row + 1),
+                    at(col + 1, row + 1),
+                );
+                // Counter-clockwise from above, for either diagonal.
+                let split_nw_se = [[sw, se, nw], [se, ne, nw]];
+                let split_ne_sw = [[sw, se, ne], [sw, ne, nw]];
+                let pair = match [nw, ne, sw, se].iter().filter(|&&v| v != NONE).count() {
+                    4 => {
+                        let along_nw_se = (z(col, row) - z(col + 1, row + 1)).abs();
+                        let along_ne_sw = (z(col + 1, row) - z(col, row + 1)).abs();
+                        if along_ne_sw < along_nw_se {
+                            [Some(split_ne_sw[0]), Some(split_ne_sw[1])]
+                        } else {
+                            [Some(split_nw_se[0]), Some(split_nw_se[1])]
+                        }
+                    }
+                    // The one triangle of three valid samples: the diagonal that avoids
+                    // the missing corner.
+                    3 if nw == NONE => [Some(split_ne_sw[0]), None],
+                    3 if se == NONE => [None, Some(split_ne_sw[1])],
+                    3 if ne == NONE => [Some(split_nw_se[0]), None],
+                    3 => [None, Some(split_nw_se[1])],
+                    _ => [None, None],
+                };
+                for (k, t) in pair.into_iter().enumerate() {
+                    if let Some(t) = t {
+                        cell_faces[row * (ncols - 1) + col][k] = triangles.len() as u32;
+                        triangles.push(t);
+                    }
+                }
+            }
+        }
+        if triangles.is_empty() {
+            return Err(too_small());
+        }
+        let input_faces = triangles.len();
+        let mesh = TriMesh::new(positions, triangles)?;
+        if mesh.face_count() != input_faces {
+            // Not expected (grid cells have area), but a dropped face renumbers the rest.
+            let mut kept = vec![NONE; input_faces];
+            for f in 0..mesh.face_count() as u32 {
+                kept[mesh.input_face(f)] = f;
+            }
+            for pair in &mut cell_faces {
+                for f in pair.iter_mut().filter(|f| **f != NONE) {
+                    *f = kept[*f as usize];
+                }
+            }
+        }
+        Ok(TerrainMesh {
+            mesh,
+            geometry: g,
+            sample_vertex,
+            cell_faces,
+        })
+    }
+}
+
+/// The triangle mesh of an [`ElevationGrid`] ([`ElevationGrid::to_mesh`]), with the
+/// maps between samples, cells and the mesh.
+#[derive(Clone, Debug)]
+pub struct TerrainMesh {
+    /// The mesh: vertices at valid sample centres, in the grid's units.
+    pub mesh: TriMesh,
+    geometry: GridGeometry,
+    /// Per sample (row-major from the north), its vertex or `NONE`.
+    sample_vertex: Vec<u32>,
+    /// Per cell (row-major from the north), its faces or `NONE`.
+    cell_faces: Vec<[u32; 2]>,
+}
+
+impl TerrainMesh {
+    /// The grid's geometry.
+    pub fn geometry(&self) -> &GridGeometry {
+        &self.geometry
+    }
+
+    /// The vertex of sample `(col, row)`, if the sample is valid.
+    #[inline]
+    pub fn sample_vertex(&self, col: usize, row: usize) -> Option<u32> {
+        if col >= self.geometry.ncols || row >= self.geometry.nrows {
+            return None;
+        }
+        let v = self.sample_vertex[row * self.geometry.ncols + col];
+        (v != NONE).then_some(v)
+    }
+
+    /// The faces of cell `(col, row)` (the cell whose north-west sample is `(col, row)`):
+    /// none, one or two.
+    pub fn cell_faces(&self, col: usize, row: usize) -> impl Iterator<Item = u32> + '_ {
+        let g = &self.geometry;
+        let pair = if col + 1 < g.ncols && row + 1 < g.nrows {
+            self.cell_faces[row * (g.ncols - 1) + col]
+        } else {
+            [NONE; 2]
+        };
+        pair.into_iter().filter(|&f| f != NONE)
+    }
+
+    /// The surface point under map point `(x, y)`: the point of the triangle that covers
+    /// it (in canonical form: a vertex or edge point when it lies on one), found in O(1)
+    /// from the cell the point falls in.
+    ///
+    /// # Errors
+    /// [`TerrainError::Outside`] beyond the outermost sample centres (to a relative
+    /// 1e-9 of a cell), [`TerrainError::NoData`] where no triangle covers the point.
+    pub fn locate(&self, x: f64, y: f64) -> Result<SurfacePoint, TerrainError> {
+        let g = &self.geometry;
+        let (fc, fr) = g.to_grid(x, y);
+        const EPS: f64 = 1e-9;
+        let (last_c, last_r) = ((g.ncols - 1) as f64, (g.nrows - 1) as f64);
+        if !(fc >= -EPS && fc <= last_c + EPS && fr >= -EPS && fr <= last_r + EPS) {
+            let [x_min, y_min, x_max, y_max] = g.bounds();
+            return Err(TerrainError::Outside {
+                x,
+                y,
+                x_min,
+                x_max,
+                y_min,
+                y_max,
+            });
+        }
+        let c0 = (fc.clamp(0.0, last_c).floor() as usize).min(g.ncols - 2);
+        let r0 = (fr.clamp(0.0, last_r).floor() as usize).min(g.nrows - 2);
+        // The cell the point falls in first; its neighbours only for a point on a
+        // cell's border whose own cell lacks the covering triangle.
+        let neighbours = [
+            (0, 0),
+            (-1, 0),
+            (1, 0),
+            (0, -1),
+            (0, 1),
+            (-1, -1),
+            (1, -1),
+            (-1, 1),
+            (1, 1),
+        ];
+        for (dc, dr) in neighbours {
+            let (c, r) = (c0 as isize + dc, r0 as isize + dr);
+            if c < 0 || r < 0 || c as usize + 1 >= g.ncols || r as usize + 1 >= g.nrows {
+                continue;
+            }
+            for f in self.cell_faces(c as usize, r as usize) {
+                let bary = self.bary_2d(f, x, y);
+                if bary.iter().all(|&b| b >= -EPS) {
+                    let clamped = bary.map(|b| b.max(0.0));
+                    let sum: f64 = clamped.iter().sum();
+                    let point = SurfacePoint::Face {
+                        face: f,
+                        bary: clamped.map(|b| b / sum),
+                    };
+                    return Ok(point.validated(&self.mesh).unwrap_or(point));
+                }
+            }
+        }
+        Err(TerrainError::NoData { x, y })
+    }
+
+    /// Barycentric coordinates of map point `(x, y)` in face `f`, in the map plane.
+    fn bary_2d(&self, f: u32, x: f64, y: f64) -> [f64; 3] {
+        let [a, b, c] = self.mesh.face_vertices(f).map(|v| self.mesh.position(v));
+        let det = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+        let l1 = ((x - a.x) * (c.y - a.y) - (c.x - a.x) * (y - a.y)) / det;
+        let l2 = ((b.x - a.x) * (y - a.y) - (x - a.x) * (b.y - a.y)) / det;
+        [1.0 - l1 - l2, l1, l2]
+    }
+}

@@ -1,0 +1,354 @@
+//! A picture of a terrain route: the grid hillshaded over a light elevation ramp, the
+//! cost-distance contours from the start, and the route on top.
+//!
+//! Drawn pixel by pixel here (no plotting crate: the picture is a raster of the grid,
+//! so one pixel per sample is the natural scale, and a plotting library would add axes
+//! and a dependency tree for no gain). The `png` feature writes it as a PNG.
+
+use super::grid::{ElevationGrid, TerrainMesh};
+use glam::DVec2;
+
+/// An RGBA picture, row-major from the top (north), 4 bytes per pixel.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MapImage {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// `width × height × 4` bytes: red, green, blue, alpha (0 on NODATA).
+    pub rgba: Vec<u8>,
+    /// Map units between two cost contours (`None` without a field).
+    pub contour_interval: Option<f64>,
+}
+
+/// How a map is drawn.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct MapOptions {
+    /// The longest side of the picture is at most this many pixels (big grids are
+    /// downsampled). Default: 2048.
+    pub max_side: u32,
+    /// The longest side is at least this many pixels (small grids are upsampled).
+    /// Default: 512.
+    pub min_side: u32,
+    /// About how many cost contours to draw (the interval is rounded to 1, 2 or 5 times
+    /// a power of ten). Default: 10.
+    pub contours: u32,
+    /// Sun azimuth, degrees clockwise from north. Default: 315 (north-west).
+    pub azimuth: f64,
+    /// Sun altitude above the horizon, degrees. Default: 45.
+    pub altitude: f64,
+}
+
+impl MapOptions {
+    /// The defaults.
+    pub const DEFAULT: MapOptions = MapOptions {
+        max_side: 2048,
+        min_side: 512,
+        contours: 10,
+        azimuth: 315.0,
+        altitude: 45.0,
+    };
+}
+
+impl Default for MapOptions {
+    fn default() -> Self {
+        MapOptions::DEFAULT
+    }
+}
+
+/// Light hypsometric ramp: low green, sand, light brown, grey, white at the top.
+const RAMP: [(f64, [f64; 3]); 5] = [
+    (0.0, [168.0, 205.0, 160.0]),
+    (0.3, [228.0, 224.0, 180.0]),
+    (0.6, [214.0, 190.0, 152.0]),
+    (0.85, [205.0, 200.0, 196.0]),
+    (1.0, [255.0, 255.0, 255.0]),
+];
+const CONTOUR: [f64; 3] = [25.0, 55.0, 140.0];
+const ROUTE: [f64; 3] = [215.0, 25.0, 30.0];
+const HALO: [f64; 3] = [255.0, 255.0, 255.0];
+const START: [f64; 3] = [30.0, 150.0, 60.0];
+const END: [f64; 3] = [40.0, 80.0, 210.0];
+
+/// Draws the map of `grid` (meshed as `terrain`): hillshade (sun at
+/// `options.azimuth`/`altitude`) over an elevation ramp, NODATA transparent;
+/// contours of `vertex_distance` (one value per vertex of `terrain.mesh`, `inf` where
+/// unreached) if given; and `route` (map positions, from start to end) drawn thick with
+/// a marker at each end.
+pub fn render(
+    grid: &ElevationGrid,
+    terrain: &TerrainMesh,
+    vertex_distance: Option<&[f64]>,
+    route: &[[f64; 2]],
+    options: &MapOptions,
+) -> MapImage {
+    let g = *grid.geometry();
+    let (ncols, nrows) = (g.ncols, g.nrows);
+    let long = ncols.max(nrows).max(1) as f64;
+    let side = long.clamp(options.min_side as f64, options.max_side.max(1) as f64);
+    let scale = side / long;
+    let width = ((ncols as f64 * scale).round() as u32).max(1);
+    let height = ((nrows as f64 * scale).round() as u32).max(1);
+
+    let shade = hillshade(grid, options.azimuth, options.altitude);
+    let (z_lo, z_hi) = grid.elevation_range().unwrap_or((0.0, 1.0));
+    let z_span = if z_hi > z_lo { z_hi - z_lo } else { 1.0 };
+    // Per-sample distance (NaN: unreached or no sample).
+    let sample_distance: Option<Vec<f64>> = vertex_distance.map(|d| {
+        (0..nrows)
+            .flat_map(|r| (0..ncols).map(move |c| (c, r)))
+            .map(|(c, r)| {
+                terrain
+                    .sample_vertex(c, r)
+                    .and_then(|v| d.get(v as usize).copied())
+                    .filter(|x| x.is_finite())
+                    .unwrap_or(f64::NAN)
+            })
+            .collect()
+    });
+    let interval = sample_distance.as_ref().and_then(|d| {
+        let max = d
+            .iter()
+            .copied()
+            .filter(|x| !x.is_nan())
+            .fold(0.0, f64::max);
+        (max > 0.0).then(|| nice_interval(max / options.contours.max(1) as f64))
+    });
+
+    let (w, h) = (width as usize, height as usize);
+    let mut rgba = vec![0u8; w * h * 4];
+    let mut level = vec![f64::NAN; w * h];
+    for py in 0..h {
+        let fr = ((py as f64 + 0.5) / scale - 0.5).clamp(0.0, (nrows - 1) as f64);
+        for px in 0..w {
+            let fc = ((px as f64 + 0.5) / scale - 0.5).clamp(0.0, (ncols - 1) as f64);
+            let Some(z) = sample(grid.values(), ncols, nrows, fc, fr) else {
+                continue;
+            };
+            let s = sample(&shade, ncols, nrows, fc, fr).unwrap_or(0.7);
+            let t = ((z - z_lo) / z_span).clamp(0.0, 1.0);
+            let base = ramp(t);
+            // Multiply blend, kept light: shadows darken to 40 %.
+            let k = 0.4 + 0.6 * s.clamp(0.0, 1.0);
+            put(&mut rgba, w, px, py, base.map(|c| c * k), 1.0);
+            if let (Some(d), Some(step)) = (&sample_distance, interval) {
+                if let Some(value) = sample(d, ncols, nrows, fc, fr) {
+                    level[py * w + px] = (value / step).floor();
+                }
+            }
+        }
+    }
+    // A contour passes between two pixels whose levels differ.
+    if interval.is_some() {
+        for py in 0..h {
+            for px in 0..w {
+                let l = level[py * w + px];
+                if l.is_nan() {
+                    continue;
+                }
+                let differs = |x: usize, y: usize| {
+                    let m = level[y * w + x];
+                    !m.is_nan() && m != l
+                };
+                if (px + 1 < w && differs(px + 1, py)) || (py + 1 < h && differs(px, py + 1)) {
+                    put(&mut rgba, w, px, py, CONTOUR, 0.75);
+                }
+            }
+        }
+    }
+    // The route, in pixel coordinates.
+    let [x_min, _, _, y_max] = g.bounds();
+    let to_pixel = |p: &[f64; 2]| {
+        DVec2::new(
+            ((p[0] - x_min) / g.spacing[0] + 0.5) * scale,
+            ((y_max - p[1]) / g.spacing[1] + 0.5) * scale,
+        )
+    };
+    let points: Vec<DVec2> = route.iter().map(to_pixel).collect();
+    let radius = (w.max(h) as f64 / 400.0).max(1.5);
+    for (colour, r) in [(HALO, radius + 1.5), (ROUTE, radius)] {
+        for pair in points.windows(2) {
+            stroke(&mut rgba, w, h, pair[0], pair[1], r, colour);
+        }
+        if points.len() == 1 {
+            stroke(&mut rgba, w, h, points[0], points[0], r, colour);
+        }
+    }
+    if let (Some(&a), Some(&b)) = (points.first(), points.last()) {
+        for (p, colour) in [(a, START), (b, END)] {
+            stroke(&mut rgba, w, h, p, p, 3.0 * radius + 1.5, [0.0; 3]);
+            stroke(&mut rgba, w, h, p, p, 3.0 * radius, colour);
+        }
+    }
+    MapImage {
+        width,
+        height,
+        rgba,
+        contour_interval: interval,
+    }
+}
+
+/// 1, 2 or 5 times a power of ten, the nearest at or above `x` (> 0).
+fn nice_interval(x: f64) -> f64 {
+    let p = 10f64.powf(x.log10().floor());
+    [1.0, 2.0, 5.0, 10.0]
+        .into_iter()
+        .map(|m| m * p)
+        .find(|&v| v >= x * (1.0 - 1e-12))
+        .unwrap_or(10.0 * p)
+}
+
+/// Value at fractional sample `(fc, fr)`: bilinear over the valid samples of the cell,
+/// `None` when the nearest sample is missing (so NODATA keeps its outline).
+fn sample(values: &[f64], ncols: usize, nrows: usize, fc: f64, fr: f64) -> Option<f64> {
+    let (c0, r0) = (fc.floor() as usize, fr.floor() as usize);
+    let (c1, r1) = ((c0 + 1).min(ncols - 1), (r0 + 1).min(nrows - 1));
+    let (tc, tr) = (fc - c0 as f64, fr - r0 as f64);
+    let nearest = values[fr.round() as usize * ncols + fc.round() as usize];
+    if nearest.is_nan() {
+        return None;
+    }
+    let mut sum = 0.0;
+    let mut weight = 0.0;
+    for (c, r, wgt) in [
+        (c0, r0, (1.0 - tc) * (1.0 - tr)),
+        (c1, r0, tc * (1.0 - tr)),
+        (c0, r1, (1.0 - tc) * tr),
+        (c1, r1, tc * tr),
+    ] {
+        let v = values[r * ncols + c];
+        if !v.is_nan() && wgt > 0.0 {
+            sum += wgt * v;
+            weight += wgt;
+        }
+    }
+    Some(if weight > 0.0 { sum / weight } else { nearest })
+}
+
+/// Per sample: the cosine of the angle between the surface normal and the sun (0 in
+/// shadow), from central differences (one-sided next to a missing sample or an edge).
+fn hillshade(grid: &ElevationGrid, azimuth: f64, altitude: f64) -> Vec<f64> {
+    let g = grid.geometry();
+    let (ncols, nrows) = (g.ncols, g.nrows);
+    let (az, alt) = (azimuth.to_radians(), altitude.to_radians());
+    // x east, y north, z up; azimuth clockwise from north.
+    let sun = glam::DVec3::new(alt.cos() * az.sin(), alt.cos() * az.cos(), alt.sin());
+    let z = |c: usize, r: usize| grid.elevation(c, r);
+    let derivative =
+        |here: f64, before: Option<f64>, after: Option<f64>, step: f64| match (before, after) {
+            (Some(a), Some(b)) => (b - a) / (2.0 * step),
+            (Some(a), None) => (here - a) / step,
+            (None, Some(b)) => (b - here) / step,
+            (None, None) => 0.0,
+        };
+    let mut out = vec![f64::NAN; ncols * nrows];
+    for r in 0..nrows {
+        for c in 0..ncols {
+            let Some(here) = z(c, r) else { continue };
+            let west = c.checked_sub(1).and_then(|c| z(c, r));
+            let north = r.checked_sub(1).and_then(|r| z(c, r));
+            let dzdx = derivative(here, west, z(c + 1, r), g.spacing[0]);
+            // Rows run south, y north: the row after is the one to the south.
+            let dzdy = derivative(here, z(c, r + 1), north, g.spacing[1]);
+            let n = glam::DVec3::new(-dzdx, -dzdy, 1.0).normalize();
+            out[r * ncols + c] = n.dot(sun).max(0.0);
+        }
+    }
+    out
+}
+
+fn ramp(t: f64) -> [f64; 3] {
+    for pair in RAMP.windows(2) {
+        let ((t0, c0), (t1, c1)) = (pair[0], pair[1]);
+        if t <= t1 {
+            let s = ((t - t0) / (t1 - t0)).clamp(0.0, 1.0);
+            return [0, 1, 2].map(|i| c0[i] + s * (c1[i] - c0[i]));
+        }
+    }
+    RAMP[RAMP.len() - 1].1
+}
+
+/// Blends `colour` over pixel `(x, y)` with opacity `alpha`, making it opaque.
+fn put(rgba: &mut [u8], w: usize, x: usize, y: usize, colour: [f64; 3], alpha: f64) {
+    let i = 4 * (y * w + x);
+    let under_alpha = rgba[i + 3] as f64 / 255.0;
+    for k in 0..3 {
+        let under = rgba[i + k] as f64 * under_alpha;
+        rgba[i + k] = (alpha * colour[k] + (1.0 - alpha) * under)
+            .round()
+            .clamp(0.0, 255.0) as u8;
+    }
+    let a = alpha + (1.0 - alpha) * under_alpha;
+    rgba[i + 3] = (255.0 * a).round() as u8;
+}
+
+/// Paints the pixels within `radius` of segment `a`–`b` (a disc when `a == b`), with a
+/// one-pixel antialiased rim.
+fn stroke(rgba: &mut [u8], w: usize, h: usize, a: DVec2, b: DVec2, radius: f64, colour: [f64; 3]) {
+    let lo = a.min(b) - DVec2::splat(radius + 1.0);
+    let hi = a.max(b) + DVec2::splat(radius + 1.0);
+    let (x0, y0) = (lo.x.max(0.0) as usize, lo.y.max(0.0) as usize);
+    let (x1, y1) = (
+        (hi.x.max(0.0) as usize).min(w.saturating_sub(1)),
+        (hi.y.max(0.0) as usize).min(h.saturating_sub(1)),
+    );
+    if lo.x > w as f64 || lo.y > h as f64 {
+        return;
+    }
+    let ab = b - a;
+    let len2 = ab.length_squared();
+    for y in y0..=y1 {
+        for x in x0..=x1 {
+            let p = DVec2::new(x as f64 + 0.5, y as f64 + 0.5);
+            let t = if len2 > 0.0 {
+                ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let d = (p - (a + t * ab)).length();
+            let coverage = (radius + 0.5 - d).clamp(0.0, 1.0);
+            if coverage > 0.0 {
+                put(rgba, w, x, y, colour, coverage);
+            }
+        }
+    }
+}
+
+#[cfg(feature = "png")]
+impl MapImage {
+    /// Writes the picture as an 8-bit RGBA PNG, atomically (no partial file on error).
+    ///
+    /// # Errors
+    /// [`crate::mesh::MeshError::Io`] naming `path` if it cannot be written.
+    pub fn write_png(
+        &self,
+        path: impl AsRef<std::path::Path>,
+    ) -> Result<(), crate::mesh::MeshError> {
+        use image::ImageEncoder;
+        crate::mesh::io::write_atomically(path.as_ref(), |w| {
+            image::codecs::png::PngEncoder::new(w)
+                .write_image(
+                    &self.rgba,
+                    self.width,
+                    self.height,
+                    image::ExtendedColorType::Rgba8,
+                )
+                .map_err(std::io::Error::other)
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn intervals_are_round() {
+        assert_eq!(nice_interval(0.9), 1.0);
+        assert_eq!(nice_interval(1.3), 2.0);
+        assert_eq!(nice_interval(3.0), 5.0);
+        assert_eq!(nice_interval(70.0), 100.0);
+        assert_eq!(nice_interval(200.0), 200.0);
+    }
+}

@@ -1,0 +1,79 @@
+//! Terrain: elevation grids (ESRI ASCII, GeoTIFF) turned into meshes, and terrain costs
+//! as metrics.
+//!
+//! - [`read_grid`] (by extension), [`read_asc`], [`read_geotiff`]: an
+//!   [`ElevationGrid`] of sample centres in the grid's own units, NODATA kept as holes.
+//! - [`ElevationGrid::to_mesh`]: a [`TerrainMesh`], two triangles per cell, which also
+//!   finds the surface point under a map point ([`TerrainMesh::locate`]).
+//! - Costs ([`cost`]): [`slope_density`] (`ρ = 1 + a·tan²(slope)`), [`Impassable`]
+//!   (walls: faces no route crosses), [`uphill_tensor`] (climbing the steepest line
+//!   costs more than following a contour); [`TerrainCost`] names them as the command
+//!   line does.
+//! - [`map`]: a hillshaded picture of the grid with cost contours and a route.
+//!
+//! ```
+//! use geotracks::terrain::{ElevationGrid, GridGeometry, slope_density};
+//! use geotracks::{Options, Solver, Source, Stop};
+//!
+//! // A 21 × 21 grid, 1 m apart, on a plane rising 0.5 m per metre eastwards.
+//! let geometry = GridGeometry { ncols: 21, nrows: 21, lower_left: [0.0, 0.0], spacing: [1.0, 1.0] };
+//! let grid = ElevationGrid::from_fn(geometry, |x, _| Some(0.5 * x))?;
+//! let terrain = grid.to_mesh()?;
+//! let (from, to) = (terrain.locate(2.0, 10.0)?, terrain.locate(18.0, 10.0)?);
+//! let density = slope_density(&terrain.mesh, 4.0)?; // ρ = 1 + 4 · 0.5² = 2
+//! let solver = Solver::new(&terrain.mesh, &density, &Options::DEFAULT.with_k(2.0))?;
+//! let field = solver.solve_from(&[Source::new(from)], &Stop::NONE.with_targets(vec![to]))?;
+//! let route = field.path(&terrain.mesh, &density, to)?;
+//! let expected = 2.0 * 16.0 * 1.25f64.sqrt(); // ρ × the 3D length
+//! assert!((route.length - expected).abs() < 1e-6 * expected);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+mod asc;
+pub mod cost;
+mod error;
+mod geotiff;
+mod grid;
+pub mod map;
+
+pub use asc::read_asc;
+pub use cost::{
+    face_slopes, slope_density, steeper_than, uphill_tensor, vertex_slope_tan2, Impassable,
+    TerrainCost, WithTerrainMetric,
+};
+pub use error::TerrainError;
+pub use geotiff::read_geotiff;
+pub use grid::{ElevationGrid, GridGeometry, TerrainMesh};
+
+use std::path::Path;
+
+/// Reads an elevation grid by its extension (any case): `.asc` (ESRI ASCII grid) or
+/// `.tif`/`.tiff` (single-band GeoTIFF).
+///
+/// # Errors
+/// [`TerrainError::UnknownFormat`] for another extension, or what the reader returns.
+pub fn read_grid(path: impl AsRef<Path>) -> Result<ElevationGrid, TerrainError> {
+    let path = path.as_ref();
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("asc") => read_asc(path),
+        Some("tif" | "tiff") => read_geotiff(path),
+        _ => Err(TerrainError::UnknownFormat {
+            path: path.to_path_buf(),
+        }),
+    }
+}
+
+/// Reads a grid and meshes it; errors name the file.
+///
+/// # Errors
+/// As [`read_grid`] and [`ElevationGrid::to_mesh`].
+pub fn read_terrain(path: impl AsRef<Path>) -> Result<(ElevationGrid, TerrainMesh), TerrainError> {
+    let path = path.as_ref();
+    let grid = read_grid(path)?;
+    let mesh = grid.to_mesh_named(Some(path))?;
+    Ok((grid, mesh))
+}

@@ -1,0 +1,1188 @@
+//! Terrain: grid readers, meshing, costs, walls in every engine, and the analytic
+//! checks (flat grid, tilted plane, Snell's law at a density interface, a wall with a
+//! gap). Measured errors are printed (`cargo test --release --test terrain --
+//! --nocapture`); the README quotes them.
+
+mod common;
+
+use common::{random_mesh, Rng, DIJKSTRA, GRAPH};
+use geotracks::mesh::{Topology, TriMesh};
+use geotracks::terrain::{
+    read_asc, read_geotiff, read_grid, slope_density, steeper_than, uphill_tensor, ElevationGrid,
+    GridGeometry, Impassable, TerrainCost, TerrainError, TerrainMesh,
+};
+use geotracks::{
+    distance_field, Density, Error, Euclidean, GeodesicPath, Method, Metric, Options, Solver,
+    Source, Stop, Tensor,
+};
+use glam::DVec3;
+use proptest::prelude::*;
+use std::path::Path;
+
+fn geometry(ncols: usize, nrows: usize, lower_left: [f64; 2], spacing: f64) -> GridGeometry {
+    GridGeometry {
+        ncols,
+        nrows,
+        lower_left,
+        spacing: [spacing, spacing],
+    }
+}
+
+/// The straightened route between two map points, and the field's stats.
+fn route<M: Metric>(
+    terrain: &TerrainMesh,
+    metric: &M,
+    options: &Options,
+    from: [f64; 2],
+    to: [f64; 2],
+) -> Result<GeodesicPath, Error> {
+    let from = terrain.locate(from[0], from[1]).unwrap();
+    let to = terrain.locate(to[0], to[1]).unwrap();
+    let solver = Solver::new(&terrain.mesh, metric, options)?;
+    let field = solver.solve_from(&[Source::new(from)], &Stop::NONE.with_targets(vec![to]))?;
+    field.path(&terrain.mesh, metric, to)
+}
+
+fn relative(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs()
+}
+
+// ---------------------------------------------------------------------------------
+// Readers and meshing
+
+fn write(dir: &Path, name: &str, text: &str) -> std::path::PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn asc_corner_and_centre_origins_place_samples() {
+    let dir = tempfile::tempdir().unwrap();
+    let corner = write(
+        dir.path(),
+        "c.asc",
+        "ncols 3\nnrows 2\nxllcorner 100\nyllcorner 200\ncellsize 10\n1 2 3\n4 5 6\n",
+    );
+    let grid = read_asc(&corner).unwrap();
+    assert_eq!(grid.geometry().lower_left, [105.0, 205.0]);
+    assert_eq!(grid.geometry().position(0, 0), [105.0, 215.0]);
+    assert_eq!(
+        grid.elevation(0, 0),
+        Some(1.0),
+        "the first row is the northern one"
+    );
+    let terrain = grid.to_mesh().unwrap();
+    // Sample (0, 0) is at the north-west: vertex 0 has z = 1 there.
+    assert_eq!(terrain.mesh.position(0).to_array(), [105.0, 215.0, 1.0]);
+    let p = terrain.locate(105.0, 205.0).unwrap();
+    assert!((p.position(&terrain.mesh).z - 4.0).abs() < 1e-12);
+
+    let centre = write(
+        dir.path(),
+        "m.asc",
+        "NCOLS 3\nNRows 2\nyllcenter 200\nXLLCENTER 100\nNODATA_VALUE -1\ncellsize 10\n1 2 3\n4 5 6\n",
+    );
+    let grid = read_grid(&centre).unwrap();
+    assert_eq!(grid.geometry().lower_left, [100.0, 200.0]);
+    assert_eq!(grid.geometry().bounds(), [100.0, 200.0, 120.0, 210.0]);
+}
+
+#[test]
+fn nodata_holes_and_islands_are_kept() {
+    // 7 × 7 samples: a NODATA ring around an island in the middle.
+    let g = geometry(7, 7, [0.0, 0.0], 1.0);
+    let grid = ElevationGrid::from_fn(g, |x, y| {
+        let r = (x - 3.0).abs().max((y - 3.0).abs());
+        (r != 2.0).then_some(x + y)
+    })
+    .unwrap();
+    let terrain = grid.to_mesh().unwrap();
+    let mesh = &terrain.mesh;
+    let (labels, components) = mesh.vertex_components();
+    // The island (3 × 3 samples), the outer ring, and no faces in the NODATA ring.
+    let centre = terrain.sample_vertex(3, 3).unwrap();
+    let corner = terrain.sample_vertex(0, 0).unwrap();
+    assert_ne!(labels[centre as usize], labels[corner as usize]);
+    assert!(components >= 2);
+    assert_eq!(grid.valid_count(), 49 - 16);
+    // The island: 2 × 2 cells → 8 faces; the outer ring of cells: 24 cells, of which
+    // only those with ≥ 3 valid samples make faces.
+    let island: usize = (2..4)
+        .flat_map(|r| (2..4).map(move |c| (c, r)))
+        .map(|(c, r)| terrain.cell_faces(c, r).count())
+        .sum();
+    assert_eq!(island, 8);
+    // A point in the hole is on NODATA; a point beyond the grid is outside.
+    assert!(matches!(
+        terrain.locate(1.5, 1.5),
+        Err(TerrainError::NoData { .. })
+    ));
+    assert!(matches!(
+        terrain.locate(-0.5, 1.0),
+        Err(TerrainError::Outside { .. })
+    ));
+    // Every face lies on valid samples and is counter-clockwise from above.
+    for f in 0..mesh.face_count() as u32 {
+        let [a, b, c] = mesh.face_vertices(f).map(|v| mesh.position(v));
+        assert!((b - a).cross(c - a).z > 0.0);
+    }
+}
+
+#[test]
+fn three_valid_samples_make_one_triangle_and_locate_finds_it() {
+    let g = geometry(2, 2, [0.0, 0.0], 2.0);
+    // The north-east sample is missing.
+    let grid = ElevationGrid::new(g, vec![1.0, f64::NAN, 3.0, 4.0]).unwrap();
+    let terrain = grid.to_mesh().unwrap();
+    assert_eq!(terrain.mesh.face_count(), 1);
+    let p = terrain.locate(0.5, 0.5).unwrap();
+    assert!((p.position(&terrain.mesh) - DVec3::new(0.5, 0.5, 2.75)).length() < 1e-12);
+    assert!(matches!(
+        terrain.locate(1.5, 1.5),
+        Err(TerrainError::NoData { .. })
+    ));
+    // Corners and edges come back in canonical form.
+    let v = terrain.locate(0.0, 0.0).unwrap();
+    assert_eq!(
+        v,
+        geotracks::SurfacePoint::Vertex(terrain.sample_vertex(0, 1).unwrap())
+    );
+}
+
+#[test]
+fn the_diagonal_follows_the_smaller_elevation_difference() {
+    let g = geometry(2, 2, [0.0, 0.0], 1.0);
+    // nw = 5, ne = 0, sw = 2, se = 4: a ridge from north-west to south-east.
+    let grid = ElevationGrid::new(g, vec![5.0, 0.0, 2.0, 4.0]).unwrap();
+    let mesh = grid.to_mesh().unwrap().mesh;
+    let ridge = [0u32, 3];
+    assert!(mesh
+        .triangles()
+        .iter()
+        .all(|t| ridge.iter().all(|v| t.contains(v))));
+    let grid = ElevationGrid::new(g, vec![0.0, 5.0, 4.0, 2.0]).unwrap();
+    let mesh = grid.to_mesh().unwrap().mesh;
+    let ridge = [1u32, 2];
+    assert!(mesh
+        .triangles()
+        .iter()
+        .all(|t| ridge.iter().all(|v| t.contains(v))));
+}
+
+#[test]
+fn grids_without_a_triangle_are_refused() {
+    let e = ElevationGrid::new(geometry(1, 3, [0.0, 0.0], 1.0), vec![1.0, 2.0, 3.0])
+        .unwrap()
+        .to_mesh()
+        .unwrap_err();
+    assert!(matches!(e, TerrainError::TooSmall { .. }), "{e}");
+    let nan = f64::NAN;
+    let e = ElevationGrid::new(
+        geometry(3, 2, [0.0, 0.0], 1.0),
+        vec![1.0, nan, 1.0, nan, 1.0, nan],
+    )
+    .unwrap()
+    .to_mesh()
+    .unwrap_err();
+    assert!(e.to_string().contains("3 of them valid"), "{e}");
+    assert!(ElevationGrid::new(geometry(2, 2, [0.0, 0.0], 1.0), vec![1.0; 3]).is_err());
+    assert!(ElevationGrid::new(geometry(2, 2, [0.0, 0.0], -1.0), vec![1.0; 4]).is_err());
+    assert!(ElevationGrid::new(
+        geometry(2, 2, [0.0, 0.0], 1.0),
+        vec![1.0, f64::INFINITY, 1.0, 1.0]
+    )
+    .is_err());
+}
+
+#[test]
+fn asc_errors_name_the_file_and_place() {
+    let dir = tempfile::tempdir().unwrap();
+    let head = "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n";
+    let cases = [
+        (
+            "nrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2 3\n4 5 6\n",
+            "no 'ncols'",
+        ),
+        (
+            "ncols 3\nnrows 2\nxllcorner 0\ncellsize 1\n1 2 3\n4 5 6\n",
+            "no 'yllcorner'",
+        ),
+        (
+            "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\n1 2 3\n4 5 6\n",
+            "no 'cellsize'",
+        ),
+        (
+            "ncols x\nnrows 2\n",
+            ":1: ncols: 'x' is not a positive whole number",
+        ),
+        (
+            &format!("{head}1 2 3\n4 five 6\n"),
+            ":7: row 1, column 1: 'five' is not a number",
+        ),
+        (
+            &format!("{head}1 2 3\n4 5\n"),
+            "expected 6 values (3 columns × 2 rows), found 5",
+        ),
+        (&format!("{head}1 2 3\n4 5 6\n7\n"), ":8: expected 6 values"),
+        (
+            &format!("{head}1 2 3\nnan 5 6\n"),
+            "row 1, column 0: the value 'nan' is not finite",
+        ),
+        (
+            "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize -2\n1 2 3\n4 5 6\n",
+            "cell size -2",
+        ),
+        (
+            "ncols 3\nnrows 1\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2 3\n",
+            "makes no triangle",
+        ),
+        ("", "no 'ncols'"),
+    ];
+    for (i, (text, expected)) in cases.iter().enumerate() {
+        let path = write(dir.path(), &format!("bad{i}.asc"), text);
+        let e = geotracks::terrain::read_terrain(&path)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(&format!("bad{i}.asc")), "{e}");
+        assert!(e.contains(expected), "case {i}: {e:?} lacks {expected:?}");
+    }
+    let e = read_grid(dir.path().join("x.xyz")).unwrap_err();
+    assert!(matches!(e, TerrainError::UnknownFormat { .. }));
+    let e = read_grid(dir.path().join("missing.asc")).unwrap_err();
+    assert!(matches!(e, TerrainError::Io { .. }));
+}
+
+// ---------------------------------------------------------------------------------
+// GeoTIFF
+
+/// Writes a single-band GeoTIFF with the given georeference tags.
+fn write_tiff<C>(
+    path: &Path,
+    (w, h): (u32, u32),
+    data: &[C::Inner],
+    scale: Option<[f64; 3]>,
+    tie: Option<[f64; 6]>,
+    geo_keys: Option<&[u16]>,
+    nodata: Option<&str>,
+) where
+    C: tiff::encoder::colortype::ColorType,
+    [C::Inner]: tiff::encoder::TiffValue,
+{
+    use tiff::tags::Tag;
+    let file = std::fs::File::create(path).unwrap();
+    let mut tiff = tiff::encoder::TiffEncoder::new(file).unwrap();
+    let mut image = tiff.new_image::<C>(w, h).unwrap();
+    let enc = image.encoder();
+    if let Some(s) = scale {
+        enc.write_tag(Tag::ModelPixelScaleTag, &s[..]).unwrap();
+    }
+    if let Some(t) = tie {
+        enc.write_tag(Tag::ModelTiepointTag, &t[..]).unwrap();
+    }
+    if let Some(k) = geo_keys {
+        enc.write_tag(Tag::GeoKeyDirectoryTag, k).unwrap();
+    }
+    if let Some(n) = nodata {
+        enc.write_tag(Tag::GdalNodata, n).unwrap();
+    }
+    image.write_data(data).unwrap();
+}
+
+/// A GeoKey directory with the raster type (1 area, 2 point) and projected model type.
+fn geo_keys(raster_type: u16) -> [u16; 12] {
+    [1, 1, 0, 2, 1024, 0, 1, 1, 1025, 0, 1, raster_type]
+}
+
+#[test]
+fn geotiff_f32_with_nodata_and_pixel_is_area() {
+    use tiff::encoder::colortype::Gray32Float;
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("dem.tif");
+    // 3 × 2 pixels of 10 m; the tie point puts raster (0, 0) at (1000, 2000).
+    let data = [1.0f32, 2.0, -9999.0, 4.0, 5.0, 6.0];
+    write_tiff::<Gray32Float>(
+        &path,
+        (3, 2),
+        &data,
+        Some([10.0, 10.0, 0.0]),
+        Some([0.0, 0.0, 0.0, 1000.0, 2000.0, 0.0]),
+        Some(&geo_keys(1)),
+        Some("-9999"),
+    );
+    let grid = read_grid(&path).unwrap();
+    // PixelIsArea: the first sample's centre is half a pixel in.
+    assert_eq!(grid.geometry().position(0, 0), [1005.0, 1995.0]);
+    assert_eq!(grid.geometry().lower_left, [1005.0, 1985.0]);
+    assert_eq!(grid.elevation(2, 0), None);
+    assert_eq!(grid.elevation(1, 1), Some(5.0));
+    let terrain = grid.to_mesh().unwrap();
+    assert_eq!(terrain.mesh.face_count(), 3);
+}
+
+#[test]
+fn geotiff_i16_pixel_is_point_and_no_geokeys() {
+    use tiff::encoder::colortype::GrayI16;
+    let dir = tempfile::tempdir().unwrap();
+    let data = [-5i16, 0, 7, 300, 301, 302];
+    let point = dir.path().join("point.tif");
+    write_tiff::<GrayI16>(
+        &point,
+        (3, 2),
+        &data,
+        Some([2.0, 4.0, 0.0]),
+        Some([0.0, 0.0, 0.0, 50.0, 80.0, 0.0]),
+        Some(&geo_keys(2)),
+        None,
+    );
+    let grid = read_geotiff(&point).unwrap();
+    // PixelIsPoint: raster (0, 0) is the first sample's centre; dx ≠ dy.
+    assert_eq!(grid.geometry().position(0, 0), [50.0, 80.0]);
+    assert_eq!(grid.geometry().spacing, [2.0, 4.0]);
+    assert_eq!(grid.elevation(0, 0), Some(-5.0));
+    assert_eq!(grid.elevation(2, 1), Some(302.0));
+    // No GeoKey directory: PixelIsArea, the default.
+    let area = dir.path().join("area.tif");
+    write_tiff::<GrayI16>(
+        &area,
+        (3, 2),
+        &data,
+        Some([2.0, 4.0, 0.0]),
+        Some([0.0, 0.0, 0.0, 50.0, 80.0, 0.0]),
+        None,
+        None,
+    );
+    assert_eq!(
+        read_geotiff(&area).unwrap().geometry().position(0, 0),
+        [51.0, 78.0]
+    );
+}
+
+#[test]
+fn geotiff_refusals_say_why() {
+    use tiff::encoder::colortype::{Gray16, RGB8};
+    let dir = tempfile::tempdir().unwrap();
+    let bare = dir.path().join("bare.tif");
+    write_tiff::<Gray16>(&bare, (2, 2), &[1, 2, 3, 4], None, None, None, None);
+    let e = read_geotiff(&bare).unwrap_err().to_string();
+    assert!(e.contains("no georeference"), "{e}");
+    let rgb = dir.path().join("rgb.tif");
+    write_tiff::<RGB8>(
+        &rgb,
+        (2, 2),
+        &[0; 12],
+        Some([1.0, 1.0, 0.0]),
+        Some([0.0; 6]),
+        None,
+        None,
+    );
+    let e = read_geotiff(&rgb).unwrap_err().to_string();
+    assert!(e.contains("not a single band"), "{e}");
+    let geographic = dir.path().join("geo.tif");
+    write_tiff::<Gray16>(
+        &geographic,
+        (2, 2),
+        &[1, 2, 3, 4],
+        Some([0.001, 0.001, 0.0]),
+        Some([0.0, 0.0, 0.0, 7.0, 45.0, 0.0]),
+        Some(&[1, 1, 0, 1, 1024, 0, 1, 2]),
+        None,
+    );
+    let e = read_geotiff(&geographic).unwrap_err().to_string();
+    assert!(e.contains("geographic"), "{e}");
+    let truncated = dir.path().join("cut.tif");
+    let bytes = std::fs::read(&bare).unwrap();
+    std::fs::write(&truncated, &bytes[..bytes.len() / 2]).unwrap();
+    assert!(read_geotiff(&truncated).is_err());
+    std::fs::write(&truncated, b"not a tiff at all").unwrap();
+    assert!(matches!(
+        read_geotiff(&truncated),
+        Err(TerrainError::Tiff { .. })
+    ));
+}
+
+// ---------------------------------------------------------------------------------
+// Costs
+
+#[test]
+fn cost_specs_parse_and_check() {
+    for (text, cost) in [
+        ("none", TerrainCost::None),
+        (
+            "slope:2.5",
+            TerrainCost::Slope {
+                a: 2.5,
+                max_degrees: None,
+            },
+        ),
+        (
+            "slope:0,max:30",
+            TerrainCost::Slope {
+                a: 0.0,
+                max_degrees: Some(30.0),
+            },
+        ),
+        ("uphill:4", TerrainCost::Uphill { b: 4.0 }),
+    ] {
+        assert_eq!(text.parse::<TerrainCost>().unwrap(), cost);
+        assert_eq!(cost.to_string(), text);
+    }
+    for bad in [
+        "",
+        "slope",
+        "slope:x",
+        "slope:-1",
+        "slope:1,max:0",
+        "slope:1,max:91",
+        "slope:1,min:3",
+        "uphill:nan",
+        "uphill:-2",
+        "none:3",
+        "steep:1",
+    ] {
+        let e = bad.parse::<TerrainCost>().unwrap_err();
+        assert!(matches!(e, TerrainError::CostSpec { .. }), "{bad}: {e}");
+    }
+}
+
+/// A `ncols × ncols` grid of spacing `h` on a plane of slope `alpha` (radians) rising
+/// towards direction `beta` (radians from the x axis).
+fn tilted(ncols: usize, h: f64, alpha: f64, beta: f64) -> TerrainMesh {
+    let g = geometry(ncols, ncols, [0.0, 0.0], h);
+    ElevationGrid::from_fn(g, |x, y| {
+        Some(alpha.tan() * (x * beta.cos() + y * beta.sin()))
+    })
+    .unwrap()
+    .to_mesh()
+    .unwrap()
+}
+
+#[test]
+fn on_a_flat_grid_every_cost_is_euclidean() {
+    let terrain = tilted(21, 0.5, 0.0, 0.0);
+    let mesh = &terrain.mesh;
+    let (from, to): ([f64; 2], [f64; 2]) = ([1.3, 0.7], [8.6, 9.1]);
+    let straight = (to[0] - from[0]).hypot(to[1] - from[1]);
+    let options = Options::DEFAULT;
+    let euclid = distance_field(mesh, &Euclidean, &[0], &options).unwrap();
+    let mut worst: f64 = 0.0;
+    for cost in ["none", "slope:5", "slope:5,max:10", "uphill:7"] {
+        let cost: TerrainCost = cost.parse().unwrap();
+        struct Check<'a>(&'a TerrainMesh, [f64; 2], [f64; 2], &'a [f64]);
+        impl geotracks::terrain::WithTerrainMetric for Check<'_> {
+            type Output = (f64, f64);
+            type Error = Box<dyn std::error::Error>;
+            fn run<M: Metric>(self, metric: &M) -> Result<(f64, f64), Self::Error> {
+                let field = distance_field(&self.0.mesh, metric, &[0], &Options::DEFAULT)?;
+                let field_dev = field
+                    .vertex_distances()
+                    .iter()
+                    .zip(self.3)
+                    .map(|(a, b)| (a - b).abs())
+                    .fold(0.0, f64::max);
+                let path = route(self.0, metric, &Options::DEFAULT, self.1, self.2)?;
+                Ok((path.length, field_dev))
+            }
+        }
+        let (length, field_dev) = cost
+            .with_metric(mesh, Check(&terrain, from, to, euclid.vertex_distances()))
+            .unwrap();
+        assert!(field_dev <= 1e-12, "{cost}: field differs by {field_dev}");
+        let err = relative(length, straight);
+        worst = worst.max(err);
+        assert!(err < 1e-5, "{cost}: route {length} vs straight {straight}");
+    }
+    println!("flat grid: route vs straight line, worst relative error {worst:.1e}");
+}
+
+#[test]
+fn tilted_plane_slope_density_and_uphill_match_the_analytic_costs() {
+    let (alpha, beta) = (30f64.to_radians(), 25f64.to_radians());
+    let terrain = tilted(41, 1.0, alpha, beta);
+    let mesh = &terrain.mesh;
+    let centre = [20.0, 20.0];
+    let along = [beta.cos(), beta.sin()];
+    let across = [-beta.sin(), beta.cos()];
+    let l = 14.0; // map length of each route
+    let ends = |d: [f64; 2]| {
+        (
+            [centre[0] - d[0] * l / 2.0, centre[1] - d[1] * l / 2.0],
+            [centre[0] + d[0] * l / 2.0, centre[1] + d[1] * l / 2.0],
+        )
+    };
+    let a = 2.0;
+    let rho = 1.0 + a * alpha.tan().powi(2);
+    let density = slope_density(mesh, a).unwrap();
+    assert!(density
+        .per_vertex()
+        .iter()
+        .all(|r| relative(*r, rho) < 1e-12));
+    let b = 3.0;
+    let tensor = uphill_tensor(mesh, b).unwrap();
+    let mut report = Vec::new();
+    for (name, dir, slope_cost, uphill_cost) in [
+        (
+            "along the slope",
+            along,
+            rho * l / alpha.cos(),
+            (1.0 + b * alpha.sin().powi(2)).sqrt() * l / alpha.cos(),
+        ),
+        ("across the slope", across, rho * l, l),
+    ] {
+        let (from, to) = ends(dir);
+        for k in [2.0, 5.0] {
+            let options = Options::DEFAULT.with_k(k);
+            let s = route(&terrain, &density, &options, from, to).unwrap();
+            let u = route(&terrain, &tensor, &options, from, to).unwrap();
+            let (es, eu) = (
+                relative(s.length, slope_cost),
+                relative(u.length, uphill_cost),
+            );
+            let (gs, gu) = (
+                relative(s.traced_length, slope_cost),
+                relative(u.traced_length, uphill_cost),
+            );
+            report.push(format!(
+                "{name}, k = {k}: slope density {es:.1e} (graph {gs:.1e}), uphill {eu:.1e} (graph {gu:.1e})"
+            ));
+            assert!(es < 1e-6, "slope {name}: {} vs {slope_cost}", s.length);
+            assert!(eu < 1e-6, "uphill {name}: {} vs {uphill_cost}", u.length);
+        }
+    }
+    println!("tilted plane (30°, a = {a}, b = {b}), relative error of the route cost:");
+    for line in report {
+        println!("  {line}");
+    }
+}
+
+#[test]
+fn max_slope_blocks_steep_faces_only() {
+    let terrain = tilted(5, 1.0, 40f64.to_radians(), 0.0);
+    assert!(steeper_than(&terrain.mesh, 45.0)
+        .unwrap()
+        .iter()
+        .all(|b| !b));
+    assert!(steeper_than(&terrain.mesh, 35.0)
+        .unwrap()
+        .iter()
+        .all(|&b| b));
+    assert!(steeper_than(&terrain.mesh, 0.0).is_err());
+    assert!(slope_density(&terrain.mesh, -1.0).is_err());
+    assert!(uphill_tensor(&terrain.mesh, f64::NAN).is_err());
+}
+
+/// The least cost from `a` to `b` across the ramp of `snell_law_at_a_density_interface`
+/// among routes straight in each of the three layers (ρ1 up to x = -h, the linear ramp,
+/// ρ2 from x = 0), minimised over the two crossing heights by nested ternary searches
+/// (the cost is convex in them). The true optimum bends inside the ramp too, so it can
+/// be a little cheaper (by 1e-5 relative in these cases).
+fn snell_optimum(a: [f64; 2], b: [f64; 2], h: f64, rho1: f64, rho2: f64) -> f64 {
+    let cost = |y1: f64, y2: f64| {
+        rho1 * (-h - a[0]).hypot(y1 - a[1])
+            + 0.5 * (rho1 + rho2) * h.hypot(y2 - y1)
+            + rho2 * b[0].hypot(b[1] - y2)
+    };
+    fn ternary(mut lo: f64, mut hi: f64, f: impl Fn(f64) -> f64) -> f64 {
+        for _ in 0..200 {
+            let (m1, m2) = (lo + (hi - lo) / 3.0, hi - (hi - lo) / 3.0);
+            if f(m1) <= f(m2) {
+                hi = m2;
+            } else {
+                lo = m1;
+            }
+        }
+        f(0.5 * (lo + hi))
+    }
+    let (lo, hi) = (a[1].min(b[1]), a[1].max(b[1]));
+    ternary(lo, hi, |y1| ternary(lo, hi, |y2| cost(y1, y2)))
+}
+
+#[test]
+fn snell_law_at_a_density_interface() {
+    // Flat grid on [-1, 1] × [0, 2]; ρ1 west of x = 0, ρ2 from x = 0 on: the density
+    // ramps over the one column of cells between x = -h and 0.
+    let h = 0.02;
+    let n = (2.0 / h) as usize + 1;
+    let terrain = ElevationGrid::from_fn(geometry(n, n, [-1.0, 0.0], h), |_, _| Some(0.0))
+        .unwrap()
+        .to_mesh()
+        .unwrap();
+    let mesh = &terrain.mesh;
+    let mut worst: f64 = 0.0;
+    let mut worst_cost: f64 = 0.0;
+    for (rho1, rho2, from, to) in [
+        (1.0, 1.5, [-0.9, 0.1], [0.9, 1.5]),
+        (2.0, 1.0, [-0.95, 0.2], [0.85, 1.9]),
+        (1.0, 3.0, [-0.8, 0.05], [0.9, 1.2]),
+    ] {
+        let rho: Vec<f64> = mesh
+            .positions()
+            .iter()
+            .map(|p| if p.x < -1e-9 { rho1 } else { rho2 })
+            .collect();
+        let density = Density::new(mesh, rho).unwrap();
+        let path = route(&terrain, &density, &Options::DEFAULT, from, to).unwrap();
+        let points = path.positions(mesh);
+        // The route's direction on each side, from 3 to 10 cells away from the ramp:
+        // from the first to the last of its points there.
+        let direction = |lo: f64, hi: f64| -> f64 {
+            let inside: Vec<DVec3> = points
+                .iter()
+                .copied()
+                .filter(|p| p.x > lo && p.x < hi)
+                .collect();
+            assert!(inside.len() >= 2, "too few points in ({lo}, {hi})");
+            let d = inside[inside.len() - 1] - inside[0];
+            d.y.abs().atan2(d.x.abs())
+        };
+        let theta1 = direction(-h - 10.0 * h, -h - 3.0 * h);
+        let theta2 = direction(3.0 * h, 10.0 * h);
+        let predicted = (rho1 * theta1.sin() / rho2).asin();
+        let error = (theta2 - predicted).abs().to_degrees();
+        let optimum = snell_optimum(from, to, h, rho1, rho2);
+        let excess = (path.length - optimum) / optimum;
+        println!(
+            "snell ρ1 = {rho1}, ρ2 = {rho2}: θ1 = {:.3}°, θ2 = {:.3}°, Snell predicts {:.3}° \
+             (error {error:.3}°); route cost {:.6} vs layer-straight optimum {optimum:.6} ({excess:+.1e})",
+            theta1.to_degrees(),
+            theta2.to_degrees(),
+            predicted.to_degrees(),
+            path.length,
+        );
+        worst = worst.max(error);
+        worst_cost = worst_cost.max(excess.abs());
+        assert!(error < 1.0, "Snell's law off by {error}°");
+        assert!(
+            excess.abs() < 1e-3,
+            "cost {} vs optimum {optimum}",
+            path.length
+        );
+    }
+    println!("snell: worst angle error {worst:.3}°, worst cost excess {worst_cost:.1e}");
+}
+
+// ---------------------------------------------------------------------------------
+// Walls
+
+/// A 41 × 41 flat grid of unit cells, with the cells of row band y ∈ [20, 21] blocked
+/// except those whose x lies in `gap`.
+fn walled(gap: Option<(f64, f64)>) -> (TerrainMesh, Vec<bool>) {
+    let terrain = tilted(41, 1.0, 0.0, 0.0);
+    let mesh = &terrain.mesh;
+    let blocked = (0..mesh.face_count() as u32)
+        .map(|f| {
+            let c = mesh
+                .face_vertices(f)
+                .iter()
+                .fold(DVec3::ZERO, |s, &v| s + mesh.position(v))
+                / 3.0;
+            let in_gap = gap.is_some_and(|(lo, hi)| c.x > lo && c.x < hi);
+            c.y > 20.0 && c.y < 21.0 && !in_gap
+        })
+        .collect();
+    (terrain, blocked)
+}
+
+#[test]
+fn a_wall_with_one_gap_routes_through_the_gap() {
+    let (terrain, blocked) = walled(Some((30.0, 32.0)));
+    let walls = Impassable::new(&terrain.mesh, Euclidean, blocked).unwrap();
+    let (from, to) = ([10.0, 5.0], [10.0, 35.0]);
+    // Around the gap's west side: to its corner (30, 20), along the wall's edge to
+    // (30, 21), then straight to the target.
+    let exact = 25.0 + 1.0 + (20f64 * 20.0 + 14.0 * 14.0).sqrt();
+    for options in [Options::DEFAULT, GRAPH, DIJKSTRA] {
+        let path = route(&terrain, &walls, &options, from, to).unwrap();
+        let points = path.positions(&terrain.mesh);
+        let through = points
+            .iter()
+            .any(|p| p.y >= 20.0 && p.y <= 21.0 && p.x >= 30.0 - 1e-9 && p.x <= 32.0 + 1e-9);
+        assert!(
+            through,
+            "{:?}: the route does not pass the gap",
+            options.method
+        );
+        for (i, &f) in path.faces.iter().enumerate() {
+            let seg = (points[i + 1] - points[i]).length();
+            assert!(
+                !walls.is_blocked(f) || seg == 0.0,
+                "a segment crosses the wall"
+            );
+        }
+        assert!(path.length.is_finite() && path.length >= exact * (1.0 - 1e-9));
+        let err = relative(path.length, exact);
+        println!(
+            "wall with a gap, {}: route {:.6} vs exact {exact:.6} (relative {err:.1e})",
+            options.method, path.length
+        );
+        if options.method != Method::Dijkstra {
+            assert!(
+                err < 1e-6,
+                "{:?}: {} vs {exact}",
+                options.method,
+                path.length
+            );
+        }
+    }
+}
+
+#[test]
+fn a_closed_wall_makes_the_target_unreachable() {
+    let (terrain, blocked) = walled(None);
+    for inner_density in [false, true] {
+        for options in [Options::DEFAULT, GRAPH, DIJKSTRA] {
+            let result = if inner_density {
+                let d = Density::constant(&terrain.mesh, 2.0).unwrap();
+                route(
+                    &terrain,
+                    &Impassable::new(&terrain.mesh, d, blocked.clone()).unwrap(),
+                    &options,
+                    [10.0, 5.0],
+                    [10.0, 35.0],
+                )
+            } else {
+                route(
+                    &terrain,
+                    &Impassable::new(&terrain.mesh, Euclidean, blocked.clone()).unwrap(),
+                    &options,
+                    [10.0, 5.0],
+                    [10.0, 35.0],
+                )
+            };
+            assert!(
+                matches!(result, Err(Error::Unreachable { .. })),
+                "{:?}",
+                result.map(|p| p.length)
+            );
+        }
+    }
+    // Blocked vertices: the faces around them are walls.
+    let mesh = &terrain.mesh;
+    let row: Vec<bool> = mesh.positions().iter().map(|p| p.y == 20.0).collect();
+    let walls = Impassable::from_vertices(mesh, Euclidean, &row).unwrap();
+    let field = distance_field(mesh, &walls, &[0], &Options::DEFAULT).unwrap();
+    for (v, p) in mesh.positions().iter().enumerate() {
+        let d = field.distance(v as u32);
+        assert!(!d.is_nan());
+        assert_eq!(d.is_finite(), p.y > 20.0, "vertex at {p}: {d}");
+    }
+}
+
+/// Largest relative difference between the tracks engine and the graph, and whether
+/// both reach the same nodes.
+fn tracks_vs_graph<M: Metric>(mesh: &TriMesh, metric: &M, sources: &[u32], k: f64) -> f64 {
+    let options = Options::DEFAULT.with_k(k);
+    let graph = distance_field(mesh, metric, sources, &options.with_method(Method::Graph)).unwrap();
+    let tracks = distance_field(mesh, metric, sources, &options).unwrap();
+    let mut max: f64 = 0.0;
+    for (g, t) in graph.node_distances().iter().zip(tracks.node_distances()) {
+        assert!(!g.is_nan() && !t.is_nan());
+        assert_eq!(g.is_finite(), t.is_finite(), "reached by one engine only");
+        if g.is_finite() {
+            max = max.max((g - t).abs() / g.max(f64::MIN_POSITIVE));
+        }
+    }
+    max
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+    #[test]
+    fn tracks_equals_graph_with_random_walls(seed in any::<u64>(), n in 3usize..9, k in 1u32..7, p in 0.0f64..0.5, picks in prop::collection::vec(any::<u32>(), 1..3)) {
+        let mesh = random_mesh(seed, n).unwrap();
+        let mut rng = Rng(seed.rotate_left(17) | 1);
+        let blocked: Vec<bool> = (0..mesh.face_count()).map(|_| rng.next() < p).collect();
+        let sources: Vec<u32> = picks.iter().map(|s| s % mesh.vertex_count() as u32).collect();
+        let walls = Impassable::new(&mesh, Euclidean, blocked.clone()).unwrap();
+        let max = tracks_vs_graph(&mesh, &walls, &sources, k as f64);
+        prop_assert!(max <= 1e-9, "euclidean walls: relative deviation {}", max);
+        let principal: Vec<(f64, f64, [f64; 3])> = (0..mesh.face_count())
+            .map(|_| (0.2 + 4.0 * rng.next(), 0.2 + rng.next(), [rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5]))
+            .collect();
+        if let Ok(tensor) = Tensor::from_principal(&mesh, &principal) {
+            let walls = Impassable::new(&mesh, tensor, blocked.clone()).unwrap();
+            let max = tracks_vs_graph(&mesh, &walls, &sources, k as f64);
+            prop_assert!(max <= 1e-9, "tensor walls: relative deviation {}", max);
+        }
+        // A constant density is a norm on every face: exact too.
+        let walls = Impassable::new(&mesh, Density::constant(&mesh, 1.7).unwrap(), blocked).unwrap();
+        let max = tracks_vs_graph(&mesh, &walls, &sources, k as f64);
+        prop_assert!(max <= 1e-9, "density walls: relative deviation {}", max);
+    }
+
+    #[test]
+    fn paths_never_cross_walls(seed in any::<u64>(), p in 0.0f64..0.4) {
+        let terrain = tilted(12, 1.0, 0.0, 0.0);
+        let mesh = &terrain.mesh;
+        let mut rng = Rng(seed | 1);
+        let blocked: Vec<bool> = (0..mesh.face_count()).map(|_| rng.next() < p).collect();
+        let walls = Impassable::new(mesh, Euclidean, blocked).unwrap();
+        let from = [0.5 + 10.0 * rng.next(), 0.5 + 10.0 * rng.next()];
+        let to = [0.5 + 10.0 * rng.next(), 0.5 + 10.0 * rng.next()];
+        match route(&terrain, &walls, &Options::DEFAULT.with_k(3.0), from, to) {
+            Ok(path) => {
+                prop_assert!(path.length.is_finite() && path.length <= path.traced_length * (1.0 + 1e-12));
+                let points = path.positions(mesh);
+                for (i, &f) in path.faces.iter().enumerate() {
+                    let seg = (points[i + 1] - points[i]).length();
+                    prop_assert!(!walls.is_blocked(f) || seg == 0.0, "segment {} crosses face {}", i, f);
+                }
+            }
+            Err(Error::Unreachable { .. }) => {}
+            Err(e) => prop_assert!(false, "{}", e),
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------
+// The command line
+
+fn geotracks(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_geotracks"))
+        .args(args)
+        .output()
+        .expect("run geotracks")
+}
+
+/// A 30 × 20 grid, 10 m apart, with a hill and a NODATA hole, as an ESRI ASCII grid.
+fn hill_asc(dir: &Path) -> std::path::PathBuf {
+    let mut text = String::from(
+        "ncols 30\nnrows 20\nxllcorner 1000\nyllcorner 5000\ncellsize 10\nnodata_value -9999\n",
+    );
+    for r in 0..20 {
+        let y = 5005.0 + (19 - r) as f64 * 10.0;
+        let row: Vec<String> = (0..30)
+            .map(|c| {
+                let x = 1005.0 + c as f64 * 10.0;
+                if (x - 1100.0).abs() < 15.0 && (y - 5170.0).abs() < 15.0 {
+                    "-9999".to_string()
+                } else {
+                    let d2 = (x - 1150.0).powi(2) + (y - 5100.0).powi(2);
+                    format!("{:.3}", 40.0 * (-d2 / 5000.0).exp())
+                }
+            })
+            .collect();
+        text.push_str(&row.join(" "));
+        text.push('\n');
+    }
+    write(dir, "hill.asc", &text)
+}
+
+fn last_number(out: &std::process::Output) -> f64 {
+    String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .last()
+        .unwrap()
+        .parse()
+        .unwrap()
+}
+
+#[test]
+fn cli_writes_geojson_csv_and_png() {
+    let dir = tempfile::tempdir().unwrap();
+    let dem = hill_asc(dir.path());
+    let dem = dem.to_str().unwrap();
+    let json = dir.path().join("route.geojson");
+    let png = dir.path().join("map.png");
+    let out = geotracks(&[
+        "terrain",
+        dem,
+        "--from",
+        "1010,5010",
+        "--to",
+        "1290,5180",
+        "--cost",
+        "slope:3",
+        "-o",
+        json.to_str().unwrap(),
+        "--png",
+        png.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let cost = last_number(&out);
+    let value: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let feature = &value["features"][0];
+    assert_eq!(feature["geometry"]["type"], "LineString");
+    let coords = feature["geometry"]["coordinates"].as_array().unwrap();
+    let xyz = |i: usize| -> Vec<f64> {
+        coords[i]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect()
+    };
+    assert_eq!(xyz(0).len(), 3);
+    assert!((xyz(0)[0] - 1010.0).abs() < 1e-9 && (xyz(0)[1] - 5010.0).abs() < 1e-9);
+    let last = xyz(coords.len() - 1);
+    assert!((last[0] - 1290.0).abs() < 1e-9 && (last[1] - 5180.0).abs() < 1e-9);
+    let props = &feature["properties"];
+    assert!((props["cost"].as_f64().unwrap() - cost).abs() <= 1e-9 * cost);
+    let length = props["length"].as_f64().unwrap();
+    let straight = (280f64).hypot(170.0);
+    assert!(length >= straight && props["length_2d"].as_f64().unwrap() <= length);
+    assert!(cost >= length, "a slope density is at least 1");
+    assert_eq!(props["cost_model"], "slope:3");
+    // The PNG: 30 × 20 samples upsampled to a long side of 512.
+    let bytes = std::fs::read(&png).unwrap();
+    assert_eq!(&bytes[1..4], b"PNG");
+    let width = u32::from_be_bytes(bytes[16..20].try_into().unwrap());
+    let height = u32::from_be_bytes(bytes[20..24].try_into().unwrap());
+    assert_eq!((width, height), (512, 341));
+
+    // CSV: x,y,z,cost,length per point, cumulative; the same route.
+    let csv = dir.path().join("route.csv");
+    let out = geotracks(&[
+        "terrain",
+        dem,
+        "--from",
+        "1010,5010",
+        "--to",
+        "1290,5180",
+        "--cost",
+        "slope:3",
+        "-o",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("x,y,z,cost,length"));
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), coords.len());
+    let end = &rows[rows.len() - 1];
+    assert!((end[3] - cost).abs() <= 1e-9 * cost, "{} vs {cost}", end[3]);
+    assert!((end[4] - length).abs() <= 1e-9 * length);
+    assert!(rows.windows(2).all(|w| w[1][3] >= w[0][3]));
+    // Without the map the run stops at the target: the same cost.
+    assert!((last_number(&out) - cost).abs() <= 1e-9 * cost);
+}
+
+#[test]
+fn cli_costs_order_as_expected_and_max_slope_walls_off() {
+    let dir = tempfile::tempdir().unwrap();
+    let dem = hill_asc(dir.path());
+    let dem = dem.to_str().unwrap();
+    let out_path = dir.path().join("r.json");
+    let run = |cost: &str| {
+        let out = geotracks(&[
+            "terrain",
+            dem,
+            "--from",
+            "1010,5100",
+            "--to",
+            "1290,5100",
+            "--cost",
+            cost,
+            "-o",
+            out_path.to_str().unwrap(),
+        ]);
+        assert!(
+            out.status.success(),
+            "{cost}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        last_number(&out)
+    };
+    let none = run("none");
+    assert!(none >= 280.0);
+    assert!(run("slope:2") > none);
+    assert!(run("uphill:5") > none);
+    // The hill's flanks reach about 25°: a 5° limit walls the route off.
+    let out = geotracks(&[
+        "terrain",
+        dem,
+        "--from",
+        "1010,5100",
+        "--to",
+        "1290,5100",
+        "--cost",
+        "slope:1,max:5",
+        "-o",
+        dir.path().join("walled.json").to_str().unwrap(),
+    ]);
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.starts_with("error: no route"), "{stderr}");
+    assert!(!dir.path().join("walled.json").exists());
+}
+
+#[test]
+fn cli_errors_leave_no_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let dem = hill_asc(dir.path());
+    let dem = dem.to_str().unwrap();
+    let out = dir.path().join("route.geojson");
+    let o = out.to_str().unwrap();
+    let png = dir.path().join("map.png");
+    let bad_dem = write(dir.path(), "bad.asc", "ncols 2\nnrows 2\nxllcorner 0\n");
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            vec![
+                "--from",
+                "1010,5010",
+                "--to",
+                "1290,5180",
+                "--cost",
+                "steep:2",
+            ],
+            "cannot read cost 'steep:2'",
+        ),
+        (
+            vec![
+                "--from",
+                "1010,5010",
+                "--to",
+                "1290,5180",
+                "--cost",
+                "slope:1,max:120",
+            ],
+            "maximum slope",
+        ),
+        (
+            vec!["--from", "10,10", "--to", "1290,5180"],
+            "--from 10,10: point (10, 10) is outside the grid",
+        ),
+        (
+            vec!["--from", "1010,5010", "--to", "1100,5170"],
+            "--to 1100,5170: point (1100, 5170) lies on NODATA",
+        ),
+        (vec!["--from", "1010", "--to", "1290,5180"], "is not X,Y"),
+        (
+            vec!["--from", "1010,5010", "--to", "1290,5180", "--k", "0"],
+            "k = 0",
+        ),
+    ];
+    for (extra, expected) in cases {
+        let mut args = vec!["terrain", dem];
+        args.extend(extra);
+        args.extend(["-o", o, "--png", png.to_str().unwrap()]);
+        let result = geotracks(&args);
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert!(!result.status.success(), "{args:?} succeeded");
+        assert!(
+            stderr.contains(expected),
+            "{args:?}: {stderr:?} lacks {expected:?}"
+        );
+        assert_eq!(
+            stderr.lines().filter(|l| l.starts_with("error:")).count(),
+            1,
+            "{stderr}"
+        );
+        assert!(!stderr.contains("panicked"), "{stderr}");
+        assert!(!out.exists() && !png.exists(), "{args:?} left a file");
+    }
+    for (args, expected) in [
+        (
+            vec![
+                "terrain",
+                bad_dem.to_str().unwrap(),
+                "--from",
+                "0,0",
+                "--to",
+                "1,1",
+                "-o",
+                o,
+            ],
+            "bad.asc: the header has no 'yllcorner'",
+        ),
+        (
+            vec![
+                "terrain",
+                dem,
+                "--from",
+                "1010,5010",
+                "--to",
+                "1290,5180",
+                "-o",
+                "x.shp",
+            ],
+            "unknown output format",
+        ),
+        (
+            vec![
+                "terrain",
+                dem,
+                "--from",
+                "1010,5010",
+                "--to",
+                "1290,5180",
+                "-o",
+                o,
+                "--png",
+                "m.jpg",
+            ],
+            "m.jpg: unknown output format",
+        ),
+        (
+            vec![
+                "terrain", "dem.xyz", "--from", "0,0", "--to", "1,1", "-o", o,
+            ],
+            "unknown elevation grid format",
+        ),
+    ] {
+        let result = geotracks(&args);
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert!(!result.status.success());
+        assert!(
+            stderr.contains(expected),
+            "{args:?}: {stderr:?} lacks {expected:?}"
+        );
+        assert!(!out.exists());
+    }
+    let leftovers = std::fs::read_dir(dir.path())
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
+        .count();
+    assert_eq!(leftovers, 0);
+}
+
+#[test]
+fn cli_reads_a_geotiff() {
+    use tiff::encoder::colortype::Gray32Float;
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("plane.tif");
+    // 20 × 20 pixels of 5 m, a plane rising 1 m per 5 m eastwards (11.3°).
+    let data: Vec<f32> = (0..400).map(|i| (i % 20) as f32).collect();
+    write_tiff::<Gray32Float>(
+        &path,
+        (20, 20),
+        &data,
+        Some([5.0, 5.0, 0.0]),
+        Some([0.0, 0.0, 0.0, 0.0, 100.0, 0.0]),
+        Some(&geo_keys(1)),
+        None,
+    );
+    let out = dir.path().join("r.csv");
+    // Sample centres: x from 2.5 to 97.5; along the slope from x = 10 to 90.
+    let result = geotracks(&[
+        "terrain",
+        path.to_str().unwrap(),
+        "--from",
+        "10,50",
+        "--to",
+        "90,50",
+        "--cost",
+        "slope:2",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        result.status.success(),
+        "{}",
+        String::from_utf8_lossy(&result.stderr)
+    );
+    let tan = 0.2f64;
+    let expected = (1.0 + 2.0 * tan * tan) * 80.0 * (1.0 + tan * tan).sqrt();
+    let cost = last_number(&result);
+    assert!(relative(cost, expected) < 1e-6, "{cost} vs {expected}");
+}
