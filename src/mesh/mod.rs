@@ -7,12 +7,14 @@ mod error;
 pub mod io;
 mod order;
 mod report;
+mod sets;
 mod trimesh;
 
 pub use csr::Csr;
 pub use error::MeshError;
 pub(crate) use order::morton_order;
 pub use report::MeshReport;
+pub(crate) use sets::DisjointSets;
 pub use trimesh::{DroppedFace, EdgeLine, FaceFrame, TriMesh};
 
 /// Ids are dense `u32`; this marks "none" (no parent, no face).

@@ -1,4 +1,4 @@
-use super::{Topology, TriMesh};
+use super::{DisjointSets, Topology, TriMesh};
 use std::fmt;
 
 /// What a mesh is made of, and what in it may surprise an algorithm.
@@ -50,34 +50,12 @@ impl MeshReport {
 /// Labels each vertex with its component (vertices joined by face edges) and counts the
 /// components, unreferenced vertices counting as one each.
 pub(crate) fn vertex_components<T: Topology>(mesh: &T) -> (Vec<u32>, usize) {
-    let n = mesh.vertex_count();
-    let mut parent: Vec<u32> = (0..n as u32).collect();
-    fn root(parent: &mut [u32], mut v: u32) -> u32 {
-        while parent[v as usize] != v {
-            let up = parent[parent[v as usize] as usize];
-            parent[v as usize] = up;
-            v = up;
-        }
-        v
-    }
+    let mut sets = DisjointSets::new(mesh.vertex_count());
     for e in 0..mesh.edge_count() as u32 {
         let [a, b] = mesh.edge_vertices(e);
-        let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
-        if ra != rb {
-            parent[ra.max(rb) as usize] = ra.min(rb);
-        }
+        sets.join(a, b);
     }
-    let mut label = vec![u32::MAX; n];
-    let mut count = 0;
-    for v in 0..n as u32 {
-        let r = root(&mut parent, v) as usize;
-        if label[r] == u32::MAX {
-            label[r] = count;
-            count += 1;
-        }
-        label[v as usize] = label[r];
-    }
-    (label, count as usize)
+    sets.labels()
 }
 
 impl fmt::Display for MeshReport {

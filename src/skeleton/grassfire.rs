@@ -93,8 +93,7 @@ impl Grassfire {
 
 /// A density for a radius-aware grassfire on a medial axis: `mean(r) / max(r, floor)`
 /// per vertex, with `floor` 1 % of the mean radius, so the fire runs fast where medial
-/// balls are large and slowly where the shape is thin; the ridges it leaves are pulled
-/// towards the bulky parts of the shape.
+/// balls are large and slowly where the shape is thin.
 ///
 /// # Errors
 /// [`MetricError::CountMismatch`] unless there is one radius per vertex; every radius

@@ -40,8 +40,9 @@ mod ridges;
 pub use grassfire::{radius_speed, Grassfire};
 
 use crate::mesh::io::MedialAxis;
-use crate::mesh::{Topology, TriMesh, NONE};
+use crate::mesh::{DisjointSets, Topology, TriMesh, NONE};
 use crate::propagate::{Options, Solver, Stop};
+use crate::steiner::SteinerLayout;
 use crate::surface::{Source, SurfacePoint};
 use crate::{Error, Euclidean, Metric};
 use std::cmp::Reverse;
@@ -141,9 +142,11 @@ impl Skeleton {
                 skeleton.push(mesh, SurfacePoint::Vertex(last[c].1), f64::INFINITY);
             }
         }
-        skeleton.closed_components = (0..count)
-            .filter(|&c| !burnt[c] && has_faces(mesh, &component, c as u32))
-            .count();
+        let mut has_faces = vec![false; count];
+        for t in mesh.triangles() {
+            has_faces[component[t[0] as usize] as usize] = true;
+        }
+        skeleton.closed_components = (0..count).filter(|&c| !burnt[c] && has_faces[c]).count();
         skeleton.bridge(mesh, metric, options)?;
         Ok(skeleton)
     }
@@ -281,21 +284,11 @@ impl Skeleton {
 
     /// Connected components of the graph: a label per point and their count.
     pub fn components(&self) -> (Vec<u32>, usize) {
-        let mut sets = Sets::new(self.points.len());
+        let mut sets = DisjointSets::new(self.points.len());
         for &[a, b] in &self.edges {
             sets.join(a, b);
         }
-        let mut label = vec![NONE; self.points.len()];
-        let mut count = 0u32;
-        for i in 0..self.points.len() as u32 {
-            let root = sets.find(i) as usize;
-            if label[root] == NONE {
-                label[root] = count;
-                count += 1;
-            }
-            label[i as usize] = label[root];
-        }
-        (label, count as usize)
+        sets.labels()
     }
 
     /// Number of connected components of the graph.
@@ -418,12 +411,7 @@ impl Skeleton {
         // Neighbouring nodes along an edge from two different pieces: a candidate bridge.
         let mut candidates = Vec::new();
         for e in 0..mesh.edge_count() as u32 {
-            let [lo, hi] = mesh.edge_vertices(e);
-            let nodes: Vec<u32> = std::iter::once(lo)
-                .chain(layout.edge_nodes(e))
-                .chain(std::iter::once(hi))
-                .collect();
-            for pair in nodes.windows(2) {
+            for pair in edge_sequence(mesh, layout, e).windows(2) {
                 let (p, q) = (pair[0], pair[1]);
                 let (lp, lq) = (labels[p as usize], labels[q as usize]);
                 if lp == NONE || lq == NONE {
@@ -433,12 +421,7 @@ impl Skeleton {
                 if piece[a as usize] == piece[b as usize] {
                     continue;
                 }
-                let g = mesh.edge_faces(e)[0];
-                let step = metric.cost(
-                    g,
-                    &layout.point_in_face(mesh, p, g),
-                    &layout.point_in_face(mesh, q, g),
-                );
+                let step = cost_along(mesh, layout, metric, e, p, q);
                 let cost = distances[p as usize] + step + distances[q as usize];
                 if cost.is_finite() {
                     candidates.push((Ordered(cost), p, q));
@@ -446,7 +429,7 @@ impl Skeleton {
             }
         }
         candidates.sort_unstable_by_key(|c| c.0);
-        let mut sets = Sets::new(self.points.len());
+        let mut sets = DisjointSets::new(self.points.len());
         for &[a, b] in &self.edges {
             sets.join(a, b);
         }
@@ -515,6 +498,37 @@ pub fn medial_axis_skeleton(
     Ok((skeleton.pruned(prune), Some(fire)))
 }
 
+/// The nodes along edge `e` from its lower vertex to its higher one.
+fn edge_sequence(mesh: &TriMesh, layout: &SteinerLayout, e: u32) -> Vec<u32> {
+    let [lo, hi] = mesh.edge_vertices(e);
+    std::iter::once(lo)
+        .chain(layout.edge_nodes(e))
+        .chain(std::iter::once(hi))
+        .collect()
+}
+
+/// The cost between neighbouring nodes `p` and `q` of edge `e`, in the cheapest face
+/// around it, as the engines charge a step along an edge.
+fn cost_along<M: Metric>(
+    mesh: &TriMesh,
+    layout: &SteinerLayout,
+    metric: &M,
+    e: u32,
+    p: u32,
+    q: u32,
+) -> f64 {
+    mesh.edge_faces(e)
+        .iter()
+        .map(|&g| {
+            metric.cost(
+                g,
+                &layout.point_in_face(mesh, p, g),
+                &layout.point_in_face(mesh, q, g),
+            )
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
 /// A vertex of the face, edge or vertex `on` lies on.
 fn any_vertex(mesh: &TriMesh, on: SurfacePoint) -> Option<u32> {
     match on {
@@ -522,13 +536,6 @@ fn any_vertex(mesh: &TriMesh, on: SurfacePoint) -> Option<u32> {
         SurfacePoint::Edge { edge, .. } => Some(mesh.edge_vertices(edge)[0]),
         SurfacePoint::Face { face, .. } => Some(mesh.face_vertices(face)[0]),
     }
-}
-
-/// Does component `c` (of [`TriMesh::vertex_components`]) have a face?
-fn has_faces(mesh: &TriMesh, component: &[u32], c: u32) -> bool {
-    mesh.triangles()
-        .iter()
-        .any(|t| component[t[0] as usize] == c)
 }
 
 /// An f64 with a total order, for sorting and heaps.
@@ -598,33 +605,5 @@ impl LocalSearch {
             }
         }
         around.iter().all(|&j| self.seen[j as usize] == call)
-    }
-}
-
-/// Disjoint sets (union–find with path halving).
-struct Sets(Vec<u32>);
-
-impl Sets {
-    fn new(n: usize) -> Sets {
-        Sets((0..n as u32).collect())
-    }
-
-    fn find(&mut self, mut v: u32) -> u32 {
-        while self.0[v as usize] != v {
-            let up = self.0[self.0[v as usize] as usize];
-            self.0[v as usize] = up;
-            v = up;
-        }
-        v
-    }
-
-    /// Joins the sets of `a` and `b`; false if they were one already.
-    fn join(&mut self, a: u32, b: u32) -> bool {
-        let (ra, rb) = (self.find(a), self.find(b));
-        if ra == rb {
-            return false;
-        }
-        self.0[ra.max(rb) as usize] = ra.min(rb);
-        true
     }
 }

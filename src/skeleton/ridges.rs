@@ -9,9 +9,8 @@
 //! at their centroid.
 
 use super::boundary::is_boundary_edge;
-use super::{Grassfire, Skeleton, SkeletonPoint};
+use super::{cost_along, edge_sequence, Grassfire, Skeleton, SkeletonPoint};
 use crate::mesh::{Topology, TriMesh, NONE};
-use crate::steiner::SteinerLayout;
 use crate::surface::SurfacePoint;
 use geotracks_metrics::Metric;
 
@@ -88,15 +87,6 @@ pub(crate) fn ridges<M: Metric>(mesh: &TriMesh, metric: &M, fire: &Grassfire) ->
     skeleton
 }
 
-/// The nodes along edge `e` from its lower vertex to its higher one.
-fn edge_sequence(mesh: &TriMesh, layout: &SteinerLayout, e: u32) -> Vec<u32> {
-    let [lo, hi] = mesh.edge_vertices(e);
-    std::iter::once(lo)
-        .chain(layout.edge_nodes(e))
-        .chain(std::iter::once(hi))
-        .collect()
-}
-
 /// Where the fronts of neighbouring nodes `pair` (segment `j` of edge `e`) meet, if they
 /// meet head-on from origins far apart.
 fn meeting<M: Metric>(
@@ -116,19 +106,7 @@ fn meeting<M: Metric>(
     if a == b || !(dp.is_finite() && dq.is_finite()) {
         return None;
     }
-    // The segment costs what it costs in the cheapest face around the edge, as in the
-    // engines.
-    let cost = mesh
-        .edge_faces(e)
-        .iter()
-        .map(|&g| {
-            metric.cost(
-                g,
-                &layout.point_in_face(mesh, p, g),
-                &layout.point_in_face(mesh, q, g),
-            )
-        })
-        .fold(f64::INFINITY, f64::min);
+    let cost = cost_along(mesh, layout, metric, e, p, q);
     // One front running through the other node (|dq − dp| = cost) does not meet the
     // other inside the segment.
     if !(cost.is_finite() && cost > 0.0 && (dq - dp).abs() < cost * (1.0 - 1e-9)) {
