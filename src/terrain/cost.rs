@@ -11,6 +11,32 @@ use glam::DVec3;
 use std::fmt;
 use std::str::FromStr;
 
+/// `value` as a cost factor: finite and ≥ 0.
+fn check_factor(what: &'static str, value: f64) -> Result<(), TerrainError> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(())
+    } else {
+        Err(TerrainError::Parameter {
+            what,
+            value,
+            expected: "it must be a finite number ≥ 0",
+        })
+    }
+}
+
+/// `degrees` as a maximum slope: above 0 and at most 90.
+fn check_max_slope(degrees: f64) -> Result<(), TerrainError> {
+    if degrees > 0.0 && degrees <= 90.0 {
+        Ok(())
+    } else {
+        Err(TerrainError::Parameter {
+            what: "the maximum slope",
+            value: degrees,
+            expected: "it must be in degrees, above 0 and at most 90",
+        })
+    }
+}
+
 /// The unnormalised normal of face `f` (twice its area long), turned to point up.
 fn face_normal_up(mesh: &TriMesh, f: u32) -> DVec3 {
     let [a, b, c] = mesh.face_vertices(f).map(|v| mesh.position(v));
@@ -63,13 +89,7 @@ pub fn vertex_slope_tan2(mesh: &TriMesh) -> Vec<f64> {
 /// [`TerrainError::Parameter`] unless `a` is finite and ≥ 0; [`TerrainError::Vertical`]
 /// for a vertex whose normal is horizontal.
 pub fn slope_density(mesh: &TriMesh, a: f64) -> Result<Density, TerrainError> {
-    if !(a.is_finite() && a >= 0.0) {
-        return Err(TerrainError::Parameter {
-            what: "the slope factor a",
-            value: a,
-            expected: "it must be a finite number ≥ 0",
-        });
-    }
+    check_factor("the slope factor a", a)?;
     let rho = vertex_slope_tan2(mesh)
         .into_iter()
         .enumerate()
@@ -90,13 +110,7 @@ pub fn slope_density(mesh: &TriMesh, a: f64) -> Result<Density, TerrainError> {
 /// # Errors
 /// [`TerrainError::Parameter`] unless `max_degrees` is in (0, 90].
 pub fn steeper_than(mesh: &TriMesh, max_degrees: f64) -> Result<Vec<bool>, TerrainError> {
-    if !(max_degrees > 0.0 && max_degrees <= 90.0) {
-        return Err(TerrainError::Parameter {
-            what: "the maximum slope",
-            value: max_degrees,
-            expected: "it must be in degrees, above 0 and at most 90",
-        });
-    }
+    check_max_slope(max_degrees)?;
     Ok(face_slopes(mesh)
         .into_iter()
         .map(|s| s > max_degrees)
@@ -117,13 +131,7 @@ pub fn steeper_than(mesh: &TriMesh, max_degrees: f64) -> Result<Vec<bool>, Terra
 /// # Errors
 /// [`TerrainError::Parameter`] unless `b` is finite and ≥ 0.
 pub fn uphill_tensor(mesh: &TriMesh, b: f64) -> Result<Tensor, TerrainError> {
-    if !(b.is_finite() && b >= 0.0) {
-        return Err(TerrainError::Parameter {
-            what: "the uphill factor b",
-            value: b,
-            expected: "it must be a finite number ≥ 0",
-        });
-    }
+    check_factor("the uphill factor b", b)?;
     let local = (0..mesh.face_count() as u32)
         .map(|f| {
             let [u, v] = geotracks_metrics::FaceGeometry::face_axes(mesh, f);
@@ -363,31 +371,13 @@ impl TerrainCost {
     /// [`TerrainError::Parameter`] for a negative or non-finite factor, or a maximum
     /// slope outside (0, 90].
     pub fn check(&self) -> Result<(), TerrainError> {
-        let factor = |what, value: f64| {
-            if value.is_finite() && value >= 0.0 {
-                Ok(())
-            } else {
-                Err(TerrainError::Parameter {
-                    what,
-                    value,
-                    expected: "it must be a finite number ≥ 0",
-                })
-            }
-        };
         match *self {
             TerrainCost::None => Ok(()),
             TerrainCost::Slope { a, max_degrees } => {
-                factor("the slope factor a", a)?;
-                match max_degrees {
-                    Some(m) if !(m > 0.0 && m <= 90.0) => Err(TerrainError::Parameter {
-                        what: "the maximum slope",
-                        value: m,
-                        expected: "it must be in degrees, above 0 and at most 90",
-                    }),
-                    _ => Ok(()),
-                }
+                check_factor("the slope factor a", a)?;
+                max_degrees.map_or(Ok(()), check_max_slope)
             }
-            TerrainCost::Uphill { b } => factor("the uphill factor b", b),
+            TerrainCost::Uphill { b } => check_factor("the uphill factor b", b),
         }
     }
 

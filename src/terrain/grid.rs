@@ -33,6 +33,12 @@ impl GridGeometry {
         ]
     }
 
+    /// Row-major index of sample `(col, row)`; `None` outside the grid.
+    #[inline]
+    pub fn sample_index(&self, col: usize, row: usize) -> Option<usize> {
+        (col < self.ncols && row < self.nrows).then(|| row * self.ncols + col)
+    }
+
     /// The extent of the sample centres: `[x_min, y_min, x_max, y_max]`.
     pub fn bounds(&self) -> [f64; 4] {
         let [x, y] = self.lower_left;
@@ -167,10 +173,7 @@ impl ElevationGrid {
     /// sample is missing or out of range.
     #[inline]
     pub fn elevation(&self, col: usize, row: usize) -> Option<f64> {
-        if col >= self.geometry.ncols || row >= self.geometry.nrows {
-            return None;
-        }
-        let z = self.values[row * self.geometry.ncols + col];
+        let z = self.values[self.geometry.sample_index(col, row)?];
         (!z.is_nan()).then_some(z)
     }
 
@@ -335,10 +338,7 @@ impl TerrainMesh {
     /// The vertex of sample `(col, row)`, if the sample is valid.
     #[inline]
     pub fn sample_vertex(&self, col: usize, row: usize) -> Option<u32> {
-        if col >= self.geometry.ncols || row >= self.geometry.nrows {
-            return None;
-        }
-        let v = self.sample_vertex[row * self.geometry.ncols + col];
+        let v = self.sample_vertex[self.geometry.sample_index(col, row)?];
         (v != NONE).then_some(v)
     }
 
