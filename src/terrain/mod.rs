@@ -54,11 +54,7 @@ use std::path::Path;
 /// [`TerrainError::UnknownFormat`] for another extension, or what the reader returns.
 pub fn read_grid(path: impl AsRef<Path>) -> Result<ElevationGrid, TerrainError> {
     let path = path.as_ref();
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    match ext.as_deref() {
+    match crate::mesh::io::lowercase_extension(path).as_deref() {
         Some("asc") => read_asc(path),
         Some("tif" | "tiff") => read_geotiff(path),
         _ => Err(TerrainError::UnknownFormat {

@@ -73,10 +73,7 @@ const READABLE: &str = "obj, ply, off, stl, ma";
 ///   [`MeshError::AtLine`] where the line is known, else in [`MeshError::InFile`].
 pub fn read_mesh(path: impl AsRef<Path>) -> Result<TriMesh, MeshError> {
     let path = path.as_ref();
-    let extension = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
+    let extension = lowercase_extension(path);
     let reader: fn(&Path, &[u8]) -> Result<TriMesh, MeshError> = match extension.as_deref() {
         Some("obj") => obj::read,
         Some("ply") => ply::read,
@@ -91,6 +88,13 @@ pub fn read_mesh(path: impl AsRef<Path>) -> Result<TriMesh, MeshError> {
         }
     };
     reader(path, &read_bytes(path)?)
+}
+
+/// A file's extension in lower case, for choosing a format (`None` without one).
+pub(crate) fn lowercase_extension(path: &Path) -> Option<String> {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
 }
 
 /// Reads an OBJ held in memory (a mesh bundled with `include_bytes!`, say). Errors name
