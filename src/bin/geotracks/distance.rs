@@ -91,12 +91,11 @@ pub fn run(args: &DistanceArgs) -> CliResult {
     }
     let s = field.stats();
     eprintln!(
-        "{}: {} vertices, method {}, {} Steiner points, {:.3} s; wrote {}",
+        "{}: {} vertices, method {}, {}; wrote {}",
         args.mesh.display(),
         s.vertices,
         s.method,
-        s.steiner_points,
-        s.setup_seconds + s.propagate_seconds,
+        crate::run_summary(s),
         args.output.display()
     );
     Ok(())

@@ -93,6 +93,21 @@ impl std::fmt::Display for Value {
 /// Errors of the CLI: the library's, plus the CLI's own input files.
 pub(crate) type CliResult<T = ()> = Result<T, Box<dyn std::error::Error>>;
 
+/// The end of a run's summary line: Steiner points, seconds, and whether it stopped at
+/// its target.
+pub(crate) fn run_summary(s: &geotracks::Stats) -> String {
+    format!(
+        "{} Steiner points, {:.3} s{}",
+        s.steiner_points,
+        s.setup_seconds + s.propagate_seconds,
+        if s.stopped_early {
+            ", stopped at the target"
+        } else {
+            ""
+        }
+    )
+}
+
 /// The format of output file `path`, by its extension (any case), among `formats`
 /// (extension, format); the error lists the extensions accepted.
 pub(crate) fn output_format<F: Copy>(

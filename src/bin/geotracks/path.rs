@@ -89,17 +89,11 @@ pub fn run(args: &PathArgs) -> CliResult {
     println!("{}", Value(path.length));
     let s = field.stats();
     eprintln!(
-        "{}: {} vertices, method {}, {} Steiner points, {:.3} s{}; wrote {}",
+        "{}: {} vertices, method {}, {}; wrote {}",
         args.mesh.display(),
         s.vertices,
         s.method,
-        s.steiner_points,
-        s.setup_seconds + s.propagate_seconds,
-        if s.stopped_early {
-            ", stopped at the target"
-        } else {
-            ""
-        },
+        crate::run_summary(s),
         args.output.display()
     );
     Ok(())

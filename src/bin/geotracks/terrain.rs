@@ -195,18 +195,12 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     let s = &route.stats;
     let g = grid.geometry();
     eprintln!(
-        "{}: {} × {} samples, {} faces, {} Steiner points, {:.3} s{}; wrote {}{}",
+        "{}: {} × {} samples, {} faces, {}; wrote {}{}",
         args.dem.display(),
         g.ncols,
         g.nrows,
         s.faces,
-        s.steiner_points,
-        s.setup_seconds + s.propagate_seconds,
-        if s.stopped_early {
-            ", stopped at the target"
-        } else {
-            ""
-        },
+        crate::run_summary(s),
         args.output.display(),
         match (&args.png, &picture) {
             (Some(p), Some(m)) => format!(
