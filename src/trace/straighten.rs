@@ -11,7 +11,10 @@
 //!   cost of its two segments (a golden-section search, convex for a norm), and only
 //!   when that lowers the cost. Sweeps alternate direction until they stop gaining.
 //!
-//! Before the sweeps, Newton's method moves all crossings at once (`newton`).
+//! Each round merges, unpins and runs Newton's method on all crossings at once
+//! (`newton`); crossings it leaves pressed against an end of their edge become that
+//! vertex for the next round, so that unpinning can take them round its other side.
+//! Sliding polishes the result once, at the end.
 //!
 //! For the Euclidean metric on a fixed strip of faces, the length is a convex function of
 //! the crossing parameters, whose minimum is the path a funnel finds in the unfolded
@@ -25,79 +28,44 @@ use crate::surface::SurfacePoint;
 use geotracks_metrics::{FacePoint, Metric};
 use glam::DVec3;
 
-/// Rounds of merge, unpin and slide.
-const ROUNDS: usize = 8;
-/// Sliding sweeps per round at most (after Newton's method, they polish).
+/// Rounds of merge, unpin and Newton at most. A route whose Steiner-graph path lies some
+/// cells beside the geodesic (a coarse graph on a regular grid: README, Terrain) moves
+/// one vertex sideways per round, so this bounds both the work and how far it goes.
+const ROUNDS: usize = 48;
+/// Sliding sweeps at most (after Newton's method, they polish).
 const SWEEPS: usize = 30;
 /// A sweep or a round that gains less than this fraction of the length ends the work.
 const GAIN: f64 = 1e-13;
 /// Golden-section steps: the bracket shrinks to 0.618⁶⁰ ≈ 3e-13 of the edge.
 const GOLDEN_STEPS: usize = 60;
 
-/// Crossings closer than this (in edge parameter) to an end of their edge are tried at
-/// the vertex in a second pass (see [`straighten`]).
+/// Crossings within this (in edge parameter) of an end of their edge are taken as
+/// pressed against it. Newton's method stops short of the end when its last line
+/// search does; a crossing snapped by mistake loses little, as unpinning puts it
+/// back on the straight segment next round, and a round that ends longer is undone.
 const SNAP: f64 = 1e-3;
-/// Snapping passes at most.
-const SNAP_PASSES: usize = 4;
 
 /// Shortens `path` locally (see the module docs) and updates its `length`, which never
 /// grows.
 ///
 /// Crossings cannot move past the end of their edge, so a path that passes a vertex on
-/// the wrong side ends with crossings squeezed against it (a few 1e-5 of the edge
-/// away): a second pass puts them at the vertex, where unpinning can take the other
-/// side, and keeps the result only if it is shorter.
+/// the wrong side ends a round with crossings pressed against it; the next round puts
+/// them at the vertex, where unpinning can take the other side. A round that ends
+/// longer than it began is undone, and unpinning stops.
 pub fn straighten<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
-    rounds(path, mesh, metric);
-    for _ in 0..SNAP_PASSES {
-        let mut snapped = path.clone();
-        if !snap_to_vertices(&mut snapped, mesh) {
-            break;
-        }
-        rounds(&mut snapped, mesh, metric);
-        let gain = path.length - snapped.length;
-        if gain > 0.0 {
-            *path = snapped;
-        }
-        if gain <= GAIN * path.length {
-            break;
-        }
-    }
-}
-
-/// Crossings within [`SNAP`] of an end of their edge become that vertex; returns
-/// whether any did.
-fn snap_to_vertices(path: &mut GeodesicPath, mesh: &TriMesh) -> bool {
-    let mut any = false;
-    let n = path.points.len();
-    for p in path.points.iter_mut().take(n.saturating_sub(1)).skip(1) {
-        if let SurfacePoint::Edge { edge, t } = *p {
-            let [lo, hi] = mesh.edge_vertices(edge);
-            if t < SNAP {
-                *p = SurfacePoint::Vertex(lo);
-                any = true;
-            } else if t > 1.0 - SNAP {
-                *p = SurfacePoint::Vertex(hi);
-                any = true;
-            }
-        }
-    }
-    any
-}
-
-/// Rounds of merge, unpin and slide, until they stop gaining.
-fn rounds<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
     let mut length = path.metric_length(mesh, metric);
     let mut unpinning = true;
-    for _ in 0..ROUNDS {
+    for round in 0..ROUNDS {
         let before = length;
-        merge(path, mesh, metric);
         let saved = unpinning.then(|| path.clone());
+        if unpinning && round > 0 {
+            snap_to_vertices(path, mesh);
+        }
+        merge(path, mesh, metric);
         if unpinning {
             unpin(path, mesh, metric);
         }
         newton(path, mesh, metric);
-        slide(path, mesh, metric, length);
         length = path.metric_length(mesh, metric);
         if let (Some(saved), true) = (saved, length > before) {
             // Leaving the vertices did not pay (a metric unlike the Euclidean angles
@@ -111,8 +79,24 @@ fn rounds<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
             break;
         }
     }
+    slide(path, mesh, metric, length);
     merge(path, mesh, metric);
     path.length = path.metric_length(mesh, metric);
+}
+
+/// Crossings pressed against an end of their edge (within [`SNAP`]) become that vertex.
+fn snap_to_vertices(path: &mut GeodesicPath, mesh: &TriMesh) {
+    let n = path.points.len();
+    for p in path.points.iter_mut().take(n.saturating_sub(1)).skip(1) {
+        if let SurfacePoint::Edge { edge, t } = *p {
+            let [lo, hi] = mesh.edge_vertices(edge);
+            if t <= SNAP {
+                *p = SurfacePoint::Vertex(lo);
+            } else if t >= 1.0 - SNAP {
+                *p = SurfacePoint::Vertex(hi);
+            }
+        }
+    }
 }
 
 /// Points at an edge's end become the vertex, so that repeated points are seen.
@@ -313,10 +297,14 @@ fn fan_route<M: Metric>(
     Some((turn, route))
 }
 
-/// Newton iterations at most per round.
-const NEWTON_STEPS: usize = 100;
+/// Newton iterations at most per round: the next round goes on from where it stops,
+/// after moving pressed crossings to the vertex, which gains more than iterating on.
+const NEWTON_STEPS: usize = 10;
 /// Finite-difference step in edge parameters.
 const FD_STEP: f64 = 1e-5;
+/// The widest band (in edge parameter) next to an end of its edge where a crossing can
+/// be held by the gradient (see [`newton`]).
+const ACTIVE_BAND: f64 = 1e-2;
 
 /// The crossings' parameters as one vector, the path's points as functions of it.
 struct Chain {
@@ -398,9 +386,9 @@ impl Chain {
 
 /// Newton's method on all crossings at once. The length is a sum of segment costs, each
 /// depending on two neighbouring parameters, so the Hessian is tridiagonal; it is
-/// estimated by finite differences (any metric), its pivots floored so that it stays
-/// positive-definite, and each step is taken only as far as it shortens the path,
-/// crossings kept on their edges. Coordinate sweeps alone move information one crossing
+/// estimated by finite differences (any metric), each segment's block made
+/// positive-semidefinite and the pivots floored so that the step descends, and each
+/// step is taken only as far as it shortens the path, crossings kept on their edges. Coordinate sweeps alone move information one crossing
 /// per sweep, like Gauss–Seidel on a chain, so a long path needs very many of them;
 /// Newton's method moves the whole chain at once.
 fn newton<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
@@ -414,6 +402,7 @@ fn newton<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
     let mut length = chain.length(metric, faces, &t);
     let (mut grad, mut diag, mut off) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     let mut step = vec![0.0; n];
+    let mut free = vec![false; n];
     let mut trial = t.clone();
     for _ in 0..NEWTON_STEPS {
         grad.fill(0.0);
@@ -429,28 +418,53 @@ fn newton<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
                 chain.segment(metric, faces, j, ca.map(|x| x + da), cb.map(|x| x + db))
             };
             let c0 = c(0.0, 0.0);
+            // The segment's 2 × 2 Hessian, made positive-semidefinite: where the cost
+            // is not smooth (a segment shrunk to nothing, both ends on one spot) the
+            // differences are wild, and one indefinite block spoils the whole step.
+            let (mut haa, mut hbb, mut hab) = (0.0, 0.0, 0.0);
             if a.is_some() {
                 let (p, m) = (c(h, 0.0), c(-h, 0.0));
                 grad[j] += (p - m) / (2.0 * h);
-                diag[j] += (p - 2.0 * c0 + m) / (h * h);
+                haa = ((p - 2.0 * c0 + m) / (h * h)).max(0.0);
             }
             if b.is_some() {
                 let (p, m) = (c(0.0, h), c(0.0, -h));
                 grad[j + 1] += (p - m) / (2.0 * h);
-                diag[j + 1] += (p - 2.0 * c0 + m) / (h * h);
+                hbb = ((p - 2.0 * c0 + m) / (h * h)).max(0.0);
             }
             if a.is_some() && b.is_some() {
-                off[j] = (c(h, h) - c(h, -h) - c(-h, h) + c(-h, -h)) / (4.0 * h * h);
+                let bound = (haa * hbb).sqrt();
+                hab = ((c(h, h) - c(h, -h) - c(-h, h) + c(-h, -h)) / (4.0 * h * h))
+                    .clamp(-bound, bound);
+            }
+            diag[j] += haa;
+            diag[j + 1] += hbb;
+            off[j] = hab;
+        }
+        // Bertsekas's projected Newton method: a crossing within `eps` of an end of its
+        // edge that the gradient pushes towards that end is *held*: it moves by its
+        // scaled gradient (onto the end) and stays out of the Newton system, which the
+        // others solve. Left in the system, such a crossing is clamped by the step,
+        // which then need not descend, and the line search stalls.
+        let scale = diag.iter().fold(f64::MIN_POSITIVE, |m, &d| m.max(d.abs()));
+        let residual = (0..n)
+            .filter_map(|i| t[i].map(|x| x - (x - grad[i] / scale).clamp(0.0, 1.0)))
+            .map(|r| r * r)
+            .sum::<f64>()
+            .sqrt();
+        let eps = residual.min(ACTIVE_BAND);
+        for i in 0..n {
+            free[i] = match t[i] {
+                None => false,
+                Some(x) => !((x <= eps && grad[i] > 0.0) || (x >= 1.0 - eps && grad[i] < 0.0)),
+            };
+        }
+        solve_tridiagonal(&free, &grad, &diag, &off, &mut step);
+        for i in 0..n {
+            if t[i].is_some() && !free[i] {
+                step[i] = grad[i] / diag[i].max(1e-9 * scale);
             }
         }
-        // Crossings held at an end of their edge by the gradient stay out of the step.
-        let free: Vec<bool> = (0..n)
-            .map(|i| match t[i] {
-                None => false,
-                Some(x) => !((x <= 0.0 && grad[i] > 0.0) || (x >= 1.0 && grad[i] < 0.0)),
-            })
-            .collect();
-        solve_tridiagonal(&free, &grad, &diag, &off, &mut step);
         let mut improved = false;
         let mut alpha = 1.0;
         while alpha > 1e-6 {
