@@ -1,7 +1,7 @@
 //! Terrain routes on a 1000 × 1000 grid (2M faces), end to end from the file.
 //!
 //! ```text
-//! cargo run --release --example terrain_bench [-- DIR [N]]
+//! cargo run --release --example terrain_bench [-- DIR [N [--routes]]]
 //! ```
 //!
 //! Writes a synthetic N × N ESRI ASCII grid (default 1000; 10 m cells, Gaussian hills on
@@ -10,6 +10,10 @@
 //! metric, set up the solver, propagate until the target is final, trace and
 //! straighten the route. The route runs corner to corner, so nearly the whole grid is
 //! propagated. Peak memory is the process's high-water mark (Linux).
+//!
+//! `--routes` measures accuracy instead: four routes across the grid, three costs, each
+//! straightened at k = 1 and 2 and compared with the same route at k = 6 (a finer graph
+//! finds a better corridor; there is no exact reference on a hilly grid). Minutes.
 
 use geotracks::terrain::{read_terrain, TerrainCost, WithTerrainMetric};
 use geotracks::{Metric, Options, Solver, Source, Stop, SurfacePoint};
@@ -21,6 +25,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let temp = tempfile::tempdir()?;
     let dir = args.next().map_or(temp.path().to_path_buf(), Into::into);
     let n: usize = args.next().map_or(Ok(1000), |s| s.parse())?;
+    let routes = args.next().as_deref() == Some("--routes");
     let path = dir.join(format!("terrain{n}.asc"));
     let start = Instant::now();
     write_grid(&path, n)?;
@@ -31,6 +36,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         start.elapsed().as_secs_f64()
     );
     let extent = 10.0 * (n - 1) as f64;
+    if routes {
+        return route_accuracy(&path, extent);
+    }
     let (from, to) = (
         [0.05 * extent, 0.05 * extent],
         [0.95 * extent, 0.93 * extent],
@@ -81,6 +89,48 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     // Checks the file reads the same way the CLI reads it.
     let _ = read_terrain(&path)?;
+    Ok(())
+}
+
+/// Straightened route costs at k = 1 and 2 against k = 6, for four routes and three costs.
+fn route_accuracy(path: &std::path::Path, extent: f64) -> Result<(), Box<dyn std::error::Error>> {
+    let terrain = geotracks::terrain::read_grid(path)?.to_mesh()?;
+    println!("| route (fractions of the extent) | cost | k = 6 | k = 1 | k = 2 |");
+    println!("|---|---|---:|---:|---:|");
+    for r in [
+        [0.05, 0.05, 0.95, 0.93],
+        [0.1, 0.5, 0.9, 0.6],
+        [0.5, 0.05, 0.55, 0.95],
+        [0.9, 0.1, 0.1, 0.7],
+    ] {
+        let from = terrain.locate(r[0] * extent, r[1] * extent)?;
+        let to = terrain.locate(r[2] * extent, r[3] * extent)?;
+        for cost in ["none", "slope:4", "uphill:8"] {
+            let cost_model: TerrainCost = cost.parse()?;
+            let mut costs = [0.0; 3];
+            for (i, k) in [6.0, 1.0, 2.0].into_iter().enumerate() {
+                let run = Run {
+                    mesh: &terrain.mesh,
+                    from,
+                    to,
+                    k,
+                    metric_start: Instant::now(),
+                };
+                costs[i] = cost_model.with_metric(&terrain.mesh, run)?.cost;
+            }
+            let excess = |c: f64| format!("{:+.2} %", 100.0 * (c - costs[0]) / costs[0]);
+            println!(
+                "| ({}, {}) → ({}, {}) | {cost} | {:.1} | {} | {} |",
+                r[0],
+                r[1],
+                r[2],
+                r[3],
+                costs[0],
+                excess(costs[1]),
+                excess(costs[2])
+            );
+        }
+    }
     Ok(())
 }
 

@@ -3,6 +3,7 @@
 //! sweeping the surface needs from its caches, whatever order the file had.
 
 use glam::DVec3;
+use rayon::slice::ParallelSliceMut;
 
 /// The indices `0..points.len()` sorted along a Morton curve through the points' bounding
 /// box, on a 1024³ grid (ties keep index order). Key and index share one `u64`, so the
@@ -27,7 +28,8 @@ pub(crate) fn morton_order(points: &[DVec3]) -> Vec<u32> {
             code << 32 | i as u64
         })
         .collect();
-    keyed.sort_unstable();
+    // Keys are distinct (the index is in them), so the parallel sort is deterministic.
+    keyed.par_sort_unstable();
     keyed.into_iter().map(|k| k as u32).collect()
 }
 

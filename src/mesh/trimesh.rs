@@ -1,6 +1,7 @@
 use super::{Csr, MeshError, MeshReport, Topology};
 use geotracks_metrics::{FaceGeometry, FacePoint};
 use glam::DVec3;
+use rayon::slice::ParallelSliceMut;
 
 /// A face's local 2D frame: corner 0 at the origin, corner 1 at `(l01, 0)`, corner 2 at
 /// `(x2, y2)` with `y2 > 0`. Segment costs are computed in this frame.
@@ -379,7 +380,8 @@ fn build_edges(triangles: &[[u32; 3]]) -> (Vec<[u32; 3]>, Vec<[u32; 2]>, Csr) {
         .enumerate()
         .flat_map(|(f, t)| (0..3).map(move |i| (key(t[i], t[(i + 1) % 3]), (f * 3 + i) as u32)))
         .collect();
-    slots.sort_unstable();
+    // Keys are distinct (the slot is in them), so the parallel sort is deterministic.
+    slots.par_sort_unstable();
     let mut face_edges = vec![[0u32; 3]; triangles.len()];
     let mut edge_vertices: Vec<[u32; 2]> = Vec::new();
     let mut last = u64::MAX;

@@ -24,9 +24,10 @@ pub struct TerrainArgs {
     /// (climbing the steepest line costs sqrt(1 + B·sin²(slope)) per unit, a contour 1).
     #[arg(long, default_value = "none", value_name = "COST")]
     cost: TerrainCost,
-    /// Mean number of Steiner points per edge. 2 by default: a grid is fine already, and
-    /// the straightened route is within 1e-6 of the exact cost on the analytic tests at
-    /// k = 2 (README, Terrain); larger k costs time and memory in proportion.
+    /// Mean number of Steiner points per edge. 2 by default: the straightened route is
+    /// exact on the analytic tests at k = 2, and on a hilly grid it costs 0.03–0.9 %
+    /// more than the same route at k = 6 (README, Terrain), where a finer graph finds a
+    /// better corridor; larger k costs time and memory in proportion.
     #[arg(long, default_value_t = 2.0)]
     k: f64,
     /// Output: .geojson or .json (a LineString of [x, y, z] with the cost and lengths as
