@@ -1,25 +1,12 @@
 //! The command-line tool end to end: outputs, and bad input that must fail with one
 //! clear line, a non-zero exit, and no output file.
 
+mod cli_support;
+
+use cli_support::{assert_fails, geotracks, geotracks_ok, last_value};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 const SPOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/spot.obj");
-
-fn geotracks(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_geotracks"))
-        .args(args)
-        .output()
-        .expect("run geotracks")
-}
-
-/// Runs a command that must succeed; returns its output.
-fn geotracks_ok(args: &[&str]) -> Output {
-    let out = geotracks(args);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "{args:?}: {stderr}");
-    out
-}
 
 /// One number per line.
 fn read_values(path: &Path) -> Vec<f64> {
@@ -38,36 +25,6 @@ fn square_obj(dir: &Path) -> PathBuf {
     )
     .unwrap();
     path
-}
-
-/// Runs a command that must fail: exit code non-zero, one line on stderr that contains
-/// `expected`, no panic or backtrace, and no output file.
-fn assert_fails(args: &[&str], output: &Path, expected: &str) {
-    let out = geotracks(args);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success(), "{args:?} succeeded");
-    assert!(
-        stderr.contains(expected),
-        "{args:?}: stderr {stderr:?} lacks {expected:?}"
-    );
-    assert!(
-        !stderr.contains("panicked") && !stderr.contains("RUST_BACKTRACE"),
-        "{stderr}"
-    );
-    // One error line (clap may add a usage hint after it for argument errors).
-    let errors = stderr.lines().filter(|l| l.starts_with("error:")).count();
-    assert_eq!(errors, 1, "{stderr}");
-    assert!(
-        stderr.lines().next().unwrap_or("").starts_with("error:"),
-        "{stderr}"
-    );
-    assert!(!output.exists(), "{} was written", output.display());
-    let leftovers: Vec<_> = std::fs::read_dir(output.parent().unwrap())
-        .unwrap()
-        .filter_map(|e| e.ok())
-        .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
-        .collect();
-    assert!(leftovers.is_empty(), "temporary files left: {leftovers:?}");
 }
 
 #[test]
@@ -462,14 +419,6 @@ fn grid_obj(dir: &Path, n: usize) -> PathBuf {
     let path = dir.join("grid.obj");
     std::fs::write(&path, text).unwrap();
     path
-}
-
-/// The last line of a command's standard output, as a number.
-fn last_value(out: &Output) -> f64 {
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let last = stdout.lines().last().unwrap_or("");
-    last.parse()
-        .unwrap_or_else(|_| panic!("last line {last:?} is not a number: {stdout}"))
 }
 
 /// The points of an OBJ polyline, checking its shape: `v` lines, then one `l` line

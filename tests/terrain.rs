@@ -3,8 +3,10 @@
 //! gap). Measured errors are printed (`cargo test --release --test terrain --
 //! --nocapture`); the README quotes them.
 
+mod cli_support;
 mod common;
 
+use cli_support::{assert_fails, geotracks, geotracks_ok, last_value};
 use common::{random_mesh, Rng, DIJKSTRA, GRAPH};
 use geotracks::mesh::{Topology, TriMesh};
 use geotracks::terrain::{
@@ -860,13 +862,6 @@ proptest! {
 // ---------------------------------------------------------------------------------
 // The command line
 
-fn geotracks(args: &[&str]) -> std::process::Output {
-    std::process::Command::new(env!("CARGO_BIN_EXE_geotracks"))
-        .args(args)
-        .output()
-        .expect("run geotracks")
-}
-
 /// A 30 × 20 grid, 10 m apart, with a hill and a NODATA hole, as an ESRI ASCII grid.
 fn hill_asc(dir: &Path) -> std::path::PathBuf {
     let mut text = String::from(
@@ -891,15 +886,6 @@ fn hill_asc(dir: &Path) -> std::path::PathBuf {
     write(dir, "hill.asc", &text)
 }
 
-fn last_number(out: &std::process::Output) -> f64 {
-    String::from_utf8_lossy(&out.stdout)
-        .lines()
-        .last()
-        .unwrap()
-        .parse()
-        .unwrap()
-}
-
 #[test]
 fn cli_writes_geojson_csv_and_png() {
     let dir = tempfile::tempdir().unwrap();
@@ -907,7 +893,7 @@ fn cli_writes_geojson_csv_and_png() {
     let dem = dem.to_str().unwrap();
     let json = dir.path().join("route.geojson");
     let png = dir.path().join("map.png");
-    let out = geotracks(&[
+    let out = geotracks_ok(&[
         "terrain",
         dem,
         "--from",
@@ -921,12 +907,7 @@ fn cli_writes_geojson_csv_and_png() {
         "--png",
         png.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let cost = last_number(&out);
+    let cost = last_value(&out);
     let value: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     let feature = &value["features"][0];
@@ -960,7 +941,7 @@ fn cli_writes_geojson_csv_and_png() {
 
     // CSV: x,y,z,cost,length per point, cumulative; the same route.
     let csv = dir.path().join("route.csv");
-    let out = geotracks(&[
+    let out = geotracks_ok(&[
         "terrain",
         dem,
         "--from",
@@ -972,7 +953,6 @@ fn cli_writes_geojson_csv_and_png() {
         "-o",
         csv.to_str().unwrap(),
     ]);
-    assert!(out.status.success());
     let text = std::fs::read_to_string(&csv).unwrap();
     let mut lines = text.lines();
     assert_eq!(lines.next(), Some("x,y,z,cost,length"));
@@ -985,7 +965,7 @@ fn cli_writes_geojson_csv_and_png() {
     assert!((end[4] - length).abs() <= 1e-9 * length);
     assert!(rows.windows(2).all(|w| w[1][3] >= w[0][3]));
     // Without the map the run stops at the target: the same cost.
-    assert!((last_number(&out) - cost).abs() <= 1e-9 * cost);
+    assert!((last_value(&out) - cost).abs() <= 1e-9 * cost);
 }
 
 #[test]
@@ -995,7 +975,7 @@ fn cli_costs_order_as_expected_and_max_slope_walls_off() {
     let dem = dem.to_str().unwrap();
     let out_path = dir.path().join("r.json");
     let run = |cost: &str| {
-        let out = geotracks(&[
+        let out = geotracks_ok(&[
             "terrain",
             dem,
             "--from",
@@ -1007,34 +987,30 @@ fn cli_costs_order_as_expected_and_max_slope_walls_off() {
             "-o",
             out_path.to_str().unwrap(),
         ]);
-        assert!(
-            out.status.success(),
-            "{cost}: {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        last_number(&out)
+        last_value(&out)
     };
     let none = run("none");
     assert!(none >= 280.0);
     assert!(run("slope:2") > none);
     assert!(run("uphill:5") > none);
     // The hill's flanks reach about 25°: a 5° limit walls the route off.
-    let out = geotracks(&[
-        "terrain",
-        dem,
-        "--from",
-        "1010,5100",
-        "--to",
-        "1290,5100",
-        "--cost",
-        "slope:1,max:5",
-        "-o",
-        dir.path().join("walled.json").to_str().unwrap(),
-    ]);
-    assert!(!out.status.success());
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.starts_with("error: no route"), "{stderr}");
-    assert!(!dir.path().join("walled.json").exists());
+    let walled = dir.path().join("walled.json");
+    assert_fails(
+        &[
+            "terrain",
+            dem,
+            "--from",
+            "1010,5100",
+            "--to",
+            "1290,5100",
+            "--cost",
+            "slope:1,max:5",
+            "-o",
+            walled.to_str().unwrap(),
+        ],
+        &walled,
+        "error: no route",
+    );
 }
 
 #[test]
@@ -1087,20 +1063,8 @@ fn cli_errors_leave_no_file() {
         let mut args = vec!["terrain", dem];
         args.extend(extra);
         args.extend(["-o", o, "--png", png.to_str().unwrap()]);
-        let result = geotracks(&args);
-        let stderr = String::from_utf8_lossy(&result.stderr);
-        assert!(!result.status.success(), "{args:?} succeeded");
-        assert!(
-            stderr.contains(expected),
-            "{args:?}: {stderr:?} lacks {expected:?}"
-        );
-        assert_eq!(
-            stderr.lines().filter(|l| l.starts_with("error:")).count(),
-            1,
-            "{stderr}"
-        );
-        assert!(!stderr.contains("panicked"), "{stderr}");
-        assert!(!out.exists() && !png.exists(), "{args:?} left a file");
+        assert_fails(&args, &out, expected);
+        assert!(!png.exists(), "{args:?} left the map");
     }
     for (args, expected) in [
         (
@@ -1186,7 +1150,7 @@ fn cli_reads_a_geotiff() {
     );
     let out = dir.path().join("r.csv");
     // Sample centres: x from 2.5 to 97.5; along the slope from x = 10 to 90.
-    let result = geotracks(&[
+    let result = geotracks_ok(&[
         "terrain",
         path.to_str().unwrap(),
         "--from",
@@ -1198,13 +1162,8 @@ fn cli_reads_a_geotiff() {
         "-o",
         out.to_str().unwrap(),
     ]);
-    assert!(
-        result.status.success(),
-        "{}",
-        String::from_utf8_lossy(&result.stderr)
-    );
     let tan = 0.2f64;
     let expected = (1.0 + 2.0 * tan * tan) * 80.0 * (1.0 + tan * tan).sqrt();
-    let cost = last_number(&result);
+    let cost = last_value(&result);
     assert!(relative(cost, expected) < 1e-6, "{cost} vs {expected}");
 }
