@@ -388,9 +388,10 @@ impl Chain {
 /// depending on two neighbouring parameters, so the Hessian is tridiagonal; it is
 /// estimated by finite differences (any metric), each segment's block made
 /// positive-semidefinite and the pivots floored so that the step descends, and each
-/// step is taken only as far as it shortens the path, crossings kept on their edges. Coordinate sweeps alone move information one crossing
-/// per sweep, like Gauss–Seidel on a chain, so a long path needs very many of them;
-/// Newton's method moves the whole chain at once.
+/// step is taken only as far as it shortens the path, crossings kept on their edges.
+/// Coordinate sweeps alone move information one crossing per sweep, like Gauss–Seidel
+/// on a chain, so a long path needs very many of them; Newton's method moves the whole
+/// chain at once.
 fn newton<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
     let n = path.points.len();
     if n < 3 {
@@ -403,6 +404,7 @@ fn newton<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
     let (mut grad, mut diag, mut off) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     let mut step = vec![0.0; n];
     let mut free = vec![false; n];
+    let mut sweep = vec![(0.0, 0.0); n];
     let mut trial = t.clone();
     for _ in 0..NEWTON_STEPS {
         grad.fill(0.0);
@@ -447,6 +449,7 @@ fn newton<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
         // others solve. Left in the system, such a crossing is clamped by the step,
         // which then need not descend, and the line search stalls.
         let scale = diag.iter().fold(f64::MIN_POSITIVE, |m, &d| m.max(d.abs()));
+        let floor = 1e-9 * scale;
         let residual = (0..n)
             .filter_map(|i| t[i].map(|x| x - (x - grad[i] / scale).clamp(0.0, 1.0)))
             .map(|r| r * r)
@@ -459,10 +462,10 @@ fn newton<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
                 Some(x) => !((x <= eps && grad[i] > 0.0) || (x >= 1.0 - eps && grad[i] < 0.0)),
             };
         }
-        solve_tridiagonal(&free, &grad, &diag, &off, &mut step);
+        solve_tridiagonal(&free, &grad, &diag, &off, floor, &mut step, &mut sweep);
         for i in 0..n {
             if t[i].is_some() && !free[i] {
-                step[i] = grad[i] / diag[i].max(1e-9 * scale);
+                step[i] = grad[i] / diag[i].max(floor);
             }
         }
         let mut improved = false;
@@ -493,23 +496,30 @@ fn newton<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
 
 /// Solves `H' x = g` for the free unknowns (the others get 0), where `H'` is the
 /// tridiagonal `H` (diagonal `diag`, `off[j]` between `j` and `j + 1`) with every pivot
-/// raised to a small positive floor: positive-definite, so `x` is a descent direction
+/// raised to at least `floor` (> 0): positive-definite, so `x` is a descent direction
 /// even where the length is not convex (or not smooth: at a vertex, where segments
-/// shrink to nothing, the finite differences are wild).
-fn solve_tridiagonal(free: &[bool], g: &[f64], diag: &[f64], off: &[f64], x: &mut [f64]) {
+/// shrink to nothing, the finite differences are wild). `sweep` is scratch, one entry
+/// per unknown.
+fn solve_tridiagonal(
+    free: &[bool],
+    g: &[f64],
+    diag: &[f64],
+    off: &[f64],
+    floor: f64,
+    x: &mut [f64],
+    sweep: &mut [(f64, f64)],
+) {
     let n = g.len();
-    let floor = 1e-9 * diag.iter().fold(f64::MIN_POSITIVE, |m, &d| m.max(d.abs()));
-    // Thomas algorithm; a fixed unknown splits the system.
-    let mut c = vec![0.0; n];
-    let mut d = vec![0.0; n];
+    // Thomas algorithm; a fixed unknown splits the system. `sweep[i]` holds the
+    // eliminated row's (upper / pivot, right-hand side / pivot).
     for i in 0..n {
         if !free[i] {
             continue;
         }
-        let (lower, prev_c, prev_d) = if i > 0 && free[i - 1] {
-            (off[i - 1], c[i - 1], d[i - 1])
+        let (lower, (prev_c, prev_d)) = if i > 0 && free[i - 1] {
+            (off[i - 1], sweep[i - 1])
         } else {
-            (0.0, 0.0, 0.0)
+            (0.0, (0.0, 0.0))
         };
         let pivot = diag[i] - lower * prev_c;
         let pivot = if pivot.is_finite() && pivot > floor {
@@ -522,16 +532,16 @@ fn solve_tridiagonal(free: &[bool], g: &[f64], diag: &[f64], off: &[f64], x: &mu
         } else {
             0.0
         };
-        c[i] = upper / pivot;
-        d[i] = (g[i] - lower * prev_d) / pivot;
+        sweep[i] = (upper / pivot, (g[i] - lower * prev_d) / pivot);
     }
     for i in (0..n).rev() {
+        let (c, d) = sweep[i];
         x[i] = if !free[i] {
             0.0
         } else if i + 1 < n && free[i + 1] {
-            d[i] - c[i] * x[i + 1]
+            d - c * x[i + 1]
         } else {
-            d[i]
+            d
         };
         if !x[i].is_finite() {
             x[i] = 0.0;
