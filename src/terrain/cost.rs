@@ -224,14 +224,6 @@ impl<M: Metric> Impassable<M> {
         Ok(Impassable { inner, blocked })
     }
 
-    /// Also blocks the faces whose entry in `more` is true (same length as the mask).
-    pub fn block(mut self, more: &[bool]) -> Self {
-        for (b, &m) in self.blocked.iter_mut().zip(more) {
-            *b |= m;
-        }
-        self
-    }
-
     /// Whether face `f` is blocked.
     pub fn is_blocked(&self, f: u32) -> bool {
         self.blocked[f as usize]
