@@ -144,18 +144,16 @@ fn run() -> Result<(), String> {
         rule += "---:|";
     }
     println!("{header}\n{rule}");
-    for MeshEntry {
-        name,
-        file,
-        faces,
-        references,
-    } in meshes
-    {
-        if *faces > args.max_faces || references.is_empty() {
-            eprintln!("skipping {name} ({faces} faces)");
+    for entry in meshes {
+        let Some(mesh) = load(&args, entry, true)? else {
             continue;
-        }
-        let mesh = read_mesh(args.data.join(file)).map_err(|e| e.to_string())?;
+        };
+        let MeshEntry {
+            name,
+            faces,
+            references,
+            ..
+        } = entry;
         let mut methods = vec![Options::DEFAULT.with_method(Method::Dijkstra)];
         methods.extend(
             args.ks
@@ -180,6 +178,25 @@ fn run() -> Result<(), String> {
     Ok(())
 }
 
+/// The entry's mesh, or `None` (said on stderr) when it has more faces than
+/// `--max-faces` or, for a mode that needs exact distances, no reference.
+fn load(args: &Args, entry: &MeshEntry, needs_references: bool) -> Result<Option<TriMesh>, String> {
+    if entry.faces > args.max_faces {
+        eprintln!(
+            "skipping {} ({} faces > --max-faces)",
+            entry.name, entry.faces
+        );
+        return Ok(None);
+    }
+    if needs_references && entry.references.is_empty() {
+        eprintln!("skipping {} (no exact reference)", entry.name);
+        return Ok(None);
+    }
+    read_mesh(args.data.join(&entry.file))
+        .map(Some)
+        .map_err(|e| e.to_string())
+}
+
 /// Largest relative difference between the tracks engine and the Steiner graph over all
 /// nodes, per (mesh, k), from every reference's source (for the medial axes in `ma/`,
 /// which are non-manifold: the first vertex on a face and the middle vertex); an error
@@ -188,24 +205,17 @@ fn equality(args: &Args, meshes: &[&MeshEntry]) -> Result<(), String> {
     println!("| mesh | faces | k | sources | max relative deviation (all nodes) | graph tests / tracks tests |");
     println!("|---|---:|---:|---:|---:|---:|");
     let mut cases: Vec<(String, TriMesh, Vec<u32>)> = Vec::new();
-    for MeshEntry {
-        name,
-        file,
-        faces,
-        references,
-    } in meshes
-    {
-        if *faces > args.max_faces {
-            eprintln!("skipping {name} ({faces} faces > --max-faces)");
+    for entry in meshes {
+        let Some(mesh) = load(args, entry, false)? else {
             continue;
-        }
-        let mesh = read_mesh(args.data.join(file)).map_err(|e| e.to_string())?;
-        let sources: Vec<u32> = references
+        };
+        let sources: Vec<u32> = entry
+            .references
             .iter()
             .map(|r| source_of(r))
             .collect::<Result<_, _>>()?;
         let sources = if sources.is_empty() { vec![0] } else { sources };
-        cases.push((name.clone(), mesh, sources));
+        cases.push((entry.name.clone(), mesh, sources));
     }
     {
         let mut medial: Vec<PathBuf> = std::fs::read_dir(args.data.join("ma"))
@@ -278,11 +288,9 @@ fn paths(args: &Args, meshes: &[&MeshEntry], count: usize) -> Result<(), String>
     println!("|---|---:|---:|---:|---:|---:|---:|");
     let mut all = (0usize, 0.0, 0.0);
     for entry in meshes {
-        if entry.faces > args.max_faces || entry.references.is_empty() {
-            eprintln!("skipping {} ({} faces)", entry.name, entry.faces);
+        let Some(mesh) = load(args, entry, true)? else {
             continue;
-        }
-        let mesh = read_mesh(args.data.join(&entry.file)).map_err(|e| e.to_string())?;
+        };
         for &k in &args.ks {
             let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT.with_k(k))
                 .map_err(|e| e.to_string())?;

@@ -89,15 +89,7 @@ pub fn run(args: &DistanceArgs) -> CliResult {
     if let Some(stats) = &args.stats {
         write_stats(stats, &field)?;
     }
-    let s = field.stats();
-    eprintln!(
-        "{}: {} vertices, method {}, {}; wrote {}",
-        args.mesh.display(),
-        s.vertices,
-        s.method,
-        crate::run_summary(s),
-        args.output.display()
-    );
+    crate::report_run(&args.mesh, field.stats(), &args.output);
     Ok(())
 }
 

@@ -108,6 +108,19 @@ pub(crate) fn run_summary(s: &geotracks::Stats) -> String {
     )
 }
 
+/// The run's line on stderr for a command on a mesh: the mesh, its size, the method,
+/// [`run_summary`], and the file written.
+pub(crate) fn report_run(mesh: &std::path::Path, s: &geotracks::Stats, output: &std::path::Path) {
+    eprintln!(
+        "{}: {} vertices, method {}, {}; wrote {}",
+        mesh.display(),
+        s.vertices,
+        s.method,
+        run_summary(s),
+        output.display()
+    );
+}
+
 /// The format of output file `path`, by its extension (any case), among `formats`
 /// (extension, format); the error lists the extensions accepted.
 pub(crate) fn output_format<F: Copy>(

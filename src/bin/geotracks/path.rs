@@ -87,15 +87,7 @@ pub fn run(args: &PathArgs) -> CliResult {
         Value(path.traced_length)
     );
     println!("{}", Value(path.length));
-    let s = field.stats();
-    eprintln!(
-        "{}: {} vertices, method {}, {}; wrote {}",
-        args.mesh.display(),
-        s.vertices,
-        s.method,
-        crate::run_summary(s),
-        args.output.display()
-    );
+    crate::report_run(&args.mesh, field.stats(), &args.output);
     Ok(())
 }
 
