@@ -31,8 +31,13 @@ pub struct Stats {
     pub setup_seconds: f64,
     /// Seconds spent propagating.
     pub propagate_seconds: f64,
-    /// Queue insertions.
+    /// Queue insertions: a node is queued again when it improves into another bucket
+    /// (or improves at all, for the heap), so this grows with the improvements.
     pub pushes: u64,
+    /// Nodes taken from the queue and settled. At most `3 · nodes` plus a small slack
+    /// per bucket for the tracks engine whatever the costs (see the bucket queue), and
+    /// once per reached node for the exact heap of the graph and Dijkstra.
+    pub settles: u64,
     /// Metric evaluations made while propagating.
     pub distance_tests: u64,
     /// Metric evaluations made once by the solver's setup (the per-edge step costs of

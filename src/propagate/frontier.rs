@@ -51,6 +51,8 @@ pub(super) struct Frontier<'a, M, Q> {
     /// `targets[..target_cursor]` are known final.
     pub target_cursor: usize,
     pub pushes: u64,
+    /// Nodes popped from the queue to be settled (a node may settle more than once).
+    pub settles: u64,
     pub tests: u64,
     /// The first NaN or negative cost the metric returned, with its face.
     pub bad_cost: Option<(u32, f64)>,
@@ -71,6 +73,7 @@ pub(crate) struct Seed {
 /// How a run ended.
 pub(super) struct Outcome {
     pub pushes: u64,
+    pub settles: u64,
     pub tests: u64,
     pub bad_cost: Option<(u32, f64)>,
     /// The targets were all final before the queue ran out.
@@ -100,6 +103,7 @@ impl<'a, M: Metric> Frontier<'a, M, ()> {
             targets: self.targets,
             target_cursor: 0,
             pushes: 0,
+            settles: 0,
             tests: self.tests,
             bad_cost: self.bad_cost,
         };
@@ -121,6 +125,7 @@ impl<'a, M: Metric> Frontier<'a, M, ()> {
         }
         Outcome {
             pushes: search.pushes,
+            settles: search.settles,
             tests: search.tests,
             bad_cost: search.bad_cost,
             stopped_early,
@@ -140,6 +145,7 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
             return None;
         }
         let q = self.queue.pop(self.distance)?;
+        self.settles += 1;
         if !self.targets.is_empty() {
             while let Some(&t) = self.targets.get(self.target_cursor) {
                 if !self.queue.is_final(self.distance[t as usize]) {

@@ -302,6 +302,7 @@ impl<'m, M: Metric> Solver<'m, M> {
             targets,
             target_cursor: 0,
             pushes: 0,
+            settles: 0,
             tests: seed_tests,
             bad_cost: None,
         };
@@ -344,6 +345,7 @@ impl<'m, M: Metric> Solver<'m, M> {
             setup_seconds: self.setup_seconds + reset_seconds,
             propagate_seconds: propagate_start.elapsed().as_secs_f64(),
             pushes: outcome.pushes,
+            settles: outcome.settles,
             distance_tests: outcome.tests,
             setup_distance_tests: self.setup_tests,
             stopped_early: outcome.stopped_early,

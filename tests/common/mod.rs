@@ -314,3 +314,79 @@ pub fn rectangle(nx: usize, ny: usize, w: f64, h: f64) -> TriMesh {
     }
     TriMesh::new(positions, triangles).unwrap()
 }
+
+/// A mesh whose edge lengths span many orders of magnitude: a grid whose column widths
+/// and row heights are drawn from `10^[-9, 0]` (sliver columns and rows beside wide
+/// ones), some cells cut by nearly collinear faces (apex 1e-12 off the diagonal), fins
+/// on a few edges, plus small grids at scales from 1e-9 to 1e9 as further components.
+pub fn multiscale_mesh(seed: u64, n: usize) -> TriMesh {
+    let mut rng = Rng(seed | 1);
+    let widths = |rng: &mut Rng| -> Vec<f64> {
+        let mut at = 0.0;
+        let mut out = vec![0.0];
+        for _ in 0..n {
+            at += 10f64.powf(-9.0 * rng.next() * (rng.next() < 0.5) as u8 as f64);
+            out.push(at);
+        }
+        out
+    };
+    let xs = widths(&mut rng);
+    let ys = widths(&mut rng);
+    let mut positions = Vec::new();
+    for y in &ys {
+        for x in &xs {
+            positions.push([*x, *y, 0.3 * rng.next() * xs[n].min(ys[n])]);
+        }
+    }
+    let id = |i: usize, j: usize| (j * (n + 1) + i) as u32;
+    let mut triangles = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            if rng.next() < 0.15 {
+                // A nearly collinear face along the diagonal, and the cell's two halves
+                // through its apex.
+                let (pa, pc) = (positions[a as usize], positions[c as usize]);
+                let apex = positions.len() as u32;
+                positions.push([
+                    0.5 * (pa[0] + pc[0]) + 1e-12,
+                    0.5 * (pa[1] + pc[1]),
+                    0.5 * (pa[2] + pc[2]),
+                ]);
+                triangles.extend([[a, b, c], [a, apex, c], [a, c, d]]);
+            } else {
+                triangles.extend([[a, b, c], [a, c, d]]);
+            }
+        }
+    }
+    for _ in 0..rng.below(3) {
+        let t = triangles[rng.below(triangles.len())];
+        let p = positions[t[0] as usize];
+        let apex = positions.len() as u32;
+        positions.push([p[0], p[1], p[2] + 10f64.powf(-9.0 * rng.next())]);
+        triangles.push([t[0], t[1], apex]);
+    }
+    for _ in 0..rng.below(3) {
+        let scale = 10f64.powf(18.0 * rng.next() - 9.0);
+        let first = positions.len() as u32;
+        for j in 0..3 {
+            for i in 0..3 {
+                positions.push([
+                    scale * (i as f64 + 0.3 * rng.next() + 5.0),
+                    scale * (j as f64 + 0.3 * rng.next()),
+                    scale * rng.next(),
+                ]);
+            }
+        }
+        for j in 0..2u32 {
+            for i in 0..2u32 {
+                let v = |i: u32, j: u32| first + j * 3 + i;
+                triangles.extend([
+                    [v(i, j), v(i + 1, j), v(i + 1, j + 1)],
+                    [v(i, j), v(i + 1, j + 1), v(i, j + 1)],
+                ]);
+            }
+        }
+    }
+    TriMesh::new(positions, triangles).unwrap()
+}

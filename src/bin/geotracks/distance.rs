@@ -188,6 +188,7 @@ fn write_stats(path: &Path, field: &GeodesicField) -> CliResult {
         "setup_seconds": s.setup_seconds,
         "propagate_seconds": s.propagate_seconds,
         "pushes": s.pushes,
+        "settles": s.settles,
         "distance_tests": s.distance_tests,
         "setup_distance_tests": s.setup_distance_tests,
         "unreachable_vertices": field.unreachable_vertices(),

@@ -68,14 +68,22 @@ impl Track {
     }
 }
 
-/// `value` (≥ 0) as an `f32` no smaller than it.
+/// `value` as an `f32` no smaller than it (start values may be negative).
 #[inline]
 fn round_up(value: f64) -> f32 {
     let v = value as f32;
-    // For a non-negative finite `v` below `value`, the next float up is the next bit
-    // pattern (`next_up` spends a dozen instructions on signs, NaN and infinity); added
-    // without a branch, which would be a coin toss.
-    f32::from_bits(v.to_bits() + ((v as f64) < value) as u32)
+    // The next float up is the next bit pattern for a value ≥ 0 and the previous one
+    // below 0 (`next_up` spends a dozen instructions on NaN and infinity); added
+    // without a branch, which would be a coin toss. Rounding to nearest never gives
+    // −0 below a value, so −0 needs no care; `v` is never NaN (offers are compared
+    // with `<` first, and a NaN cost stops the run).
+    let below = ((v as f64) < value) as u32;
+    let step = if v.is_sign_negative() {
+        below.wrapping_neg()
+    } else {
+        below
+    };
+    f32::from_bits(v.to_bits().wrapping_add(step))
 }
 
 /// What a lost test proves about the other targets (indices along the target arc).
@@ -535,10 +543,24 @@ mod tests {
 
     #[test]
     fn round_up_is_the_least_f32_not_below() {
-        for value in [0.0, 1e-300, 0.1, 1.0, 1.0 + 1e-12, 3.3e38, 12345.678901234] {
+        for value in [
+            0.0,
+            1e-300,
+            0.1,
+            1.0,
+            1.0 + 1e-12,
+            3.3e38,
+            12345.678901234,
+            -1e-300,
+            -0.1,
+            -1.0 - 1e-12,
+            -17.255449916905274,
+            -3.3e38,
+        ] {
             let up = round_up(value);
             assert!(up as f64 >= value, "{value}");
             assert!((up.next_down() as f64) < value || up == 0.0, "{value}");
+            assert!(up.is_finite(), "{value}");
             let nearest = value as f32;
             let expected = if nearest as f64 >= value {
                 nearest

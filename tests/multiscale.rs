@@ -1,0 +1,173 @@
+//! Property tests over meshes whose costs span many orders of magnitude (sliver
+//! columns, nearly collinear faces, components at scales from 1e-9 to 1e9), with
+//! random sources, start values (negative ones too) and stops: the work stays bounded
+//! by the number of nodes for both engines, the tracks engine returns the graph's
+//! distances, and the stop rules hold.
+
+mod common;
+
+use common::{multiscale_mesh, Rng};
+use geotracks::mesh::{Topology, TriMesh};
+use geotracks::{
+    Density, Euclidean, Method, Metric, Options, Solver, Source, Stop, SurfacePoint, Tensor,
+};
+use proptest::prelude::*;
+
+/// Queue insertions per node: a run on a normal mesh at k ≤ 6 makes 1.5–4; before the
+/// queue was bounded these meshes made 10³–10⁵.
+const PUSHES_PER_NODE: u64 = 40;
+
+struct Run {
+    nodes: Vec<f64>,
+    settles: u64,
+    pushes: u64,
+    node_count: u64,
+}
+
+fn run<M: Metric>(
+    mesh: &TriMesh,
+    metric: &M,
+    k: f64,
+    method: Method,
+    sources: &[Source],
+    stop: &Stop,
+) -> Run {
+    let options = Options::DEFAULT.with_k(k).with_method(method);
+    let solver = Solver::new(mesh, metric, &options).unwrap();
+    let field = solver.solve_from(sources, stop).unwrap();
+    Run {
+        nodes: field.node_distances().to_vec(),
+        settles: field.stats().settles,
+        pushes: field.stats().pushes,
+        node_count: solver.layout().node_count() as u64,
+    }
+}
+
+/// Checks both engines on one case; `exact` when the metric is a norm (tracks = graph).
+fn check<M: Metric>(
+    mesh: &TriMesh,
+    metric: &M,
+    k: f64,
+    sources: &[Source],
+    stop: &Stop,
+    exact: bool,
+) -> Result<(), TestCaseError> {
+    let graph = run(mesh, metric, k, Method::Graph, sources, stop);
+    let tracks = run(mesh, metric, k, Method::Tracks, sources, stop);
+    for (name, r) in [("graph", &graph), ("tracks", &tracks)] {
+        prop_assert!(
+            r.settles <= 3 * r.node_count + 64,
+            "{}: {} settles",
+            name,
+            r.settles
+        );
+        prop_assert!(
+            r.pushes <= PUSHES_PER_NODE * r.node_count + 64,
+            "{}: {} pushes for {} nodes (the other: {})",
+            name,
+            r.pushes,
+            r.node_count,
+            graph.pushes + tracks.pushes - r.pushes
+        );
+    }
+    let lowest_start = sources
+        .iter()
+        .map(|s| s.start)
+        .fold(f64::INFINITY, f64::min);
+    let tolerance = if exact { 1e-9 } else { 1e-3 };
+    for (node, (&t, &g)) in tracks.nodes.iter().zip(&graph.nodes).enumerate() {
+        prop_assert!(
+            t.is_infinite() == g.is_infinite(),
+            "node {}: tracks {}, graph {}",
+            node,
+            t,
+            g
+        );
+        if g.is_finite() {
+            let scale = g.abs().max(lowest_start.abs()).max(f64::MIN_POSITIVE);
+            prop_assert!(
+                (t - g).abs() <= tolerance * scale,
+                "node {}: tracks {}, graph {}",
+                node,
+                t,
+                g
+            );
+            prop_assert!(
+                t <= stop.max_distance && t >= lowest_start,
+                "node {}: {} beyond the stop",
+                node,
+                t
+            );
+        }
+    }
+    Ok(())
+}
+
+fn sources(mesh: &TriMesh, rng: &mut Rng) -> Vec<Source> {
+    (0..1 + rng.below(3))
+        .map(|_| {
+            let point = match rng.below(3) {
+                0 => SurfacePoint::Vertex(rng.below(mesh.positions().len()) as u32),
+                1 => {
+                    let t = [0.0, 1e-12, 0.5, rng.next()][rng.below(4)];
+                    SurfacePoint::Edge {
+                        edge: rng.below(mesh.edge_count()) as u32,
+                        t,
+                    }
+                }
+                _ => {
+                    let (a, b) = (rng.next(), rng.next());
+                    let (a, b) = if a + b > 1.0 {
+                        (1.0 - a, 1.0 - b)
+                    } else {
+                        (a, b)
+                    };
+                    let face = rng.below(mesh.triangles().len()) as u32;
+                    SurfacePoint::Face {
+                        face,
+                        bary: [a, b, 1.0 - a - b],
+                    }
+                }
+            };
+            let start = match rng.below(4) {
+                0 => 0.0,
+                1 => -(10f64.powf(6.0 * rng.next() - 3.0)),
+                _ => 10f64.powf(6.0 * rng.next() - 3.0) * rng.next(),
+            };
+            Source::new(point).with_start(start)
+        })
+        .collect()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
+
+    #[test]
+    fn multiscale_meshes_bounded_work_same_distances(seed in any::<u64>(), n in 2usize..7, k in 1u32..6, metric in 0u8..3, stop in 0u8..3) {
+        let mesh = multiscale_mesh(seed, n);
+        let mut rng = Rng(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
+        let sources = sources(&mesh, &mut rng);
+        let stop = match stop {
+            0 => Stop::NONE,
+            // A maximum distance at about the middle of the field's range.
+            _ => Stop::NONE.with_max_distance(sources[0].start + rng.next()),
+        };
+        let k = k as f64;
+        match metric {
+            0 => check(&mesh, &Euclidean, k, &sources, &stop, true)?,
+            1 => {
+                let principal: Vec<(f64, f64, [f64; 3])> = (0..mesh.triangles().len())
+                    .map(|_| (10f64.powf(4.0 * rng.next() - 2.0), 10f64.powf(4.0 * rng.next() - 2.0), [rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5]))
+                    .collect();
+                if let Ok(t) = Tensor::from_principal(&mesh, &principal) {
+                    check(&mesh, &t, k, &sources, &stop, true)?;
+                }
+            }
+            _ => {
+                let values = (0..mesh.positions().len()).map(|_| 10f64.powf(6.0 * rng.next() - 3.0)).collect();
+                let d = Density::new(&mesh, values).unwrap();
+                check(&mesh, &d, k, &sources, &stop, false)?;
+            }
+        }
+    }
+}
