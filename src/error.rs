@@ -86,6 +86,17 @@ pub enum Error {
     /// A grassfire needs a boundary to start from, and the surface has none.
     #[error("the surface has no boundary (no edge with exactly one face): a grassfire has nowhere to start")]
     NoBoundary,
+    /// The Steiner points asked for cannot be laid out, or the run would not fit in
+    /// memory; checked before anything is allocated. Lower k to `largest_k` or below.
+    #[error("k = {k} is too large: {limit}; the largest k that fits is {largest_k}")]
+    KTooLarge {
+        /// The k asked for (points per edge for the fixed scheme).
+        k: f64,
+        /// The limit it breaks.
+        limit: SizeLimit,
+        /// The largest k (of the same scheme) that fits; 0 if none does.
+        largest_k: f64,
+    },
     /// The mesh needs more state than 32-bit ids can address.
     #[error("the mesh is too large: {count} {what} exceed the 32-bit id range; lower k")]
     TooLarge {
@@ -94,4 +105,57 @@ pub enum Error {
         /// How many were needed.
         count: u64,
     },
+}
+
+/// Which limit a Steiner layout breaks ([`Error::KTooLarge`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum SizeLimit {
+    /// One edge would carry more points than the tracks engine's face records hold.
+    PointsOnEdge {
+        /// The edge.
+        edge: u32,
+        /// Points it would carry.
+        points: u64,
+        /// The most an edge may carry (65535).
+        limit: u64,
+    },
+    /// Vertices and Steiner points together would exceed 32-bit node ids.
+    Nodes {
+        /// Nodes needed.
+        nodes: u64,
+    },
+    /// The run's state would need more memory than is available.
+    Memory {
+        /// Bytes the layout, the engine's tables and one run's buffers would take
+        /// (an estimate, within about 20 %).
+        needed: u64,
+        /// Bytes available: `Options::memory_limit`, or what the system reports.
+        available: u64,
+    },
+}
+
+impl std::fmt::Display for SizeLimit {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            SizeLimit::PointsOnEdge {
+                edge,
+                points,
+                limit,
+            } => write!(
+                f,
+                "edge {edge} would carry {points} Steiner points, more than the {limit} one edge can hold"
+            ),
+            SizeLimit::Nodes { nodes } => write!(
+                f,
+                "{nodes} nodes (vertices and Steiner points) exceed the 32-bit id range"
+            ),
+            SizeLimit::Memory { needed, available } => write!(
+                f,
+                "the run would need about {:.3} GB, more than the {:.3} GB available",
+                needed as f64 / 1e9,
+                available as f64 / 1e9
+            ),
+        }
+    }
 }

@@ -49,7 +49,7 @@ pub mod trace;
 /// The metric crate, `geotracks-metrics`.
 pub use geotracks_metrics as metrics;
 
-pub use error::Error;
+pub use error::{Error, SizeLimit};
 pub use field::{FieldView, GeodesicField, Stats};
 pub use geotracks_metrics::{Density, Euclidean, FacePoint, Metric, MetricError, Tensor};
 pub use propagate::{distance_field, Method, Options, Solver, Stop, Workspace};

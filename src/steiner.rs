@@ -40,6 +40,29 @@ impl SteinerScheme {
         }
     }
 
+    /// How many points each edge of `mesh` gets (saturating at `u32::MAX`).
+    pub fn counts(&self, mesh: &TriMesh) -> Vec<u32> {
+        match *self {
+            SteinerScheme::Fixed { count } => vec![count; mesh.edge_count()],
+            SteinerScheme::Interval { k } => {
+                let h = mesh.mean_edge_length() / k;
+                (0..mesh.edge_count() as u32)
+                    .map(|e| (mesh.edge_length(e) / h).round().min(u32::MAX as f64) as u32)
+                    .collect()
+            }
+        }
+    }
+
+    /// The same scheme with another `k` (a point count, rounded down, for `Fixed`).
+    pub fn with_k(self, k: f64) -> SteinerScheme {
+        match self {
+            SteinerScheme::Fixed { .. } => SteinerScheme::Fixed {
+                count: k.min(u32::MAX as f64) as u32,
+            },
+            SteinerScheme::Interval { .. } => SteinerScheme::Interval { k },
+        }
+    }
+
     /// Whether the scheme is usable: `k` finite and > 0, or `count` ≥ 1.
     pub fn is_valid(&self) -> bool {
         match *self {
@@ -155,15 +178,7 @@ impl SteinerLayout {
         if !scheme.is_valid() {
             return Err(Error::InvalidK { k: scheme.k() });
         }
-        let counts: Vec<u32> = match scheme {
-            SteinerScheme::Fixed { count } => vec![count; mesh.edge_count()],
-            SteinerScheme::Interval { k } => {
-                let h = mesh.mean_edge_length() / k;
-                (0..mesh.edge_count() as u32)
-                    .map(|e| (mesh.edge_length(e) / h).round().min(u32::MAX as f64) as u32)
-                    .collect()
-            }
-        };
+        let counts = scheme.counts(mesh);
         let midpoints: Vec<glam::DVec3> = (0..mesh.edge_count() as u32)
             .map(|e| {
                 let [a, b] = mesh.edge_vertices(e);

@@ -14,6 +14,7 @@
 //!
 //! All are generic over the [`Metric`] (monomorphised: no dynamic dispatch in the loop).
 
+mod budget;
 mod frontier;
 mod graph;
 mod queue;
@@ -82,6 +83,11 @@ pub struct Options {
     pub steiner: SteinerScheme,
     /// The engine. Default: [`Method::Tracks`].
     pub method: Method,
+    /// Bytes a solver and one run may take (mesh excluded), checked before anything is
+    /// allocated: a k that would need more is refused with [`Error::KTooLarge`] and the
+    /// largest k that fits. `None` (the default) uses the memory the system reports as
+    /// available (Linux), or checks nothing where it reports none.
+    pub memory_limit: Option<u64>,
 }
 
 impl Options {
@@ -89,6 +95,7 @@ impl Options {
     pub const DEFAULT: Options = Options {
         steiner: SteinerScheme::Interval { k: 5.0 },
         method: Method::Tracks,
+        memory_limit: None,
     };
 
     /// Interval scheme with a mean of `k` points per edge.
@@ -100,6 +107,12 @@ impl Options {
     /// Exactly `count` points on every edge.
     pub const fn with_fixed_count(mut self, count: u32) -> Self {
         self.steiner = SteinerScheme::Fixed { count };
+        self
+    }
+
+    /// The memory budget in bytes (see [`Options::memory_limit`]).
+    pub const fn with_memory_limit(mut self, bytes: u64) -> Self {
+        self.memory_limit = Some(bytes);
         self
     }
 

@@ -1,6 +1,7 @@
 //! [`Solver`]: everything about a (mesh, metric, options) triple that does not depend on
 //! the sources, built once; and [`Workspace`]: the per-run buffers, reused across runs.
 
+use super::budget;
 use super::frontier::{edge_steps, Frontier, Seed};
 use super::queue::{BucketQueue, HeapQueue};
 use super::tracks::{Track, TrackTables};
@@ -127,13 +128,23 @@ impl<'m, M: Metric> Solver<'m, M> {
     /// Prepares `mesh` for queries under `metric` with `options`.
     ///
     /// # Errors
-    /// As [`SteinerLayout::new`]; also [`Error::TooLarge`] when the tracks engine's
-    /// instances exceed 32-bit ids or one edge would carry more than 65535 points.
+    /// [`Error::InvalidK`] for a scheme with no points; [`Error::KTooLarge`] when an edge
+    /// would carry more than 65535 points (tracks), the nodes would exceed 32-bit ids,
+    /// or the run would not fit [`Options::memory_limit`] (checked before allocating,
+    /// with the largest k that fits); [`Error::TooLarge`] when the tracks engine's
+    /// instances exceed 32-bit ids.
     pub fn new(mesh: &'m TriMesh, metric: M, options: &Options) -> Result<Self, Error> {
         let start = Instant::now();
         let layout = if options.method == Method::Dijkstra {
             SteinerLayout::vertices_only(mesh)
         } else {
+            if !options.steiner.is_valid() {
+                return Err(Error::InvalidK {
+                    k: options.steiner.k(),
+                });
+            }
+            let memory = options.memory_limit.or_else(budget::available_memory);
+            budget::check(mesh, options.steiner, options.method, memory)?;
             SteinerLayout::new(mesh, options.steiner)?
         };
         let (edge_steps, mut setup_tests) = match edge_steps(mesh, &metric, &layout) {

@@ -1,0 +1,114 @@
+//! What a run will need, checked before anything big is allocated: the points one
+//! edge may carry, 32-bit node ids, and memory. A k that breaks a limit is refused with
+//! the numbers and the largest k that would fit, instead of failing late (or being
+//! killed) after gigabytes were allocated.
+
+use super::Method;
+use crate::error::SizeLimit;
+use crate::mesh::{Topology, TriMesh, NONE};
+use crate::steiner::SteinerScheme;
+use crate::Error;
+
+/// The most Steiner points one edge may carry in the tracks engine (its face records
+/// keep per-slot counts in 16 bits).
+pub(super) const MAX_POINTS_PER_EDGE: u64 = u16::MAX as u64;
+
+/// Checks `scheme` on `mesh` for `method` against the limits; `memory` is the budget in
+/// bytes (`None`: no memory check).
+pub(super) fn check(
+    mesh: &TriMesh,
+    scheme: SteinerScheme,
+    method: Method,
+    memory: Option<u64>,
+) -> Result<(), Error> {
+    let Some(limit) = breaks(mesh, scheme, method, memory) else {
+        return Ok(());
+    };
+    // The limits grow with k: bisect for the largest k that keeps within them.
+    let (mut lo, mut hi) = (0.0, scheme.k());
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if breaks(mesh, scheme.with_k(mid), method, memory).is_none() {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let largest_k = match scheme {
+        SteinerScheme::Fixed { .. } => lo.floor(),
+        // Three significant digits, rounded down so that it still fits.
+        SteinerScheme::Interval { .. } if lo > 0.0 => {
+            let unit = 10f64.powf(lo.log10().floor() - 2.0);
+            (lo / unit).floor() * unit
+        }
+        SteinerScheme::Interval { .. } => 0.0,
+    };
+    Err(Error::KTooLarge {
+        k: scheme.k(),
+        limit,
+        largest_k,
+    })
+}
+
+/// The first limit `scheme` breaks, if any.
+fn breaks(
+    mesh: &TriMesh,
+    scheme: SteinerScheme,
+    method: Method,
+    memory: Option<u64>,
+) -> Option<SizeLimit> {
+    if !scheme.is_valid() {
+        // Below any point at all: nothing to lay out, nothing to break.
+        return None;
+    }
+    let counts = scheme.counts(mesh);
+    if method == Method::Tracks {
+        let (edge, &points) = counts.iter().enumerate().max_by_key(|(_, &c)| c)?;
+        if points as u64 > MAX_POINTS_PER_EDGE {
+            return Some(SizeLimit::PointsOnEdge {
+                edge: edge as u32,
+                points: points as u64,
+                limit: MAX_POINTS_PER_EDGE,
+            });
+        }
+    }
+    let steiner: u64 = counts.iter().map(|&c| c as u64).sum();
+    let nodes = mesh.vertex_count() as u64 + steiner;
+    if nodes >= NONE as u64 {
+        return Some(SizeLimit::Nodes { nodes });
+    }
+    let needed = bytes(mesh, &counts, steiner, nodes, method);
+    match memory {
+        Some(available) if needed > available => Some(SizeLimit::Memory { needed, available }),
+        _ => None,
+    }
+}
+
+/// The bytes a solver and one run take (the mesh itself excluded): per node its
+/// distance, parent, parent face and queue flag, with about two queue entries; per
+/// Steiner point its block; for the tracks engine a record per face and edge and a
+/// track per (face, boundary node).
+fn bytes(mesh: &TriMesh, counts: &[u32], steiner: u64, nodes: u64, method: Method) -> u64 {
+    let per_node = 8 + 4 + 4 + 1 + 2 * 4;
+    let layout = 4 * steiner + 12 * counts.len() as u64;
+    let engine = match method {
+        Method::Tracks => {
+            let instances: u64 = 3 * mesh.face_count() as u64
+                + (0..counts.len() as u32)
+                    .map(|e| counts[e as usize] as u64 * mesh.edge_faces(e).len() as u64)
+                    .sum::<u64>();
+            8 * instances + 64 * mesh.face_count() as u64 + 16 * counts.len() as u64
+        }
+        // The heap holds about two entries of 16 bytes per node.
+        Method::Graph | Method::Dijkstra => 2 * 16 * nodes,
+    };
+    per_node * nodes + layout + engine
+}
+
+/// Memory the system says is available (Linux: `MemAvailable`), if it says.
+pub(super) fn available_memory() -> Option<u64> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
+}

@@ -1,0 +1,89 @@
+//! A k that cannot fit is refused before anything big is allocated, with the limit it
+//! breaks and the largest k that fits (issue 12: one triangle with k = 1e9 used to take
+//! 22 s and 11.7 GB before failing; k = 1e5 on a 12K-face mesh failed after 7 GB with
+//! the wrong reason).
+
+mod common;
+
+use geotracks::mesh::io::read_mesh;
+use geotracks::mesh::TriMesh;
+use geotracks::{Error, Euclidean, Method, Options, SizeLimit, Solver};
+
+fn triangle() -> TriMesh {
+    TriMesh::new(
+        vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+        vec![[0, 1, 2]],
+    )
+    .unwrap()
+}
+
+fn spot() -> TriMesh {
+    read_mesh(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/spot.obj")).unwrap()
+}
+
+fn refused(mesh: &TriMesh, options: Options) -> (SizeLimit, f64) {
+    match Solver::new(mesh, Euclidean, &options) {
+        Err(Error::KTooLarge {
+            limit, largest_k, ..
+        }) => (limit, largest_k),
+        Err(e) => panic!("wrong error: {e}"),
+        Ok(_) => panic!("accepted"),
+    }
+}
+
+#[test]
+fn too_many_points_on_one_edge_is_refused_with_the_largest_k() {
+    let (limit, largest) = refused(&triangle(), Options::DEFAULT.with_k(1e9));
+    assert!(
+        matches!(limit, SizeLimit::PointsOnEdge { points, limit: 65535, .. } if points > 65535)
+    );
+    // The largest k fits, and the message says so.
+    Solver::new(&triangle(), Euclidean, &Options::DEFAULT.with_k(largest)).unwrap();
+    let message = Solver::new(&triangle(), Euclidean, &Options::DEFAULT.with_k(1e5))
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        message.contains("65535") && message.contains("largest k"),
+        "{message}"
+    );
+
+    let (limit, largest) = refused(&spot(), Options::DEFAULT.with_k(1e5));
+    assert!(matches!(limit, SizeLimit::PointsOnEdge { .. }));
+    assert!(largest > 1000.0 && largest < 1e5, "{largest}");
+    // Memory is not what limits here (spot at 65535 points per edge needs ~70 GB).
+    let unlimited = Options::DEFAULT.with_memory_limit(u64::MAX);
+    let fixed = refused(&spot(), unlimited.with_fixed_count(70_000));
+    assert_eq!(fixed.1, 65535.0);
+}
+
+#[test]
+fn the_graph_is_refused_past_32_bit_nodes_or_the_memory_budget() {
+    // The graph has no per-edge limit, but 2e9 points on each of three edges exceed
+    // 32-bit node ids.
+    let graph = Options::DEFAULT.with_method(Method::Graph);
+    let (limit, _) = refused(&triangle(), graph.with_k(2e9));
+    assert!(matches!(limit, SizeLimit::Nodes { .. }), "{limit:?}");
+    // A memory budget: Spot at k = 2000 needs about 1 GB.
+    let (limit, largest) = refused(&spot(), graph.with_k(2000.0).with_memory_limit(100_000_000));
+    assert!(
+        matches!(limit, SizeLimit::Memory { needed, available: 100_000_000 } if needed > 100_000_000)
+    );
+    Solver::new(
+        &spot(),
+        Euclidean,
+        &graph.with_k(largest).with_memory_limit(100_000_000),
+    )
+    .unwrap();
+    assert!(largest > 50.0 && largest < 2000.0, "{largest}");
+}
+
+#[test]
+fn the_tracks_engine_keeps_to_the_memory_budget() {
+    let options = Options::DEFAULT.with_k(500.0).with_memory_limit(50_000_000);
+    let mesh = spot();
+    let (limit, largest) = refused(&mesh, options);
+    assert!(matches!(limit, SizeLimit::Memory { .. }));
+    let solver = Solver::new(&mesh, Euclidean, &options.with_k(largest)).unwrap();
+    assert!(solver.layout().node_count() > 100_000);
+}
