@@ -83,6 +83,14 @@ pub enum Error {
         /// The cost returned.
         value: f64,
     },
+    /// The metric's costs on this mesh add up beyond the f64 range, so distances could
+    /// overflow (a density of 1e300 over long edges, say). Scale the metric or the
+    /// mesh down.
+    #[error("metric '{metric}': the costs of the mesh's edges add up beyond the f64 range (about 1.8e308), so distances could overflow; scale the metric or the mesh down")]
+    CostOverflow {
+        /// The metric's name.
+        metric: String,
+    },
     /// A grassfire needs a boundary to start from, and the surface has none.
     #[error("the surface has no boundary (no edge with exactly one face): a grassfire has nowhere to start")]
     NoBoundary,

@@ -69,10 +69,20 @@ impl FacePoint {
     /// Euclidean length of the segment from `self` to `other` (both in one face's frame).
     #[inline]
     pub fn distance(&self, other: &FacePoint) -> f64 {
-        // Not `hypot`: its overflow care costs several times a square root, and face
-        // coordinates are nowhere near 1e150.
         let (du, dv) = (other.uv[0] - self.uv[0], other.uv[1] - self.uv[1]);
-        (du * du + dv * dv).sqrt()
+        let squared = du * du + dv * dv;
+        // `hypot` only where the square over- or underflows (lengths beyond 1e154 or
+        // below 1e-154), or is 0: its care costs several times a square root, and the
+        // branch is all but always taken the same way. One integer comparison tells a
+        // normal square (≥ 0 here) from the rest: below the least normal, the
+        // subtraction wraps around; ∞ and NaN lie above the range.
+        const MIN: u64 = f64::MIN_POSITIVE.to_bits();
+        const RANGE: u64 = f64::INFINITY.to_bits() - MIN;
+        if squared.to_bits().wrapping_sub(MIN) < RANGE {
+            squared.sqrt()
+        } else {
+            du.hypot(dv)
+        }
     }
 }
 
@@ -100,6 +110,18 @@ pub trait Metric: Sync {
         self.is_face_norm()
     }
 
+    /// How far the triangle inequality may fail inside `face`, whose longest edge is
+    /// `diameter` long: a bound `s` with `cost(a, b) ≤ cost(a, x) + cost(x, b) + s` for
+    /// all points `a`, `b`, `x` of the face. The engine prunes on faces where
+    /// [`Metric::prunes_on`] holds, and there keeps exactly the complete Steiner graph's
+    /// distances by accepting a proof only with a margin of this slack (twice it where
+    /// the proof uses the inequality twice). 0 for a norm (the default); `Density`
+    /// gives `(ρmax − ρmin) · diameter`. A larger slack prunes less, never wrongly.
+    fn triangle_slack(&self, face: u32, diameter: f64) -> f64 {
+        let _ = (face, diameter);
+        0.0
+    }
+
     /// A short name for reports, e.g. `"euclidean"`.
     fn name(&self) -> &str {
         "custom"
@@ -117,6 +139,10 @@ impl<M: Metric + ?Sized> Metric for &M {
     fn prunes_on(&self, face: u32) -> bool {
         (**self).prunes_on(face)
     }
+    #[inline]
+    fn triangle_slack(&self, face: u32, diameter: f64) -> f64 {
+        (**self).triangle_slack(face, diameter)
+    }
     fn name(&self) -> &str {
         (**self).name()
     }
@@ -132,6 +158,10 @@ impl<M: Metric + ?Sized> Metric for Box<M> {
     }
     fn prunes_on(&self, face: u32) -> bool {
         (**self).prunes_on(face)
+    }
+    #[inline]
+    fn triangle_slack(&self, face: u32, diameter: f64) -> f64 {
+        (**self).triangle_slack(face, diameter)
     }
     fn name(&self) -> &str {
         (**self).name()

@@ -181,9 +181,20 @@ impl Metric for Tensor {
     fn cost(&self, face: u32, a: &FacePoint, b: &FacePoint) -> f64 {
         let [m11, m12, m22] = self.local[face as usize];
         let (x, y) = (b.uv[0] - a.uv[0], b.uv[1] - a.uv[1]);
+        let squared = m11 * x * x + 2.0 * m12 * x * y + m22 * y * y;
+        if squared.is_normal() {
+            return squared.sqrt();
+        }
+        // Over- or underflow (or zero): the same in units of the larger component.
+        let scale = x.abs().max(y.abs());
+        if scale == 0.0 || !scale.is_finite() {
+            return if scale == 0.0 { 0.0 } else { f64::INFINITY };
+        }
+        let (x, y) = (x / scale, y / scale);
         (m11 * x * x + 2.0 * m12 * x * y + m22 * y * y)
             .max(0.0)
             .sqrt()
+            * scale
     }
     fn is_face_norm(&self) -> bool {
         true

@@ -68,6 +68,17 @@ pub enum MeshError {
         /// Its coordinates as read.
         position: [f64; 3],
     },
+    /// A vertex lies so far from the origin that differences of coordinates, and the
+    /// lengths and distances built on them, could overflow. Scale the mesh down.
+    #[error("vertex {vertex} has a coordinate beyond ±{limit:e} ({position:?}): lengths and distances could overflow; scale the mesh down")]
+    CoordinateOutOfRange {
+        /// The vertex index.
+        vertex: usize,
+        /// Its coordinates.
+        position: [f64; 3],
+        /// The largest magnitude accepted.
+        limit: f64,
+    },
     /// Every face is degenerate (zero area or a repeated vertex), or there is none.
     #[error("the mesh has no usable face ({faces} faces read, {degenerate} degenerate)")]
     NoUsableFace {
@@ -116,6 +127,7 @@ impl MeshError {
             MeshError::IndexOutOfRange { .. }
             | MeshError::EdgeIndexOutOfRange { .. }
             | MeshError::NonFiniteVertex { .. }
+            | MeshError::CoordinateOutOfRange { .. }
             | MeshError::NoUsableFace { .. } => MeshError::InFile {
                 path: path.into(),
                 error: Box::new(self),

@@ -15,7 +15,7 @@ pub use error::MeshError;
 pub(crate) use order::morton_order;
 pub use report::MeshReport;
 pub(crate) use sets::DisjointSets;
-pub use trimesh::{DroppedFace, EdgeLine, FaceFrame, TriMesh};
+pub use trimesh::{DroppedFace, EdgeLine, FaceFrame, TriMesh, MAX_COORDINATE};
 
 /// Ids are dense `u32`; this marks "none" (no parent, no face).
 pub const NONE: u32 = u32::MAX;

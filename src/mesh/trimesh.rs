@@ -16,6 +16,14 @@ pub struct FaceFrame {
 }
 
 impl FaceFrame {
+    /// The length of the face's longest edge.
+    #[inline]
+    pub fn diameter(&self) -> f64 {
+        let l02 = self.x2.hypot(self.y2);
+        let l12 = (self.x2 - self.l01).hypot(self.y2);
+        self.l01.max(l02).max(l12)
+    }
+
     /// The three corners in the frame.
     #[inline]
     pub fn corners(&self) -> [[f64; 2]; 3] {
@@ -132,6 +140,7 @@ impl TriMesh {
     ///
     /// # Errors
     /// [`MeshError::NonFiniteVertex`] for a NaN or infinite coordinate,
+    /// [`MeshError::CoordinateOutOfRange`] for one beyond ±1e300,
     /// [`MeshError::IndexOutOfRange`] for a face that names a missing vertex,
     /// [`MeshError::NoUsableFace`] if no face is left after dropping degenerate ones.
     pub fn new(positions: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>) -> Result<Self, MeshError> {
@@ -158,6 +167,17 @@ impl TriMesh {
             return Err(MeshError::NonFiniteVertex {
                 vertex,
                 position: *p,
+            });
+        }
+        if let Some((vertex, p)) = positions
+            .iter()
+            .enumerate()
+            .find(|(_, p)| p.iter().any(|c| c.abs() > MAX_COORDINATE))
+        {
+            return Err(MeshError::CoordinateOutOfRange {
+                vertex,
+                position: *p,
+                limit: MAX_COORDINATE,
             });
         }
         for (face, t) in triangles.iter().enumerate() {
@@ -267,7 +287,7 @@ impl TriMesh {
     /// Euclidean length of edge `e`.
     pub fn edge_length(&self, e: u32) -> f64 {
         let [a, b] = self.edge_vertices[e as usize];
-        self.position(a).distance(self.position(b))
+        length(self.position(b) - self.position(a))
     }
 
     /// Line elements (free edges) given at construction.
@@ -325,7 +345,10 @@ impl TriMesh {
         if n == 0 {
             return 0.0;
         }
-        (0..n as u32).map(|e| self.edge_length(e)).sum::<f64>() / n as f64
+        // Each length divided first, so that no sum of lengths near 1e300 overflows.
+        (0..n as u32)
+            .map(|e| self.edge_length(e) / n as f64)
+            .sum::<f64>()
     }
 
     /// Labels each vertex with its connected component (vertices joined by face edges;
@@ -354,21 +377,48 @@ fn check_line_edges(line_edges: &[[u32; 2]], vertex_count: usize) -> Result<(), 
     Ok(())
 }
 
+/// The largest coordinate magnitude a mesh may have: differences of coordinates then
+/// stay finite, and every length is computed without overflow or underflow (see
+/// [`length`]), so any mesh within it, at any scale, gets accurate frames.
+pub const MAX_COORDINATE: f64 = 1e300;
+
+/// The length of `v`, accurate at any scale: computed in units of its largest
+/// component, so that no square over- or underflows (`DVec3::length` is off by 100 %
+/// below 1e-154 and infinite above 1e154).
+fn length(v: DVec3) -> f64 {
+    let scale = v.abs().max_element();
+    if scale == 0.0 || !scale.is_finite() {
+        return scale;
+    }
+    (v / scale).length() * scale
+}
+
 /// The local frame of a triangle, or `None` if it has (numerically) zero area.
+///
+/// Computed in units of the face's largest coordinate difference, so that a face of
+/// size 1e-200 or 1e200 gets the same relative accuracy as one of size 1.
 fn frame_of([p0, p1, p2]: [DVec3; 3]) -> Option<FaceFrame> {
-    let e01 = p1 - p0;
-    let e02 = p2 - p0;
+    let (e01, e02) = (p1 - p0, p2 - p0);
+    let scale = e01.abs().max_element().max(e02.abs().max_element());
+    if !(scale > 0.0 && scale.is_finite()) {
+        return None;
+    }
+    let (e01, e02, e12) = (e01 / scale, e02 / scale, (p2 - p1) / scale);
     let l01 = e01.length();
-    let longest = l01.max(e02.length()).max((p2 - p1).length());
+    let longest = l01.max(e02.length()).max(e12.length());
     let twice_area = e01.cross(e02).length();
     // Relative test: a sliver with aspect 1e6 is kept, an exactly flat one is not.
-    if !(longest > 0.0 && twice_area > 1e-12 * longest * longest) {
+    if !(longest > 0.0 && twice_area > 1e-12 * longest * longest) || l01 == 0.0 {
         return None;
     }
     let u = e01 / l01;
     let x2 = e02.dot(u);
     let y2 = twice_area / l01;
-    Some(FaceFrame { l01, x2, y2 })
+    Some(FaceFrame {
+        l01: l01 * scale,
+        x2: x2 * scale,
+        y2: y2 * scale,
+    })
 }
 
 /// Numbers the undirected edges of the faces (sorted by their vertex pair) and lists the
@@ -453,8 +503,11 @@ impl FaceGeometry for TriMesh {
     }
     fn face_axes(&self, face: u32) -> [[f64; 3]; 2] {
         let [p0, p1, p2] = self.triangles[face as usize].map(|v| self.position(v));
-        let u = (p1 - p0).normalize();
-        let w = p2 - p0;
+        // In units of the face's size, so that normalising neither over- nor underflows.
+        let (e1, w) = (p1 - p0, p2 - p0);
+        let scale = e1.abs().max_element().max(w.abs().max_element());
+        let (e1, w) = (e1 / scale, w / scale);
+        let u = e1.normalize();
         let v = (w - w.dot(u) * u).normalize();
         [u.to_array(), v.to_array()]
     }

@@ -151,11 +151,20 @@ impl<'m, M: Metric> Solver<'m, M> {
             Some((steps, tests)) => (Some(steps), tests),
             None => (None, 0),
         };
+        // The cost between consecutive nodes of each edge: the cached steps, or the
+        // metric asked once per edge (in its first face).
+        let steps = match &edge_steps {
+            Some(steps) => std::borrow::Cow::Borrowed(steps.as_slice()),
+            None => {
+                setup_tests += mesh.edge_count() as u64;
+                std::borrow::Cow::Owned(first_face_steps(mesh, &metric, &layout))
+            }
+        };
+        check_cost_range(&metric, &layout, &steps)?;
         // Only the tracks engine uses a bucket queue (the baselines keep a heap).
         let (tables, bucket_width) = match options.method {
             Method::Tracks => {
-                let (width, tests) = bucket_width(mesh, &metric, &layout, edge_steps.as_deref());
-                setup_tests += tests;
+                let width = bucket_width(&steps);
                 let tables = TrackTables::new(mesh, &layout, edge_steps.as_deref())?;
                 (Some(tables), width)
             }
@@ -540,37 +549,56 @@ impl<'m, M: Metric> Solver<'m, M> {
     }
 }
 
+/// The cost between consecutive nodes of each edge in its first face.
+fn first_face_steps<M: Metric>(mesh: &TriMesh, metric: &M, layout: &SteinerLayout) -> Vec<f64> {
+    (0..mesh.edge_count() as u32)
+        .map(|e| {
+            let f = mesh.edge_faces(e)[0];
+            let [a, b] = mesh
+                .edge_vertices(e)
+                .map(|v| layout.point_in_face(mesh, v, f));
+            metric.cost(f, &a, &b) / (layout.count(e) + 1) as f64
+        })
+        .collect()
+}
+
+/// Refuses a metric whose costs leave the f64 range on this mesh: every distance a run
+/// can give is at most the sum of the edges' finite costs (a path along edges), so
+/// that sum must be finite. (`+inf` edges are walls, allowed.)
+fn check_cost_range<M: Metric>(
+    metric: &M,
+    layout: &SteinerLayout,
+    steps: &[f64],
+) -> Result<(), Error> {
+    let total: f64 = steps
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| s.is_finite())
+        .map(|(e, s)| s * (layout.count(e as u32) + 1) as f64)
+        .sum();
+    if total.is_finite() {
+        return Ok(());
+    }
+    Err(Error::CostOverflow {
+        metric: metric.name().to_string(),
+    })
+}
+
 /// The bucket queue's width: a low quantile of the cost between consecutive nodes on an
 /// edge. Nodes in one bucket are settled in no particular order, so a bucket much wider
 /// than the local spacing of nodes makes many nodes settle early and propagate again;
 /// the low quantile keeps buckets narrow where costs are low (low density, short edges).
-/// Uses the cached per-edge steps when there are some; otherwise asks the metric once
-/// per edge (in its first face). Returns the width and the metric evaluations made.
-fn bucket_width<M: Metric>(
-    mesh: &TriMesh,
-    metric: &M,
-    layout: &SteinerLayout,
-    edge_steps: Option<&[f64]>,
-) -> (f64, u64) {
-    let mut tests = 0;
-    let mut steps: Vec<f64> = match edge_steps {
-        Some(steps) => steps.to_vec(),
-        None => (0..mesh.edge_count() as u32)
-            .map(|e| {
-                tests += 1;
-                let f = mesh.edge_faces(e)[0];
-                let [a, b] = mesh
-                    .edge_vertices(e)
-                    .map(|v| layout.point_in_face(mesh, v, f));
-                metric.cost(f, &a, &b) / (layout.count(e) + 1) as f64
-            })
-            .collect(),
-    };
-    steps.retain(|s| s.is_finite() && *s > 0.0);
+/// (The queue bounds the work whatever the width; the width only sets the speed.)
+fn bucket_width(steps: &[f64]) -> f64 {
+    let mut steps: Vec<f64> = steps
+        .iter()
+        .copied()
+        .filter(|s| s.is_finite() && *s > 0.0)
+        .collect();
     if steps.is_empty() {
-        return (1.0, tests);
+        return 1.0;
     }
     let at = steps.len() / 10;
     let (_, width, _) = steps.select_nth_unstable_by(at, f64::total_cmp);
-    (*width, tests)
+    *width
 }

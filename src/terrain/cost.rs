@@ -85,6 +85,14 @@ pub fn vertex_slope_tan2(mesh: &TriMesh) -> Vec<f64> {
 /// route pays more where the ground is steep, whichever way it goes there. `a = 0` is
 /// the 3D length.
 ///
+/// The density is built with a pruning tolerance of [`SLOPE_PRUNING_TOLERANCE`]: on
+/// faces where it varies by at most 20 % the tracks engine prunes as for a norm. That
+/// keeps slope routes as fast as before the exact margin (which costs 42 % more
+/// instructions on a 400 × 400 grid at k = 2), and on the terrain tests it still gives
+/// the graph's distances (a property test with random walls, and routes whose traced
+/// cost is unchanged). Call `.with_pruning_tolerance(0.0)` on the result for the exact
+/// rule.
+///
 /// # Errors
 /// [`TerrainError::Parameter`] unless `a` is finite and ≥ 0; [`TerrainError::Vertical`]
 /// for a vertex whose normal is horizontal.
@@ -102,8 +110,11 @@ pub fn slope_density(mesh: &TriMesh, a: f64) -> Result<Density, TerrainError> {
             }
         })
         .collect::<Result<Vec<f64>, _>>()?;
-    Ok(Density::new(mesh, rho)?)
+    Ok(Density::new(mesh, rho)?.with_pruning_tolerance(SLOPE_PRUNING_TOLERANCE))
 }
+
+/// The pruning tolerance of [`slope_density`] (see `Density::with_pruning_tolerance`).
+pub const SLOPE_PRUNING_TOLERANCE: f64 = 0.2;
 
 /// Faces steeper than `max_degrees`, as a per-face mask for [`Impassable`].
 ///
@@ -261,6 +272,9 @@ impl<M: Metric> Metric for Impassable<M> {
     }
     fn prunes_on(&self, face: u32) -> bool {
         self.inner.prunes_on(face)
+    }
+    fn triangle_slack(&self, face: u32, diameter: f64) -> f64 {
+        self.inner.triangle_slack(face, diameter)
     }
     fn name(&self) -> &str {
         "impassable"

@@ -423,21 +423,24 @@ fn newton<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
             // The segment's 2 × 2 Hessian, made positive-semidefinite: where the cost
             // is not smooth (a segment shrunk to nothing, both ends on one spot) the
             // differences are wild, and one indefinite block spoils the whole step.
+            // Where a difference leaves the f64 range (costs near 1e308, say) the
+            // segment adds nothing to the step: `finite` keeps NaN and ∞ out of it.
+            let finite = |x: f64| if x.is_finite() { x } else { 0.0 };
             let (mut haa, mut hbb, mut hab) = (0.0, 0.0, 0.0);
             if a.is_some() {
                 let (p, m) = (c(h, 0.0), c(-h, 0.0));
-                grad[j] += (p - m) / (2.0 * h);
-                haa = ((p - 2.0 * c0 + m) / (h * h)).max(0.0);
+                grad[j] += finite((p - m) / (2.0 * h));
+                haa = finite((p - 2.0 * c0 + m) / (h * h)).max(0.0);
             }
             if b.is_some() {
                 let (p, m) = (c(0.0, h), c(0.0, -h));
-                grad[j + 1] += (p - m) / (2.0 * h);
-                hbb = ((p - 2.0 * c0 + m) / (h * h)).max(0.0);
+                grad[j + 1] += finite((p - m) / (2.0 * h));
+                hbb = finite((p - 2.0 * c0 + m) / (h * h)).max(0.0);
             }
             if a.is_some() && b.is_some() {
-                let bound = (haa * hbb).sqrt();
-                hab = ((c(h, h) - c(h, -h) - c(-h, h) + c(-h, -h)) / (4.0 * h * h))
-                    .clamp(-bound, bound);
+                let bound = finite((haa * hbb).sqrt());
+                let mixed = (c(h, h) - c(h, -h) - c(-h, h) + c(-h, -h)) / (4.0 * h * h);
+                hab = finite(mixed).clamp(-bound, bound);
             }
             diag[j] += haa;
             diag[j + 1] += hbb;

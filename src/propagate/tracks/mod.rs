@@ -122,6 +122,9 @@ struct Arc {
     d: f64,
     /// Rank of `q`'s position in the complement of the arc (see `offset`).
     q_rank: u32,
+    /// How much a loss must be by to prove anything: twice the metric's triangle slack
+    /// in the face (the lemma uses the inequality twice); 0 for norms.
+    margin: f64,
 }
 
 impl Arc {
@@ -138,6 +141,7 @@ impl Arc {
         q_pos: u32,
         pq: FacePoint,
         d: f64,
+        slack: f64,
     ) -> Arc {
         let (s1, s2) = (NEXT[side], NEXT[NEXT[side]]);
         let first = r.slot(s1);
@@ -161,6 +165,7 @@ impl Arc {
             pq,
             d,
             q_rank: 0,
+            margin: 2.0 * slack,
         };
         // `q` lies outside the arc: its offset from the arc's start is at least `m`.
         arc.q_rank = arc.offset(q_pos) - m + 1;
@@ -300,11 +305,13 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
         }
         for &f in mesh.vertex_faces(v) {
             let prunes = self.search.metric.prunes_on(f);
-            // Never back into the face the value came through.
-            if prunes && parent_face == f {
+            let r = &tables.faces[tables.record_of(f) as usize];
+            let slack = self.slack(r);
+            // Never back into the face the value came through (for a norm: the
+            // straight segment from the parent does better there).
+            if prunes && parent_face == f && slack == 0.0 {
                 continue;
             }
-            let r = &tables.faces[tables.record_of(f) as usize];
             let c = if r.vertex[0] == v {
                 0
             } else if r.vertex[1] == v {
@@ -319,19 +326,19 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
             let pq = r.corner_point(c);
             if prunes {
                 // A tie through another face: its track already offers `d` or less.
-                if self.tracks[(r.base + q_pos) as usize].value() <= d {
+                if self.tracks[(r.base + q_pos) as usize].value() <= d - slack {
                     continue;
                 }
                 // Dominated by the along-edge parent, as for Steiner points: every
                 // target of a corner is a target of the points of its two edges.
                 let parent = along.and_then(|(p, step)| Some((along_parent_point(r, c, p)?, step)));
                 if let Some((pp, step)) = parent {
-                    if self.dominated(f, &pp, &pq, step) {
+                    if self.dominated(f, &pp, &pq, step, slack) {
                         continue;
                     }
                 }
             }
-            self.enter(Arc::new(f, r, c, true, v, q_pos, pq, d), prunes);
+            self.enter(Arc::new(f, r, c, true, v, q_pos, pq, d, slack), prunes);
         }
     }
 
@@ -372,24 +379,25 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
             let r = &tables.faces[inc.record() as usize];
             let f = r.face;
             let prunes = self.search.metric.prunes_on(f);
-            // Never back into the face the value came through.
-            if prunes && parent_face == f {
+            let slack = self.slack(r);
+            // Never back into the face the value came through (for a norm).
+            if prunes && parent_face == f && slack == 0.0 {
                 continue;
             }
             let s = inc.side();
             let q_pos = r.slot_position(s, index);
-            if prunes && self.tracks[(r.base + q_pos) as usize].value() <= d {
+            if prunes && self.tracks[(r.base + q_pos) as usize].value() <= d - slack {
                 // A tie through another face: its track already offers `d` or less.
                 continue;
             }
             let slot = r.slot(s);
             let pq = slot.at(slot.slot_index(index)).1;
             if let (true, Some(p_at)) = (prunes, along) {
-                if self.dominated(f, &r.edge_point(s, p_at), &pq, edge.step) {
+                if self.dominated(f, &r.edge_point(s, p_at), &pq, edge.step, slack) {
                     continue;
                 }
             }
-            self.enter(Arc::new(f, r, s, false, q, q_pos, pq, d), prunes);
+            self.enter(Arc::new(f, r, s, false, q, q_pos, pq, d, slack), prunes);
         }
     }
 
@@ -398,8 +406,20 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
     /// step costs no more in `f` than the edge relaxation charged (to 1e-12), by the
     /// triangle inequality.
     #[inline]
-    fn dominated(&mut self, f: u32, pp: &FacePoint, pq: &FacePoint, step: f64) -> bool {
-        self.search.cost(f, pp, pq) <= step * (1.0 + 1e-12)
+    fn dominated(&mut self, f: u32, pp: &FacePoint, pq: &FacePoint, step: f64, slack: f64) -> bool {
+        self.search.cost(f, pp, pq) + slack <= step * (1.0 + 1e-12)
+    }
+
+    /// The metric's triangle slack in the face of record `r` (0 for norms, whose
+    /// diameter is then never computed: `is_face_norm` is a constant of the metric).
+    #[inline(always)]
+    fn slack(&self, r: &FaceRecord) -> f64 {
+        let metric = self.search.metric;
+        if metric.is_face_norm() {
+            0.0
+        } else {
+            metric.triangle_slack(r.face, r.frame.diameter())
+        }
     }
 
     /// The cost between the points at `a` and `b` (numbered from the edge's lower end,
@@ -514,8 +534,11 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
             };
             self.search.relax(node, value, arc.q, arc.face);
             None
-        } else {
+        } else if self.search.metric.is_face_norm() || value - track.value() >= arc.margin {
             Some(track.from)
+        } else {
+            // Lost, but by less than the metric's slack: it proves nothing.
+            Some(NONE)
         }
     }
 }
