@@ -40,14 +40,28 @@ impl SteinerScheme {
         }
     }
 
-    /// How many points each edge of `mesh` gets (saturating at `u32::MAX`).
+    /// How many points each edge of `mesh` gets (saturating at `u32::MAX`), spaced by
+    /// the edges' lengths.
     pub fn counts(&self, mesh: &TriMesh) -> Vec<u32> {
+        let lengths: Vec<f64> = (0..mesh.edge_count() as u32)
+            .map(|e| mesh.edge_length(e))
+            .collect();
+        self.counts_for(&lengths, 0)
+    }
+
+    /// How many points edges of the given `lengths` get (in any unit: a metric's
+    /// lengths place points evenly in the metric), at least `min` each.
+    pub fn counts_for(&self, lengths: &[f64], min: u32) -> Vec<u32> {
         match *self {
-            SteinerScheme::Fixed { count } => vec![count; mesh.edge_count()],
+            SteinerScheme::Fixed { count } => vec![count.max(min); lengths.len()],
             SteinerScheme::Interval { k } => {
-                let h = mesh.mean_edge_length() / k;
-                (0..mesh.edge_count() as u32)
-                    .map(|e| (mesh.edge_length(e) / h).round().min(u32::MAX as f64) as u32)
+                // Each length divided first, so that no sum of lengths overflows.
+                let n = lengths.len().max(1) as f64;
+                let mean: f64 = lengths.iter().map(|l| l / n).sum();
+                let h = mean / k;
+                lengths
+                    .iter()
+                    .map(|&l| ((l / h).round().min(u32::MAX as f64) as u32).max(min))
                     .collect()
             }
         }
@@ -178,7 +192,20 @@ impl SteinerLayout {
         if !scheme.is_valid() {
             return Err(Error::InvalidK { k: scheme.k() });
         }
-        let counts = scheme.counts(mesh);
+        Self::with_counts(mesh, scheme, scheme.counts(mesh))
+    }
+
+    /// Lays out `counts[e]` points on each edge `e` of `mesh` (see
+    /// [`SteinerScheme::counts_for`]); `scheme` is recorded as the one they came from.
+    ///
+    /// # Errors
+    /// [`Error::TooLarge`] when vertices and Steiner points together would not fit
+    /// 32-bit node ids.
+    pub(crate) fn with_counts(
+        mesh: &TriMesh,
+        scheme: SteinerScheme,
+        counts: Vec<u32>,
+    ) -> Result<SteinerLayout, Error> {
         let midpoints: Vec<glam::DVec3> = (0..mesh.edge_count() as u32)
             .map(|e| {
                 let [a, b] = mesh.edge_vertices(e);

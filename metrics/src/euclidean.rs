@@ -19,6 +19,10 @@ impl Metric for Euclidean {
     fn is_face_norm(&self) -> bool {
         true
     }
+    #[inline]
+    fn face_gram(&self, _face: u32) -> Option<[f64; 3]> {
+        Some([1.0, 0.0, 1.0])
+    }
     fn name(&self) -> &str {
         "euclidean"
     }

@@ -110,6 +110,21 @@ pub trait Metric: Sync {
         self.is_face_norm()
     }
 
+    /// The face's flattening: the Gram matrix `[g11, g12, g22]` of the metric in the
+    /// face's local frame, such that a segment `v = b − a` costs `sqrt(vᵀ G v)`, if the
+    /// cost is such a constant norm on the face; `None` (the default) otherwise.
+    ///
+    /// A metric that gives it for every face is *face-flat*: each face maps isometrically
+    /// onto a plane, and the wavefront engine of geotracks then lets every Steiner node
+    /// carry the wave that reached it (a virtual source in the flattened plane), which
+    /// makes it exact on planar and developable meshes and far more accurate elsewhere.
+    /// `Euclidean` gives the identity, `Tensor` its matrix. The engine trusts the
+    /// answer: `cost` must agree with it.
+    fn face_gram(&self, face: u32) -> Option<[f64; 3]> {
+        let _ = face;
+        None
+    }
+
     /// How far the triangle inequality may fail inside `face`, whose longest edge is
     /// `diameter` long: a bound `s` with `cost(a, b) ≤ cost(a, x) + cost(x, b) + s` for
     /// all points `a`, `b`, `x` of the face. The engine prunes on faces where
@@ -143,6 +158,10 @@ impl<M: Metric + ?Sized> Metric for &M {
     fn triangle_slack(&self, face: u32, diameter: f64) -> f64 {
         (**self).triangle_slack(face, diameter)
     }
+    #[inline]
+    fn face_gram(&self, face: u32) -> Option<[f64; 3]> {
+        (**self).face_gram(face)
+    }
     fn name(&self) -> &str {
         (**self).name()
     }
@@ -162,6 +181,10 @@ impl<M: Metric + ?Sized> Metric for Box<M> {
     #[inline]
     fn triangle_slack(&self, face: u32, diameter: f64) -> f64 {
         (**self).triangle_slack(face, diameter)
+    }
+    #[inline]
+    fn face_gram(&self, face: u32) -> Option<[f64; 3]> {
+        (**self).face_gram(face)
     }
     fn name(&self) -> &str {
         (**self).name()

@@ -199,6 +199,10 @@ impl Metric for Tensor {
     fn is_face_norm(&self) -> bool {
         true
     }
+    #[inline]
+    fn face_gram(&self, face: u32) -> Option<[f64; 3]> {
+        Some(self.local[face as usize])
+    }
     fn name(&self) -> &str {
         "tensor"
     }

@@ -13,22 +13,31 @@ use crate::Error;
 /// keep per-slot counts in 16 bits).
 pub(super) const MAX_POINTS_PER_EDGE: u64 = u16::MAX as u64;
 
+/// What decides the points per edge: the edges' lengths (in the metric the points are
+/// spaced by) and the least number of points on any edge.
+#[derive(Clone, Copy)]
+pub(super) struct Spacing<'a> {
+    pub lengths: &'a [f64],
+    pub min: u32,
+}
+
 /// Checks `scheme` on `mesh` for `method` against the limits; `memory` is the budget in
 /// bytes (`None`: no memory check).
 pub(super) fn check(
     mesh: &TriMesh,
     scheme: SteinerScheme,
+    spacing: Spacing,
     method: Method,
     memory: Option<u64>,
 ) -> Result<(), Error> {
-    let Some(limit) = breaks(mesh, scheme, method, memory) else {
+    let Some(limit) = breaks(mesh, scheme, spacing, method, memory) else {
         return Ok(());
     };
     // The limits grow with k: bisect for the largest k that keeps within them.
     let (mut lo, mut hi) = (0.0, scheme.k());
     for _ in 0..60 {
         let mid = 0.5 * (lo + hi);
-        if breaks(mesh, scheme.with_k(mid), method, memory).is_none() {
+        if breaks(mesh, scheme.with_k(mid), spacing, method, memory).is_none() {
             lo = mid;
         } else {
             hi = mid;
@@ -54,6 +63,7 @@ pub(super) fn check(
 fn breaks(
     mesh: &TriMesh,
     scheme: SteinerScheme,
+    spacing: Spacing,
     method: Method,
     memory: Option<u64>,
 ) -> Option<SizeLimit> {
@@ -61,8 +71,8 @@ fn breaks(
         // Below any point at all: nothing to lay out, nothing to break.
         return None;
     }
-    let counts = scheme.counts(mesh);
-    if method == Method::Tracks {
+    let counts = scheme.counts_for(spacing.lengths, spacing.min);
+    if matches!(method, Method::Tracks | Method::Wave) {
         let (edge, &points) = counts.iter().enumerate().max_by_key(|(_, &c)| c)?;
         if points as u64 > MAX_POINTS_PER_EDGE {
             return Some(SizeLimit::PointsOnEdge {
@@ -99,6 +109,8 @@ fn bytes(mesh: &TriMesh, counts: &[u32], steiner: u64, nodes: u64, method: Metho
                     .sum::<u64>();
             8 * instances + 64 * mesh.face_count() as u64 + 16 * counts.len() as u64
         }
+        // A wave per Steiner point, and the face and edge records.
+        Method::Wave => 40 * steiner + 64 * mesh.face_count() as u64 + 17 * counts.len() as u64,
         // The heap holds about two entries of 16 bytes per node.
         Method::Graph | Method::Dijkstra => 2 * 16 * nodes,
     };

@@ -182,6 +182,14 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
         }
     }
 
+    /// Queues `node` again at its current value (its value stays, but what it offers
+    /// changed: the wavefront engine widened its window).
+    #[inline]
+    pub fn requeue(&mut self, node: u32) {
+        let value = self.distance[node as usize];
+        self.pushes += self.queue.push(node, value, value) as u64;
+    }
+
     /// Relaxes `q`'s neighbours along its edges (for a vertex, the first node of every
     /// edge around it; for a Steiner point, the nodes before and after it). Straight
     /// segments add up along an edge, so the next neighbour is enough; the segment costs

@@ -20,6 +20,7 @@ mod graph;
 mod queue;
 mod solver;
 mod tracks;
+mod wave;
 
 pub(crate) use frontier::Seed;
 pub use solver::{Solver, Workspace};
@@ -36,6 +37,11 @@ use std::str::FromStr;
 /// Which propagation runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Method {
+    /// Steiner nodes that carry their wavefront (a virtual source and a window): exact
+    /// on planar and developable meshes, far more accurate than the Steiner graph
+    /// elsewhere. Needs a face-flat metric ([`Metric::face_gram`]); with any other
+    /// metric the tracks engine runs instead (and the stats say so).
+    Wave,
     /// Track-pruned Steiner-point propagation (the geodesic tracks method).
     Tracks,
     /// The complete Steiner graph per face (naive; the oracle).
@@ -48,6 +54,7 @@ impl Method {
     /// The name used on the command line and in reports.
     pub fn name(self) -> &'static str {
         match self {
+            Method::Wave => "wave",
             Method::Tracks => "tracks",
             Method::Graph => "graph",
             Method::Dijkstra => "dijkstra",
@@ -65,11 +72,12 @@ impl FromStr for Method {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         match s {
+            "wave" => Ok(Method::Wave),
             "tracks" => Ok(Method::Tracks),
             "graph" => Ok(Method::Graph),
             "dijkstra" => Ok(Method::Dijkstra),
             other => Err(format!(
-                "unknown method '{other}' (expected tracks, graph or dijkstra)"
+                "unknown method '{other}' (expected wave, tracks, graph or dijkstra)"
             )),
         }
     }

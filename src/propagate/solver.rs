@@ -5,9 +5,10 @@ use super::budget;
 use super::frontier::{edge_steps, Frontier, Seed};
 use super::queue::{BucketQueue, HeapQueue};
 use super::tracks::{Track, TrackTables};
+use super::wave::{self, Wave};
 use super::{graph, tracks, Method, Options, Stop};
 use crate::field::{FieldView, GeodesicField, Stats};
-use crate::mesh::{Topology, TriMesh, NONE};
+use crate::mesh::{FaceFrame, Topology, TriMesh, NONE};
 use crate::steiner::SteinerLayout;
 use crate::surface::{PointError, Source, SurfacePoint};
 use crate::Error;
@@ -46,6 +47,8 @@ pub struct Solver<'m, M> {
     edge_steps: Option<Vec<f64>>,
     setup_tests: u64,
     tables: Option<TrackTables>,
+    /// Per edge block, for the wavefront engine: whether its faces glue isometrically.
+    isometric: Vec<bool>,
     bucket_width: f64,
     setup_seconds: f64,
 }
@@ -59,6 +62,8 @@ pub struct Workspace {
     parent: Vec<u32>,
     parent_face: Vec<u32>,
     tracks: Vec<Track>,
+    /// Per Steiner node, the wave it carries (wavefront engine).
+    waves: Vec<Wave>,
     heap: HeapQueue,
     buckets: BucketQueue,
     /// The last run's sources, validated.
@@ -135,6 +140,16 @@ impl<'m, M: Metric> Solver<'m, M> {
     /// instances exceed 32-bit ids.
     pub fn new(mesh: &'m TriMesh, metric: M, options: &Options) -> Result<Self, Error> {
         let start = Instant::now();
+        // The wavefront engine needs every face's flattening; other metrics run the
+        // tracks engine.
+        let flat_frames = (options.method == Method::Wave)
+            .then(|| flat_frames(mesh, &metric))
+            .flatten();
+        let method = match (options.method, &flat_frames) {
+            (Method::Wave, None) => Method::Tracks,
+            (method, _) => method,
+        };
+        let options = &options.with_method(method);
         let layout = if options.method == Method::Dijkstra {
             SteinerLayout::vertices_only(mesh)
         } else {
@@ -143,9 +158,18 @@ impl<'m, M: Metric> Solver<'m, M> {
                     k: options.steiner.k(),
                 });
             }
+            // The wavefront engine spaces points by the metric's lengths, and puts at
+            // least one on every edge: a wave crosses an edge only through its points.
+            let lengths = edge_lengths(mesh, flat_frames.as_deref());
+            let min = (options.method == Method::Wave) as u32;
+            let spacing = budget::Spacing {
+                lengths: &lengths,
+                min,
+            };
             let memory = options.memory_limit.or_else(budget::available_memory);
-            budget::check(mesh, options.steiner, options.method, memory)?;
-            SteinerLayout::new(mesh, options.steiner)?
+            budget::check(mesh, options.steiner, spacing, options.method, memory)?;
+            let counts = options.steiner.counts_for(&lengths, min);
+            SteinerLayout::with_counts(mesh, options.steiner, counts)?
         };
         let (edge_steps, mut setup_tests) = match edge_steps(mesh, &metric, &layout) {
             Some((steps, tests)) => (Some(steps), tests),
@@ -163,12 +187,17 @@ impl<'m, M: Metric> Solver<'m, M> {
         check_cost_range(&metric, &layout, &steps)?;
         // Only the tracks engine uses a bucket queue (the baselines keep a heap).
         let (tables, bucket_width) = match options.method {
-            Method::Tracks => {
+            Method::Tracks | Method::Wave => {
                 let width = bucket_width(&steps);
-                let tables = TrackTables::new(mesh, &layout, edge_steps.as_deref())?;
+                let tables =
+                    TrackTables::new(mesh, &layout, edge_steps.as_deref(), flat_frames.as_deref())?;
                 (Some(tables), width)
             }
             _ => (None, 1.0),
+        };
+        let isometric = match (&tables, options.method) {
+            (Some(tables), Method::Wave) => wave::isometric_edges(mesh, &layout, tables),
+            _ => Vec::new(),
         };
         // The tracks engine keeps its steps in its edge records.
         let edge_steps = edge_steps.filter(|_| tables.is_none());
@@ -184,6 +213,7 @@ impl<'m, M: Metric> Solver<'m, M> {
             edge_steps,
             setup_tests,
             tables,
+            isometric,
             bucket_width,
             setup_seconds: start.elapsed().as_secs_f64(),
         })
@@ -293,7 +323,11 @@ impl<'m, M: Metric> Solver<'m, M> {
         workspace.targets.sort_unstable();
         workspace.targets.dedup();
 
-        let instances = self.tables.as_ref().map_or(0, |t| t.instances);
+        // Tracks are the tracks engine's alone.
+        let instances = match (&self.tables, self.method) {
+            (Some(tables), Method::Tracks) => tables.instances,
+            _ => 0,
+        };
         workspace.reset(mesh.vertex_count(), self.layout.node_count(), instances);
         let seed_tests = self.seed(workspace)?;
         let reset_seconds = start.elapsed().as_secs_f64();
@@ -303,10 +337,12 @@ impl<'m, M: Metric> Solver<'m, M> {
             parent,
             parent_face,
             tracks,
+            waves,
             heap,
             buckets,
             seeds,
             targets,
+            sources,
             ..
         } = workspace;
         let search = Frontier {
@@ -327,6 +363,15 @@ impl<'m, M: Metric> Solver<'m, M> {
             bad_cost: None,
         };
         let outcome = match &self.tables {
+            Some(tables) if self.method == Method::Wave => {
+                buckets.reset(self.layout.node_count(), self.bucket_width);
+                waves.clear();
+                waves.resize(self.layout.steiner_count(), Wave::NONE);
+                let isometric = &self.isometric;
+                search.run(buckets, seeds, |s| {
+                    wave::propagate(s, tables, isometric, waves, seeds, sources)
+                })
+            }
             Some(tables) => {
                 buckets.reset(self.layout.node_count(), self.bucket_width);
                 search.run(buckets, seeds, |s| {
@@ -547,6 +592,50 @@ impl<'m, M: Metric> Solver<'m, M> {
             stats,
         ))
     }
+}
+
+/// Every face's frame in the metric's flattening (`None` unless the metric gives every
+/// face's Gram matrix, positive-definite): with `G = RᵀR` (Cholesky, `R` upper
+/// triangular), the point `uv` maps to `R·uv`, so the frame keeps its shape: corner 0
+/// at the origin, corner 1 on the u axis, corner 2 above it.
+fn flat_frames<M: Metric>(mesh: &TriMesh, metric: &M) -> Option<Vec<FaceFrame>> {
+    (0..mesh.face_count() as u32)
+        .map(|f| {
+            let [g11, g12, g22] = metric.face_gram(f)?;
+            let r11 = g11.sqrt();
+            let r12 = g12 / r11;
+            let r22 = (g22 - r12 * r12).sqrt();
+            if !(r11 > 0.0 && r22 > 0.0 && r12.is_finite()) {
+                return None;
+            }
+            let frame = mesh.frame(f);
+            Some(FaceFrame {
+                l01: r11 * frame.l01,
+                x2: r11 * frame.x2 + r12 * frame.y2,
+                y2: r22 * frame.y2,
+            })
+        })
+        .collect()
+}
+
+/// Each edge's length: in the flattened frames when given (the longest over the faces
+/// around it: the same for edges whose faces glue isometrically), else in space.
+fn edge_lengths(mesh: &TriMesh, flat_frames: Option<&[FaceFrame]>) -> Vec<f64> {
+    let Some(frames) = flat_frames else {
+        return (0..mesh.edge_count() as u32)
+            .map(|e| mesh.edge_length(e))
+            .collect();
+    };
+    let mut lengths = vec![0.0f64; mesh.edge_count()];
+    for (f, frame) in frames.iter().enumerate() {
+        let c = frame.corners();
+        for (s, e) in mesh.face_edges(f as u32).into_iter().enumerate() {
+            let (a, b) = (c[s], c[(s + 1) % 3]);
+            let l = (b[0] - a[0]).hypot(b[1] - a[1]);
+            lengths[e as usize] = lengths[e as usize].max(l);
+        }
+    }
+    lengths
 }
 
 /// The cost between consecutive nodes of each edge in its first face.

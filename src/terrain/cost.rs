@@ -276,6 +276,14 @@ impl<M: Metric> Metric for Impassable<M> {
     fn triangle_slack(&self, face: u32, diameter: f64) -> f64 {
         self.inner.triangle_slack(face, diameter)
     }
+    fn face_gram(&self, face: u32) -> Option<[f64; 3]> {
+        // A blocked face has no flattening (it cannot be crossed at all).
+        if self.blocked[face as usize] {
+            None
+        } else {
+            self.inner.face_gram(face)
+        }
+    }
     fn name(&self) -> &str {
         "impassable"
     }

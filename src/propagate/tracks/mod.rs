@@ -37,9 +37,9 @@ use super::frontier::{Frontier, Queue, Seed};
 use crate::mesh::{Topology, NONE};
 use crate::steiner::SlotPoints;
 use geotracks_metrics::{FacePoint, Metric};
-use tables::{EdgeRecord, FaceRecord};
+use tables::EdgeRecord;
 
-pub(super) use tables::TrackTables;
+pub(super) use tables::{FaceRecord, TrackTables};
 
 /// One instance's track: the best value that reached a boundary node through a face,
 /// and the position (in that face) of the node it came from.

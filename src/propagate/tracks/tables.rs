@@ -19,7 +19,7 @@ use geotracks_metrics::FacePoint;
 /// corner 0 to corner 1), corner 1, slot 1, corner 2, slot 2. The face's instances (see
 /// the module docs) are stored at `base + position`.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct FaceRecord {
+pub(in crate::propagate) struct FaceRecord {
     /// The face's local frame.
     pub frame: FaceFrame,
     /// Node id of the first point (from the edge's lower vertex) of each slot's edge.
@@ -127,7 +127,7 @@ impl FaceRecord {
 /// A face seen from one of its edges or corners: the face's record index and which slot
 /// (or corner) of it the edge (or vertex) is.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub(super) struct Incidence(u32);
+pub(in crate::propagate) struct Incidence(u32);
 
 impl Incidence {
     const NONE: Incidence = Incidence(NONE);
@@ -151,7 +151,7 @@ impl Incidence {
 /// What the engine reads about one edge besides its nodes (which the layout's block
 /// gives) and its vertices (which only its end points need, from the mesh).
 #[derive(Clone, Copy, Debug)]
-pub(super) struct EdgeRecord {
+pub(in crate::propagate) struct EdgeRecord {
     /// Cost between consecutive nodes in the cheapest face, when the metric is a norm on
     /// each face (NaN otherwise: steps are then measured one by one).
     pub step: f64,
@@ -165,9 +165,9 @@ const _: () = assert!(std::mem::size_of::<EdgeRecord>() == 16);
 /// The engine's tables for one mesh and Steiner layout, shared by all runs of a solver.
 pub(in crate::propagate) struct TrackTables {
     /// Face records in spatial order.
-    pub(super) faces: Vec<FaceRecord>,
+    pub(in crate::propagate) faces: Vec<FaceRecord>,
     /// Edge records in the layout's block order.
-    pub(super) edges: Vec<EdgeRecord>,
+    pub(in crate::propagate) edges: Vec<EdgeRecord>,
     /// Faces around edges with more than two (non-manifold edges), a row each.
     overflow: Csr<Incidence>,
     /// The record of each face (by mesh face id); the faces and edges around a vertex
@@ -178,7 +178,8 @@ pub(in crate::propagate) struct TrackTables {
 
 impl TrackTables {
     /// Builds the tables; `steps` are the cached steps per edge (`None` when the metric
-    /// is not a norm on each face).
+    /// is not a norm on each face); `flat_frames`, the faces' frames in the metric's
+    /// flattening, replace the mesh's frames (the wavefront engine measures in them).
     ///
     /// # Errors
     /// [`Error::TooLarge`] when instances or faces exceed what the records can index, or
@@ -187,6 +188,7 @@ impl TrackTables {
         mesh: &TriMesh,
         layout: &SteinerLayout,
         steps: Option<&[f64]>,
+        flat_frames: Option<&[FaceFrame]>,
     ) -> Result<TrackTables, Error> {
         if mesh.face_count() >= 1 << 30 {
             return Err(Error::TooLarge {
@@ -221,7 +223,7 @@ impl TrackTables {
                 }
             }
             faces[record_of[f as usize] as usize] = FaceRecord {
-                frame: *mesh.frame(f),
+                frame: flat_frames.map_or(*mesh.frame(f), |frames| frames[f as usize]),
                 lo: edges.map(|e| layout.edge_nodes(e).start),
                 vertex,
                 base: 0,
@@ -280,7 +282,7 @@ impl TrackTables {
     }
 
     /// The instance of `node` in face `face`, whose closure must hold the node.
-    pub(super) fn instance(&self, face: u32, node: u32) -> u32 {
+    pub(in crate::propagate) fn instance(&self, face: u32, node: u32) -> u32 {
         let r = &self.faces[self.record_of(face) as usize];
         let position = match (0..3).find(|&c| r.vertex[c] == node) {
             Some(c) => r.corner(c),
@@ -297,7 +299,7 @@ impl TrackTables {
 
     /// The faces around an edge.
     #[inline]
-    pub(super) fn edge_faces<'t>(&'t self, edge: &'t EdgeRecord) -> &'t [Incidence] {
+    pub(in crate::propagate) fn edge_faces<'t>(&'t self, edge: &'t EdgeRecord) -> &'t [Incidence] {
         if edge.faces[0] != Incidence::NONE {
             let n = if edge.faces[1] == Incidence::NONE {
                 1
@@ -312,7 +314,7 @@ impl TrackTables {
 
     /// The record of mesh face `f`.
     #[inline]
-    pub(super) fn record_of(&self, f: u32) -> u32 {
+    pub(in crate::propagate) fn record_of(&self, f: u32) -> u32 {
         self.record_of[f as usize]
     }
 }
