@@ -340,7 +340,10 @@ fn truncated_off() {
     match &err {
         MeshError::Parse { line, message, .. } => {
             assert_eq!(*line, 8);
-            assert!(message.contains("face 1 of 3"), "{message}");
+            assert!(
+                message.contains("face 1 of the 3 that line 2 declares"),
+                "{message}"
+            );
         }
         other => panic!("{other:?}"),
     }
@@ -349,7 +352,7 @@ fn truncated_off() {
     // Truncated inside the vertices.
     let err = read_error("cut.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n");
     assert!(
-        matches!(&err, MeshError::Parse { line: 5, message, .. } if message.contains("vertex 2 of 4")),
+        matches!(&err, MeshError::Parse { line: 5, message, .. } if message.contains("vertex 2 of the 4")),
         "{err:?}"
     );
     // A face line shorter than its declared count.
@@ -401,15 +404,13 @@ fn obj_face_index_out_of_range() {
     assert!(err.to_string().contains("bad.obj:5:"), "{err}");
     assert!(err.to_string().contains("face 1"), "{err}");
 
-    // Index 0 and a relative index reaching before the first vertex.
-    for face in ["f 0 1 2", "f -4 1 2"] {
-        let err = read_error("bad.obj", format!("v 0 0 0\nv 1 0 0\nv 0 1 0\n{face}\n"));
-        assert!(
-            matches!(&err, MeshError::AtLine { line: 4, .. })
-                && matches!(root(&err), MeshError::IndexOutOfRange { .. }),
-            "{face}: {err:?}"
-        );
-    }
+    // A relative index reaching before the first vertex.
+    let err = read_error("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -4 1 2\n");
+    assert!(
+        matches!(&err, MeshError::AtLine { line: 4, .. })
+            && matches!(root(&err), MeshError::IndexOutOfRange { vertex: -4, .. }),
+        "{err:?}"
+    );
     // A forward reference is fine if the vertex comes later...
     let (_dir, path) = temp_file("fwd.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\nv 0 1 0\n");
     assert_eq!(read_mesh(&path).unwrap().face_count(), 1);
@@ -436,7 +437,9 @@ fn ply_face_index_out_of_range() {
     for bad in ["4 0 1 2 4 7", "4 0 1 -1 3 7"] {
         let err = read_error("bad.ply", text.replace("4 0 1 2 3 7", bad));
         match &err {
-            MeshError::InFile { error, .. } => assert!(
+            MeshError::AtLine {
+                line: 17, error, ..
+            } => assert!(
                 matches!(
                     **error,
                     MeshError::IndexOutOfRange {
@@ -483,7 +486,7 @@ fn ply_truncated_and_garbage() {
     assert!(matches!(err, MeshError::Parse { line: 0, .. }), "{err:?}");
 
     let err = read_error("garbage.ply", "this is not a ply file\n");
-    assert!(matches!(err, MeshError::Parse { .. }), "{err:?}");
+    assert!(matches!(err, MeshError::WrongFormat { .. }), "{err:?}");
 }
 
 #[test]
@@ -724,4 +727,293 @@ fn written_ply_of_a_book_reads_back_non_manifold() {
     let back = read_mesh(&path).unwrap();
     assert_eq!(back.report().max_edge_valence, 3);
     assert_eq!(positions(&back), positions(&mesh));
+}
+
+// ---------------------------------------------------------------------------------------
+// Messages that say what is wrong (issue 12, item 6)
+
+/// No message shows the inside of a Rust value: braces, quotes around lists, the names
+/// of library types, or several lines.
+fn assert_plain(message: &str) {
+    for debug in [
+        "{",
+        "[\"",
+        "Scalar(",
+        "List(",
+        "Error:",
+        "ParseIntError",
+        "\n",
+        "\t",
+    ] {
+        assert!(
+            !message.contains(debug),
+            "`{debug}` in the message: {message}"
+        );
+    }
+}
+
+#[test]
+fn obj_index_zero_says_obj_indices_start_at_1() {
+    let err = read_error("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n");
+    assert!(matches!(err, MeshError::Parse { line: 4, .. }), "{err:?}");
+    let message = err.to_string();
+    assert!(message.contains("OBJ indices start at 1"), "{message}");
+    assert!(!message.contains("refers to vertex 0"), "{message}");
+}
+
+#[test]
+fn a_directory_is_named_as_one() {
+    let dir = tempfile::tempdir().unwrap();
+    for name in ["meshes", "looks_like.obj"] {
+        let path = dir.path().join(name);
+        std::fs::create_dir(&path).unwrap();
+        let err = read_mesh(&path).unwrap_err();
+        assert!(matches!(err, MeshError::IsDirectory { .. }), "{err:?}");
+        assert!(err.to_string().contains("is a directory"), "{err}");
+        let err = read_medial_axis(&path).unwrap_err();
+        assert!(matches!(err, MeshError::IsDirectory { .. }), "{err:?}");
+    }
+}
+
+#[test]
+fn binary_data_as_a_text_format_is_not_that_format() {
+    let bytes = std::fs::read(fixture("binary.obj")).unwrap();
+    for (name, format) in [
+        ("binary.obj", "not an OBJ file"),
+        ("binary.off", "not an OFF file"),
+        ("binary.ma", "not a medial axis (.ma) file"),
+        ("binary.ply", "not a PLY file"),
+    ] {
+        let err = read_error(name, &bytes);
+        assert!(
+            matches!(err, MeshError::WrongFormat { .. }),
+            "{name}: {err:?}"
+        );
+        let message = err.to_string();
+        assert!(message.contains(format), "{message}");
+        assert!(message.contains("binary data"), "{message}");
+        assert!(!message.contains("UTF-8"), "{message}");
+    }
+    // Text that is not UTF-8 (Latin-1) is named by its byte, not by a stream error.
+    let err = read_error("latin1.obj", b"v 0 0 0\n# caf\xe9\nv 1 0 0\n");
+    assert!(err.to_string().contains("byte 0xe9"), "{err}");
+}
+
+#[test]
+fn another_format_under_the_wrong_extension() {
+    // An OBJ named .stl: text, not `solid`, no binary STL's size.
+    let err = read_mesh(fixture("triangle_obj.stl")).unwrap_err();
+    assert!(matches!(err, MeshError::WrongFormat { .. }), "{err:?}");
+    let message = err.to_string();
+    assert!(message.contains("not an STL file"), "{message}");
+    assert!(message.contains("looks like an OBJ"), "{message}");
+    assert!(!message.contains("truncated"), "{message}");
+    // A PLY named .obj or .off.
+    let ply = std::fs::read(fixture("square.ply")).unwrap();
+    for name in ["square.obj", "square.off", "square.ma"] {
+        let err = read_error(name, &ply);
+        assert!(
+            matches!(err, MeshError::WrongFormat { .. }),
+            "{name}: {err:?}"
+        );
+        assert!(err.to_string().contains("it is a PLY file"), "{err}");
+    }
+    // An OFF named .ply.
+    let off = std::fs::read(fixture("square.off")).unwrap();
+    let err = read_error("square.ply", off);
+    assert!(
+        err.to_string()
+            .contains("not a PLY file: it looks like an OFF file"),
+        "{err}"
+    );
+}
+
+#[test]
+fn ply_messages_are_sentences_naming_element_property_and_line() {
+    let text = std::fs::read_to_string(fixture("square.ply")).unwrap();
+    let cases: [(&str, String, usize, &str); 6] = [
+        (
+            "a word for a number",
+            text.replace("1 1 0 255", "1 one 0 255"),
+            15,
+            "vertex 2, property `y`: expected a number, found `one`",
+        ),
+        (
+            "a short vertex line",
+            text.replace("1 1 0 255", "1 1"),
+            15,
+            "vertex 2, property `z`: the value is missing",
+        ),
+        (
+            "a long face line",
+            text.replace("4 0 1 2 3 7", "4 0 1 2 3 7 8"),
+            17,
+            "face 0 has more values than the header declares",
+        ),
+        (
+            "an unknown type",
+            text.replace("property uchar red", "property colour red"),
+            8,
+            "unknown property type `colour`",
+        ),
+        (
+            "an unknown format",
+            text.replace("format ascii 1.0", "format utf8 1.0"),
+            2,
+            "unknown PLY format `utf8`",
+        ),
+        (
+            "a float index list",
+            text.replace(
+                "list uchar int vertex_indices",
+                "list uchar float vertex_indices",
+            ),
+            9,
+            "element `face` has no integer list property `vertex_indices`",
+        ),
+    ];
+    for (what, bad, line, expected) in cases {
+        let err = read_error("bad.ply", bad);
+        let message = err.to_string();
+        assert!(
+            matches!(&err, MeshError::Parse { line: l, .. } if *l == line),
+            "{what}: {err:?}"
+        );
+        assert!(message.contains(expected), "{what}: {message}");
+        assert_plain(&message);
+    }
+    // Binary: the element, its index and the property, and the byte where the file ends.
+    let mut bytes = binary_square_ply(false);
+    bytes.truncate(bytes.len() - 3);
+    let err = read_error("cut.ply", bytes);
+    let message = err.to_string();
+    assert!(
+        message.contains("face 0, property `vertex_indices`: the list declares 4 entries"),
+        "{message}"
+    );
+    assert_plain(&message);
+    let mut bytes = binary_square_ply(false);
+    bytes.truncate(bytes.len() - 70);
+    let err = read_error("cut.ply", bytes);
+    assert!(
+        matches!(
+            err,
+            MeshError::ImplausibleCount {
+                line: 3,
+                declared: 4,
+                at_most: 1,
+                ..
+            }
+        ),
+        "{err:?}"
+    );
+    assert_plain(&err.to_string());
+    // A binary list longer than the file.
+    let mut bytes = binary_square_ply(false);
+    let at = bytes.len() - 17;
+    bytes[at] = 255;
+    let message = read_error("long_list.ply", bytes).to_string();
+    assert!(message.contains("declares 255 entries"), "{message}");
+    assert_plain(&message);
+}
+
+#[test]
+fn stl_messages_name_the_line_in_words() {
+    let text = std::fs::read_to_string(fixture("square.stl")).unwrap();
+    for (bad, line, expected) in [
+        (
+            text.replace("vertex 1 0 0", "vertex 1 0"),
+            5,
+            "the z coordinate is missing",
+        ),
+        (
+            text.replace("vertex 1 0 0", "vertex 1 zero 0"),
+            5,
+            "`zero` is not a finite number",
+        ),
+        (
+            text.replacen("endloop", "endloops", 1),
+            7,
+            "expected `endloop`",
+        ),
+        (
+            text.replace("endsolid square\n", ""),
+            16,
+            "ends before `endsolid`",
+        ),
+    ] {
+        let err = read_error("bad.stl", bad);
+        assert!(
+            matches!(&err, MeshError::Parse { line: l, .. } if *l == line),
+            "{err:?}"
+        );
+        let message = err.to_string();
+        assert!(message.contains(expected), "{message}");
+        assert_plain(&message);
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Triangle strips (issue 12, item 7)
+
+/// The z component of face `f`'s normal (its orientation on a flat mesh in the xy plane).
+fn normal_z(mesh: &TriMesh, f: usize) -> f64 {
+    let [a, b, c] = mesh.triangles()[f].map(|v| mesh.position(v));
+    (b - a).cross(c - a).z
+}
+
+#[test]
+fn ply_tristrips_alternate_winding_and_skip_stitches() {
+    let mesh = read_mesh(fixture("strips.ply")).unwrap();
+    assert_eq!(
+        mesh.triangles(),
+        [[0, 1, 2], [2, 1, 3], [2, 3, 4], [4, 3, 5], [4, 5, 6]]
+    );
+    // One orientation throughout, and the stitching triangles are not counted as
+    // degenerate faces of the file.
+    assert!((0..5).all(|f| normal_z(&mesh, f) < 0.0));
+    assert!(mesh.dropped_faces().is_empty());
+    let report = mesh.report();
+    assert_eq!((report.components, report.non_manifold_edges), (1, 0));
+}
+
+/// A binary big-endian PLY laid out as `igea.ply` is: float x y z confidence intensity,
+/// one `tristrips` element with an `int int` list.
+fn igea_like(strip: &[i32]) -> Vec<u8> {
+    let mut bytes = b"ply\nformat binary_big_endian 1.0\nelement vertex 5\nproperty float x\n\
+        property float y\nproperty float z\nproperty float confidence\nproperty float intensity\n\
+        element tristrips 1\nproperty list int int vertex_indices\nend_header\n"
+        .to_vec();
+    for (x, y) in [
+        (0.0f32, 0.0f32),
+        (0.0, 1.0),
+        (1.0, 0.0),
+        (1.0, 1.0),
+        (2.0, 0.0),
+    ] {
+        for c in [x, y, 0.0, 0.5, 0.7] {
+            bytes.extend(c.to_be_bytes());
+        }
+    }
+    bytes.extend((strip.len() as i32).to_be_bytes());
+    for i in strip {
+        bytes.extend(i.to_be_bytes());
+    }
+    bytes
+}
+
+#[test]
+fn binary_big_endian_tristrips_as_in_igea() {
+    let (_dir, path) = temp_file("igea_like.ply", igea_like(&[0, 1, 2, 3, 4]));
+    let mesh = read_mesh(&path).unwrap();
+    assert_eq!(mesh.triangles(), [[0, 1, 2], [2, 1, 3], [2, 3, 4]]);
+    assert!((0..3).all(|f| normal_z(&mesh, f) < 0.0));
+    // An index past the vertices, named in the strip list.
+    let err = read_error("igea_like.ply", igea_like(&[0, 1, 2, -1, 3, 9, 4]));
+    let message = err.to_string();
+    assert!(
+        message.contains("tristrips 0: entry 5 of the strip list is vertex 9"),
+        "{message}"
+    );
+    assert_plain(&message);
 }

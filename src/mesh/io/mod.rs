@@ -1,7 +1,7 @@
 //! Reading and writing mesh files.
 //!
-//! Readers: OBJ, PLY (ascii and binary), OFF, STL (ascii and binary, vertices welded) and
-//! the medial-axis `.ma` format. Writers: PLY with a per-vertex `distance` and colours,
+//! Readers: OBJ, PLY (ascii and binary; faces and triangle strips), OFF, STL (ascii and
+//! binary, vertices welded) and the medial-axis `.ma` format. Writers: PLY with a per-vertex `distance` and colours,
 //! OBJ polylines, and [`write_atomically`] for anything else. Every writer writes to a
 //! temporary file beside the target and renames it at the end, so a failure never leaves
 //! a partial file.
@@ -11,7 +11,9 @@
 //! distances, source vertices) stays valid. Polygons are fan-triangulated.
 //!
 //! Every error names the file, and the line (text formats) or the element index (binary
-//! formats, and PLY faces) where it can.
+//! formats) where it can. Counts a header declares are checked against the size of the
+//! file before anything is allocated for them, so a corrupt or hostile header is refused
+//! with an error instead of exhausting memory.
 //!
 //! ```
 //! use geotracks::mesh::{io, Topology};
@@ -27,6 +29,7 @@ mod ma;
 mod obj;
 mod off;
 mod ply;
+pub(crate) mod sniff;
 mod stl;
 mod text;
 mod write;
@@ -63,9 +66,15 @@ const READABLE: &str = "obj, ply, off, stl, ma";
 /// order.
 ///
 /// # Errors
-/// - [`MeshError::UnknownFormat`] for another extension, [`MeshError::Io`] if the file
-///   cannot be read, [`MeshError::EmptyFile`] if it holds no data (only blanks or
-///   comments).
+/// - [`MeshError::IsDirectory`] for a directory, [`MeshError::UnknownFormat`] for
+///   another extension, [`MeshError::Io`] if the file cannot be read,
+///   [`MeshError::EmptyFile`] if it holds no data (only blanks or comments).
+/// - [`MeshError::WrongFormat`] if the content is not the extension's format (binary
+///   data as OBJ, OFF or `.ma`; a PLY file named `.obj`; text that is no STL named
+///   `.stl`).
+/// - [`MeshError::ImplausibleCount`] if a count in the header (PLY elements, OFF and
+///   `.ma` counts, binary STL triangles) is more than the rest of the file can hold;
+///   nothing is allocated for it.
 /// - [`MeshError::Parse`] for a malformed or truncated file, with the line (0 in binary
 ///   data, whose message names the element instead).
 /// - A content error ([`MeshError::IndexOutOfRange`], [`MeshError::EdgeIndexOutOfRange`],
@@ -73,6 +82,7 @@ const READABLE: &str = "obj, ply, off, stl, ma";
 ///   [`MeshError::AtLine`] where the line is known, else in [`MeshError::InFile`].
 pub fn read_mesh(path: impl AsRef<Path>) -> Result<TriMesh, MeshError> {
     let path = path.as_ref();
+    refuse_directory(path)?;
     let extension = lowercase_extension(path);
     let reader: fn(&Path, &[u8]) -> Result<TriMesh, MeshError> = match extension.as_deref() {
         Some("obj") => obj::read,
@@ -122,7 +132,19 @@ pub fn read_obj_bytes(bytes: &[u8]) -> Result<TriMesh, MeshError> {
 /// [`read_mesh`] refuses it: there is no surface to measure on).
 pub fn read_medial_axis(path: impl AsRef<Path>) -> Result<MedialAxis, MeshError> {
     let path = path.as_ref();
+    refuse_directory(path)?;
     ma::read(path, &read_bytes(path)?, true)
+}
+
+/// [`MeshError::IsDirectory`] for a directory (whose "extension" would otherwise be
+/// reported as an unknown format, or whose read fail with the system's words).
+fn refuse_directory(path: &Path) -> Result<(), MeshError> {
+    if path.is_dir() {
+        return Err(MeshError::IsDirectory {
+            path: path.to_path_buf(),
+        });
+    }
+    Ok(())
 }
 
 /// The whole file: every format is parsed from memory, which also lets STL be told apart
