@@ -51,9 +51,15 @@ use std::path::Path;
 /// `.tif`/`.tiff` (single-band GeoTIFF).
 ///
 /// # Errors
-/// [`TerrainError::UnknownFormat`] for another extension, or what the reader returns.
+/// [`TerrainError::IsDirectory`], [`TerrainError::UnknownFormat`] for another extension,
+/// or what the reader returns.
 pub fn read_grid(path: impl AsRef<Path>) -> Result<ElevationGrid, TerrainError> {
     let path = path.as_ref();
+    if path.is_dir() {
+        return Err(TerrainError::IsDirectory {
+            path: path.to_path_buf(),
+        });
+    }
     match crate::mesh::io::lowercase_extension(path).as_deref() {
         Some("asc") => read_asc(path),
         Some("tif" | "tiff") => read_geotiff(path),
