@@ -38,14 +38,23 @@ pub fn read_asc(path: impl AsRef<Path>) -> Result<ElevationGrid, TerrainError> {
         path: path.to_path_buf(),
         source,
     })?;
-    if crate::mesh::io::sniff::binary(&bytes).is_some() {
+    read_asc_bytes(path, &bytes)
+}
+
+/// [`read_asc`] on a grid held in memory; errors name `path`.
+///
+/// # Errors
+/// As [`read_asc`].
+pub fn read_asc_bytes(path: impl AsRef<Path>, bytes: &[u8]) -> Result<ElevationGrid, TerrainError> {
+    let path = path.as_ref();
+    if crate::mesh::io::sniff::binary(bytes).is_some() {
         return Err(TerrainError::WrongFormat {
             path: path.to_path_buf(),
             expected: "an ESRI ASCII grid",
-            found: crate::mesh::io::sniff::describe(&bytes),
+            found: crate::mesh::io::sniff::describe(bytes),
         });
     }
-    let text = std::str::from_utf8(&bytes).map_err(|e| {
+    let text = std::str::from_utf8(bytes).map_err(|e| {
         let at = e.valid_up_to();
         let line = 1 + bytes[..at].iter().filter(|&&b| b == b'\n').count();
         TerrainError::Parse {

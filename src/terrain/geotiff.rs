@@ -16,7 +16,7 @@
 
 use super::grid::{ElevationGrid, GridGeometry};
 use super::TerrainError;
-use std::io::BufReader;
+use std::io::{BufReader, Read, Seek};
 use std::path::Path;
 use tiff::decoder::{Decoder, DecodingResult, Limits};
 use tiff::tags::Tag;
@@ -42,10 +42,35 @@ const PIXEL_IS_POINT: u16 = 2;
 /// [`TerrainError::CellSize`], [`TerrainError::InvalidGrid`] for an infinite sample.
 pub fn read_geotiff(path: impl AsRef<Path>) -> Result<ElevationGrid, TerrainError> {
     let path = path.as_ref();
-    let file = std::fs::File::open(path).map_err(|source| TerrainError::Io {
+    let io = |source| TerrainError::Io {
         path: path.to_path_buf(),
         source,
-    })?;
+    };
+    let file = std::fs::File::open(path).map_err(io)?;
+    let file_len = file.metadata().map_err(io)?.len();
+    read_geotiff_from(path, BufReader::new(file), file_len)
+}
+
+/// [`read_geotiff`] on a GeoTIFF held in memory; errors name `path`.
+///
+/// # Errors
+/// As [`read_geotiff`].
+pub fn read_geotiff_bytes(
+    path: impl AsRef<Path>,
+    bytes: &[u8],
+) -> Result<ElevationGrid, TerrainError> {
+    read_geotiff_from(
+        path.as_ref(),
+        std::io::Cursor::new(bytes),
+        bytes.len() as u64,
+    )
+}
+
+fn read_geotiff_from<R: Read + Seek>(
+    path: &Path,
+    mut file: R,
+    file_len: u64,
+) -> Result<ElevationGrid, TerrainError> {
     let tiff_error = |source| TerrainError::Tiff {
         path: path.to_path_buf(),
         source,
@@ -54,14 +79,6 @@ pub fn read_geotiff(path: impl AsRef<Path>) -> Result<ElevationGrid, TerrainErro
         path: path.to_path_buf(),
         message,
     };
-    let file_len = file
-        .metadata()
-        .map_err(|source| TerrainError::Io {
-            path: path.to_path_buf(),
-            source,
-        })?
-        .len();
-    let mut file = BufReader::new(file);
     // The decoder sizes buffers from the header's claims (tag value counts, the image's
     // size) within its limits. Tag values cannot be larger than the file, so the first
     // directory is checked against the file's size before the decoder reads it, and
@@ -256,12 +273,12 @@ fn color_name(color: ColorType) -> String {
 /// Checks the first image directory's entries against the file's size: a directory of
 /// more entries than the file holds, or a tag whose values would take more bytes than
 /// the file has, is refused before the decoder reads (and sizes buffers for) it.
-fn check_first_directory(
+fn check_first_directory<R: Read + Seek>(
     path: &Path,
-    file: &mut BufReader<std::fs::File>,
+    file: &mut R,
     file_len: u64,
 ) -> Result<(), TerrainError> {
-    use std::io::{Read, Seek, SeekFrom};
+    use std::io::SeekFrom;
     let io = |source| TerrainError::Io {
         path: path.to_path_buf(),
         source,

@@ -36,13 +36,13 @@ mod geotiff;
 mod grid;
 pub mod map;
 
-pub use asc::read_asc;
+pub use asc::{read_asc, read_asc_bytes};
 pub use cost::{
     face_slopes, slope_density, steeper_than, uphill_tensor, vertex_slope_tan2, Impassable,
     TerrainCost, WithTerrainMetric,
 };
 pub use error::TerrainError;
-pub use geotiff::read_geotiff;
+pub use geotiff::{read_geotiff, read_geotiff_bytes};
 pub use grid::{ElevationGrid, GridGeometry, TerrainMesh};
 
 use std::path::Path;

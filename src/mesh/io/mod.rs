@@ -83,8 +83,40 @@ const READABLE: &str = "obj, ply, off, stl, ma";
 pub fn read_mesh(path: impl AsRef<Path>) -> Result<TriMesh, MeshError> {
     let path = path.as_ref();
     refuse_directory(path)?;
-    let extension = lowercase_extension(path);
-    let reader: fn(&Path, &[u8]) -> Result<TriMesh, MeshError> = match extension.as_deref() {
+    let reader = reader_for(path)?;
+    reader(path, &read_bytes(path)?)
+}
+
+/// [`read_mesh`] on a file held in memory: `path` chooses the format by its extension
+/// and names the file in errors; nothing is read from disk.
+///
+/// # Errors
+/// As [`read_mesh`], without [`MeshError::Io`] and [`MeshError::IsDirectory`].
+///
+/// ```
+/// use geotracks::mesh::{io, Topology};
+/// let off = b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+/// let mesh = io::read_mesh_bytes("triangle.off", off)?;
+/// assert_eq!(mesh.face_count(), 1);
+/// # Ok::<(), geotracks::mesh::MeshError>(())
+/// ```
+pub fn read_mesh_bytes(path: impl AsRef<Path>, bytes: &[u8]) -> Result<TriMesh, MeshError> {
+    let path = path.as_ref();
+    let reader = reader_for(path)?;
+    if text::is_blank(bytes) {
+        return Err(MeshError::EmptyFile {
+            path: path.to_path_buf(),
+        });
+    }
+    reader(path, bytes)
+}
+
+/// A reader of bytes into a mesh, for one format.
+type Reader = fn(&Path, &[u8]) -> Result<TriMesh, MeshError>;
+
+/// The reader for `path`'s extension.
+fn reader_for(path: &Path) -> Result<Reader, MeshError> {
+    Ok(match lowercase_extension(path).as_deref() {
         Some("obj") => obj::read,
         Some("ply") => ply::read,
         Some("off") => off::read,
@@ -96,8 +128,7 @@ pub fn read_mesh(path: impl AsRef<Path>) -> Result<TriMesh, MeshError> {
                 expected: READABLE,
             })
         }
-    };
-    reader(path, &read_bytes(path)?)
+    })
 }
 
 /// A file's extension in lower case, for choosing a format (`None` without one).
@@ -134,6 +165,23 @@ pub fn read_medial_axis(path: impl AsRef<Path>) -> Result<MedialAxis, MeshError>
     let path = path.as_ref();
     refuse_directory(path)?;
     ma::read(path, &read_bytes(path)?, true)
+}
+
+/// [`read_medial_axis`] on a `.ma` file held in memory; errors name `path`.
+///
+/// # Errors
+/// As [`read_medial_axis`], without [`MeshError::Io`] and [`MeshError::IsDirectory`].
+pub fn read_medial_axis_bytes(
+    path: impl AsRef<Path>,
+    bytes: &[u8],
+) -> Result<MedialAxis, MeshError> {
+    let path = path.as_ref();
+    if text::is_blank(bytes) {
+        return Err(MeshError::EmptyFile {
+            path: path.to_path_buf(),
+        });
+    }
+    ma::read(path, bytes, true)
 }
 
 /// [`MeshError::IsDirectory`] for a directory (whose "extension" would otherwise be
