@@ -1017,3 +1017,168 @@ fn binary_big_endian_tristrips_as_in_igea() {
     );
     assert_plain(&message);
 }
+
+// ---------------------------------------------------------------------------------------
+// What `info` reports, and welding (issue 12, item 7)
+
+/// A torus of `n × m` quads (two triangles each), consistently oriented.
+fn torus(n: u32, m: u32) -> TriMesh {
+    let mut positions = Vec::new();
+    for i in 0..n {
+        for j in 0..m {
+            let (u, v) = (
+                std::f64::consts::TAU * f64::from(i) / f64::from(n),
+                std::f64::consts::TAU * f64::from(j) / f64::from(m),
+            );
+            let r = 2.0 + v.cos();
+            positions.push([r * u.cos(), r * u.sin(), v.sin()]);
+        }
+    }
+    let id = |i: u32, j: u32| (i % n) * m + (j % m);
+    let mut triangles = Vec::new();
+    for i in 0..n {
+        for j in 0..m {
+            triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+            triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    TriMesh::new(positions, triangles).unwrap()
+}
+
+/// A strip of `n` quads along x, its ends glued (`twist`: as a Möbius strip).
+fn closed_strip(n: u32, twist: bool) -> TriMesh {
+    let mut positions = Vec::new();
+    for i in 0..n {
+        let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
+        positions.push([3.0 * a.cos(), 3.0 * a.sin(), -1.0]);
+        positions.push([3.0 * a.cos(), 3.0 * a.sin(), 1.0]);
+    }
+    let mut triangles = Vec::new();
+    for i in 0..n {
+        let (b0, t0) = (2 * i, 2 * i + 1);
+        let (b1, t1) = if i + 1 < n {
+            (2 * i + 2, 2 * i + 3)
+        } else if twist {
+            (1, 0)
+        } else {
+            (0, 1)
+        };
+        triangles.push([b0, b1, t1]);
+        triangles.push([b0, t1, t0]);
+    }
+    TriMesh::new(positions, triangles).unwrap()
+}
+
+#[test]
+fn report_gives_euler_characteristic_and_genus_where_defined() {
+    let surface = |mesh: &TriMesh| {
+        let report = mesh.report();
+        assert_eq!(report.surfaces.len(), 1);
+        report.surfaces[0].clone()
+    };
+    let tetra = surface(&read_mesh(fixture("tetrahedron.obj")).unwrap());
+    assert_eq!(
+        (
+            tetra.euler_characteristic,
+            tetra.boundary_loops,
+            tetra.genus
+        ),
+        (2, Some(0), Some(0))
+    );
+    let torus = surface(&torus(8, 6));
+    assert_eq!((torus.euler_characteristic, torus.genus), (0, Some(1)));
+    assert_eq!(torus.orientable, Some(true));
+    let annulus = surface(&closed_strip(8, false));
+    assert_eq!(
+        (
+            annulus.euler_characteristic,
+            annulus.boundary_loops,
+            annulus.genus
+        ),
+        (0, Some(2), Some(0))
+    );
+    let mobius = surface(&closed_strip(8, true));
+    assert_eq!(
+        (mobius.orientable, mobius.boundary_loops),
+        (Some(false), Some(1))
+    );
+    assert_eq!(mobius.genus, None);
+    // A disc (the square) and a non-manifold book.
+    let square = surface(&read_mesh(fixture("square.off")).unwrap());
+    assert_eq!((square.euler_characteristic, square.genus), (1, Some(0)));
+    let book = surface(
+        read_medial_axis(fixture("book.ma"))
+            .unwrap()
+            .surface
+            .as_ref()
+            .unwrap(),
+    );
+    assert!(!book.manifold);
+    assert_eq!((book.orientable, book.genus), (None, None));
+    // Two tetrahedra sharing one vertex: every edge has two faces, but the vertex
+    // joins two fans, so the component is not a manifold.
+    let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv -1 0 0\nv 0 -1 0\nv 0 0 -1\n\
+                f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nf 1 5 6\nf 1 7 5\nf 1 6 7\nf 5 7 6\n";
+    let (_dir, path) = temp_file("pinched.obj", text);
+    let pinched = read_mesh(&path).unwrap();
+    let report = pinched.report();
+    assert_eq!((report.non_manifold_edges, report.surfaces.len()), (0, 1));
+    assert!(!report.surfaces[0].manifold);
+    assert_eq!(report.surfaces[0].euler_characteristic, 3);
+}
+
+const SEAM: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 1 -0 0\nv 2 0 0\nv 1 1 0\nf 1 2 3\nf 4 5 6\n";
+
+#[test]
+fn report_gives_duplicates_bounding_box_and_mean_edge_length() {
+    let (_dir, path) = temp_file("seam.obj", SEAM);
+    let report = read_mesh(&path).unwrap().report();
+    // Vertex 4 repeats vertex 2 (with -0 for 0), vertex 6 repeats vertex 3.
+    assert_eq!(report.duplicate_positions, 2);
+    assert_eq!(report.bounding_box, [[0.0, 0.0, 0.0], [2.0, 1.0, 0.0]]);
+    let mean = (4.0 + 2.0 * 2f64.sqrt()) / 6.0;
+    assert!((report.mean_edge_length - mean).abs() < 1e-15);
+    assert_eq!(report.components, 2);
+    let text = report.to_string();
+    for line in [
+        "duplicate positions   2",
+        "bounding box          [0, 2] x [0, 1] x [0, 0]",
+        "Euler characteristic  2",
+        "component 1: 1 faces, 3 vertices, 3 edges, chi 1, manifold, orientable, 1 boundary loop(s), genus 0",
+    ] {
+        assert!(text.contains(line), "{line}\n{text}");
+    }
+}
+
+#[test]
+fn weld_merges_identical_positions_and_keeps_face_numbering() {
+    use geotracks::mesh::io::{read_mesh_with, ReadOptions};
+    let weld = ReadOptions::DEFAULT.with_weld(true);
+    // A face that welding collapses is dropped as degenerate, under its file index.
+    let text = format!("{SEAM}f 2 4 5\n");
+    let (_dir, path) = temp_file("seam.obj", text);
+    let mesh = read_mesh_with(&path, &weld).unwrap();
+    assert_eq!(mesh.vertex_count(), 4);
+    assert_eq!(mesh.triangles(), [[0, 1, 2], [1, 3, 2]]);
+    assert_eq!(mesh.input_face_count(), 3);
+    assert_eq!(mesh.dropped_faces()[0].input_index, 2);
+    let report = mesh.report();
+    assert_eq!((report.components, report.duplicate_positions), (1, 0));
+    // Unwelded, the same file has two pieces and keeps its six vertices.
+    let split = read_mesh(&path).unwrap();
+    assert_eq!((split.vertex_count(), split.report().components), (6, 2));
+    // Every format takes the option; a .ma keeps its first copy's radius.
+    let (_dir, path) = temp_file(
+        "seam.ma",
+        "6 0 2\nv 0 0 0 1\nv 1 0 0 2\nv 1 1 0 3\nv 1 0 0 4\nv 2 0 0 5\nv 1 1 0 6\n\
+         f 0 1 2\nf 3 4 5\n",
+    );
+    assert_eq!(read_mesh_with(&path, &weld).unwrap().report().components, 1);
+    // A non-finite vertex is reported by its file index, welded or not.
+    let (_dir, path) = temp_file("nan.obj", "v 0 0 0\nv 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 3 4\n");
+    let err = read_mesh_with(&path, &weld).unwrap_err();
+    assert!(
+        matches!(root(&err), MeshError::NonFiniteVertex { vertex: 2, .. }),
+        "{err:?}"
+    );
+}

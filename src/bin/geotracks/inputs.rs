@@ -34,9 +34,10 @@ fn input_error(path: &Path, line: usize, message: impl Into<String>) -> InputErr
     }
 }
 
-/// Reads a mesh and warns on stderr about degenerate faces that were dropped.
-pub fn load_mesh(path: &Path) -> CliResult<TriMesh> {
-    let mesh = io::read_mesh(path)?;
+/// Reads a mesh (welding vertices at identical positions if `weld`) and warns on stderr
+/// about degenerate faces that were dropped.
+pub fn load_mesh(path: &Path, weld: bool) -> CliResult<TriMesh> {
+    let mesh = io::read_mesh_with(path, &io::ReadOptions::DEFAULT.with_weld(weld))?;
     let dropped = mesh.dropped_faces().len();
     if dropped > 0 {
         eprintln!(

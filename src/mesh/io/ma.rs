@@ -12,11 +12,13 @@ use crate::mesh::{MeshError, Topology, TriMesh};
 use std::path::Path;
 
 /// Reads a medial axis; one of curves only (no usable face) is an error unless
-/// `allow_curves_only`.
+/// `allow_curves_only`. `weld` merges vertices at identical positions (the first one's
+/// radius is kept).
 pub(super) fn read(
     path: &Path,
     bytes: &[u8],
     allow_curves_only: bool,
+    weld: bool,
 ) -> Result<MedialAxis, MeshError> {
     sniff::expect_text(path, "a medial axis (.ma) file", bytes)?;
     let mut lines = Lines::new(path, bytes);
@@ -159,6 +161,26 @@ pub(super) fn read(
         }
     }
 
+    if weld {
+        if let Some(map) = super::weld_positions(&mut positions) {
+            let mut kept = vec![false; positions.len()];
+            let mut welded_radii = vec![0.0; positions.len()];
+            for (old, &new) in map.iter().enumerate() {
+                if !kept[new as usize] {
+                    kept[new as usize] = true;
+                    welded_radii[new as usize] = radii[old];
+                }
+            }
+            radii = welded_radii;
+            for t in &mut triangles {
+                *t = t.map(|v| map[v as usize]);
+            }
+            for e in &mut edges {
+                *e = e.map(|v| map[v as usize]);
+            }
+        }
+    }
+
     // Which edges are free depends on which faces survive (degenerate ones are dropped),
     // so they are attached once the faces are built.
     let surface = match TriMesh::new(positions.clone(), triangles) {
@@ -188,8 +210,8 @@ pub(super) fn read(
 }
 
 /// [`read`] for a caller that needs a surface.
-pub(super) fn read_surface(path: &Path, bytes: &[u8]) -> Result<TriMesh, MeshError> {
-    let axis = read(path, bytes, false)?;
+pub(super) fn read_surface(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, MeshError> {
+    let axis = read(path, bytes, false, weld)?;
     Ok(axis.surface.expect("a surface, or read fails"))
 }
 

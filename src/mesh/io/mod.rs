@@ -83,8 +83,111 @@ const READABLE: &str = "obj, ply, off, stl, ma";
 pub fn read_mesh(path: impl AsRef<Path>) -> Result<TriMesh, MeshError> {
     let path = path.as_ref();
     refuse_directory(path)?;
+    read_mesh_with(path, &ReadOptions::DEFAULT)
+}
+
+/// How [`read_mesh_with`] reads a mesh.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct ReadOptions {
+    /// Merge vertices at exactly the same position (bit for bit; `-0.0` and `0.0` are
+    /// one), for files whose seams split the surface: texture or normal seams often
+    /// duplicate vertices, so faces on either side share no edge and distances cannot
+    /// cross. The welded vertices are numbered in the order of their first copy in the
+    /// file, so vertex ids (sources, per-vertex densities, output rows) then refer to
+    /// the welded mesh, not the file; `geotracks info --weld` prints its vertex count.
+    /// Faces keep the file's numbering (a per-face tensor file stays valid); a face
+    /// that welding collapses is dropped as degenerate. STL is always welded. Default:
+    /// `false`.
+    pub weld: bool,
+}
+
+impl ReadOptions {
+    /// No welding: vertices are the file's.
+    pub const DEFAULT: ReadOptions = ReadOptions { weld: false };
+
+    /// Sets [`ReadOptions::weld`].
+    pub const fn with_weld(mut self, weld: bool) -> Self {
+        self.weld = weld;
+        self
+    }
+}
+
+impl Default for ReadOptions {
+    fn default() -> Self {
+        ReadOptions::DEFAULT
+    }
+}
+
+/// [`read_mesh`] with options (welding vertices at identical positions).
+///
+/// # Errors
+/// As [`read_mesh`].
+///
+/// ```
+/// use geotracks::mesh::io::{read_mesh_with, ReadOptions};
+/// use geotracks::mesh::Topology;
+/// let dir = tempfile::tempdir()?;
+/// let path = dir.path().join("seam.obj");
+/// // Two triangles that meet along x = 1, each with its own copies of the seam.
+/// std::fs::write(&path, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 1 0 0\nv 2 0 0\nv 1 1 0\nf 1 2 3\nf 4 5 6\n")?;
+/// let split = read_mesh_with(&path, &ReadOptions::DEFAULT)?;
+/// assert_eq!(split.report().components, 2);
+/// let welded = read_mesh_with(&path, &ReadOptions::DEFAULT.with_weld(true))?;
+/// assert_eq!((welded.vertex_count(), welded.report().components), (4, 1));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn read_mesh_with(path: impl AsRef<Path>, options: &ReadOptions) -> Result<TriMesh, MeshError> {
+    let path = path.as_ref();
+    refuse_directory(path)?;
     let reader = reader_for(path)?;
-    reader(path, &read_bytes(path)?)
+    reader(path, &read_bytes(path)?, options.weld)
+}
+
+/// Builds a reader's mesh, welding first if asked; errors name the file.
+fn build(
+    path: &Path,
+    mut positions: Vec<[f64; 3]>,
+    mut triangles: Vec<[u32; 3]>,
+    weld: bool,
+) -> Result<TriMesh, MeshError> {
+    if weld {
+        if let Some(map) = weld_positions(&mut positions) {
+            for t in &mut triangles {
+                *t = t.map(|v| map.get(v as usize).copied().unwrap_or(v));
+            }
+        }
+    }
+    TriMesh::new(positions, triangles).map_err(|e| e.in_file(path))
+}
+
+/// Merges positions that are bit-identical (`-0.0` as `0.0`), keeping the first copy
+/// of each in file order; returns the map from old to new vertex ids, or `None` when
+/// nothing merges or a position is not finite (left for [`TriMesh::new`] to report by
+/// its file index).
+fn weld_positions(positions: &mut Vec<[f64; 3]>) -> Option<Vec<u32>> {
+    if positions.iter().flatten().any(|c| !c.is_finite()) {
+        return None;
+    }
+    let mut first: std::collections::HashMap<[u64; 3], u32> =
+        std::collections::HashMap::with_capacity(positions.len());
+    let mut welded = Vec::with_capacity(positions.len());
+    let map: Vec<u32> = positions
+        .iter()
+        .map(|p| {
+            *first
+                .entry(p.map(|c| (c + 0.0).to_bits()))
+                .or_insert_with(|| {
+                    welded.push(*p);
+                    welded.len() as u32 - 1
+                })
+        })
+        .collect();
+    if welded.len() == positions.len() {
+        return None;
+    }
+    *positions = welded;
+    Some(map)
 }
 
 /// [`read_mesh`] on a file held in memory: `path` chooses the format by its extension
@@ -108,11 +211,11 @@ pub fn read_mesh_bytes(path: impl AsRef<Path>, bytes: &[u8]) -> Result<TriMesh, 
             path: path.to_path_buf(),
         });
     }
-    reader(path, bytes)
+    reader(path, bytes, false)
 }
 
-/// A reader of bytes into a mesh, for one format.
-type Reader = fn(&Path, &[u8]) -> Result<TriMesh, MeshError>;
+/// A reader of bytes into a mesh, for one format; the flag asks it to weld.
+type Reader = fn(&Path, &[u8], bool) -> Result<TriMesh, MeshError>;
 
 /// The reader for `path`'s extension.
 fn reader_for(path: &Path) -> Result<Reader, MeshError> {
@@ -150,7 +253,7 @@ pub fn read_obj_bytes(bytes: &[u8]) -> Result<TriMesh, MeshError> {
             path: path.to_path_buf(),
         });
     }
-    obj::read(path, bytes)
+    obj::read(path, bytes, false)
 }
 
 /// Reads a `.ma` medial axis with its radii (whatever the file's extension).
@@ -164,7 +267,7 @@ pub fn read_obj_bytes(bytes: &[u8]) -> Result<TriMesh, MeshError> {
 pub fn read_medial_axis(path: impl AsRef<Path>) -> Result<MedialAxis, MeshError> {
     let path = path.as_ref();
     refuse_directory(path)?;
-    ma::read(path, &read_bytes(path)?, true)
+    ma::read(path, &read_bytes(path)?, true, false)
 }
 
 /// [`read_medial_axis`] on a `.ma` file held in memory; errors name `path`.
@@ -181,7 +284,7 @@ pub fn read_medial_axis_bytes(
             path: path.to_path_buf(),
         });
     }
-    ma::read(path, bytes, true)
+    ma::read(path, bytes, true, false)
 }
 
 /// [`MeshError::IsDirectory`] for a directory (whose "extension" would otherwise be

@@ -21,7 +21,7 @@ struct ForwardRef {
     vertex: i64,
 }
 
-pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<TriMesh, MeshError> {
+pub(super) fn read(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, MeshError> {
     sniff::expect_text(path, "an OBJ file", bytes)?;
     let mut positions: Vec<[f64; 3]> = Vec::new();
     let mut triangles: Vec<[u32; 3]> = Vec::new();
@@ -141,5 +141,5 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<TriMesh, MeshError> {
             },
         ));
     }
-    TriMesh::new(positions, triangles).map_err(|e| e.in_file(path))
+    super::build(path, positions, triangles, weld)
 }

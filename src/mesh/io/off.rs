@@ -10,7 +10,7 @@ use super::text::{at_line, capacity, next_number, parse_error, Lines};
 use crate::mesh::{MeshError, TriMesh};
 use std::path::Path;
 
-pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<TriMesh, MeshError> {
+pub(super) fn read(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, MeshError> {
     sniff::expect_text(path, "an OFF file", bytes)?;
     let mut lines = Lines::new(path, bytes);
     let Some(first) = lines.next() else {
@@ -112,7 +112,7 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<TriMesh, MeshError> {
             triangles.push([polygon[0], polygon[k], polygon[k + 1]]);
         }
     }
-    TriMesh::new(positions, triangles).map_err(|e| e.in_file(path))
+    super::build(path, positions, triangles, weld)
 }
 
 /// The next data line, or a truncation error naming what was expected and where.

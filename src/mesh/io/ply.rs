@@ -123,7 +123,7 @@ impl std::fmt::Display for Place<'_> {
     }
 }
 
-pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<TriMesh, MeshError> {
+pub(super) fn read(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, MeshError> {
     let header = read_header(path, bytes)?;
     let find = |name: &str| header.elements.iter().position(|e| e.name == name);
     let Some(vertex_at) = find("vertex") else {
@@ -286,7 +286,7 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<TriMesh, MeshError> {
             records.end_record(path, element, index, line)?;
         }
     }
-    TriMesh::new(positions, triangles).map_err(|e| e.in_file(path))
+    super::build(path, positions, triangles, weld)
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]

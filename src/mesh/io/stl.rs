@@ -20,7 +20,8 @@ use std::path::Path;
 const HEADER: usize = 84;
 const RECORD: usize = 50;
 
-pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<TriMesh, MeshError> {
+/// Reads an STL; its corners are always welded (`_weld` changes nothing).
+pub(super) fn read(path: &Path, bytes: &[u8], _weld: bool) -> Result<TriMesh, MeshError> {
     let declared = bytes
         .get(80..HEADER)
         .and_then(|b| <[u8; 4]>::try_from(b).ok())
