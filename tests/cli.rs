@@ -987,3 +987,26 @@ fn info_reports_topology_and_weld_merges_seams() {
     assert_eq!(welded.len(), 4);
     assert!((welded[3] - 2.0).abs() < 1e-9, "{welded:?}");
 }
+
+#[test]
+fn a_binary_density_file_is_named_as_not_text() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let density = dir.path().join("density.txt");
+    std::fs::write(&density, b"1\n2\n\xff\xfe\x00\x01\n4\n").unwrap();
+    let out = dir.path().join("d.txt");
+    assert_fails(
+        &[
+            "distance",
+            mesh.to_str().unwrap(),
+            "--source",
+            "0",
+            "--density",
+            density.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ],
+        &out,
+        "density.txt:3: not a text file of numbers: byte 0xff at offset 4",
+    );
+}

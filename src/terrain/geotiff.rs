@@ -290,6 +290,13 @@ fn check_first_directory<R: Read + Seek>(
         bytes: file_len,
         at_most,
     };
+    let cut = |offset: u64| TerrainError::Parse {
+        path: path.to_path_buf(),
+        line: 0,
+        message: format!(
+            "the first image directory (at byte {offset}) is cut off: the file ends inside it"
+        ),
+    };
     let mut head = [0u8; 16];
     let n = file.read(&mut head).map_err(io)?;
     let big_endian = match &head[..2.min(n)] {
@@ -333,7 +340,7 @@ fn check_first_directory<R: Read + Seek>(
         file.seek(SeekFrom::Start(offset)).map_err(io)?;
         let mut count = [0u8; 8];
         file.read_exact(&mut count[..count_size as usize])
-            .map_err(io)?;
+            .map_err(|_| cut(offset))?;
         let entries = if bigtiff {
             u64_at(&count)
         } else {
@@ -350,7 +357,7 @@ fn check_first_directory<R: Read + Seek>(
         let mut entry = [0u8; 20];
         for _ in 0..entries {
             file.read_exact(&mut entry[..entry_size as usize])
-                .map_err(io)?;
+                .map_err(|_| cut(offset))?;
             let tag = u16_at(&entry[0..2]);
             let value_size: u64 = match u16_at(&entry[2..4]) {
                 1 | 2 | 6 | 7 => 1,
