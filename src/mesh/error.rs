@@ -33,9 +33,11 @@ pub enum MeshError {
         /// What the file looks like instead.
         found: String,
     },
-    /// A count in the file's header (vertices, faces, triangles, list entries) is larger
-    /// than the rest of the file could hold, so the header lies: the file is corrupt,
-    /// truncated or not of this format. Nothing is allocated for such a claim.
+    /// An element count in a binary PLY header is larger than the payload after it could
+    /// hold (each record takes at least its scalars' bytes), so the header lies: the file
+    /// is corrupt, truncated or hostile. Nothing is allocated for such a claim. (Text
+    /// formats reserve no more than their bytes can hold and report a short file as
+    /// truncated, naming the header line that declared the count.)
     #[error("{path}{}: the header declares {declared} {what}, but the {bytes} bytes after it can hold at most {at_most}", LineSuffix(*line))]
     ImplausibleCount {
         /// The file.
