@@ -955,3 +955,58 @@ fn skeleton_bad_input_fails_cleanly() {
     let (points, lines) = read_obj_graph(&obj);
     assert_eq!((points.len(), lines.len()), (4, 3));
 }
+
+#[test]
+fn info_reports_topology_and_weld_merges_seams() {
+    let dir = tempfile::tempdir().unwrap();
+    let seam = dir.path().join("seam.obj");
+    std::fs::write(
+        &seam,
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 1 0 0\nv 2 0 0\nv 1 1 0\nf 1 2 3\nf 4 5 6\n",
+    )
+    .unwrap();
+    let seam_arg = seam.to_str().unwrap();
+    let out = geotracks_ok(&["info", seam_arg]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("duplicate positions   2"), "{text}");
+    assert!(text.contains("components            2"), "{text}");
+    assert!(text.contains("genus 0"), "{text}");
+    let out = geotracks_ok(&["info", "--weld", seam_arg]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("vertices              4"), "{text}");
+    assert!(text.contains("components            1"), "{text}");
+    // Distances cross the seam only when welded; ids are then the welded mesh's.
+    let txt = dir.path().join("d.txt");
+    let txt_arg = txt.to_str().unwrap();
+    geotracks_ok(&["distance", seam_arg, "--source", "0", "-o", txt_arg]);
+    assert!(read_values(&txt)[4].is_infinite());
+    geotracks_ok(&[
+        "distance", "--weld", seam_arg, "--source", "0", "-o", txt_arg,
+    ]);
+    let welded = read_values(&txt);
+    assert_eq!(welded.len(), 4);
+    assert!((welded[3] - 2.0).abs() < 1e-9, "{welded:?}");
+}
+
+#[test]
+fn a_binary_density_file_is_named_as_not_text() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let density = dir.path().join("density.txt");
+    std::fs::write(&density, b"1\n2\n\xff\xfe\x00\x01\n4\n").unwrap();
+    let out = dir.path().join("d.txt");
+    assert_fails(
+        &[
+            "distance",
+            mesh.to_str().unwrap(),
+            "--source",
+            "0",
+            "--density",
+            density.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ],
+        &out,
+        "density.txt:3: not a text file of numbers: byte 0xff at offset 4",
+    );
+}

@@ -340,7 +340,10 @@ fn truncated_off() {
     match &err {
         MeshError::Parse { line, message, .. } => {
             assert_eq!(*line, 8);
-            assert!(message.contains("face 1 of 3"), "{message}");
+            assert!(
+                message.contains("face 1 of the 3 that line 2 declares"),
+                "{message}"
+            );
         }
         other => panic!("{other:?}"),
     }
@@ -349,7 +352,7 @@ fn truncated_off() {
     // Truncated inside the vertices.
     let err = read_error("cut.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n");
     assert!(
-        matches!(&err, MeshError::Parse { line: 5, message, .. } if message.contains("vertex 2 of 4")),
+        matches!(&err, MeshError::Parse { line: 5, message, .. } if message.contains("vertex 2 of the 4")),
         "{err:?}"
     );
     // A face line shorter than its declared count.
@@ -401,15 +404,13 @@ fn obj_face_index_out_of_range() {
     assert!(err.to_string().contains("bad.obj:5:"), "{err}");
     assert!(err.to_string().contains("face 1"), "{err}");
 
-    // Index 0 and a relative index reaching before the first vertex.
-    for face in ["f 0 1 2", "f -4 1 2"] {
-        let err = read_error("bad.obj", format!("v 0 0 0\nv 1 0 0\nv 0 1 0\n{face}\n"));
-        assert!(
-            matches!(&err, MeshError::AtLine { line: 4, .. })
-                && matches!(root(&err), MeshError::IndexOutOfRange { .. }),
-            "{face}: {err:?}"
-        );
-    }
+    // A relative index reaching before the first vertex.
+    let err = read_error("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -4 1 2\n");
+    assert!(
+        matches!(&err, MeshError::AtLine { line: 4, .. })
+            && matches!(root(&err), MeshError::IndexOutOfRange { vertex: -4, .. }),
+        "{err:?}"
+    );
     // A forward reference is fine if the vertex comes later...
     let (_dir, path) = temp_file("fwd.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\nv 0 1 0\n");
     assert_eq!(read_mesh(&path).unwrap().face_count(), 1);
@@ -436,7 +437,9 @@ fn ply_face_index_out_of_range() {
     for bad in ["4 0 1 2 4 7", "4 0 1 -1 3 7"] {
         let err = read_error("bad.ply", text.replace("4 0 1 2 3 7", bad));
         match &err {
-            MeshError::InFile { error, .. } => assert!(
+            MeshError::AtLine {
+                line: 17, error, ..
+            } => assert!(
                 matches!(
                     **error,
                     MeshError::IndexOutOfRange {
@@ -483,7 +486,7 @@ fn ply_truncated_and_garbage() {
     assert!(matches!(err, MeshError::Parse { line: 0, .. }), "{err:?}");
 
     let err = read_error("garbage.ply", "this is not a ply file\n");
-    assert!(matches!(err, MeshError::Parse { .. }), "{err:?}");
+    assert!(matches!(err, MeshError::WrongFormat { .. }), "{err:?}");
 }
 
 #[test]
@@ -724,4 +727,458 @@ fn written_ply_of_a_book_reads_back_non_manifold() {
     let back = read_mesh(&path).unwrap();
     assert_eq!(back.report().max_edge_valence, 3);
     assert_eq!(positions(&back), positions(&mesh));
+}
+
+// ---------------------------------------------------------------------------------------
+// Messages that say what is wrong (issue 12, item 6)
+
+/// No message shows the inside of a Rust value: braces, quotes around lists, the names
+/// of library types, or several lines.
+fn assert_plain(message: &str) {
+    for debug in [
+        "{",
+        "[\"",
+        "Scalar(",
+        "List(",
+        "Error:",
+        "ParseIntError",
+        "\n",
+        "\t",
+    ] {
+        assert!(
+            !message.contains(debug),
+            "`{debug}` in the message: {message}"
+        );
+    }
+}
+
+#[test]
+fn obj_index_zero_says_obj_indices_start_at_1() {
+    let err = read_error("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n");
+    assert!(matches!(err, MeshError::Parse { line: 4, .. }), "{err:?}");
+    let message = err.to_string();
+    assert!(message.contains("OBJ indices start at 1"), "{message}");
+    assert!(!message.contains("refers to vertex 0"), "{message}");
+}
+
+#[test]
+fn a_directory_is_named_as_one() {
+    let dir = tempfile::tempdir().unwrap();
+    for name in ["meshes", "looks_like.obj"] {
+        let path = dir.path().join(name);
+        std::fs::create_dir(&path).unwrap();
+        let err = read_mesh(&path).unwrap_err();
+        assert!(matches!(err, MeshError::IsDirectory { .. }), "{err:?}");
+        assert!(err.to_string().contains("is a directory"), "{err}");
+        let err = read_medial_axis(&path).unwrap_err();
+        assert!(matches!(err, MeshError::IsDirectory { .. }), "{err:?}");
+    }
+}
+
+#[test]
+fn binary_data_as_a_text_format_is_not_that_format() {
+    let bytes = std::fs::read(fixture("binary.obj")).unwrap();
+    for (name, format) in [
+        ("binary.obj", "not an OBJ file"),
+        ("binary.off", "not an OFF file"),
+        ("binary.ma", "not a medial axis (.ma) file"),
+        ("binary.ply", "not a PLY file"),
+    ] {
+        let err = read_error(name, &bytes);
+        assert!(
+            matches!(err, MeshError::WrongFormat { .. }),
+            "{name}: {err:?}"
+        );
+        let message = err.to_string();
+        assert!(message.contains(format), "{message}");
+        assert!(message.contains("binary data"), "{message}");
+        assert!(!message.contains("UTF-8"), "{message}");
+    }
+    // Text that is not UTF-8 (Latin-1) is named by its byte, not by a stream error.
+    let err = read_error("latin1.obj", b"v 0 0 0\n# caf\xe9\nv 1 0 0\n");
+    assert!(err.to_string().contains("byte 0xe9"), "{err}");
+}
+
+#[test]
+fn another_format_under_the_wrong_extension() {
+    // An OBJ named .stl: text, not `solid`, no binary STL's size.
+    let err = read_mesh(fixture("triangle_obj.stl")).unwrap_err();
+    assert!(matches!(err, MeshError::WrongFormat { .. }), "{err:?}");
+    let message = err.to_string();
+    assert!(message.contains("not an STL file"), "{message}");
+    assert!(message.contains("looks like an OBJ"), "{message}");
+    assert!(!message.contains("truncated"), "{message}");
+    // A PLY named .obj or .off.
+    let ply = std::fs::read(fixture("square.ply")).unwrap();
+    for name in ["square.obj", "square.off", "square.ma"] {
+        let err = read_error(name, &ply);
+        assert!(
+            matches!(err, MeshError::WrongFormat { .. }),
+            "{name}: {err:?}"
+        );
+        assert!(err.to_string().contains("it is a PLY file"), "{err}");
+    }
+    // An OFF named .ply.
+    let off = std::fs::read(fixture("square.off")).unwrap();
+    let err = read_error("square.ply", off);
+    assert!(
+        err.to_string()
+            .contains("not a PLY file: it looks like an OFF file"),
+        "{err}"
+    );
+}
+
+#[test]
+fn ply_messages_are_sentences_naming_element_property_and_line() {
+    let text = std::fs::read_to_string(fixture("square.ply")).unwrap();
+    let cases: [(&str, String, usize, &str); 6] = [
+        (
+            "a word for a number",
+            text.replace("1 1 0 255", "1 one 0 255"),
+            15,
+            "vertex 2, property `y`: expected a number, found `one`",
+        ),
+        (
+            "a short vertex line",
+            text.replace("1 1 0 255", "1 1"),
+            15,
+            "vertex 2, property `z`: the value is missing",
+        ),
+        (
+            "a long face line",
+            text.replace("4 0 1 2 3 7", "4 0 1 2 3 7 8"),
+            17,
+            "face 0 has more values than the header declares",
+        ),
+        (
+            "an unknown type",
+            text.replace("property uchar red", "property colour red"),
+            8,
+            "unknown property type `colour`",
+        ),
+        (
+            "an unknown format",
+            text.replace("format ascii 1.0", "format utf8 1.0"),
+            2,
+            "unknown PLY format `utf8`",
+        ),
+        (
+            "a float index list",
+            text.replace(
+                "list uchar int vertex_indices",
+                "list uchar float vertex_indices",
+            ),
+            9,
+            "element `face` has no integer list property `vertex_indices`",
+        ),
+    ];
+    for (what, bad, line, expected) in cases {
+        let err = read_error("bad.ply", bad);
+        let message = err.to_string();
+        assert!(
+            matches!(&err, MeshError::Parse { line: l, .. } if *l == line),
+            "{what}: {err:?}"
+        );
+        assert!(message.contains(expected), "{what}: {message}");
+        assert_plain(&message);
+    }
+    // Binary: the element, its index and the property, and the byte where the file ends.
+    let mut bytes = binary_square_ply(false);
+    bytes.truncate(bytes.len() - 3);
+    let err = read_error("cut.ply", bytes);
+    let message = err.to_string();
+    assert!(
+        message.contains("face 0, property `vertex_indices`: the list declares 4 entries"),
+        "{message}"
+    );
+    assert_plain(&message);
+    let mut bytes = binary_square_ply(false);
+    bytes.truncate(bytes.len() - 70);
+    let err = read_error("cut.ply", bytes);
+    assert!(
+        matches!(
+            err,
+            MeshError::ImplausibleCount {
+                line: 3,
+                declared: 4,
+                at_most: 1,
+                ..
+            }
+        ),
+        "{err:?}"
+    );
+    assert_plain(&err.to_string());
+    // A binary list longer than the file.
+    let mut bytes = binary_square_ply(false);
+    let at = bytes.len() - 17;
+    bytes[at] = 255;
+    let message = read_error("long_list.ply", bytes).to_string();
+    assert!(message.contains("declares 255 entries"), "{message}");
+    assert_plain(&message);
+}
+
+#[test]
+fn stl_messages_name_the_line_in_words() {
+    let text = std::fs::read_to_string(fixture("square.stl")).unwrap();
+    for (bad, line, expected) in [
+        (
+            text.replace("vertex 1 0 0", "vertex 1 0"),
+            5,
+            "the z coordinate is missing",
+        ),
+        (
+            text.replace("vertex 1 0 0", "vertex 1 zero 0"),
+            5,
+            "`zero` is not a finite number",
+        ),
+        (
+            text.replacen("endloop", "endloops", 1),
+            7,
+            "expected `endloop`",
+        ),
+        (
+            text.replace("endsolid square\n", ""),
+            16,
+            "ends before `endsolid`",
+        ),
+    ] {
+        let err = read_error("bad.stl", bad);
+        assert!(
+            matches!(&err, MeshError::Parse { line: l, .. } if *l == line),
+            "{err:?}"
+        );
+        let message = err.to_string();
+        assert!(message.contains(expected), "{message}");
+        assert_plain(&message);
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Triangle strips (issue 12, item 7)
+
+/// The z component of face `f`'s normal (its orientation on a flat mesh in the xy plane).
+fn normal_z(mesh: &TriMesh, f: usize) -> f64 {
+    let [a, b, c] = mesh.triangles()[f].map(|v| mesh.position(v));
+    (b - a).cross(c - a).z
+}
+
+#[test]
+fn ply_tristrips_alternate_winding_and_skip_stitches() {
+    let mesh = read_mesh(fixture("strips.ply")).unwrap();
+    assert_eq!(
+        mesh.triangles(),
+        [[0, 1, 2], [2, 1, 3], [2, 3, 4], [4, 3, 5], [4, 5, 6]]
+    );
+    // One orientation throughout, and the stitching triangles are not counted as
+    // degenerate faces of the file.
+    assert!((0..5).all(|f| normal_z(&mesh, f) < 0.0));
+    assert!(mesh.dropped_faces().is_empty());
+    let report = mesh.report();
+    assert_eq!((report.components, report.non_manifold_edges), (1, 0));
+}
+
+/// A binary big-endian PLY laid out as `igea.ply` is: float x y z confidence intensity,
+/// one `tristrips` element with an `int int` list.
+fn igea_like(strip: &[i32]) -> Vec<u8> {
+    let mut bytes = b"ply\nformat binary_big_endian 1.0\nelement vertex 5\nproperty float x\n\
+        property float y\nproperty float z\nproperty float confidence\nproperty float intensity\n\
+        element tristrips 1\nproperty list int int vertex_indices\nend_header\n"
+        .to_vec();
+    for (x, y) in [
+        (0.0f32, 0.0f32),
+        (0.0, 1.0),
+        (1.0, 0.0),
+        (1.0, 1.0),
+        (2.0, 0.0),
+    ] {
+        for c in [x, y, 0.0, 0.5, 0.7] {
+            bytes.extend(c.to_be_bytes());
+        }
+    }
+    bytes.extend((strip.len() as i32).to_be_bytes());
+    for i in strip {
+        bytes.extend(i.to_be_bytes());
+    }
+    bytes
+}
+
+#[test]
+fn binary_big_endian_tristrips_as_in_igea() {
+    let (_dir, path) = temp_file("igea_like.ply", igea_like(&[0, 1, 2, 3, 4]));
+    let mesh = read_mesh(&path).unwrap();
+    assert_eq!(mesh.triangles(), [[0, 1, 2], [2, 1, 3], [2, 3, 4]]);
+    assert!((0..3).all(|f| normal_z(&mesh, f) < 0.0));
+    // An index past the vertices, named in the strip list.
+    let err = read_error("igea_like.ply", igea_like(&[0, 1, 2, -1, 3, 9, 4]));
+    let message = err.to_string();
+    assert!(
+        message.contains("tristrips 0: entry 5 of the strip list is vertex 9"),
+        "{message}"
+    );
+    assert_plain(&message);
+}
+
+// ---------------------------------------------------------------------------------------
+// What `info` reports, and welding (issue 12, item 7)
+
+/// A torus of `n × m` quads (two triangles each), consistently oriented.
+fn torus(n: u32, m: u32) -> TriMesh {
+    let mut positions = Vec::new();
+    for i in 0..n {
+        for j in 0..m {
+            let (u, v) = (
+                std::f64::consts::TAU * f64::from(i) / f64::from(n),
+                std::f64::consts::TAU * f64::from(j) / f64::from(m),
+            );
+            let r = 2.0 + v.cos();
+            positions.push([r * u.cos(), r * u.sin(), v.sin()]);
+        }
+    }
+    let id = |i: u32, j: u32| (i % n) * m + (j % m);
+    let mut triangles = Vec::new();
+    for i in 0..n {
+        for j in 0..m {
+            triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+            triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    TriMesh::new(positions, triangles).unwrap()
+}
+
+/// A strip of `n` quads along x, its ends glued (`twist`: as a Möbius strip).
+fn closed_strip(n: u32, twist: bool) -> TriMesh {
+    let mut positions = Vec::new();
+    for i in 0..n {
+        let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
+        positions.push([3.0 * a.cos(), 3.0 * a.sin(), -1.0]);
+        positions.push([3.0 * a.cos(), 3.0 * a.sin(), 1.0]);
+    }
+    let mut triangles = Vec::new();
+    for i in 0..n {
+        let (b0, t0) = (2 * i, 2 * i + 1);
+        let (b1, t1) = if i + 1 < n {
+            (2 * i + 2, 2 * i + 3)
+        } else if twist {
+            (1, 0)
+        } else {
+            (0, 1)
+        };
+        triangles.push([b0, b1, t1]);
+        triangles.push([b0, t1, t0]);
+    }
+    TriMesh::new(positions, triangles).unwrap()
+}
+
+#[test]
+fn report_gives_euler_characteristic_and_genus_where_defined() {
+    let surface = |mesh: &TriMesh| {
+        let report = mesh.report();
+        assert_eq!(report.surfaces.len(), 1);
+        report.surfaces[0].clone()
+    };
+    let tetra = surface(&read_mesh(fixture("tetrahedron.obj")).unwrap());
+    assert_eq!(
+        (
+            tetra.euler_characteristic,
+            tetra.boundary_loops,
+            tetra.genus
+        ),
+        (2, Some(0), Some(0))
+    );
+    let torus = surface(&torus(8, 6));
+    assert_eq!((torus.euler_characteristic, torus.genus), (0, Some(1)));
+    assert_eq!(torus.orientable, Some(true));
+    let annulus = surface(&closed_strip(8, false));
+    assert_eq!(
+        (
+            annulus.euler_characteristic,
+            annulus.boundary_loops,
+            annulus.genus
+        ),
+        (0, Some(2), Some(0))
+    );
+    let mobius = surface(&closed_strip(8, true));
+    assert_eq!(
+        (mobius.orientable, mobius.boundary_loops),
+        (Some(false), Some(1))
+    );
+    assert_eq!(mobius.genus, None);
+    // A disc (the square) and a non-manifold book.
+    let square = surface(&read_mesh(fixture("square.off")).unwrap());
+    assert_eq!((square.euler_characteristic, square.genus), (1, Some(0)));
+    let book = surface(
+        read_medial_axis(fixture("book.ma"))
+            .unwrap()
+            .surface
+            .as_ref()
+            .unwrap(),
+    );
+    assert!(!book.manifold);
+    assert_eq!((book.orientable, book.genus), (None, None));
+    // Two tetrahedra sharing one vertex: every edge has two faces, but the vertex
+    // joins two fans, so the component is not a manifold.
+    let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv -1 0 0\nv 0 -1 0\nv 0 0 -1\n\
+                f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nf 1 5 6\nf 1 7 5\nf 1 6 7\nf 5 7 6\n";
+    let (_dir, path) = temp_file("pinched.obj", text);
+    let pinched = read_mesh(&path).unwrap();
+    let report = pinched.report();
+    assert_eq!((report.non_manifold_edges, report.surfaces.len()), (0, 1));
+    assert!(!report.surfaces[0].manifold);
+    assert_eq!(report.surfaces[0].euler_characteristic, 3);
+}
+
+const SEAM: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 1 -0 0\nv 2 0 0\nv 1 1 0\nf 1 2 3\nf 4 5 6\n";
+
+#[test]
+fn report_gives_duplicates_bounding_box_and_mean_edge_length() {
+    let (_dir, path) = temp_file("seam.obj", SEAM);
+    let report = read_mesh(&path).unwrap().report();
+    // Vertex 4 repeats vertex 2 (with -0 for 0), vertex 6 repeats vertex 3.
+    assert_eq!(report.duplicate_positions, 2);
+    assert_eq!(report.bounding_box, [[0.0, 0.0, 0.0], [2.0, 1.0, 0.0]]);
+    let mean = (4.0 + 2.0 * 2f64.sqrt()) / 6.0;
+    assert!((report.mean_edge_length - mean).abs() < 1e-15);
+    assert_eq!(report.components, 2);
+    let text = report.to_string();
+    for line in [
+        "duplicate positions   2",
+        "bounding box          [0, 2] x [0, 1] x [0, 0]",
+        "Euler characteristic  2",
+        "component 1: 1 faces, 3 vertices, 3 edges, chi 1, manifold, orientable, 1 boundary loop(s), genus 0",
+    ] {
+        assert!(text.contains(line), "{line}\n{text}");
+    }
+}
+
+#[test]
+fn weld_merges_identical_positions_and_keeps_face_numbering() {
+    use geotracks::mesh::io::{read_mesh_with, ReadOptions};
+    let weld = ReadOptions::DEFAULT.with_weld(true);
+    // A face that welding collapses is dropped as degenerate, under its file index.
+    let text = format!("{SEAM}f 2 4 5\n");
+    let (_dir, path) = temp_file("seam.obj", text);
+    let mesh = read_mesh_with(&path, &weld).unwrap();
+    assert_eq!(mesh.vertex_count(), 4);
+    assert_eq!(mesh.triangles(), [[0, 1, 2], [1, 3, 2]]);
+    assert_eq!(mesh.input_face_count(), 3);
+    assert_eq!(mesh.dropped_faces()[0].input_index, 2);
+    let report = mesh.report();
+    assert_eq!((report.components, report.duplicate_positions), (1, 0));
+    // Unwelded, the same file has two pieces and keeps its six vertices.
+    let split = read_mesh(&path).unwrap();
+    assert_eq!((split.vertex_count(), split.report().components), (6, 2));
+    // Every format takes the option; a .ma keeps its first copy's radius.
+    let (_dir, path) = temp_file(
+        "seam.ma",
+        "6 0 2\nv 0 0 0 1\nv 1 0 0 2\nv 1 1 0 3\nv 1 0 0 4\nv 2 0 0 5\nv 1 1 0 6\n\
+         f 0 1 2\nf 3 4 5\n",
+    );
+    assert_eq!(read_mesh_with(&path, &weld).unwrap().report().components, 1);
+    // A non-finite vertex is reported by its file index, welded or not.
+    let (_dir, path) = temp_file("nan.obj", "v 0 0 0\nv 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 3 4\n");
+    let err = read_mesh_with(&path, &weld).unwrap_err();
+    assert!(
+        matches!(root(&err), MeshError::NonFiniteVertex { vertex: 2, .. }),
+        "{err:?}"
+    );
 }

@@ -224,7 +224,7 @@ fn asc_errors_name_the_file_and_place() {
         ),
         (
             &format!("{head}1 2 3\n4 5\n"),
-            "expected 6 values (3 columns × 2 rows), found 5",
+            "expected 6 values (3 columns × 2 rows, as the header's lines 1 and 2 declare), found 5",
         ),
         (&format!("{head}1 2 3\n4 5 6\n7\n"), ":8: expected 6 values"),
         (

@@ -15,6 +15,44 @@ pub enum MeshError {
         /// What the operating system said.
         source: std::io::Error,
     },
+    /// The path names a directory. Fix: name a mesh file inside it.
+    #[error("{path}: is a directory, not a mesh file")]
+    IsDirectory {
+        /// The directory.
+        path: PathBuf,
+    },
+    /// The file's content is not the format its extension names: binary data given as a
+    /// text format, another format's file under this extension, text under a binary
+    /// format's extension. Fix: give the file its right extension, or convert it.
+    #[error("{path}: not {expected}: {found}")]
+    WrongFormat {
+        /// The file.
+        path: PathBuf,
+        /// The format the extension named ("an OBJ file").
+        expected: &'static str,
+        /// What the file looks like instead.
+        found: String,
+    },
+    /// An element count in a binary PLY header is larger than the payload after it could
+    /// hold (each record takes at least its scalars' bytes), so the header lies: the file
+    /// is corrupt, truncated or hostile. Nothing is allocated for such a claim. (Text
+    /// formats reserve no more than their bytes can hold and report a short file as
+    /// truncated, naming the header line that declared the count.)
+    #[error("{path}{}: the header declares {declared} {what}, but the {bytes} bytes after it can hold at most {at_most}", LineSuffix(*line))]
+    ImplausibleCount {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line of the header statement, 0 in a binary header.
+        line: usize,
+        /// What it counts, as the format names it ("vertices (`element vertex`)").
+        what: String,
+        /// The count it gives.
+        declared: u64,
+        /// Bytes of the file after the header.
+        bytes: u64,
+        /// The most that many bytes can hold.
+        at_most: u64,
+    },
     /// The file is empty (or holds only comments and blank lines).
     #[error("{path}: the file is empty")]
     EmptyFile {

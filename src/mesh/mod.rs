@@ -13,7 +13,7 @@ mod trimesh;
 pub use csr::Csr;
 pub use error::MeshError;
 pub(crate) use order::morton_order;
-pub use report::MeshReport;
+pub use report::{MeshReport, SurfaceReport};
 pub(crate) use sets::DisjointSets;
 pub use trimesh::{DroppedFace, EdgeLine, FaceFrame, TriMesh, MAX_COORDINATE};
 

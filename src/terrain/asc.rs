@@ -34,11 +34,39 @@ use std::path::Path;
 /// ```
 pub fn read_asc(path: impl AsRef<Path>) -> Result<ElevationGrid, TerrainError> {
     let path = path.as_ref();
-    let text = std::fs::read_to_string(path).map_err(|source| TerrainError::Io {
+    let bytes = std::fs::read(path).map_err(|source| TerrainError::Io {
         path: path.to_path_buf(),
         source,
     })?;
-    parse_asc(path, &text)
+    read_asc_bytes(path, &bytes)
+}
+
+/// [`read_asc`] on a grid held in memory; errors name `path`.
+///
+/// # Errors
+/// As [`read_asc`].
+pub fn read_asc_bytes(path: impl AsRef<Path>, bytes: &[u8]) -> Result<ElevationGrid, TerrainError> {
+    let path = path.as_ref();
+    if crate::mesh::io::sniff::binary(bytes).is_some() {
+        return Err(TerrainError::WrongFormat {
+            path: path.to_path_buf(),
+            expected: "an ESRI ASCII grid",
+            found: crate::mesh::io::sniff::describe(bytes),
+        });
+    }
+    let text = std::str::from_utf8(bytes).map_err(|e| {
+        let at = e.valid_up_to();
+        let line = 1 + bytes[..at].iter().filter(|&&b| b == b'\n').count();
+        TerrainError::Parse {
+            path: path.to_path_buf(),
+            line,
+            message: format!(
+                "the line is not text (byte 0x{:02x} at offset {at} is not UTF-8)",
+                bytes[at]
+            ),
+        }
+    })?;
+    parse_asc(path, text)
 }
 
 #[derive(Default)]
@@ -125,8 +153,9 @@ fn parse_asc(path: &Path, text: &str) -> Result<ElevationGrid, TerrainError> {
         path: path.to_path_buf(),
         key,
     };
-    let (ncols, _) = header.ncols.ok_or_else(|| missing("ncols"))?;
-    let (nrows, _) = header.nrows.ok_or_else(|| missing("nrows"))?;
+    let (ncols, ncols_line) = header.ncols.ok_or_else(|| missing("ncols"))?;
+    let (nrows, nrows_line) = header.nrows.ok_or_else(|| missing("nrows"))?;
+    let header_lines = [ncols_line, nrows_line];
     let (x, x_corner) = header.x.ok_or_else(|| missing("xllcorner"))?;
     let (y, y_corner) = header.y.ok_or_else(|| missing("yllcorner"))?;
     let (dx, dy) = match (header.cellsize, header.dx, header.dy) {
@@ -164,7 +193,14 @@ fn parse_asc(path: &Path, text: &str) -> Result<ElevationGrid, TerrainError> {
         .filter(|&n| n <= 1 << 32)
         .ok_or_else(|| parse_error(0, format!("{ncols} × {nrows} samples are too many")))?;
     let nodata = header.nodata;
-    let mut values = Vec::with_capacity(expected);
+    // Room for no more samples than the rest of the file can hold (a number and a
+    // separator take at least 2 bytes): a header that lies about its size allocates
+    // nothing beyond the file's own size, and is reported against its lines once the
+    // values run out.
+    let data_bytes = lines.peek().map_or(0, |&(_, line)| {
+        text.len() - (line.as_ptr() as usize - text.as_ptr() as usize)
+    });
+    let mut values = Vec::with_capacity(expected.min(data_bytes / 2 + 1));
     for (i, line) in lines {
         for token in line.split_whitespace() {
             if values.len() == expected {
@@ -175,6 +211,7 @@ fn parse_asc(path: &Path, text: &str) -> Result<ElevationGrid, TerrainError> {
                     expected,
                     found: expected + 1 + count_rest(token, line, text, i),
                     line: i + 1,
+                    header_lines,
                 });
             }
             let at = values.len();
@@ -207,6 +244,7 @@ fn parse_asc(path: &Path, text: &str) -> Result<ElevationGrid, TerrainError> {
             expected,
             found: values.len(),
             line: 0,
+            header_lines,
         });
     }
     ElevationGrid::checked(geometry, values)

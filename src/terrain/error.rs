@@ -44,7 +44,7 @@ pub enum TerrainError {
         message: String,
     },
     /// The data holds more or fewer samples than `ncols × nrows`.
-    #[error("{path}{}: expected {expected} values ({ncols} columns × {nrows} rows), found {found}", line_suffix(*line))]
+    #[error("{path}{}: expected {expected} values ({ncols} columns × {nrows} rows, as the header's lines {} and {} declare), found {found}", line_suffix(*line), header_lines[0], header_lines[1])]
     ValueCount {
         /// The file.
         path: PathBuf,
@@ -58,6 +58,41 @@ pub enum TerrainError {
         found: usize,
         /// The line of the first value too many, 0 when values are missing.
         line: usize,
+        /// The header lines of `ncols` and `nrows`.
+        header_lines: [usize; 2],
+    },
+    /// A size the file's header declares (a GeoTIFF's samples or tag values) is more than
+    /// the file can hold, even compressed: the file is corrupt or hostile. It is refused
+    /// before anything is allocated for it.
+    #[error("{path}: {what}: {declared} declared, but a file of {bytes} bytes can hold at most {at_most}")]
+    ImplausibleSize {
+        /// The file.
+        path: PathBuf,
+        /// What is counted, and where the count is declared.
+        what: String,
+        /// The size or count declared.
+        declared: u64,
+        /// The file's size in bytes.
+        bytes: u64,
+        /// The most the file can hold.
+        at_most: u64,
+    },
+    /// The file is not of the format its extension names (binary data as an ESRI ASCII
+    /// grid, say). Fix: give it its right extension, or convert it.
+    #[error("{path}: not {expected}: {found}")]
+    WrongFormat {
+        /// The file.
+        path: PathBuf,
+        /// The format the extension named.
+        expected: &'static str,
+        /// What the file looks like instead.
+        found: String,
+    },
+    /// The path names a directory.
+    #[error("{path}: is a directory, not an elevation grid file")]
+    IsDirectory {
+        /// The directory.
+        path: PathBuf,
     },
     /// The sample spacing is not a finite positive number.
     #[error(

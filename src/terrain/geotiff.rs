@@ -16,11 +16,15 @@
 
 use super::grid::{ElevationGrid, GridGeometry};
 use super::TerrainError;
-use std::io::BufReader;
+use std::io::{BufReader, Read, Seek};
 use std::path::Path;
 use tiff::decoder::{Decoder, DecodingResult, Limits};
 use tiff::tags::Tag;
 use tiff::ColorType;
+
+/// The most any codec the reader accepts expands its data: deflate reaches 1032:1, LZW
+/// (12-bit codes of at most 4096 bytes) less than 3641:1.
+const MAX_RATIO: u64 = 4096;
 
 /// `GTModelTypeGeoKey`: 2 is a geographic (latitude/longitude) coordinate system.
 const MODEL_TYPE_KEY: u16 = 1024;
@@ -38,10 +42,35 @@ const PIXEL_IS_POINT: u16 = 2;
 /// [`TerrainError::CellSize`], [`TerrainError::InvalidGrid`] for an infinite sample.
 pub fn read_geotiff(path: impl AsRef<Path>) -> Result<ElevationGrid, TerrainError> {
     let path = path.as_ref();
-    let file = std::fs::File::open(path).map_err(|source| TerrainError::Io {
+    let io = |source| TerrainError::Io {
         path: path.to_path_buf(),
         source,
-    })?;
+    };
+    let file = std::fs::File::open(path).map_err(io)?;
+    let file_len = file.metadata().map_err(io)?.len();
+    read_geotiff_from(path, BufReader::new(file), file_len)
+}
+
+/// [`read_geotiff`] on a GeoTIFF held in memory; errors name `path`.
+///
+/// # Errors
+/// As [`read_geotiff`].
+pub fn read_geotiff_bytes(
+    path: impl AsRef<Path>,
+    bytes: &[u8],
+) -> Result<ElevationGrid, TerrainError> {
+    read_geotiff_from(
+        path.as_ref(),
+        std::io::Cursor::new(bytes),
+        bytes.len() as u64,
+    )
+}
+
+fn read_geotiff_from<R: Read + Seek>(
+    path: &Path,
+    mut file: R,
+    file_len: u64,
+) -> Result<ElevationGrid, TerrainError> {
     let tiff_error = |source| TerrainError::Tiff {
         path: path.to_path_buf(),
         source,
@@ -50,15 +79,22 @@ pub fn read_geotiff(path: impl AsRef<Path>) -> Result<ElevationGrid, TerrainErro
         path: path.to_path_buf(),
         message,
     };
+    // The decoder sizes buffers from the header's claims (tag value counts, the image's
+    // size) within its limits. Tag values cannot be larger than the file, so the first
+    // directory is checked against the file's size before the decoder reads it, and
+    // the limits are the file's size until the image itself is decoded.
+    check_first_directory(path, &mut file, file_len)?;
+    let file_limit = usize::try_from(file_len).unwrap_or(usize::MAX).max(1024);
     let mut limits = Limits::default();
-    // DEMs are large single images; 4 GiB still bounds a corrupt header's claims.
-    limits.decoding_buffer_size = 1 << 32;
-    let mut decoder = Decoder::new(BufReader::new(file))
+    limits.decoding_buffer_size = file_limit;
+    limits.ifd_value_size = file_limit;
+    limits.intermediate_buffer_size = file_limit;
+    let mut decoder = Decoder::new(file)
         .map_err(tiff_error)?
-        .with_limits(limits);
+        .with_limits(limits.clone());
     let (ncols, nrows) = decoder.dimensions().map_err(tiff_error)?;
-    match decoder.colortype().map_err(tiff_error)? {
-        ColorType::Gray(_) => {}
+    let bits = match decoder.colortype().map_err(tiff_error)? {
+        ColorType::Gray(bits) => bits,
         ColorType::Multiband { num_samples, .. } => {
             return Err(unsupported(format!(
                 "the image has {num_samples} bands; an elevation grid has one (extract it, e.g. gdal_translate -b 1)"
@@ -66,10 +102,36 @@ pub fn read_geotiff(path: impl AsRef<Path>) -> Result<ElevationGrid, TerrainErro
         }
         other => {
             return Err(unsupported(format!(
-                "the image is {other:?}, not a single band of elevations"
+                "the image is {}, not a single band of elevations",
+                color_name(other)
             )))
         }
+    };
+    // Decoded samples cannot outnumber what the file holds, allowing for the best
+    // compression any codec reaches (deflate at most 1032:1, LZW below 3641:1).
+    let compressed = decoder
+        .find_tag_unsigned::<u16>(Tag::Compression)
+        .map_err(tiff_error)?
+        .is_some_and(|c| c != 1);
+    let sample_bytes = u64::from(bits).div_ceil(8).max(1);
+    let declared = u64::from(ncols) * u64::from(nrows);
+    let at_most = file_len.saturating_mul(if compressed { MAX_RATIO } else { 1 }) / sample_bytes;
+    if declared > at_most {
+        return Err(TerrainError::ImplausibleSize {
+            path: path.to_path_buf(),
+            what: format!(
+                "samples in the header (ImageWidth {ncols} × ImageLength {nrows}, {bits}-bit{})",
+                if compressed { ", compressed" } else { "" }
+            ),
+            declared,
+            bytes: file_len,
+            at_most,
+        });
     }
+    limits.decoding_buffer_size = usize::try_from(declared * sample_bytes)
+        .unwrap_or(usize::MAX)
+        .max(file_limit);
+    let mut decoder = decoder.with_limits(limits);
 
     let geo_keys = decoder
         .find_tag(Tag::GeoKeyDirectoryTag)
@@ -192,4 +254,131 @@ pub fn read_geotiff(path: impl AsRef<Path>) -> Result<ElevationGrid, TerrainErro
         })
         .collect();
     ElevationGrid::checked(geometry, values)
+}
+
+/// A colour type in words, for messages.
+fn color_name(color: ColorType) -> String {
+    match color {
+        ColorType::RGB(bits) => format!("an RGB image ({bits}-bit)"),
+        ColorType::RGBA(bits) => format!("an RGBA image ({bits}-bit)"),
+        ColorType::GrayA(bits) => format!("a grey image with alpha ({bits}-bit)"),
+        ColorType::CMYK(bits) => format!("a CMYK image ({bits}-bit)"),
+        ColorType::CMYKA(bits) => format!("a CMYK image with alpha ({bits}-bit)"),
+        ColorType::YCbCr(bits) => format!("a YCbCr image ({bits}-bit)"),
+        ColorType::Palette(bits) => format!("a palette image ({bits}-bit)"),
+        _ => "a colour image".to_string(),
+    }
+}
+
+/// Checks the first image directory's entries against the file's size: a directory of
+/// more entries than the file holds, or a tag whose values would take more bytes than
+/// the file has, is refused before the decoder reads (and sizes buffers for) it.
+fn check_first_directory<R: Read + Seek>(
+    path: &Path,
+    file: &mut R,
+    file_len: u64,
+) -> Result<(), TerrainError> {
+    use std::io::SeekFrom;
+    let io = |source| TerrainError::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    let lie = |what: String, declared: u64, at_most: u64| TerrainError::ImplausibleSize {
+        path: path.to_path_buf(),
+        what,
+        declared,
+        bytes: file_len,
+        at_most,
+    };
+    let cut = |offset: u64| TerrainError::Parse {
+        path: path.to_path_buf(),
+        line: 0,
+        message: format!(
+            "the first image directory (at byte {offset}) is cut off: the file ends inside it"
+        ),
+    };
+    let mut head = [0u8; 16];
+    let n = file.read(&mut head).map_err(io)?;
+    let big_endian = match &head[..2.min(n)] {
+        b"II" => false,
+        b"MM" => true,
+        // Not a TIFF: the decoder says so in its own words.
+        _ => return file.seek(SeekFrom::Start(0)).map(drop).map_err(io),
+    };
+    let u16_at = |b: &[u8]| {
+        let a = [b[0], b[1]];
+        if big_endian {
+            u16::from_be_bytes(a)
+        } else {
+            u16::from_le_bytes(a)
+        }
+    };
+    let u32_at = |b: &[u8]| {
+        let a = [b[0], b[1], b[2], b[3]];
+        if big_endian {
+            u32::from_be_bytes(a)
+        } else {
+            u32::from_le_bytes(a)
+        }
+    };
+    let u64_at = |b: &[u8]| {
+        let a = [b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]];
+        if big_endian {
+            u64::from_be_bytes(a)
+        } else {
+            u64::from_le_bytes(a)
+        }
+    };
+    let bigtiff = n >= 4 && u16_at(&head[2..4]) == 43;
+    let offset = match (bigtiff, n) {
+        (false, 8..) => u64::from(u32_at(&head[4..8])),
+        (true, 16..) => u64_at(&head[8..16]),
+        _ => return file.seek(SeekFrom::Start(0)).map(drop).map_err(io),
+    };
+    let (count_size, entry_size) = if bigtiff { (8, 20) } else { (2, 12) };
+    if offset.saturating_add(count_size) <= file_len {
+        file.seek(SeekFrom::Start(offset)).map_err(io)?;
+        let mut count = [0u8; 8];
+        file.read_exact(&mut count[..count_size as usize])
+            .map_err(|_| cut(offset))?;
+        let entries = if bigtiff {
+            u64_at(&count)
+        } else {
+            u64::from(u16_at(&count))
+        };
+        let room = (file_len - offset - count_size) / entry_size;
+        if entries > room {
+            return Err(lie(
+                format!("entries of the first image directory (at byte {offset})"),
+                entries,
+                room,
+            ));
+        }
+        let mut entry = [0u8; 20];
+        for _ in 0..entries {
+            file.read_exact(&mut entry[..entry_size as usize])
+                .map_err(|_| cut(offset))?;
+            let tag = u16_at(&entry[0..2]);
+            let value_size: u64 = match u16_at(&entry[2..4]) {
+                1 | 2 | 6 | 7 => 1,
+                3 | 8 => 2,
+                4 | 9 | 11 | 13 => 4,
+                5 | 10 | 12 | 16 | 17 | 18 => 8,
+                _ => continue, // unknown types are the decoder's to judge
+            };
+            let values = if bigtiff {
+                u64_at(&entry[4..12])
+            } else {
+                u64::from(u32_at(&entry[4..8]))
+            };
+            if values.saturating_mul(value_size) > file_len {
+                return Err(lie(
+                    format!("values of tag {tag} ({value_size} bytes each)"),
+                    values,
+                    file_len / value_size,
+                ));
+            }
+        }
+    }
+    file.seek(SeekFrom::Start(0)).map(drop).map_err(io)
 }

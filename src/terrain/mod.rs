@@ -36,13 +36,13 @@ mod geotiff;
 mod grid;
 pub mod map;
 
-pub use asc::read_asc;
+pub use asc::{read_asc, read_asc_bytes};
 pub use cost::{
     face_slopes, slope_density, steeper_than, uphill_tensor, vertex_slope_tan2, Impassable,
     TerrainCost, WithTerrainMetric,
 };
 pub use error::TerrainError;
-pub use geotiff::read_geotiff;
+pub use geotiff::{read_geotiff, read_geotiff_bytes};
 pub use grid::{ElevationGrid, GridGeometry, TerrainMesh};
 
 use std::path::Path;
@@ -51,9 +51,15 @@ use std::path::Path;
 /// `.tif`/`.tiff` (single-band GeoTIFF).
 ///
 /// # Errors
-/// [`TerrainError::UnknownFormat`] for another extension, or what the reader returns.
+/// [`TerrainError::IsDirectory`], [`TerrainError::UnknownFormat`] for another extension,
+/// or what the reader returns.
 pub fn read_grid(path: impl AsRef<Path>) -> Result<ElevationGrid, TerrainError> {
     let path = path.as_ref();
+    if path.is_dir() {
+        return Err(TerrainError::IsDirectory {
+            path: path.to_path_buf(),
+        });
+    }
     match crate::mesh::io::lowercase_extension(path).as_deref() {
         Some("asc") => read_asc(path),
         Some("tif" | "tiff") => read_geotiff(path),

@@ -12,6 +12,10 @@ use std::path::{Path, PathBuf};
 pub struct DistanceArgs {
     /// The mesh (OBJ, PLY, OFF, STL or .ma).
     mesh: PathBuf,
+    /// Merge vertices at identical positions (files whose seams split vertices); vertex
+    /// ids (sources, density lines, output rows) then refer to the welded mesh.
+    #[arg(long)]
+    weld: bool,
     /// A source: a surface point SP (a vertex id, e:E:t or f:F:b0,b1,b2; see below);
     /// repeat for several sources (the distance is to the nearest).
     #[arg(long = "source", value_name = "SP", required = true)]
@@ -72,7 +76,7 @@ pub fn run(args: &DistanceArgs) -> CliResult {
     if max_distance.is_nan() || max_distance < 0.0 {
         return Err(format!("--max-distance {max_distance}: it must be a number >= 0").into());
     }
-    let mesh = load_mesh(&args.mesh)?;
+    let mesh = load_mesh(&args.mesh, args.weld)?;
     let sources = points::sources(&mesh, &args.sources)?;
     let stop = Stop::NONE.with_max_distance(max_distance);
     let field = args.metric.dispatch(

@@ -34,9 +34,10 @@ fn input_error(path: &Path, line: usize, message: impl Into<String>) -> InputErr
     }
 }
 
-/// Reads a mesh and warns on stderr about degenerate faces that were dropped.
-pub fn load_mesh(path: &Path) -> CliResult<TriMesh> {
-    let mesh = io::read_mesh(path)?;
+/// Reads a mesh (welding vertices at identical positions if `weld`) and warns on stderr
+/// about degenerate faces that were dropped.
+pub fn load_mesh(path: &Path, weld: bool) -> CliResult<TriMesh> {
+    let mesh = io::read_mesh_with(path, &io::ReadOptions::DEFAULT.with_weld(weld))?;
     let dropped = mesh.dropped_faces().len();
     if dropped > 0 {
         eprintln!(
@@ -47,10 +48,30 @@ pub fn load_mesh(path: &Path) -> CliResult<TriMesh> {
     Ok(mesh)
 }
 
+/// The whole file as text; a file that is not UTF-8 text (binary data, a mesh given by
+/// mistake) is named as such, with the first offending byte and its line.
+fn read_text(path: &Path) -> Result<String, InputError> {
+    let bytes = std::fs::read(path).map_err(|e| input_error(path, 0, e.to_string()))?;
+    String::from_utf8(bytes).map_err(|e| {
+        let bytes = e.as_bytes();
+        let at = e.utf8_error().valid_up_to();
+        let line = 1 + bytes[..at].iter().filter(|&&b| b == b'\n').count();
+        input_error(
+            path,
+            line,
+            format!(
+                "not a text file of numbers: byte 0x{:02x} at offset {at} is not text \
+                 (a binary file?)",
+                bytes[at]
+            ),
+        )
+    })
+}
+
 /// Reads rows of `width` floats, one row per non-empty line (`#` starts a comment);
 /// returns each row with its 1-based line number.
 fn read_rows(path: &Path, width: usize) -> Result<Vec<(usize, Vec<f64>)>, InputError> {
-    let text = std::fs::read_to_string(path).map_err(|e| input_error(path, 0, e.to_string()))?;
+    let text = read_text(path)?;
     let mut rows = Vec::new();
     for (i, raw) in text.lines().enumerate() {
         let line = raw.split('#').next().unwrap_or("").trim();
@@ -129,7 +150,7 @@ pub fn read_tensor(path: &Path, mesh: &TriMesh) -> CliResult<geotracks::Tensor> 
 /// Vertex ids, separated by white space or commas (`#` starts a comment), each below
 /// `vertex_count`.
 pub fn read_vertex_ids(path: &Path, vertex_count: usize) -> CliResult<Vec<u32>> {
-    let text = std::fs::read_to_string(path).map_err(|e| input_error(path, 0, e.to_string()))?;
+    let text = read_text(path)?;
     let mut ids = Vec::new();
     for (i, raw) in text.lines().enumerate() {
         let line = raw.split('#').next().unwrap_or("");

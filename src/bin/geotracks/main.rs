@@ -42,10 +42,15 @@ enum Command {
     /// GeoTIFF) under a terrain cost, written as GeoJSON or CSV, with an optional map
     /// (.png); print its cost on the last line.
     Terrain(terrain::TerrainArgs),
-    /// Print what a mesh is made of: counts, boundary, non-manifold edges, components.
+    /// Print what a mesh is made of: counts, boundary, non-manifold edges, duplicate
+    /// positions, bounding box, mean edge length, and per component the Euler
+    /// characteristic and (for orientable manifold components) the genus.
     Info {
         /// The mesh (OBJ, PLY, OFF, STL or .ma).
         mesh: PathBuf,
+        /// Merge vertices at identical positions first, and report the welded mesh.
+        #[arg(long)]
+        weld: bool,
     },
     /// Compute a distance field on the bundled Spot model and write a coloured PLY.
     Demo {
@@ -63,7 +68,7 @@ fn main() -> ExitCode {
         Command::Matrix(args) => matrix::run(&args),
         Command::Skeleton(args) => skeleton::run(&args),
         Command::Terrain(args) => terrain::run(&args),
-        Command::Info { mesh } => info(&mesh),
+        Command::Info { mesh, weld } => info(&mesh, weld),
         Command::Demo { output } => distance::demo(&output),
     };
     match result {
@@ -147,8 +152,8 @@ pub(crate) fn output_format<F: Copy>(
     .into())
 }
 
-fn info(path: &std::path::Path) -> CliResult {
-    let mesh = inputs::load_mesh(path)?;
+fn info(path: &std::path::Path, weld: bool) -> CliResult {
+    let mesh = inputs::load_mesh(path, weld)?;
     println!("{}", path.display());
     println!("{}", mesh.report());
     Ok(())

@@ -12,6 +12,10 @@ use std::path::PathBuf;
 pub struct MatrixArgs {
     /// The mesh (OBJ, PLY, OFF, STL or .ma).
     mesh: PathBuf,
+    /// Merge vertices at identical positions (files whose seams split vertices); vertex
+    /// ids (sources, density lines, output rows) then refer to the welded mesh.
+    #[arg(long)]
+    weld: bool,
     /// Source vertex ids, separated by spaces, commas or new lines.
     #[arg(long)]
     sources: PathBuf,
@@ -47,7 +51,7 @@ pub fn run(args: &MatrixArgs) -> CliResult {
     if args.output.extension().and_then(|e| e.to_str()) != Some("csv") {
         return Err(format!("{}: the matrix is written as .csv", args.output.display()).into());
     }
-    let mesh = load_mesh(&args.mesh)?;
+    let mesh = load_mesh(&args.mesh, args.weld)?;
     let sources = read_vertex_ids(&args.sources, mesh.vertex_count())?;
     let targets = match &args.targets {
         Some(path) => Some(read_vertex_ids(path, mesh.vertex_count())?),

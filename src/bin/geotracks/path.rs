@@ -12,6 +12,10 @@ use std::path::{Path, PathBuf};
 pub struct PathArgs {
     /// The mesh (OBJ, PLY, OFF, STL or .ma).
     mesh: PathBuf,
+    /// Merge vertices at identical positions (files whose seams split vertices); vertex
+    /// ids (sources, density lines, output rows) then refer to the welded mesh.
+    #[arg(long)]
+    weld: bool,
     /// A source: a surface point SP (a vertex id, e:E:t or f:F:b0,b1,b2; see below);
     /// repeat for several sources (the path goes to the nearest).
     #[arg(long = "source", value_name = "SP", required = true)]
@@ -66,7 +70,7 @@ impl WithMetric for Trace<'_> {
 pub fn run(args: &PathArgs) -> CliResult {
     // Check everything that can be checked before the computation.
     let format = output_format(&args.output)?;
-    let mesh = load_mesh(&args.mesh)?;
+    let mesh = load_mesh(&args.mesh, args.weld)?;
     let sources = points::sources(&mesh, &args.sources)?;
     let target = points::check(&mesh, "target", args.target)?;
     let (field, path) = args.metric.dispatch(

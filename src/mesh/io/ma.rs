@@ -5,18 +5,22 @@
 //! kept face become line elements, so a medial axis's curve parts survive without
 //! duplicating its sheets' edges.
 
-use super::text::{at_line, next_number, parse_error, Lines};
+use super::sniff;
+use super::text::{at_line, capacity, next_number, parse_error, Lines};
 use super::MedialAxis;
 use crate::mesh::{MeshError, Topology, TriMesh};
 use std::path::Path;
 
 /// Reads a medial axis; one of curves only (no usable face) is an error unless
-/// `allow_curves_only`.
+/// `allow_curves_only`. `weld` merges vertices at identical positions (the first one's
+/// radius is kept).
 pub(super) fn read(
     path: &Path,
     bytes: &[u8],
     allow_curves_only: bool,
+    weld: bool,
 ) -> Result<MedialAxis, MeshError> {
+    sniff::expect_text(path, "a medial axis (.ma) file", bytes)?;
     let mut lines = Lines::new(path, bytes);
     let Some(first) = lines.next() else {
         return Err(MeshError::EmptyFile {
@@ -24,6 +28,13 @@ pub(super) fn read(
         });
     };
     let (header_line, text) = first?;
+    if text
+        .split_whitespace()
+        .next()
+        .is_some_and(|w| w.parse::<usize>().is_err())
+    {
+        return Err(sniff::wrong_format(path, "a medial axis (.ma) file", bytes));
+    }
     let mut tokens = text.split_whitespace();
     let mut count = |what: &str| -> Result<usize, MeshError> {
         next_number(&mut tokens, path, header_line, || {
@@ -32,12 +43,14 @@ pub(super) fn read(
     };
     let (nv, ne, nf) = (count("vertex")?, count("edge")?, count("face")?);
 
-    // Capacity is capped: a corrupt header must not allocate before the data proves it.
-    let cap = |n: usize| n.min(1 << 20);
-    let mut positions: Vec<[f64; 3]> = Vec::with_capacity(cap(nv));
-    let mut radii: Vec<f64> = Vec::with_capacity(cap(nv));
-    let mut edges: Vec<[u32; 2]> = Vec::with_capacity(cap(ne));
-    let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(cap(nf));
+    // Room is reserved for no more than the file can hold (the shortest lines are
+    // `v 0 0 0 0`, `e 0 1` and `f 0 1 2` with their newlines); a count that lies is
+    // reported against the lines found once the file has been read.
+    let rest = lines.rest_len();
+    let mut positions: Vec<[f64; 3]> = Vec::with_capacity(capacity(nv, rest, 10));
+    let mut radii: Vec<f64> = Vec::with_capacity(capacity(nv, rest, 10));
+    let mut edges: Vec<[u32; 2]> = Vec::with_capacity(capacity(ne, rest, 6));
+    let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(capacity(nf, rest, 8));
 
     // Vertices may come after the edges and faces that use them, so indices are checked
     // against the header's count, which the end of the file then confirms.
@@ -148,6 +161,26 @@ pub(super) fn read(
         }
     }
 
+    if weld {
+        if let Some(map) = super::weld_positions(&mut positions) {
+            let mut kept = vec![false; positions.len()];
+            let mut welded_radii = vec![0.0; positions.len()];
+            for (old, &new) in map.iter().enumerate() {
+                if !kept[new as usize] {
+                    kept[new as usize] = true;
+                    welded_radii[new as usize] = radii[old];
+                }
+            }
+            radii = welded_radii;
+            for t in &mut triangles {
+                *t = t.map(|v| map[v as usize]);
+            }
+            for e in &mut edges {
+                *e = e.map(|v| map[v as usize]);
+            }
+        }
+    }
+
     // Which edges are free depends on which faces survive (degenerate ones are dropped),
     // so they are attached once the faces are built.
     let surface = match TriMesh::new(positions.clone(), triangles) {
@@ -177,8 +210,8 @@ pub(super) fn read(
 }
 
 /// [`read`] for a caller that needs a surface.
-pub(super) fn read_surface(path: &Path, bytes: &[u8]) -> Result<TriMesh, MeshError> {
-    let axis = read(path, bytes, false)?;
+pub(super) fn read_surface(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, MeshError> {
+    let axis = read(path, bytes, false, weld)?;
     Ok(axis.surface.expect("a surface, or read fails"))
 }
 

@@ -1,7 +1,7 @@
 //! Reading and writing mesh files.
 //!
-//! Readers: OBJ, PLY (ascii and binary), OFF, STL (ascii and binary, vertices welded) and
-//! the medial-axis `.ma` format. Writers: PLY with a per-vertex `distance` and colours,
+//! Readers: OBJ, PLY (ascii and binary; faces and triangle strips), OFF, STL (ascii and
+//! binary, vertices welded) and the medial-axis `.ma` format. Writers: PLY with a per-vertex `distance` and colours,
 //! OBJ polylines, and [`write_atomically`] for anything else. Every writer writes to a
 //! temporary file beside the target and renames it at the end, so a failure never leaves
 //! a partial file.
@@ -11,7 +11,9 @@
 //! distances, source vertices) stays valid. Polygons are fan-triangulated.
 //!
 //! Every error names the file, and the line (text formats) or the element index (binary
-//! formats, and PLY faces) where it can.
+//! formats) where it can. Counts a header declares are checked against the size of the
+//! file before anything is allocated for them, so a corrupt or hostile header is refused
+//! with an error instead of exhausting memory.
 //!
 //! ```
 //! use geotracks::mesh::{io, Topology};
@@ -27,6 +29,7 @@ mod ma;
 mod obj;
 mod off;
 mod ply;
+pub(crate) mod sniff;
 mod stl;
 mod text;
 mod write;
@@ -63,9 +66,15 @@ const READABLE: &str = "obj, ply, off, stl, ma";
 /// order.
 ///
 /// # Errors
-/// - [`MeshError::UnknownFormat`] for another extension, [`MeshError::Io`] if the file
-///   cannot be read, [`MeshError::EmptyFile`] if it holds no data (only blanks or
-///   comments).
+/// - [`MeshError::IsDirectory`] for a directory, [`MeshError::UnknownFormat`] for
+///   another extension, [`MeshError::Io`] if the file cannot be read,
+///   [`MeshError::EmptyFile`] if it holds no data (only blanks or comments).
+/// - [`MeshError::WrongFormat`] if the content is not the extension's format (binary
+///   data as OBJ, OFF or `.ma`; a PLY file named `.obj`; text that is no STL named
+///   `.stl`).
+/// - [`MeshError::ImplausibleCount`] if a count in the header (PLY elements, OFF and
+///   `.ma` counts, binary STL triangles) is more than the rest of the file can hold;
+///   nothing is allocated for it.
 /// - [`MeshError::Parse`] for a malformed or truncated file, with the line (0 in binary
 ///   data, whose message names the element instead).
 /// - A content error ([`MeshError::IndexOutOfRange`], [`MeshError::EdgeIndexOutOfRange`],
@@ -73,8 +82,144 @@ const READABLE: &str = "obj, ply, off, stl, ma";
 ///   [`MeshError::AtLine`] where the line is known, else in [`MeshError::InFile`].
 pub fn read_mesh(path: impl AsRef<Path>) -> Result<TriMesh, MeshError> {
     let path = path.as_ref();
-    let extension = lowercase_extension(path);
-    let reader: fn(&Path, &[u8]) -> Result<TriMesh, MeshError> = match extension.as_deref() {
+    refuse_directory(path)?;
+    read_mesh_with(path, &ReadOptions::DEFAULT)
+}
+
+/// How [`read_mesh_with`] reads a mesh.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct ReadOptions {
+    /// Merge vertices at exactly the same position (bit for bit; `-0.0` and `0.0` are
+    /// one), for files whose seams split the surface: texture or normal seams often
+    /// duplicate vertices, so faces on either side share no edge and distances cannot
+    /// cross. The welded vertices are numbered in the order of their first copy in the
+    /// file, so vertex ids (sources, per-vertex densities, output rows) then refer to
+    /// the welded mesh, not the file; `geotracks info --weld` prints its vertex count.
+    /// Faces keep the file's numbering (a per-face tensor file stays valid); a face
+    /// that welding collapses is dropped as degenerate. STL is always welded. Default:
+    /// `false`.
+    pub weld: bool,
+}
+
+impl ReadOptions {
+    /// No welding: vertices are the file's.
+    pub const DEFAULT: ReadOptions = ReadOptions { weld: false };
+
+    /// Sets [`ReadOptions::weld`].
+    pub const fn with_weld(mut self, weld: bool) -> Self {
+        self.weld = weld;
+        self
+    }
+}
+
+impl Default for ReadOptions {
+    fn default() -> Self {
+        ReadOptions::DEFAULT
+    }
+}
+
+/// [`read_mesh`] with options (welding vertices at identical positions).
+///
+/// # Errors
+/// As [`read_mesh`].
+///
+/// ```
+/// use geotracks::mesh::io::{read_mesh_with, ReadOptions};
+/// use geotracks::mesh::Topology;
+/// let dir = tempfile::tempdir()?;
+/// let path = dir.path().join("seam.obj");
+/// // Two triangles that meet along x = 1, each with its own copies of the seam.
+/// std::fs::write(&path, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 1 0 0\nv 2 0 0\nv 1 1 0\nf 1 2 3\nf 4 5 6\n")?;
+/// let split = read_mesh_with(&path, &ReadOptions::DEFAULT)?;
+/// assert_eq!(split.report().components, 2);
+/// let welded = read_mesh_with(&path, &ReadOptions::DEFAULT.with_weld(true))?;
+/// assert_eq!((welded.vertex_count(), welded.report().components), (4, 1));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn read_mesh_with(path: impl AsRef<Path>, options: &ReadOptions) -> Result<TriMesh, MeshError> {
+    let path = path.as_ref();
+    refuse_directory(path)?;
+    let reader = reader_for(path)?;
+    reader(path, &read_bytes(path)?, options.weld)
+}
+
+/// Builds a reader's mesh, welding first if asked; errors name the file.
+fn build(
+    path: &Path,
+    mut positions: Vec<[f64; 3]>,
+    mut triangles: Vec<[u32; 3]>,
+    weld: bool,
+) -> Result<TriMesh, MeshError> {
+    if weld {
+        if let Some(map) = weld_positions(&mut positions) {
+            for t in &mut triangles {
+                *t = t.map(|v| map.get(v as usize).copied().unwrap_or(v));
+            }
+        }
+    }
+    TriMesh::new(positions, triangles).map_err(|e| e.in_file(path))
+}
+
+/// Merges positions that are bit-identical (`-0.0` as `0.0`), keeping the first copy
+/// of each in file order; returns the map from old to new vertex ids, or `None` when
+/// nothing merges or a position is not finite (left for [`TriMesh::new`] to report by
+/// its file index).
+fn weld_positions(positions: &mut Vec<[f64; 3]>) -> Option<Vec<u32>> {
+    if positions.iter().flatten().any(|c| !c.is_finite()) {
+        return None;
+    }
+    let mut first: std::collections::HashMap<[u64; 3], u32> =
+        std::collections::HashMap::with_capacity(positions.len());
+    let mut welded = Vec::with_capacity(positions.len());
+    let map: Vec<u32> = positions
+        .iter()
+        .map(|p| {
+            *first
+                .entry(p.map(|c| (c + 0.0).to_bits()))
+                .or_insert_with(|| {
+                    welded.push(*p);
+                    welded.len() as u32 - 1
+                })
+        })
+        .collect();
+    if welded.len() == positions.len() {
+        return None;
+    }
+    *positions = welded;
+    Some(map)
+}
+
+/// [`read_mesh`] on a file held in memory: `path` chooses the format by its extension
+/// and names the file in errors; nothing is read from disk.
+///
+/// # Errors
+/// As [`read_mesh`], without [`MeshError::Io`] and [`MeshError::IsDirectory`].
+///
+/// ```
+/// use geotracks::mesh::{io, Topology};
+/// let off = b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+/// let mesh = io::read_mesh_bytes("triangle.off", off)?;
+/// assert_eq!(mesh.face_count(), 1);
+/// # Ok::<(), geotracks::mesh::MeshError>(())
+/// ```
+pub fn read_mesh_bytes(path: impl AsRef<Path>, bytes: &[u8]) -> Result<TriMesh, MeshError> {
+    let path = path.as_ref();
+    let reader = reader_for(path)?;
+    if text::is_blank(bytes) {
+        return Err(MeshError::EmptyFile {
+            path: path.to_path_buf(),
+        });
+    }
+    reader(path, bytes, false)
+}
+
+/// A reader of bytes into a mesh, for one format; the flag asks it to weld.
+type Reader = fn(&Path, &[u8], bool) -> Result<TriMesh, MeshError>;
+
+/// The reader for `path`'s extension.
+fn reader_for(path: &Path) -> Result<Reader, MeshError> {
+    Ok(match lowercase_extension(path).as_deref() {
         Some("obj") => obj::read,
         Some("ply") => ply::read,
         Some("off") => off::read,
@@ -86,8 +231,7 @@ pub fn read_mesh(path: impl AsRef<Path>) -> Result<TriMesh, MeshError> {
                 expected: READABLE,
             })
         }
-    };
-    reader(path, &read_bytes(path)?)
+    })
 }
 
 /// A file's extension in lower case, for choosing a format (`None` without one).
@@ -109,7 +253,7 @@ pub fn read_obj_bytes(bytes: &[u8]) -> Result<TriMesh, MeshError> {
             path: path.to_path_buf(),
         });
     }
-    obj::read(path, bytes)
+    obj::read(path, bytes, false)
 }
 
 /// Reads a `.ma` medial axis with its radii (whatever the file's extension).
@@ -122,7 +266,36 @@ pub fn read_obj_bytes(bytes: &[u8]) -> Result<TriMesh, MeshError> {
 /// [`read_mesh`] refuses it: there is no surface to measure on).
 pub fn read_medial_axis(path: impl AsRef<Path>) -> Result<MedialAxis, MeshError> {
     let path = path.as_ref();
-    ma::read(path, &read_bytes(path)?, true)
+    refuse_directory(path)?;
+    ma::read(path, &read_bytes(path)?, true, false)
+}
+
+/// [`read_medial_axis`] on a `.ma` file held in memory; errors name `path`.
+///
+/// # Errors
+/// As [`read_medial_axis`], without [`MeshError::Io`] and [`MeshError::IsDirectory`].
+pub fn read_medial_axis_bytes(
+    path: impl AsRef<Path>,
+    bytes: &[u8],
+) -> Result<MedialAxis, MeshError> {
+    let path = path.as_ref();
+    if text::is_blank(bytes) {
+        return Err(MeshError::EmptyFile {
+            path: path.to_path_buf(),
+        });
+    }
+    ma::read(path, bytes, true, false)
+}
+
+/// [`MeshError::IsDirectory`] for a directory (whose "extension" would otherwise be
+/// reported as an unknown format, or whose read fail with the system's words).
+fn refuse_directory(path: &Path) -> Result<(), MeshError> {
+    if path.is_dir() {
+        return Err(MeshError::IsDirectory {
+            path: path.to_path_buf(),
+        });
+    }
+    Ok(())
 }
 
 /// The whole file: every format is parsed from memory, which also lets STL be told apart

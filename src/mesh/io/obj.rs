@@ -8,6 +8,7 @@
 //! given per file vertex; and the reader must name the line of a bad statement, which
 //! tobj cannot.
 
+use super::sniff;
 use super::text::{at_line, next_number, parse_error, Lines};
 use crate::mesh::{MeshError, TriMesh};
 use std::path::Path;
@@ -20,7 +21,8 @@ struct ForwardRef {
     vertex: i64,
 }
 
-pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<TriMesh, MeshError> {
+pub(super) fn read(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, MeshError> {
+    sniff::expect_text(path, "an OBJ file", bytes)?;
     let mut positions: Vec<[f64; 3]> = Vec::new();
     let mut triangles: Vec<[u32; 3]> = Vec::new();
     let mut forward: Vec<ForwardRef> = Vec::new();
@@ -71,7 +73,16 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<TriMesh, MeshError> {
                     };
                     // 1-based; negative counts back from the last vertex read so far.
                     let zero_based = match index {
-                        0 => return Err(out_of_range()),
+                        0 => {
+                            return Err(parse_error(
+                                path,
+                                line,
+                                format!(
+                                    "face {faces} gives vertex index 0, but OBJ indices start \
+                                     at 1 (and negative ones count back from the last vertex)"
+                                ),
+                            ))
+                        }
                         i if i < 0 => positions.len() as i64 + i,
                         i => i - 1,
                     };
@@ -115,6 +126,10 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<TriMesh, MeshError> {
             path: path.to_path_buf(),
         });
     }
+    if positions.is_empty() && faces == 0 {
+        // Statements, but none of a mesh: most likely another format's file.
+        return Err(sniff::wrong_format(path, "an OBJ file", bytes));
+    }
     if let Some(f) = forward.iter().find(|f| f.vertex > positions.len() as i64) {
         return Err(at_line(
             path,
@@ -126,5 +141,5 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<TriMesh, MeshError> {
             },
         ));
     }
-    TriMesh::new(positions, triangles).map_err(|e| e.in_file(path))
+    super::build(path, positions, triangles, weld)
 }

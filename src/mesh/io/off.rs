@@ -5,11 +5,13 @@
 //! face's `n` indices (colours, normals, texture coordinates) can then be skipped without
 //! knowing which variant of the format wrote them.
 
-use super::text::{at_line, next_number, parse_error, Lines};
+use super::sniff;
+use super::text::{at_line, capacity, next_number, parse_error, Lines};
 use crate::mesh::{MeshError, TriMesh};
 use std::path::Path;
 
-pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<TriMesh, MeshError> {
+pub(super) fn read(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, MeshError> {
+    sniff::expect_text(path, "an OFF file", bytes)?;
     let mut lines = Lines::new(path, bytes);
     let Some(first) = lines.next() else {
         return Err(MeshError::EmptyFile {
@@ -20,6 +22,9 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<TriMesh, MeshError> {
 
     // The header keyword, possibly followed by the counts on the same line.
     let keyword = text.split_whitespace().next().unwrap_or("");
+    if !keyword.ends_with("OFF") && keyword.parse::<usize>().is_err() {
+        return Err(sniff::wrong_format(path, "an OFF file", bytes));
+    }
     if keyword.ends_with("OFF") {
         if keyword.contains('4') || keyword.contains('n') {
             return Err(parse_error(
@@ -46,10 +51,15 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<TriMesh, MeshError> {
     let nv: usize = next_number(&mut tokens, path, line, || "vertex count".into())?;
     let nf: usize = next_number(&mut tokens, path, line, || "face count".into())?;
 
-    // Capacity is capped: a corrupt count must not allocate before the data proves it.
-    let mut positions: Vec<[f64; 3]> = Vec::with_capacity(nv.min(1 << 20));
+    // Room is reserved for no more than the file can hold: a vertex line takes at least
+    // 6 bytes (`0 0 0` and its newline), a face line 8 (`3 0 1 2`).
+    let counts_line = line;
+    let rest = lines.rest_len();
+    let mut positions: Vec<[f64; 3]> = Vec::with_capacity(capacity(nv, rest, 6));
     for v in 0..nv {
-        let (line, text) = expect_line(&mut lines, path, || format!("vertex {v} of {nv}"))?;
+        let (line, text) = expect_line(&mut lines, path, || {
+            format!("vertex {v} of the {nv} that line {counts_line} declares")
+        })?;
         let mut tokens = text.split_whitespace();
         let mut p = [0.0; 3];
         for (axis, c) in p.iter_mut().enumerate() {
@@ -60,10 +70,12 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<TriMesh, MeshError> {
         positions.push(p);
     }
 
-    let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(nf.min(1 << 20));
+    let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(capacity(nf, rest, 8));
     let mut polygon: Vec<u32> = Vec::new();
     for f in 0..nf {
-        let (line, text) = expect_line(&mut lines, path, || format!("face {f} of {nf}"))?;
+        let (line, text) = expect_line(&mut lines, path, || {
+            format!("face {f} of the {nf} that line {counts_line} declares")
+        })?;
         let mut tokens = text.split_whitespace();
         let n: usize = next_number(&mut tokens, path, line, || {
             format!("vertex count of face {f}")
@@ -100,7 +112,7 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<TriMesh, MeshError> {
             triangles.push([polygon[0], polygon[k], polygon[k + 1]]);
         }
     }
-    TriMesh::new(positions, triangles).map_err(|e| e.in_file(path))
+    super::build(path, positions, triangles, weld)
 }
 
 /// The next data line, or a truncation error naming what was expected and where.

@@ -1,57 +1,65 @@
-//! STL through `stl_io`, ascii and binary, with corners that have bit-identical
-//! coordinates welded into one vertex (STL stores each triangle's corners separately).
+//! STL, ascii and binary, with corners that have bit-identical coordinates welded into
+//! one vertex (STL stores each triangle's corners separately).
 //!
-//! The format is chosen here rather than by `stl_io`, which calls any file starting with
-//! `solid ` ascii: many binary writers put exactly that in their 80-byte header. A file
-//! whose size matches its binary triangle count is binary whatever its first bytes say.
+//! Which of the two a file is: a file whose size matches the triangle count at bytes
+//! 80–84 (`84 + 50 × count`) is binary whatever its first bytes say (many binary writers
+//! start the 80-byte header with `solid`); otherwise a text file starting with `solid` is
+//! ascii, and other text is refused as not STL (an OBJ given the wrong extension, say).
+//!
+//! Hand-written rather than through a crate, so that an ascii error names its line and
+//! a binary one its triangle, in plain words, and the binary triangle count is checked
+//! against the file's size before anything is sized by it. Coordinates are read as
+//! `f32`, the format's precision, and widened.
 
+use super::sniff;
+use super::text::{parse_error, Lines};
 use crate::mesh::{MeshError, TriMesh};
-use std::borrow::Cow;
 use std::collections::HashMap;
-use std::io::Cursor;
 use std::path::Path;
 
 const HEADER: usize = 84;
 const RECORD: usize = 50;
 
-pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<TriMesh, MeshError> {
-    let parse = |line: usize, message: String| MeshError::Parse {
-        path: path.to_path_buf(),
-        line,
-        message,
-    };
+/// Reads an STL; its corners are always welded (`_weld` changes nothing).
+pub(super) fn read(path: &Path, bytes: &[u8], _weld: bool) -> Result<TriMesh, MeshError> {
     let declared = bytes
         .get(80..HEADER)
         .and_then(|b| <[u8; 4]>::try_from(b).ok())
-        .map(|b| u32::from_le_bytes(b) as u64);
+        .map(|b| u64::from(u32::from_le_bytes(b)));
     let binary_size = declared.map(|n| HEADER as u64 + RECORD as u64 * n);
-    let first_line_end = bytes
-        .iter()
-        .position(|&b| b == b'\n')
-        .unwrap_or(bytes.len());
-    let first_line = String::from_utf8_lossy(&bytes[..first_line_end]);
-    let ascii = binary_size != Some(bytes.len() as u64) && first_line.trim().starts_with("solid");
-
-    let data: Cow<[u8]> = if ascii {
-        // stl_io wants the file to start with exactly `solid ` (a space), which an
-        // unnamed solid (`solid` alone) or leading blanks would fail.
-        let mut fixed = b"solid ".to_vec();
-        fixed.extend_from_slice(&bytes[first_line_end..]);
-        Cow::Owned(fixed)
+    let text = sniff::binary(bytes).is_none();
+    let mut welder = Welder::default();
+    if binary_size == Some(bytes.len() as u64) {
+        read_binary(path, bytes, &mut welder)?;
+    } else if text {
+        let starts_solid = first_word(bytes).is_some_and(|w| w.eq_ignore_ascii_case("solid"));
+        if !starts_solid {
+            return Err(MeshError::WrongFormat {
+                path: path.to_path_buf(),
+                expected: "an STL file",
+                found: format!(
+                    "{}; an ascii STL starts with `solid`, and the file is too short or too \
+                     long for a binary STL",
+                    sniff::describe(bytes)
+                ),
+            });
+        }
+        read_ascii(path, bytes, &mut welder)?;
     } else {
         let (Some(n), Some(size)) = (declared, binary_size) else {
-            return Err(parse(
+            return Err(parse_error(
+                path,
                 0,
                 format!(
-                    "not an ascii STL (no `solid` line) and too short for a binary one: \
-                     {} bytes, the binary header alone has {HEADER}",
+                    "too short for a binary STL: {} bytes, where the header alone has {HEADER}",
                     bytes.len()
                 ),
             ));
         };
         if (bytes.len() as u64) < size {
             let complete = (bytes.len() - HEADER) / RECORD;
-            return Err(parse(
+            return Err(parse_error(
+                path,
                 0,
                 format!(
                     "the binary STL is truncated: its header declares {n} triangles \
@@ -60,58 +68,208 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<TriMesh, MeshError> {
                 ),
             ));
         }
-        if bytes.starts_with(b"solid") {
-            // Hide the misleading word from stl_io's ascii probe.
-            let mut fixed = bytes.to_vec();
-            fixed[0] = 0;
-            Cow::Owned(fixed)
-        } else {
-            Cow::Borrowed(bytes)
-        }
-    };
-
-    let mut cursor = Cursor::new(data.as_ref());
-    let triangles_in =
-        stl_io::create_stl_reader(&mut cursor).map_err(|e| parse(1, e.to_string()))?;
-    let mut positions: Vec<[f64; 3]> = Vec::new();
-    let mut triangles: Vec<[u32; 3]> = Vec::new();
-    let mut index_of: HashMap<[u32; 3], u32> = HashMap::new();
-    for (t, triangle) in triangles_in.enumerate() {
-        let triangle = triangle.map_err(|e| {
-            if ascii {
-                let line = facet_line(bytes, t);
-                parse(line, format!("facet {t} (starting at line {line}): {e}"))
-            } else {
-                parse(0, format!("triangle {t}: {e}"))
-            }
-        })?;
-        let mut corners = [0u32; 3];
-        for (corner, vertex) in corners.iter_mut().zip(triangle.vertices) {
-            // `+ 0.0` turns -0.0 into 0.0, so the two zeros weld as the same point.
-            let p = vertex.0.map(|c| c + 0.0);
-            *corner = *index_of.entry(p.map(f32::to_bits)).or_insert_with(|| {
-                positions.push(p.map(f64::from));
-                positions.len() as u32 - 1
-            });
-        }
-        triangles.push(corners);
+        // Longer than its count needs: the trailing bytes are ignored, as other readers do.
+        read_binary(path, bytes, &mut welder)?;
     }
+    let Welder {
+        positions,
+        triangles,
+        ..
+    } = welder;
     TriMesh::new(positions, triangles).map_err(|e| e.in_file(path))
 }
 
-/// The 1-based line where ascii facet `t` starts (or the line after the last, if the file
-/// ends before it), so an error inside the facet can be found.
-fn facet_line(bytes: &[u8], t: usize) -> usize {
-    let mut seen = 0;
-    let mut lines = 0;
-    for (i, line) in bytes.split(|&b| b == b'\n').enumerate() {
-        lines = i + 1;
-        if String::from_utf8_lossy(line).split_whitespace().next() == Some("facet") {
-            if seen == t {
-                return i + 1;
-            }
-            seen += 1;
-        }
+/// The first word of the file, if its start is text.
+fn first_word(bytes: &[u8]) -> Option<&str> {
+    let end = bytes
+        .iter()
+        .position(|&b| b == b'\n')
+        .unwrap_or(bytes.len());
+    std::str::from_utf8(&bytes[..end])
+        .ok()?
+        .split_whitespace()
+        .next()
+}
+
+/// Corners welded by their exact coordinates.
+#[derive(Default)]
+struct Welder {
+    positions: Vec<[f64; 3]>,
+    triangles: Vec<[u32; 3]>,
+    index_of: HashMap<[u32; 3], u32>,
+}
+
+impl Welder {
+    fn corner(&mut self, p: [f32; 3]) -> u32 {
+        // `+ 0.0` turns -0.0 into 0.0, so the two zeros weld as the same point.
+        let p = p.map(|c| c + 0.0);
+        *self.index_of.entry(p.map(f32::to_bits)).or_insert_with(|| {
+            self.positions.push(p.map(f64::from));
+            self.positions.len() as u32 - 1
+        })
     }
-    lines + 1
+
+    fn triangle(&mut self, corners: [[f32; 3]; 3]) {
+        let t = corners.map(|c| self.corner(c));
+        self.triangles.push(t);
+    }
+}
+
+fn read_binary(path: &Path, bytes: &[u8], welder: &mut Welder) -> Result<(), MeshError> {
+    // The caller checked that the file holds every record the count declares.
+    let records = bytes[HEADER..].chunks_exact(RECORD);
+    let n = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize;
+    welder.triangles.reserve_exact(n);
+    for (t, record) in records.take(n).enumerate() {
+        let mut corners = [[0f32; 3]; 3];
+        for (k, c) in corners.iter_mut().flatten().enumerate() {
+            let at = 12 + 4 * k;
+            *c = f32::from_le_bytes([record[at], record[at + 1], record[at + 2], record[at + 3]]);
+        }
+        if corners.iter().flatten().any(|c| !c.is_finite()) {
+            return Err(parse_error(
+                path,
+                0,
+                format!(
+                    "triangle {t} (byte {}) has a coordinate that is not finite: {}",
+                    HEADER + t * RECORD,
+                    Coords(corners)
+                ),
+            ));
+        }
+        welder.triangle(corners);
+    }
+    Ok(())
+}
+
+/// Corners printed as `(x, y, z), …` for messages.
+struct Coords([[f32; 3]; 3]);
+
+impl std::fmt::Display for Coords {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        for (i, [x, y, z]) in self.0.iter().enumerate() {
+            if i > 0 {
+                f.write_str(", ")?;
+            }
+            write!(f, "({x}, {y}, {z})")?;
+        }
+        Ok(())
+    }
+}
+
+/// Where the ascii reader is in the grammar
+/// `solid [name] { facet … outer loop vertex×3 endloop endfacet } endsolid [name]`,
+/// repeated for files that hold several solids.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum State {
+    /// Before `solid`.
+    Start,
+    /// Inside a solid, between facets.
+    Solid,
+    /// After `facet`, expecting `outer loop`.
+    Facet,
+    /// Inside the loop, after `n` vertices.
+    Loop(usize),
+    /// After `endloop`, expecting `endfacet`.
+    EndLoop,
+    /// After `endsolid`: another solid may follow.
+    End,
+}
+
+fn read_ascii(path: &Path, bytes: &[u8], welder: &mut Welder) -> Result<(), MeshError> {
+    let mut state = State::Start;
+    let mut facet = 0usize;
+    let mut facet_line = 0usize;
+    let mut corners = [[0f32; 3]; 3];
+    let mut lines = Lines::new(path, bytes);
+    for item in &mut lines {
+        let (line, text) = item?;
+        let mut words = text.split_whitespace();
+        let word = words.next().unwrap_or("").to_ascii_lowercase();
+        let unexpected = |expected: &str| {
+            parse_error(path, line, format!("expected {expected}, found `{text}`"))
+        };
+        state = match (state, word.as_str()) {
+            (State::Start | State::End, "solid") => State::Solid,
+            (State::Start, _) => return Err(unexpected("`solid`")),
+            (State::End, _) => return Err(unexpected("`solid` or the end of the file")),
+            (State::Solid, "facet") => {
+                facet_line = line;
+                State::Facet
+            }
+            (State::Solid, "endsolid") => State::End,
+            (State::Solid, _) => return Err(unexpected("`facet` or `endsolid`")),
+            (State::Facet, "outer") => State::Loop(0),
+            (State::Facet, _) => {
+                return Err(unexpected(&format!(
+                    "`outer loop` (facet {facet} starts at line {facet_line})"
+                )))
+            }
+            (State::Loop(n), "vertex") if n < 3 => {
+                for (axis, c) in corners[n].iter_mut().enumerate() {
+                    let token = words.next().ok_or_else(|| {
+                        parse_error(
+                            path,
+                            line,
+                            format!(
+                                "vertex {n} of facet {facet}: the {} coordinate is missing",
+                                ["x", "y", "z"][axis]
+                            ),
+                        )
+                    })?;
+                    *c = token
+                        .parse::<f32>()
+                        .ok()
+                        .filter(|c| c.is_finite())
+                        .ok_or_else(|| {
+                            parse_error(
+                                path,
+                                line,
+                                format!(
+                                    "vertex {n} of facet {facet}: the {} coordinate `{token}` \
+                                     is not a finite number",
+                                    ["x", "y", "z"][axis]
+                                ),
+                            )
+                        })?;
+                }
+                State::Loop(n + 1)
+            }
+            (State::Loop(3), "endloop") => State::EndLoop,
+            (State::Loop(n), _) if n < 3 => {
+                return Err(unexpected(&format!(
+                    "`vertex x y z` (facet {facet}, which starts at line {facet_line}, has {n} \
+                     of its 3 vertices)"
+                )))
+            }
+            (State::Loop(_), _) => {
+                return Err(unexpected(&format!(
+                    "`endloop` (facet {facet}, which starts at line {facet_line}, has its 3 \
+                     vertices; STL facets are triangles)"
+                )))
+            }
+            (State::EndLoop, "endfacet") => {
+                welder.triangle(corners);
+                facet += 1;
+                State::Solid
+            }
+            (State::EndLoop, _) => return Err(unexpected("`endfacet`")),
+        };
+    }
+    match state {
+        State::End => Ok(()),
+        State::Start | State::Solid => Err(parse_error(
+            path,
+            lines.end_line(),
+            "the file ends before `endsolid`: it may be truncated",
+        )),
+        _ => Err(parse_error(
+            path,
+            facet_line,
+            format!(
+                "facet {facet}, which starts here, is cut off: the file ends before its \
+                 `endfacet`"
+            ),
+        )),
+    }
 }

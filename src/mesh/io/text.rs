@@ -22,6 +22,21 @@ impl<'a> Lines<'a> {
         }
     }
 
+    /// Lines of `bytes`, numbered as if `bytes` came after line `before` of the file (the
+    /// data after a PLY header).
+    pub(super) fn starting_after(path: &'a Path, bytes: &'a [u8], before: usize) -> Self {
+        Lines {
+            path,
+            rest: bytes,
+            line: before,
+        }
+    }
+
+    /// Bytes not read yet (after the last line returned).
+    pub(super) fn rest_len(&self) -> usize {
+        self.rest.len()
+    }
+
     /// The number of the line a reader would have wanted next once the file has run out:
     /// truncation errors point there.
     pub(super) fn end_line(&self) -> usize {
@@ -108,4 +123,12 @@ pub(super) fn next_number<T: std::str::FromStr>(
 /// [`MeshError::EmptyFile`] whatever its format.
 pub(super) fn is_blank(bytes: &[u8]) -> bool {
     bytes.iter().all(u8::is_ascii_whitespace)
+}
+
+/// How many elements to reserve room for when a header declares `declared` and each
+/// takes a line of at least `per_line` bytes: never more than the `rest` bytes of the
+/// file can hold, so a count that lies allocates nothing beyond the file's own size (the
+/// reader then grows as it reads, and reports the truncation where the data ends).
+pub(super) fn capacity(declared: usize, rest: usize, per_line: usize) -> usize {
+    declared.min(rest / per_line + 1)
 }

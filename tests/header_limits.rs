@@ -1,0 +1,164 @@
+//! Headers that lie: every reader that sizes something from a count in a header (ESRI
+//! ASCII `ncols`/`nrows`, GeoTIFF image size and tag counts, PLY element counts, OFF and
+//! `.ma` counts) refuses a count the file cannot hold with an error naming where it was
+//! declared, and allocates nothing for it.
+//!
+//! The fixtures are in `tests/data/io/lying_*`. Each is read twice: here, for the error
+//! and its message, and in a child process under `ulimit -v` (2 GiB of address space),
+//! where a reader that reserved room for the claim (gigabytes) would abort with
+//! "memory allocation failed" instead of returning the error.
+
+use geotracks::mesh::io::{read_medial_axis, read_mesh};
+use geotracks::mesh::MeshError;
+use geotracks::terrain::{read_grid, TerrainError};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn fixture(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/io")
+        .join(name)
+}
+
+const LYING: [&str; 6] = [
+    "lying_header.asc",
+    "lying_size.tif",
+    "lying_tag.tif",
+    "lying_header.ply",
+    "lying_header.off",
+    "lying_header.ma",
+];
+
+/// Reads a fixture with the reader its extension calls for; the error as text.
+fn read_error(path: &Path) -> String {
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+    match ext {
+        "asc" | "tif" => read_grid(path).err().map(|e| e.to_string()),
+        "ma" => read_medial_axis(path).err().map(|e| e.to_string()),
+        _ => read_mesh(path).err().map(|e| e.to_string()),
+    }
+    .unwrap_or_else(|| panic!("{} was read, but its header lies", path.display()))
+}
+
+#[test]
+fn esri_ascii_names_the_header_lines() {
+    let path = fixture("lying_header.asc");
+    let err = read_grid(&path).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            TerrainError::ValueCount {
+                expected: 1_800_000_000,
+                found: 3,
+                header_lines: [1, 2],
+                ..
+            }
+        ),
+        "{err:?}"
+    );
+    assert!(err.to_string().contains("header's lines 1 and 2"), "{err}");
+}
+
+#[test]
+fn geotiff_image_size_beyond_the_file_is_refused() {
+    let err = read_grid(fixture("lying_size.tif")).unwrap_err();
+    match &err {
+        TerrainError::ImplausibleSize {
+            declared, bytes, ..
+        } => {
+            assert_eq!(*declared, 32768 * 32768);
+            assert_eq!(*bytes, 242);
+        }
+        other => panic!("{other:?}"),
+    }
+    let message = err.to_string();
+    assert!(
+        message.contains("ImageWidth 32768 × ImageLength 32768"),
+        "{message}"
+    );
+}
+
+#[test]
+fn geotiff_tag_count_beyond_the_file_is_refused() {
+    let err = read_grid(fixture("lying_tag.tif")).unwrap_err();
+    assert!(
+        matches!(
+            &err,
+            TerrainError::ImplausibleSize {
+                declared: 4_000_000_000,
+                ..
+            }
+        ),
+        "{err:?}"
+    );
+    assert!(err.to_string().contains("tag 42113"), "{err}");
+}
+
+#[test]
+fn binary_ply_element_count_beyond_the_file_is_refused() {
+    let err = read_mesh(fixture("lying_header.ply")).unwrap_err();
+    match &err {
+        MeshError::ImplausibleCount {
+            line,
+            declared,
+            at_most,
+            ..
+        } => {
+            assert_eq!((*line, *declared), (3, 1_800_000_000));
+            assert_eq!(*at_most, 4); // 49 bytes after the header, 12 per vertex
+        }
+        other => panic!("{other:?}"),
+    }
+    assert!(err.to_string().contains("lying_header.ply:3:"), "{err}");
+}
+
+#[test]
+fn off_and_ma_counts_name_their_header_line() {
+    let err = read_error(&fixture("lying_header.off"));
+    assert!(
+        err.contains("of the 1800000000 that line 2 declares"),
+        "{err}"
+    );
+    let err = read_error(&fixture("lying_header.ma"));
+    assert!(err.contains("lying_header.ma:1:"), "{err}");
+    assert!(err.contains("declares 1800000000 vertices"), "{err}");
+}
+
+/// The child's side of [`lying_headers_allocate_nothing`]: reads the file named by
+/// `GEOTRACKS_LYING_FILE` and prints the error.
+#[test]
+#[ignore = "run by lying_headers_allocate_nothing in a child process under a memory limit"]
+fn read_one_lying_file() {
+    let Some(path) = std::env::var_os("GEOTRACKS_LYING_FILE") else {
+        return;
+    };
+    println!("clean error: {}", read_error(Path::new(&path)));
+}
+
+#[test]
+fn lying_headers_allocate_nothing() {
+    let exe = std::env::current_exe().expect("the test binary");
+    for name in LYING {
+        let output = Command::new("sh")
+            .arg("-c")
+            .arg(r#"ulimit -v 2097152 && exec "$0" "$@""#)
+            .arg(&exe)
+            .args([
+                "read_one_lying_file",
+                "--exact",
+                "--ignored",
+                "--nocapture",
+                "--test-threads=1",
+            ])
+            .env("GEOTRACKS_LYING_FILE", fixture(name))
+            .output()
+            .expect("run the test binary under ulimit");
+        let stdout = String::from_utf8_lossy(&output.stdout);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(
+            output.status.success() && stdout.contains("clean error:"),
+            "{name} under a 2 GiB address-space limit: {}\n{stdout}\n{stderr}",
+            output.status
+        );
+    }
+}
