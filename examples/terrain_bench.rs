@@ -165,7 +165,7 @@ impl WithTerrainMetric for Run<'_> {
         )?;
         let propagate = t.elapsed().as_secs_f64();
         let t = Instant::now();
-        let path = field.path(self.mesh, metric, self.to)?;
+        let path = solver.query(&field)?.path(self.to)?;
         Ok(Times {
             metric: metric_time,
             setup,

@@ -54,18 +54,16 @@ pub enum Error {
         /// Which point.
         what: String,
     },
-    /// A field was queried with a mesh other than the one it was computed on.
-    #[error("the mesh has {vertices} vertices and {edges} edges, but the field was computed on one with {field_vertices} and {field_edges}")]
-    MeshMismatch {
-        /// The mesh given: vertices.
-        vertices: usize,
-        /// The mesh given: edges.
-        edges: usize,
-        /// The field's mesh: vertices.
-        field_vertices: usize,
-        /// The field's mesh: edges.
-        field_edges: usize,
-    },
+    /// A field (or a workspace's last run) was given to a solver other than the one that
+    /// computed it. Queries need the mesh, metric and Steiner layout of the run, and
+    /// only its own solver has them: query a field with the solver that made it (two
+    /// solvers built from the same mesh and metric are still two solvers).
+    #[error("the field was computed by another solver: query it with the solver that made it")]
+    ForeignField,
+    /// A workspace was queried before any run finished in it (no run yet, or the last
+    /// one failed). Run the solver into it first.
+    #[error("the workspace holds no finished run: run the solver into it first")]
+    NoRun,
     /// The Steiner scheme asks for no points (k = 0), or a non-finite number of them.
     #[error("invalid number of Steiner points per edge: k = {k} (it must be finite and > 0)")]
     InvalidK {

@@ -10,11 +10,15 @@
 //! - [`metrics`] (re-exported crate `geotracks-metrics`): the [`Metric`] trait and the
 //!   built-ins [`Euclidean`], [`Density`], [`Tensor`].
 //! - [`steiner`]: where Steiner points go on each edge and how nodes are numbered.
-//! - [`propagate`]: the engines ([`Method`]: the track-pruned `Tracks` by default, the
+//! - [`options`]: how a run goes: [`Method`] (the track-pruned `Tracks` by default, the
 //!   complete Steiner graph `Graph` it is checked against, `Dijkstra` on edges),
-//!   [`distance_field`] for one query, and [`Solver`] / [`Workspace`] for many (reused
-//!   buffers, parallel rows).
-//! - [`field`]: [`GeodesicField`], what a run returns.
+//!   [`Options`] (Steiner points and method) and [`Stop`] (early stops).
+//! - [`propagate`]: the engines, [`distance_field`] for one run, and [`Solver`] /
+//!   [`Workspace`] for many (reused buffers, parallel rows).
+//! - [`field`]: [`GeodesicField`], what a run returns: plain data.
+//! - [`trace`]: [`Query`], made by the solver that computed a field
+//!   ([`Solver::query`]): the distance at any surface point, paths ([`GeodesicPath`],
+//!   straightened) and nearest sources.
 //! - [`skeleton`]: grassfire on a medial axis from its boundary, and the skeleton of its
 //!   ridges.
 //! - [`terrain`]: elevation grids (ESRI ASCII, GeoTIFF) as meshes, terrain costs (slope
@@ -39,6 +43,7 @@
 mod error;
 pub mod field;
 pub mod mesh;
+pub mod options;
 pub mod propagate;
 pub mod skeleton;
 pub mod steiner;
@@ -50,12 +55,13 @@ pub mod trace;
 pub use geotracks_metrics as metrics;
 
 pub use error::Error;
-pub use field::{FieldView, GeodesicField, Stats};
+pub use field::{GeodesicField, Stats};
 pub use geotracks_metrics::{Density, Euclidean, FacePoint, Metric, MetricError, Tensor};
-pub use propagate::{distance_field, Method, Options, Solver, Stop, Workspace};
+pub use options::{Method, Options, Stop};
+pub use propagate::{distance_field, Solver, Workspace};
 pub use steiner::{SteinerLayout, SteinerScheme};
 pub use surface::{PointError, Source, SurfacePoint};
-pub use trace::GeodesicPath;
+pub use trace::{GeodesicPath, Query};
 
 /// The README's code blocks, compiled and run as doctests so they stay true.
 #[cfg(doctest)]

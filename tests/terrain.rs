@@ -15,7 +15,7 @@ use geotracks::terrain::{
 };
 use geotracks::{
     distance_field, Density, Error, Euclidean, GeodesicPath, Method, Metric, Options, Solver,
-    Source, Stop, Tensor,
+    Source, Tensor,
 };
 use glam::DVec3;
 use proptest::prelude::*;
@@ -40,9 +40,7 @@ fn route<M: Metric>(
 ) -> Result<GeodesicPath, Error> {
     let from = terrain.locate(from[0], from[1]).unwrap();
     let to = terrain.locate(to[0], to[1]).unwrap();
-    let solver = Solver::new(&terrain.mesh, metric, options)?;
-    let field = solver.solve_from(&[Source::new(from)], &Stop::NONE.with_targets(vec![to]))?;
-    field.path(&terrain.mesh, metric, to)
+    Solver::new(&terrain.mesh, metric, options)?.shortest_path(&[Source::new(from)], to)
 }
 
 fn relative(a: f64, b: f64) -> f64 {

@@ -23,7 +23,7 @@
 //! let density = slope_density(&terrain.mesh, 4.0)?; // ρ = 1 + 4 · 0.5² = 2
 //! let solver = Solver::new(&terrain.mesh, &density, &Options::DEFAULT.with_k(2.0))?;
 //! let field = solver.solve_from(&[Source::new(from)], &Stop::NONE.with_targets(vec![to]))?;
-//! let route = field.path(&terrain.mesh, &density, to)?;
+//! let route = solver.query(&field)?.path(to)?;
 //! let expected = 2.0 * 16.0 * 1.25f64.sqrt(); // ρ × the 3D length
 //! assert!((route.length - expected).abs() < 1e-6 * expected);
 //! # Ok::<(), Box<dyn std::error::Error>>(())

@@ -75,16 +75,17 @@ pub fn run(args: &DistanceArgs) -> CliResult {
     let mesh = load_mesh(&args.mesh)?;
     let sources = points::sources(&mesh, &args.sources)?;
     let stop = Stop::NONE.with_max_distance(max_distance);
-    let field = args.metric.dispatch(
+    let (field, labels) = args.metric.dispatch(
         &mesh,
         Field {
             sources: &sources,
             stop: &stop,
+            labels: args.voronoi.is_some(),
         },
     )?;
     write_field(&args.output, format, &mesh, &field)?;
-    if let Some(voronoi) = &args.voronoi {
-        write_labels(voronoi, &field)?;
+    if let (Some(voronoi), Some(labels)) = (&args.voronoi, labels) {
+        write_labels(voronoi, labels)?;
     }
     if let Some(stats) = &args.stats {
         write_stats(stats, &field)?;
@@ -93,32 +94,38 @@ pub fn run(args: &DistanceArgs) -> CliResult {
     Ok(())
 }
 
-/// A distance field from these sources, stopping as `stop` allows.
+/// A distance field from these sources, stopping as `stop` allows, and the nearest
+/// source of each vertex if `labels`.
 struct Field<'s> {
     sources: &'s [Source],
     stop: &'s Stop,
+    labels: bool,
 }
 
 impl WithMetric for Field<'_> {
-    type Output = GeodesicField;
+    type Output = (GeodesicField, Option<Vec<u32>>);
     fn run<M: Metric>(
         self,
         mesh: &TriMesh,
         metric: &M,
         options: &Options,
-    ) -> CliResult<GeodesicField> {
-        compute(mesh, metric, self.sources, self.stop, options)
+    ) -> CliResult<Self::Output> {
+        let solver = Solver::new(mesh, metric, options)?;
+        let field = compute(&solver, self.sources, self.stop)?;
+        let labels = match self.labels {
+            true => Some(solver.query(&field)?.vertex_labels()),
+            false => None,
+        };
+        Ok((field, labels))
     }
 }
 
 fn compute<M: Metric>(
-    mesh: &TriMesh,
-    metric: &M,
+    solver: &Solver<'_, M>,
     sources: &[Source],
     stop: &Stop,
-    options: &Options,
 ) -> CliResult<GeodesicField> {
-    let field = Solver::new(mesh, metric, options)?.solve_from(sources, stop)?;
+    let field = solver.solve_from(sources, stop)?;
     let unreachable = field.unreachable_vertices();
     if unreachable > 0 {
         if stop.max_distance.is_finite() {
@@ -136,8 +143,7 @@ fn compute<M: Metric>(
 }
 
 /// Writes the index of each vertex's nearest source, `-1` where unreached.
-fn write_labels(path: &Path, field: &GeodesicField) -> CliResult {
-    let labels = field.vertex_labels();
+fn write_labels(path: &Path, labels: Vec<u32>) -> CliResult {
     io::write_atomically(path, |w| {
         for label in labels {
             if label == NONE {
@@ -207,13 +213,8 @@ pub fn demo(output: &Path) -> CliResult {
     let mesh = io::read_obj_bytes(SPOT_OBJ)?;
     let source = 0;
     let options = Options::DEFAULT;
-    let field = compute(
-        &mesh,
-        &Euclidean,
-        &[Source::new(source)],
-        &Stop::NONE,
-        &options,
-    )?;
+    let solver = Solver::new(&mesh, Euclidean, &options)?;
+    let field = compute(&solver, &[Source::new(source)], &Stop::NONE)?;
     write_field(output, format, &mesh, &field)?;
     let s = field.stats();
     let far = field

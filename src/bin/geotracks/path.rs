@@ -58,7 +58,7 @@ impl WithMetric for Trace<'_> {
         let solver = Solver::new(mesh, metric, options)?;
         let stop = Stop::NONE.with_targets(vec![self.target]);
         let field = solver.solve_from(self.sources, &stop)?;
-        let path = field.path(mesh, metric, self.target)?;
+        let path = solver.query(&field)?.path(self.target)?;
         Ok((field, path))
     }
 }

@@ -82,7 +82,7 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
     let lines = skeleton.polylines();
     match (&args.field, &fire, &axis.surface) {
         (Some(path), Some(fire), Some(mesh)) => {
-            write_ply_with_distance(path, mesh, fire.field().vertex_distances())?;
+            write_ply_with_distance(path, mesh, fire.vertex_distances())?;
             if let Err(e) = write_obj_lines(&args.output, &points, &lines) {
                 // Both files or neither.
                 let _ = std::fs::remove_file(path);

@@ -90,7 +90,7 @@ impl WithTerrainMetric for Work<'_> {
             Stop::NONE.with_targets(vec![self.to])
         };
         let field = solver.solve_from(&[Source::new(self.from)], &stop)?;
-        let path = match field.path(mesh, metric, self.to) {
+        let path = match solver.query(&field)?.path(self.to) {
             Err(Error::Unreachable { .. }) => {
                 return Err("no route: --to cannot be reached from --from (impassable \
                             faces or NODATA separate them)"
