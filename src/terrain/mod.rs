@@ -8,7 +8,10 @@
 //! - Costs ([`cost`]): [`slope_density`] (`ρ = 1 + a·tan²(slope)`), [`Impassable`]
 //!   (walls: faces no route crosses), [`uphill_tensor`] (climbing the steepest line
 //!   costs more than following a contour); [`TerrainCost`] names them as the command
-//!   line does.
+//!   line does, and [`TerrainCost::metric`] builds it ([`TerrainMetric`], one type for
+//!   all of them).
+//! - [`route`]: the cheapest route between two points, start first, with its
+//!   cumulative cost.
 //! - [`map`]: a hillshaded picture of the grid with cost contours and a route.
 //!
 //! ```
@@ -35,15 +38,17 @@ mod error;
 mod geotiff;
 mod grid;
 pub mod map;
+mod route;
 
 pub use asc::read_asc;
 pub use cost::{
     face_slopes, slope_density, steeper_than, uphill_tensor, vertex_slope_tan2, Impassable,
-    TerrainCost, WithTerrainMetric,
+    TerrainCost, TerrainMetric,
 };
 pub use error::TerrainError;
 pub use geotiff::read_geotiff;
 pub use grid::{ElevationGrid, GridGeometry, TerrainMesh};
+pub use route::{route, Route};
 
 use std::path::Path;
 

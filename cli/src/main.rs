@@ -1,10 +1,14 @@
 //! The `geotracks` command-line tool: a thin layer that parses arguments, calls the
 //! library and writes files.
 
+// Doc comments on the argument structs are clap's help text, written for a terminal
+// (`slope:A[,max:DEG]`), not rustdoc links.
+#![allow(rustdoc::broken_intra_doc_links)]
+
 mod distance;
 mod inputs;
 mod matrix;
-mod metric_args;
+mod metric;
 mod path;
 mod points;
 mod skeleton;

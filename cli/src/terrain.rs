@@ -2,9 +2,8 @@
 
 use crate::{CliResult, Value};
 use geotracks::mesh::io;
-use geotracks::terrain::{self, map, TerrainCost, TerrainMesh, WithTerrainMetric};
-use geotracks::{Error, Metric, Options, Solver, Source, Stop, SurfacePoint};
-use glam::DVec3;
+use geotracks::terrain::{self, map, Route, TerrainCost};
+use geotracks::{Error, Options, Solver};
 use std::path::{Path, PathBuf};
 
 /// Arguments of `geotracks terrain`.
@@ -57,66 +56,6 @@ enum OutputFormat {
     Csv,
 }
 
-/// The route, from start to end, and what a map needs.
-struct Route {
-    points: Vec<DVec3>,
-    /// Cumulative cost at each point.
-    cost: Vec<f64>,
-    /// The Steiner graph's cost, before straightening.
-    traced_cost: f64,
-    /// Per vertex, when a map is drawn.
-    field: Option<Vec<f64>>,
-    stats: geotracks::Stats,
-}
-
-struct Work<'a> {
-    terrain: &'a TerrainMesh,
-    from: SurfacePoint,
-    to: SurfacePoint,
-    options: Options,
-    whole_field: bool,
-}
-
-impl WithTerrainMetric for Work<'_> {
-    type Output = Route;
-    type Error = Box<dyn std::error::Error>;
-    fn run<M: Metric>(self, metric: &M) -> CliResult<Route> {
-        let mesh = &self.terrain.mesh;
-        let solver = Solver::new(mesh, metric, &self.options)?;
-        // The map's contours need the whole field; a route alone stops at its end.
-        let stop = if self.whole_field {
-            Stop::NONE
-        } else {
-            Stop::NONE.with_targets(vec![self.to])
-        };
-        let field = solver.solve_from(&[Source::new(self.from)], &stop)?;
-        let path = match solver.query(&field)?.path(self.to) {
-            Err(Error::Unreachable { .. }) => {
-                return Err("no route: --to cannot be reached from --from (impassable \
-                            faces or NODATA separate them)"
-                    .into())
-            }
-            other => other?,
-        };
-        // The path runs from its query point (the end) to the source: reverse it.
-        let mut points = path.positions(mesh);
-        points.reverse();
-        let mut costs = path.segment_costs(mesh, metric);
-        costs.reverse();
-        let mut cost = vec![0.0];
-        for c in costs {
-            cost.push(cost[cost.len() - 1] + c);
-        }
-        Ok(Route {
-            points,
-            cost,
-            traced_cost: path.traced_length,
-            field: self.whole_field.then(|| field.vertex_distances().to_vec()),
-            stats: field.stats().clone(),
-        })
-    }
-}
-
 pub fn run(args: &TerrainArgs) -> CliResult {
     // Check everything that can be checked before reading the grid.
     let format = crate::output_format(
@@ -141,36 +80,31 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     };
     let from = locate("from", args.from)?;
     let to = locate("to", args.to)?;
-    let route = args.cost.with_metric(
-        &terrain.mesh,
-        Work {
-            terrain: &terrain,
-            from,
-            to,
-            options: Options::DEFAULT.with_k(args.k),
-            whole_field: args.png.is_some(),
-        },
-    )?;
+    let metric = args.cost.metric(&terrain.mesh)?;
+    let solver = Solver::new(&terrain.mesh, metric, &Options::DEFAULT.with_k(args.k))?;
+    // The map's contours need the whole field; a route alone stops at its end.
+    let route = match terrain::route(&solver, from, to, args.png.is_some()) {
+        Err(Error::Unreachable { .. }) => {
+            return Err("no route: --to cannot be reached from --from (impassable \
+                        faces or NODATA separate them)"
+                .into())
+        }
+        other => other?,
+    };
     let picture = args.png.as_ref().map(|_| {
         let xy: Vec<[f64; 2]> = route.points.iter().map(|p| [p.x, p.y]).collect();
         map::render(
             &grid,
             &terrain,
-            route.field.as_deref(),
+            route.vertex_costs.as_deref(),
             &xy,
             &map::MapOptions::DEFAULT,
         )
     });
 
-    let length: f64 = route.points.windows(2).map(|w| w[0].distance(w[1])).sum();
-    let length_2d: f64 = route
-        .points
-        .windows(2)
-        .map(|w| w[0].truncate().distance(w[1].truncate()))
-        .sum();
-    let cost = route.cost[route.cost.len() - 1];
+    let (cost, length, length_2d) = (route.cost(), route.length(), route.length_2d());
     match format {
-        OutputFormat::GeoJson => write_geojson(args, &route, cost, length, length_2d)?,
+        OutputFormat::GeoJson => write_geojson(args, &route)?,
         OutputFormat::Csv => write_csv(&args.output, &route)?,
     }
     if let (Some(path), Some(picture)) = (&args.png, &picture) {
@@ -219,13 +153,7 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     Ok(())
 }
 
-fn write_geojson(
-    args: &TerrainArgs,
-    route: &Route,
-    cost: f64,
-    length: f64,
-    length_2d: f64,
-) -> CliResult {
+fn write_geojson(args: &TerrainArgs, route: &Route) -> CliResult {
     let mut coordinates: Vec<[f64; 3]> = route.points.iter().map(|p| p.to_array()).collect();
     // A LineString needs two positions: a route of one point (start = end) repeats it.
     if coordinates.len() == 1 {
@@ -237,9 +165,9 @@ fn write_geojson(
             "type": "Feature",
             "geometry": { "type": "LineString", "coordinates": coordinates },
             "properties": {
-                "cost": cost,
-                "length": length,
-                "length_2d": length_2d,
+                "cost": route.cost(),
+                "length": route.length(),
+                "length_2d": route.length_2d(),
                 "traced_cost": route.traced_cost,
                 "cost_model": args.cost.to_string(),
                 "k": args.k,
@@ -270,7 +198,7 @@ fn write_csv(file: &Path, route: &Route) -> CliResult {
                 p.x,
                 p.y,
                 p.z,
-                Value(route.cost[i]),
+                Value(route.cumulative_cost[i]),
                 Value(length)
             )?;
         }

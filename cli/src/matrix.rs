@@ -1,10 +1,10 @@
 //! `geotracks matrix`: distances from many sources, computed in parallel.
 
 use crate::inputs::{load_mesh, read_vertex_ids};
-use crate::metric_args::{MetricArgs, WithMetric};
+use crate::metric::MetricArgs;
 use crate::{CliResult, Value};
-use geotracks::mesh::{io, Topology, TriMesh};
-use geotracks::{Metric, Options, Solver};
+use geotracks::mesh::{io, Topology};
+use geotracks::Solver;
 use std::path::PathBuf;
 
 /// Arguments of `geotracks matrix`.
@@ -25,24 +25,6 @@ pub struct MatrixArgs {
     output: PathBuf,
 }
 
-struct Rows<'a> {
-    sources: &'a [u32],
-    targets: Option<&'a [u32]>,
-}
-
-impl WithMetric for Rows<'_> {
-    type Output = Vec<Vec<f64>>;
-    fn run<M: Metric>(
-        self,
-        mesh: &TriMesh,
-        metric: &M,
-        options: &Options,
-    ) -> CliResult<Self::Output> {
-        let solver = Solver::new(mesh, metric, options)?;
-        Ok(solver.distance_rows(self.sources, self.targets)?)
-    }
-}
-
 pub fn run(args: &MatrixArgs) -> CliResult {
     if args.output.extension().and_then(|e| e.to_str()) != Some("csv") {
         return Err(format!("{}: the matrix is written as .csv", args.output.display()).into());
@@ -54,13 +36,8 @@ pub fn run(args: &MatrixArgs) -> CliResult {
         None => None,
     };
     let start = std::time::Instant::now();
-    let rows = args.metric.dispatch(
-        &mesh,
-        Rows {
-            sources: &sources,
-            targets: targets.as_deref(),
-        },
-    )?;
+    let solver = Solver::new(&mesh, args.metric.metric(&mesh)?, &args.metric.options())?;
+    let rows = solver.distance_rows(&sources, targets.as_deref())?;
     let unreachable = rows.iter().flatten().filter(|d| d.is_infinite()).count();
     if unreachable > 0 {
         eprintln!(

@@ -1,7 +1,7 @@
 //! `geotracks distance` and `geotracks demo`.
 
 use crate::inputs::load_mesh;
-use crate::metric_args::{MetricArgs, WithMetric};
+use crate::metric::MetricArgs;
 use crate::{points, CliResult, Value};
 use geotracks::mesh::{io, TriMesh, NONE};
 use geotracks::{Euclidean, GeodesicField, Metric, Options, Solver, Source, Stop, SurfacePoint};
@@ -75,14 +75,13 @@ pub fn run(args: &DistanceArgs) -> CliResult {
     let mesh = load_mesh(&args.mesh)?;
     let sources = points::sources(&mesh, &args.sources)?;
     let stop = Stop::NONE.with_max_distance(max_distance);
-    let (field, labels) = args.metric.dispatch(
-        &mesh,
-        Field {
-            sources: &sources,
-            stop: &stop,
-            labels: args.voronoi.is_some(),
-        },
-    )?;
+    let metric = args.metric.metric(&mesh)?;
+    let solver = Solver::new(&mesh, metric, &args.metric.options())?;
+    let field = compute(&solver, &sources, &stop)?;
+    let labels = match args.voronoi {
+        Some(_) => Some(solver.query(&field)?.vertex_labels()),
+        None => None,
+    };
     write_field(&args.output, format, &mesh, &field)?;
     if let (Some(voronoi), Some(labels)) = (&args.voronoi, labels) {
         write_labels(voronoi, labels)?;
@@ -94,32 +93,7 @@ pub fn run(args: &DistanceArgs) -> CliResult {
     Ok(())
 }
 
-/// A distance field from these sources, stopping as `stop` allows, and the nearest
-/// source of each vertex if `labels`.
-struct Field<'s> {
-    sources: &'s [Source],
-    stop: &'s Stop,
-    labels: bool,
-}
-
-impl WithMetric for Field<'_> {
-    type Output = (GeodesicField, Option<Vec<u32>>);
-    fn run<M: Metric>(
-        self,
-        mesh: &TriMesh,
-        metric: &M,
-        options: &Options,
-    ) -> CliResult<Self::Output> {
-        let solver = Solver::new(mesh, metric, options)?;
-        let field = compute(&solver, self.sources, self.stop)?;
-        let labels = match self.labels {
-            true => Some(solver.query(&field)?.vertex_labels()),
-            false => None,
-        };
-        Ok((field, labels))
-    }
-}
-
+/// The field from `sources`, with a line on stderr about the vertices it does not reach.
 fn compute<M: Metric>(
     solver: &Solver<'_, M>,
     sources: &[Source],
@@ -206,7 +180,7 @@ fn write_stats(path: &Path, field: &GeodesicField) -> CliResult {
 }
 
 /// The bundled default mesh: Spot by Keenan Crane (CC0), also used by the tests.
-const SPOT_OBJ: &[u8] = include_bytes!("../../../tests/data/spot.obj");
+const SPOT_OBJ: &[u8] = include_bytes!("../data/spot.obj");
 
 pub fn demo(output: &Path) -> CliResult {
     let format = output_format(output)?;

@@ -1,10 +1,10 @@
 //! `geotracks path`: the shortest path from a surface point to the nearest source.
 
 use crate::inputs::load_mesh;
-use crate::metric_args::{MetricArgs, WithMetric};
+use crate::metric::MetricArgs;
 use crate::{points, CliResult, Value};
 use geotracks::mesh::{io, TriMesh};
-use geotracks::{GeodesicField, GeodesicPath, Metric, Options, Solver, Source, Stop, SurfacePoint};
+use geotracks::{GeodesicPath, Solver, Stop, SurfacePoint};
 use std::path::{Path, PathBuf};
 
 /// Arguments of `geotracks path`.
@@ -41,41 +41,16 @@ fn output_format(path: &Path) -> CliResult<OutputFormat> {
     )
 }
 
-/// A run that stops once the target's value is final, and the path from the target.
-struct Trace<'a> {
-    sources: &'a [Source],
-    target: SurfacePoint,
-}
-
-impl WithMetric for Trace<'_> {
-    type Output = (GeodesicField, GeodesicPath);
-    fn run<M: Metric>(
-        self,
-        mesh: &TriMesh,
-        metric: &M,
-        options: &Options,
-    ) -> CliResult<Self::Output> {
-        let solver = Solver::new(mesh, metric, options)?;
-        let stop = Stop::NONE.with_targets(vec![self.target]);
-        let field = solver.solve_from(self.sources, &stop)?;
-        let path = solver.query(&field)?.path(self.target)?;
-        Ok((field, path))
-    }
-}
-
 pub fn run(args: &PathArgs) -> CliResult {
     // Check everything that can be checked before the computation.
     let format = output_format(&args.output)?;
     let mesh = load_mesh(&args.mesh)?;
     let sources = points::sources(&mesh, &args.sources)?;
     let target = points::check(&mesh, "target", args.target)?;
-    let (field, path) = args.metric.dispatch(
-        &mesh,
-        Trace {
-            sources: &sources,
-            target,
-        },
-    )?;
+    let solver = Solver::new(&mesh, args.metric.metric(&mesh)?, &args.metric.options())?;
+    // The run stops once the target's value is final.
+    let field = solver.solve_from(&sources, &Stop::NONE.with_targets(vec![target]))?;
+    let path = solver.query(&field)?.path(target)?;
     write_path(&args.output, format, &mesh, &path)?;
 
     let source = path.source as usize;

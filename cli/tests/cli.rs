@@ -1,12 +1,12 @@
 //! The command-line tool end to end: outputs, and bad input that must fail with one
 //! clear line, a non-zero exit, and no output file.
 
-mod cli_support;
+mod support;
 
-use cli_support::{assert_fails, geotracks, geotracks_ok, last_value};
 use std::path::{Path, PathBuf};
+use support::{assert_fails, geotracks, geotracks_ok, last_value};
 
-const SPOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/spot.obj");
+const SPOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/data/spot.obj");
 
 /// One number per line.
 fn read_values(path: &Path) -> Vec<f64> {
@@ -320,6 +320,21 @@ fn demo_writes_a_coloured_ply() {
     let mesh = geotracks::mesh::io::read_mesh(&out_path).unwrap();
     let spot = geotracks::mesh::io::read_mesh(SPOT).unwrap();
     assert_eq!(mesh.positions().len(), spot.positions().len());
+}
+
+/// The demo's copy of Spot (inside the CLI crate, so that it can be published) is the
+/// library's test mesh.
+#[test]
+fn the_demo_mesh_is_the_tests_spot() {
+    let library = concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/data/spot.obj");
+    match std::fs::read(library) {
+        Ok(bytes) => assert!(
+            bytes == std::fs::read(SPOT).unwrap(),
+            "cli/data/spot.obj differs"
+        ),
+        // A published crate has no library tests beside it.
+        Err(_) => println!("skipped: {library} not found"),
+    }
 }
 
 #[test]
@@ -836,7 +851,10 @@ fn bad_surface_points_fail_cleanly() {
     assert!(!txt.exists());
 }
 
-const SHEET_FINS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/ma/sheet_fins.ma");
+const SHEET_FINS: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../tests/data/ma/sheet_fins.ma"
+);
 
 /// The `v` points and `l`/`p` polylines of an OBJ graph.
 fn read_obj_graph(path: &Path) -> (Vec<[f64; 3]>, Vec<Vec<usize>>) {
@@ -908,7 +926,7 @@ fn skeleton_bad_input_fails_cleanly() {
     let dir = tempfile::tempdir().unwrap();
     let obj = dir.path().join("skeleton.obj");
     let o = obj.to_str().unwrap();
-    let curves = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/ma/curves.ma");
+    let curves = concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/data/ma/curves.ma");
     let ply = dir.path().join("fire.ply");
     let txt = dir.path().join("skeleton.txt");
     assert_fails(
