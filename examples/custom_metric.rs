@@ -14,7 +14,7 @@
 //!
 //! Without arguments it builds a 300 m hill in memory and routes across it.
 
-use geotracks::mesh::{Topology, TriMesh};
+use geotracks::mesh::TriMesh;
 use geotracks::terrain::{read_terrain, ElevationGrid, GridGeometry};
 use geotracks::{Euclidean, FacePoint, Metric, Options, Solver, Source};
 

@@ -28,7 +28,7 @@
 //! mean and max relative error over the references of each mesh (|d − d*| / d* over
 //! vertices with d* > 0), and the distance tests of one run.
 
-use geotracks::mesh::{io::read_mesh, Topology, TriMesh};
+use geotracks::mesh::{io::read_mesh, TriMesh};
 use geotracks::{distance_field, Euclidean, Method, Options, Solver, SurfacePoint};
 use std::path::PathBuf;
 use std::time::Instant;

@@ -5,8 +5,9 @@
 //! Dijkstra-like propagation between them.
 //!
 //! ## Map of the crate
-//! - [`mesh`]: [`TriMesh`](mesh::TriMesh) (an edge may have any number of faces), the
-//!   [`Topology`](mesh::Topology) trait, readers and writers ([`mesh::io`]).
+//! - [`mesh`]: [`TriMesh`](mesh::TriMesh) (an edge may have any number of faces; its
+//!   connectivity is its own methods: faces of an edge, edges of a face, …), readers
+//!   and writers ([`mesh::io`]).
 //! - [`metrics`] (re-exported crate `geotracks-metrics`): the [`Metric`] trait and the
 //!   built-ins [`Euclidean`], [`Density`], [`Tensor`].
 //! - [`steiner`]: where Steiner points go on each edge and how nodes are numbered.
@@ -53,6 +54,11 @@ pub mod trace;
 
 /// The metric crate, `geotracks-metrics`.
 pub use geotracks_metrics as metrics;
+
+/// The vector library of the public API: positions come back as `glam::DVec3` (e.g.
+/// [`TriMesh::position`](mesh::TriMesh::position), [`GeodesicPath::positions`]), so
+/// callers can name the type without depending on the same `glam` version themselves.
+pub use glam;
 
 pub use error::Error;
 pub use field::{GeodesicField, Stats};

@@ -19,7 +19,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use crate::mesh::{Topology, TriMesh};
+use crate::mesh::TriMesh;
 use geotracks_metrics::FacePoint;
 use glam::DVec3;
 use std::fmt;

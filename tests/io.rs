@@ -6,7 +6,7 @@ use geotracks::mesh::io::{
     read_medial_axis, read_mesh, read_obj_bytes, write_atomically, write_obj_polylines,
     write_ply_with_distance,
 };
-use geotracks::mesh::{MeshError, Topology, TriMesh};
+use geotracks::mesh::{MeshError, TriMesh};
 use std::path::{Path, PathBuf};
 
 fn fixture(name: &str) -> PathBuf {

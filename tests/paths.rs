@@ -3,12 +3,12 @@
 mod common;
 
 use common::{book, grid, random_book, random_mesh, sphere, Rng, GRAPH};
-use geotracks::mesh::{io::read_mesh, Topology, TriMesh};
+use geotracks::glam::DVec3;
+use geotracks::mesh::{io::read_mesh, TriMesh};
 use geotracks::{
     Density, Error, Euclidean, GeodesicField, GeodesicPath, Metric, Options, PointError, Query,
     Solver, Source, Stop, SurfacePoint, Tensor,
 };
-use glam::DVec3;
 
 fn spot() -> TriMesh {
     read_mesh(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/spot.obj")).unwrap()

@@ -3,11 +3,11 @@
 mod common;
 
 use common::{book, rectangle};
+use geotracks::glam::DVec3;
 use geotracks::mesh::io::read_medial_axis;
-use geotracks::mesh::{Topology, TriMesh};
+use geotracks::mesh::TriMesh;
 use geotracks::skeleton::{medial_axis_skeleton, Grassfire, Skeleton};
 use geotracks::{Euclidean, Options, SurfacePoint};
-use glam::DVec3;
 use std::path::{Path, PathBuf};
 
 const K5: Options = Options::DEFAULT.with_k(5.0);

@@ -4,7 +4,7 @@
 mod common;
 
 use geotracks::mesh::io::read_mesh;
-use geotracks::mesh::{Topology, TriMesh};
+use geotracks::mesh::TriMesh;
 use geotracks::{Error, Euclidean, Method, Options, Solver, Tensor};
 use std::path::Path;
 

@@ -6,7 +6,8 @@
 mod common;
 
 use common::{random_mesh, Rng, DIJKSTRA, GRAPH};
-use geotracks::mesh::{Topology, TriMesh};
+use geotracks::glam::DVec3;
+use geotracks::mesh::TriMesh;
 use geotracks::terrain::{
     read_asc, read_geotiff, read_grid, slope_density, steeper_than, uphill_tensor, ElevationGrid,
     GridGeometry, Impassable, TerrainCost, TerrainError, TerrainMesh,
@@ -15,7 +16,6 @@ use geotracks::{
     distance_field, Density, Error, Euclidean, GeodesicPath, Method, Metric, Options, Solver,
     Source, Tensor,
 };
-use glam::DVec3;
 use proptest::prelude::*;
 use std::path::Path;
 

@@ -3,7 +3,7 @@
 use crate::inputs::{load_mesh, read_vertex_ids};
 use crate::metric::MetricArgs;
 use crate::{CliResult, Value};
-use geotracks::mesh::{io, Topology};
+use geotracks::mesh::io;
 use geotracks::Solver;
 use std::path::PathBuf;
 

@@ -560,7 +560,6 @@ fn path_writes_obj_and_csv_from_target_to_source() {
 
 #[test]
 fn path_from_a_face_point_to_an_edge_point() {
-    use geotracks::mesh::Topology;
     let dir = tempfile::tempdir().unwrap();
     let mesh_path = grid_obj(dir.path(), 4);
     let mesh = mesh_path.to_str().unwrap();

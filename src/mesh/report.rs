@@ -1,4 +1,4 @@
-use super::{DisjointSets, Topology, TriMesh};
+use super::{DisjointSets, TriMesh};
 use std::fmt;
 
 /// What a mesh is made of, and what in it may surprise an algorithm.
@@ -49,7 +49,7 @@ impl MeshReport {
 
 /// Labels each vertex with its component (vertices joined by face edges) and counts the
 /// components, unreferenced vertices counting as one each.
-pub(crate) fn vertex_components<T: Topology>(mesh: &T) -> (Vec<u32>, usize) {
+pub(crate) fn vertex_components(mesh: &TriMesh) -> (Vec<u32>, usize) {
     let mut sets = DisjointSets::new(mesh.vertex_count());
     for e in 0..mesh.edge_count() as u32 {
         let [a, b] = mesh.edge_vertices(e);

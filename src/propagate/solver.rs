@@ -6,7 +6,7 @@ use super::queue::{BucketQueue, HeapQueue};
 use super::tracks::{Track, TrackTables};
 use super::{graph, tracks, Method, Options, Stop};
 use crate::field::{FieldView, GeodesicField, Root, SolverId, Stats};
-use crate::mesh::{Topology, TriMesh, NONE};
+use crate::mesh::{TriMesh, NONE};
 use crate::steiner::SteinerLayout;
 use crate::surface::{PointError, Source, SurfacePoint};
 use crate::trace::Query;

@@ -40,7 +40,7 @@ mod ridges;
 pub use grassfire::{radius_speed, Grassfire};
 
 use crate::mesh::io::MedialAxis;
-use crate::mesh::{DisjointSets, Topology, TriMesh, NONE};
+use crate::mesh::{DisjointSets, TriMesh, NONE};
 use crate::options::{Options, Stop};
 use crate::steiner::SteinerLayout;
 use crate::surface::{Source, SurfacePoint};

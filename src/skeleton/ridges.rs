@@ -10,7 +10,7 @@
 
 use super::boundary::is_boundary_edge;
 use super::{cost_along, edge_sequence, Grassfire, Skeleton, SkeletonPoint};
-use crate::mesh::{Topology, TriMesh, NONE};
+use crate::mesh::{TriMesh, NONE};
 use crate::surface::SurfacePoint;
 use geotracks_metrics::Metric;
 

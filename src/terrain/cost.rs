@@ -5,7 +5,7 @@
 //! They work on any terrain-like mesh (z up), not only on grids.
 
 use super::TerrainError;
-use crate::mesh::{Topology, TriMesh};
+use crate::mesh::TriMesh;
 use geotracks_metrics::{Density, FacePoint, Metric, Tensor};
 use glam::DVec3;
 use std::fmt;

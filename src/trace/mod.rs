@@ -11,7 +11,7 @@
 mod query;
 mod straighten;
 
-use crate::mesh::{Topology, TriMesh, NONE};
+use crate::mesh::{TriMesh, NONE};
 use crate::steiner::NodeKind;
 use crate::surface::SurfacePoint;
 use crate::Error;

@@ -14,7 +14,7 @@
 //! formats, and PLY faces) where it can.
 //!
 //! ```
-//! use geotracks::mesh::{io, Topology};
+//! use geotracks::mesh::{io};
 //! let dir = tempfile::tempdir()?;
 //! let path = dir.path().join("square.off");
 //! std::fs::write(&path, "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n")?;

@@ -2,7 +2,7 @@
 //! target only once everything was written, so a failure leaves no partial file and an
 //! existing file is replaced whole or not at all.
 
-use crate::mesh::{MeshError, Topology, TriMesh};
+use crate::mesh::{MeshError, TriMesh};
 use std::io::{BufWriter, Write};
 use std::path::Path;
 
@@ -71,7 +71,7 @@ pub fn write_ply_with_distance(
     mesh: &TriMesh,
     distance: &[f64],
 ) -> Result<(), MeshError> {
-    let n = Topology::vertex_count(mesh);
+    let n = mesh.vertex_count();
     if distance.len() != n {
         return Err(MeshError::AttributeLength {
             what: "distance",
