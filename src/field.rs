@@ -19,6 +19,7 @@ use std::sync::Arc;
 /// `distance_tests` counts every metric evaluation made during propagation, whatever the
 /// method, so it measures the work done independently of the machine.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct Stats {
     /// Vertices of the mesh.
     pub vertices: usize,

@@ -60,7 +60,7 @@ pub use geotracks_metrics as metrics;
 /// callers can name the type without depending on the same `glam` version themselves.
 pub use glam;
 
-pub use error::Error;
+pub use error::{Error, PointRole, ValueRole};
 pub use field::{GeodesicField, Stats};
 pub use geotracks_metrics::{Density, Euclidean, FacePoint, Metric, MetricError, Tensor};
 pub use options::{Method, Options, Stop};

@@ -3,6 +3,7 @@ use std::fmt;
 
 /// What a mesh is made of, and what in it may surprise an algorithm.
 #[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct MeshReport {
     /// Vertices, unreferenced ones included.
     pub vertices: usize,

@@ -87,6 +87,7 @@ impl EdgeLine {
 
 /// A face that was left out because it is degenerate.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct DroppedFace {
     /// Its index in the input.
     pub input_index: usize,

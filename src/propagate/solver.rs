@@ -10,7 +10,7 @@ use crate::mesh::{TriMesh, NONE};
 use crate::steiner::SteinerLayout;
 use crate::surface::{PointError, Source, SurfacePoint};
 use crate::trace::Query;
-use crate::Error;
+use crate::{Error, PointRole, ValueRole};
 use geotracks_metrics::Metric;
 use std::sync::Arc;
 use std::time::Instant;
@@ -311,7 +311,7 @@ impl<'m, M: Metric> Solver<'m, M> {
         }
         if stop.max_distance.is_nan() {
             return Err(Error::InvalidValue {
-                what: "the maximum distance".into(),
+                which: ValueRole::MaxDistance,
                 value: stop.max_distance,
             });
         }
@@ -321,7 +321,7 @@ impl<'m, M: Metric> Solver<'m, M> {
             let point = target
                 .validated(mesh)
                 .map_err(|error| Error::InvalidPoint {
-                    what: format!("target {i}"),
+                    which: PointRole::Target(i),
                     error,
                 })?;
             match point {
@@ -434,13 +434,13 @@ impl<'m, M: Metric> Solver<'m, M> {
                         vertex_count: count,
                     },
                     error => Error::InvalidPoint {
-                        what: format!("source {i}"),
+                        which: PointRole::Source(i),
                         error,
                     },
                 })?;
             if !source.start.is_finite() {
                 return Err(Error::InvalidValue {
-                    what: format!("the start value of source {i}"),
+                    which: ValueRole::Start { source: i },
                     value: source.start,
                 });
             }

@@ -50,6 +50,7 @@ use std::collections::BinaryHeap;
 
 /// A point of a [`Skeleton`].
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct SkeletonPoint {
     /// World position.
     pub position: [f64; 3],
@@ -66,6 +67,7 @@ pub struct SkeletonPoint {
 /// A skeleton: a graph of points on a surface (and on its free edges), with straight
 /// edges that each lie in one face or along one free edge.
 #[derive(Clone, Debug, Default, PartialEq)]
+#[non_exhaustive]
 pub struct Skeleton {
     /// The graph's points.
     pub points: Vec<SkeletonPoint>,

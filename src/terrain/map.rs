@@ -10,6 +10,7 @@ use glam::DVec2;
 
 /// An RGBA picture, row-major from the top (north), 4 bytes per pixel.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct MapImage {
     /// Width in pixels.
     pub width: u32,

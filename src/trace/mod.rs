@@ -28,6 +28,7 @@ pub use straighten::straighten;
 /// `points[i]` and `points[i + 1]` inside face `faces[i]` (a segment along an edge lies
 /// in each face of the edge; it names the one where it costs least).
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct GeodesicPath {
     /// The polyline's points, each a vertex, an edge point or a face point.
     pub points: Vec<SurfacePoint>,
@@ -101,9 +102,7 @@ impl<M: Metric> Query<'_, M> {
         let (mesh, metric, field) = (self.mesh, self.metric, &self.field);
         let (_, origin) = self.origin(point)?;
         let Some(origin) = origin else {
-            return Err(Error::Unreachable {
-                what: format!("point {point}"),
-            });
+            return Err(Error::Unreachable { point });
         };
         let mut points = vec![point.validated(mesh).expect("checked by origin")];
         let mut faces = Vec::new();
@@ -145,11 +144,7 @@ impl<M: Metric> Query<'_, M> {
             });
             node = p;
         }
-        Err(Error::Unreachable {
-            what: format!(
-                "point {point} (its parents form a cycle: the metric returned zero costs)"
-            ),
-        })
+        Err(Error::ParentCycle { point })
     }
 
     /// The traced path from `point`, straightened ([`straighten`]): the path users

@@ -4,7 +4,7 @@ use crate::field::FieldView;
 use crate::mesh::{TriMesh, NONE};
 use crate::steiner::SteinerLayout;
 use crate::surface::{Source, SurfacePoint};
-use crate::Error;
+use crate::{Error, PointRole};
 use geotracks_metrics::Metric;
 use std::fmt;
 
@@ -132,7 +132,7 @@ impl<'a, M: Metric> Query<'a, M> {
     pub(super) fn origin(&self, point: SurfacePoint) -> Result<(f64, Option<Origin>), Error> {
         let (mesh, metric, field) = (self.mesh, self.metric, &self.field);
         let point = point.validated(mesh).map_err(|error| Error::InvalidPoint {
-            what: "the query point".into(),
+            which: PointRole::Query,
             error,
         })?;
         if let SurfacePoint::Vertex(v) = point {

@@ -39,6 +39,7 @@ use std::path::Path;
 /// A medial axis read from a `.ma` file: its sheets (faces), its curves (free edges) and
 /// the medial ball radius at each vertex.
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub struct MedialAxis {
     /// The sheets, with the free edges as line elements; `None` when no face is usable
     /// (a medial axis made only of curves).
