@@ -656,6 +656,8 @@ fn failed_write_leaves_no_file() {
     let err = write_ply_with_distance(&path, &mesh, &[0.0; 4]).unwrap_err();
     assert!(matches!(err, MeshError::Io { .. }), "{err:?}");
     assert!(err.to_string().contains("out.ply"), "{err}");
+    // The temporary file's name is not the user's business (it used to be appended).
+    assert!(!err.to_string().contains(".geotracks-"), "{err}");
     assert!(!path.exists());
 
     // A writer that fails half-way: no target and no temporary file remain.

@@ -2,6 +2,7 @@
 
 use crate::inputs::load_mesh;
 use crate::metric::MetricArgs;
+use crate::output::Outputs;
 use crate::{points, CliResult, Value};
 use geotracks::mesh::{io, TriMesh, NONE};
 use geotracks::{Euclidean, GeodesicField, Metric, Options, Solver, Source, Stop, SurfacePoint};
@@ -72,6 +73,19 @@ pub fn run(args: &DistanceArgs) -> CliResult {
     if max_distance.is_nan() || max_distance < 0.0 {
         return Err(format!("--max-distance {max_distance}: it must be a number >= 0").into());
     }
+    let inputs = [
+        Some(&args.mesh),
+        args.metric.density.as_ref(),
+        args.metric.tensor.as_ref(),
+    ];
+    let mut outputs = Outputs::new(inputs.into_iter().flatten().map(PathBuf::as_path));
+    for path in [
+        Some(&args.output),
+        args.voronoi.as_ref(),
+        args.stats.as_ref(),
+    ] {
+        outputs.declare_some(path)?;
+    }
     let mesh = load_mesh(&args.mesh)?;
     let sources = points::sources(&mesh, &args.sources)?;
     let stop = Stop::NONE.with_max_distance(max_distance);
@@ -82,13 +96,14 @@ pub fn run(args: &DistanceArgs) -> CliResult {
         Some(_) => Some(solver.query(&field)?.vertex_labels()),
         None => None,
     };
-    write_field(&args.output, format, &mesh, &field)?;
+    write_field(&mut outputs, &args.output, format, &mesh, &field)?;
     if let (Some(voronoi), Some(labels)) = (&args.voronoi, labels) {
-        write_labels(voronoi, labels)?;
+        write_labels(&mut outputs, voronoi, labels)?;
     }
     if let Some(stats) = &args.stats {
-        write_stats(stats, &field)?;
+        write_stats(&mut outputs, stats, &field)?;
     }
+    outputs.commit()?;
     crate::report_run(&args.mesh, field.stats(), &args.output);
     Ok(())
 }
@@ -117,8 +132,8 @@ fn compute<M: Metric>(
 }
 
 /// Writes the index of each vertex's nearest source, `-1` where unreached.
-fn write_labels(path: &Path, labels: Vec<u32>) -> CliResult {
-    io::write_atomically(path, |w| {
+fn write_labels(outputs: &mut Outputs, path: &Path, labels: Vec<u32>) -> CliResult {
+    outputs.write(path, |w| {
         for label in labels {
             if label == NONE {
                 writeln!(w, "-1")?;
@@ -132,6 +147,7 @@ fn write_labels(path: &Path, labels: Vec<u32>) -> CliResult {
 }
 
 fn write_field(
+    outputs: &mut Outputs,
     path: &Path,
     format: OutputFormat,
     mesh: &TriMesh,
@@ -139,14 +155,14 @@ fn write_field(
 ) -> CliResult {
     let d = field.vertex_distances();
     match format {
-        OutputFormat::Ply => io::write_ply_with_distance(path, mesh, d)?,
-        OutputFormat::Txt => io::write_atomically(path, |w| {
+        OutputFormat::Ply => outputs.write(path, |w| io::write_ply_with_distance_to(w, mesh, d))?,
+        OutputFormat::Txt => outputs.write(path, |w| {
             for x in d {
                 writeln!(w, "{}", Value(*x))?;
             }
             Ok(())
         })?,
-        OutputFormat::Csv => io::write_atomically(path, |w| {
+        OutputFormat::Csv => outputs.write(path, |w| {
             writeln!(w, "vertex,distance")?;
             for (v, x) in d.iter().enumerate() {
                 writeln!(w, "{v},{}", Value(*x))?;
@@ -157,7 +173,7 @@ fn write_field(
     Ok(())
 }
 
-fn write_stats(path: &Path, field: &GeodesicField) -> CliResult {
+fn write_stats(outputs: &mut Outputs, path: &Path, field: &GeodesicField) -> CliResult {
     let s = field.stats();
     let json = serde_json::json!({
         "vertices": s.vertices,
@@ -172,7 +188,7 @@ fn write_stats(path: &Path, field: &GeodesicField) -> CliResult {
         "setup_distance_tests": s.setup_distance_tests,
         "unreachable_vertices": field.unreachable_vertices(),
     });
-    io::write_atomically(path, |w| {
+    outputs.write(path, |w| {
         serde_json::to_writer_pretty(&mut *w, &json)?;
         writeln!(w)
     })?;
@@ -184,12 +200,15 @@ const SPOT_OBJ: &[u8] = include_bytes!("../data/spot.obj");
 
 pub fn demo(output: &Path) -> CliResult {
     let format = output_format(output)?;
+    let mut outputs = Outputs::new([]);
+    outputs.declare(output)?;
     let mesh = io::read_obj_bytes(SPOT_OBJ)?;
     let source = 0;
     let options = Options::DEFAULT;
     let solver = Solver::new(&mesh, Euclidean, &options)?;
     let field = compute(&solver, &[Source::new(source)], &Stop::NONE)?;
-    write_field(output, format, &mesh, &field)?;
+    write_field(&mut outputs, output, format, &mesh, &field)?;
+    outputs.commit()?;
     let s = field.stats();
     let far = field
         .vertex_distances()

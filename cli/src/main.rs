@@ -9,6 +9,7 @@ mod distance;
 mod inputs;
 mod matrix;
 mod metric;
+mod output;
 mod path;
 mod points;
 mod skeleton;
@@ -60,6 +61,7 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    output::remove_on_signal();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Distance(args) => distance::run(&args),

@@ -2,8 +2,8 @@
 
 use crate::inputs::{load_mesh, read_vertex_ids};
 use crate::metric::MetricArgs;
+use crate::output::Outputs;
 use crate::{CliResult, Value};
-use geotracks::mesh::io;
 use geotracks::Solver;
 use std::path::PathBuf;
 
@@ -29,6 +29,15 @@ pub fn run(args: &MatrixArgs) -> CliResult {
     if args.output.extension().and_then(|e| e.to_str()) != Some("csv") {
         return Err(format!("{}: the matrix is written as .csv", args.output.display()).into());
     }
+    let inputs = [
+        Some(&args.mesh),
+        Some(&args.sources),
+        args.targets.as_ref(),
+        args.metric.density.as_ref(),
+        args.metric.tensor.as_ref(),
+    ];
+    let mut outputs = Outputs::new(inputs.into_iter().flatten().map(PathBuf::as_path));
+    outputs.declare(&args.output)?;
     let mesh = load_mesh(&args.mesh)?;
     let sources = read_vertex_ids(&args.sources, mesh.vertex_count())?;
     let targets = match &args.targets {
@@ -45,7 +54,7 @@ pub fn run(args: &MatrixArgs) -> CliResult {
         );
     }
     let columns: Vec<u32> = targets.unwrap_or_else(|| (0..mesh.vertex_count() as u32).collect());
-    io::write_atomically(&args.output, |w| {
+    outputs.write(&args.output, |w| {
         write!(w, "source")?;
         for c in &columns {
             write!(w, ",{c}")?;
@@ -60,6 +69,7 @@ pub fn run(args: &MatrixArgs) -> CliResult {
         }
         Ok(())
     })?;
+    outputs.commit()?;
     eprintln!(
         "{}: {} sources × {} columns on {} threads in {:.3} s; wrote {}",
         args.mesh.display(),

@@ -2,8 +2,9 @@
 
 use crate::inputs::load_mesh;
 use crate::metric::MetricArgs;
+use crate::output::Outputs;
 use crate::{points, CliResult, Value};
-use geotracks::mesh::{io, TriMesh};
+use geotracks::mesh::TriMesh;
 use geotracks::{GeodesicPath, Solver, Stop, SurfacePoint};
 use std::path::{Path, PathBuf};
 
@@ -44,6 +45,13 @@ fn output_format(path: &Path) -> CliResult<OutputFormat> {
 pub fn run(args: &PathArgs) -> CliResult {
     // Check everything that can be checked before the computation.
     let format = output_format(&args.output)?;
+    let inputs = [
+        Some(&args.mesh),
+        args.metric.density.as_ref(),
+        args.metric.tensor.as_ref(),
+    ];
+    let mut outputs = Outputs::new(inputs.into_iter().flatten().map(PathBuf::as_path));
+    outputs.declare(&args.output)?;
     let mesh = load_mesh(&args.mesh)?;
     let sources = points::sources(&mesh, &args.sources)?;
     let target = points::check(&mesh, "target", args.target)?;
@@ -51,7 +59,8 @@ pub fn run(args: &PathArgs) -> CliResult {
     // The run stops once the target's value is final.
     let field = solver.solve_from(&sources, &Stop::NONE.with_targets(vec![target]))?;
     let path = solver.query(&field)?.path(target)?;
-    write_path(&args.output, format, &mesh, &path)?;
+    write_path(&mut outputs, &args.output, format, &mesh, &path)?;
+    outputs.commit()?;
 
     let source = path.source as usize;
     println!("target: {}", args.target);
@@ -67,10 +76,16 @@ pub fn run(args: &PathArgs) -> CliResult {
 }
 
 /// Writes the polyline, target first.
-fn write_path(file: &Path, format: OutputFormat, mesh: &TriMesh, path: &GeodesicPath) -> CliResult {
+fn write_path(
+    outputs: &mut Outputs,
+    file: &Path,
+    format: OutputFormat,
+    mesh: &TriMesh,
+    path: &GeodesicPath,
+) -> CliResult {
     let positions = path.positions(mesh);
     match format {
-        OutputFormat::Obj => io::write_atomically(file, |w| {
+        OutputFormat::Obj => outputs.write(file, |w| {
             for p in &positions {
                 writeln!(w, "v {} {} {}", p.x, p.y, p.z)?;
             }
@@ -82,7 +97,7 @@ fn write_path(file: &Path, format: OutputFormat, mesh: &TriMesh, path: &Geodesic
             }
             writeln!(w)
         })?,
-        OutputFormat::Csv => io::write_atomically(file, |w| {
+        OutputFormat::Csv => outputs.write(file, |w| {
             writeln!(w, "x,y,z,point")?;
             for (p, point) in positions.iter().zip(&path.points) {
                 let text = point.to_string();

@@ -1,7 +1,8 @@
 //! `geotracks skeleton`: the skeleton of a medial axis, burnt from its boundary.
 
+use crate::output::Outputs;
 use crate::CliResult;
-use geotracks::mesh::io::{read_medial_axis, write_obj_lines, write_ply_with_distance};
+use geotracks::mesh::io::{read_medial_axis, write_obj_lines_to, write_ply_with_distance_to};
 use geotracks::skeleton::medial_axis_skeleton;
 use geotracks::{Method, Options};
 use std::path::PathBuf;
@@ -62,6 +63,9 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
             .into())
         }
     };
+    let mut outputs = Outputs::new([args.axis.as_path()]);
+    outputs.declare(&args.output)?;
+    outputs.declare_some(args.field.as_ref())?;
     let start = Instant::now();
     let axis = read_medial_axis(&args.axis)?;
     let prune = if percent {
@@ -82,12 +86,8 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
     let lines = skeleton.polylines();
     match (&args.field, &fire, &axis.surface) {
         (Some(path), Some(fire), Some(mesh)) => {
-            write_ply_with_distance(path, mesh, fire.vertex_distances())?;
-            if let Err(e) = write_obj_lines(&args.output, &points, &lines) {
-                // Both files or neither.
-                let _ = std::fs::remove_file(path);
-                return Err(e.into());
-            }
+            let d = fire.vertex_distances();
+            outputs.write(path, |w| write_ply_with_distance_to(w, mesh, d))?;
         }
         (Some(path), ..) => {
             return Err(format!(
@@ -96,8 +96,10 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
             )
             .into())
         }
-        (None, ..) => write_obj_lines(&args.output, &points, &lines)?,
+        (None, ..) => {}
     }
+    outputs.write(&args.output, |w| write_obj_lines_to(w, &points, &lines))?;
+    outputs.commit()?;
     eprintln!(
         "{}: {} skeleton points, {} polylines, {} component(s), length {:.6}, {:.3} s; wrote {}",
         args.axis.display(),

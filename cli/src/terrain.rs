@@ -1,7 +1,7 @@
 //! `geotracks terrain`: the cheapest route between two map points of an elevation grid.
 
+use crate::output::Outputs;
 use crate::{CliResult, Value};
-use geotracks::mesh::io;
 use geotracks::terrain::{self, map, Route, TerrainCost};
 use geotracks::{Error, Options, Solver};
 use std::path::{Path, PathBuf};
@@ -72,6 +72,9 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     if !(args.k.is_finite() && args.k > 0.0) {
         return Err(Error::InvalidK { k: args.k }.into());
     }
+    let mut outputs = Outputs::new([args.dem.as_path()]);
+    outputs.declare(&args.output)?;
+    outputs.declare_some(args.png.as_ref())?;
     let (grid, terrain) = terrain::read_terrain(&args.dem)?;
     let locate = |arg: &str, [x, y]: [f64; 2]| {
         terrain
@@ -104,16 +107,13 @@ pub fn run(args: &TerrainArgs) -> CliResult {
 
     let (cost, length, length_2d) = (route.cost(), route.length(), route.length_2d());
     match format {
-        OutputFormat::GeoJson => write_geojson(args, &route)?,
-        OutputFormat::Csv => write_csv(&args.output, &route)?,
+        OutputFormat::GeoJson => write_geojson(&mut outputs, args, &route)?,
+        OutputFormat::Csv => write_csv(&mut outputs, &args.output, &route)?,
     }
     if let (Some(path), Some(picture)) = (&args.png, &picture) {
-        if let Err(e) = picture.write_png(path) {
-            // Both files or neither.
-            let _ = std::fs::remove_file(&args.output);
-            return Err(e.into());
-        }
+        outputs.write(path, |w| picture.write_png_to(w))?;
     }
+    outputs.commit()?;
 
     let [x0, y0] = args.from;
     let [x1, y1] = args.to;
@@ -153,7 +153,7 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     Ok(())
 }
 
-fn write_geojson(args: &TerrainArgs, route: &Route) -> CliResult {
+fn write_geojson(outputs: &mut Outputs, args: &TerrainArgs, route: &Route) -> CliResult {
     let mut coordinates: Vec<[f64; 3]> = route.points.iter().map(|p| p.to_array()).collect();
     // A LineString needs two positions: a route of one point (start = end) repeats it.
     if coordinates.len() == 1 {
@@ -177,15 +177,15 @@ fn write_geojson(args: &TerrainArgs, route: &Route) -> CliResult {
             }
         }]
     });
-    io::write_atomically(&args.output, |w| {
+    outputs.write(&args.output, |w| {
         serde_json::to_writer_pretty(&mut *w, &json).map_err(std::io::Error::other)?;
         writeln!(w)
     })?;
     Ok(())
 }
 
-fn write_csv(file: &Path, route: &Route) -> CliResult {
-    io::write_atomically(file, |w| {
+fn write_csv(outputs: &mut Outputs, file: &Path, route: &Route) -> CliResult {
+    outputs.write(file, |w| {
         writeln!(w, "x,y,z,cost,length")?;
         let mut length = 0.0;
         for (i, p) in route.points.iter().enumerate() {

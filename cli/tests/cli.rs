@@ -290,6 +290,120 @@ fn a_failed_run_keeps_an_existing_output() {
     assert_eq!(std::fs::read_to_string(&out).unwrap(), "old\n");
 }
 
+/// A command's outputs are all or nothing: a bad second output (here `--stats` naming
+/// a directory) used to fail after the main output had replaced the old file.
+#[test]
+fn a_bad_second_output_keeps_the_first_as_it_was() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let out = dir.path().join("keep.txt");
+    std::fs::write(&out, "old\n").unwrap();
+    let stats = dir.path().join("stats.json");
+    std::fs::create_dir(&stats).unwrap();
+    let o = geotracks(&[
+        "distance",
+        mesh.to_str().unwrap(),
+        "--source",
+        "0",
+        "-o",
+        out.to_str().unwrap(),
+        "--stats",
+        stats.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        stderr.contains("stats.json: exists and is not a file"),
+        "{stderr}"
+    );
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), "old\n");
+    assert_no_temporary_files(dir.path());
+}
+
+/// `-o` naming an input overwrote it.
+#[test]
+fn an_output_that_is_an_input_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let density = dir.path().join("rho.txt");
+    std::fs::write(&density, "1\n1\n1\n1\n").unwrap();
+    let sources = dir.path().join("s.csv");
+    std::fs::write(&sources, "0\n").unwrap();
+    let d = density.to_str().unwrap();
+    let s = sources.to_str().unwrap();
+    let m = mesh.to_str().unwrap();
+    for args in [
+        vec!["distance", m, "--source", "0", "--density", d, "-o", d],
+        vec!["matrix", m, "--sources", s, "-o", s],
+    ] {
+        let o = geotracks(&args);
+        assert!(!o.status.success(), "{args:?}");
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(stderr.contains("is also an input"), "{args:?}: {stderr}");
+    }
+    assert_eq!(std::fs::read_to_string(&density).unwrap(), "1\n1\n1\n1\n");
+    assert_eq!(std::fs::read_to_string(&sources).unwrap(), "0\n");
+}
+
+/// A read-only output file was replaced by the rename, whatever its mode.
+#[test]
+fn a_read_only_output_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let out = dir.path().join("locked.txt");
+    std::fs::write(&out, "old\n").unwrap();
+    let mut perms = std::fs::metadata(&out).unwrap().permissions();
+    perms.set_readonly(true);
+    std::fs::set_permissions(&out, perms).unwrap();
+    let o = geotracks(&[
+        "distance",
+        mesh.to_str().unwrap(),
+        "--source",
+        "0",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        stderr.contains("locked.txt: the file is read-only"),
+        "{stderr}"
+    );
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), "old\n");
+}
+
+/// An output that cannot be created is reported by its own name: the error used to
+/// end with `at path "…/.geotracks-XXXX.tmp"`.
+#[test]
+fn errors_name_the_target_not_the_temporary_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let out = dir.path().join("missing").join("d.txt");
+    let o = geotracks(&[
+        "distance",
+        mesh.to_str().unwrap(),
+        "--source",
+        "0",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(stderr.contains("d.txt"), "{stderr}");
+    assert!(!stderr.contains(".geotracks-"), "{stderr}");
+}
+
+/// No `.geotracks-*` file (temporary output or backup) in `dir`.
+fn assert_no_temporary_files(dir: &Path) {
+    let left: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with(".geotracks-"))
+        .collect();
+    assert!(left.is_empty(), "left behind: {left:?}");
+}
+
 #[test]
 fn info_reports_non_manifold_edges() {
     let dir = tempfile::tempdir().unwrap();

@@ -324,6 +324,33 @@ fn cli_errors_leave_no_file() {
     assert_eq!(leftovers, 0);
 }
 
+/// A map that cannot be written used to delete the route file, even one that was there
+/// before the command.
+#[test]
+fn a_failing_map_keeps_an_existing_route() {
+    let dir = tempfile::tempdir().unwrap();
+    let dem = hill_asc(dir.path());
+    let route = dir.path().join("route.geojson");
+    std::fs::write(&route, "old route\n").unwrap();
+    let png = dir.path().join("no_such_dir").join("map.png");
+    let result = geotracks(&[
+        "terrain",
+        dem.to_str().unwrap(),
+        "--from",
+        "1010,5010",
+        "--to",
+        "1290,5180",
+        "-o",
+        route.to_str().unwrap(),
+        "--png",
+        png.to_str().unwrap(),
+    ]);
+    assert!(!result.status.success());
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(stderr.contains("map.png"), "{stderr}");
+    assert_eq!(std::fs::read_to_string(&route).unwrap(), "old route\n");
+}
+
 #[test]
 fn cli_reads_a_geotiff() {
     use tiff::encoder::colortype::Gray32Float;

@@ -31,7 +31,10 @@ mod stl;
 mod text;
 mod write;
 
-pub use write::{write_atomically, write_obj_lines, write_obj_polylines, write_ply_with_distance};
+pub use write::{
+    write_atomically, write_obj_lines, write_obj_lines_to, write_obj_polylines,
+    write_ply_with_distance, write_ply_with_distance_to,
+};
 
 use super::{MeshError, TriMesh};
 use std::path::Path;
