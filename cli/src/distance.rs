@@ -3,7 +3,7 @@
 use crate::inputs::load_mesh;
 use crate::metric::MetricArgs;
 use crate::output::Outputs;
-use crate::{points, CliResult, Value};
+use crate::{points, CliResult, Short, Value};
 use geotracks::mesh::{io, TriMesh, NONE};
 use geotracks::{Euclidean, GeodesicField, Metric, Options, Solver, Source, Stop, SurfacePoint};
 use std::path::{Path, PathBuf};
@@ -58,16 +58,10 @@ pub fn run(args: &DistanceArgs) -> CliResult {
     // Check everything that can be checked before the (possibly long) computation.
     let format = output_format(&args.output)?;
     if let Some(stats) = &args.stats {
-        if stats.extension().and_then(|e| e.to_str()) != Some("json") {
-            return Err(format!("{}: the stats file must end in .json", stats.display()).into());
-        }
+        crate::output_format(stats, &[("json", ())])?;
     }
     if let Some(voronoi) = &args.voronoi {
-        if voronoi.extension().and_then(|e| e.to_str()) != Some("txt") {
-            return Err(
-                format!("{}: the --voronoi file must end in .txt", voronoi.display()).into(),
-            );
-        }
+        crate::output_format(voronoi, &[("txt", ())])?;
     }
     let max_distance = args.max_distance.unwrap_or(f64::INFINITY);
     if max_distance.is_nan() || max_distance < 0.0 {
@@ -220,12 +214,13 @@ pub fn demo(output: &Path) -> CliResult {
         s.vertices, s.faces
     );
     println!(
-        "method {}, k = {}, {} Steiner points, {} distance tests, {:.3} s; farthest vertex at {far:.4}",
+        "method {}, k = {}, {} Steiner points, {} distance tests, {:.3} s; farthest vertex at {}",
         s.method,
         s.k,
         s.steiner_points,
         s.distance_tests,
-        s.setup_seconds + s.propagate_seconds
+        s.setup_seconds + s.propagate_seconds,
+        Short(far)
     );
     println!("wrote {}", output.display());
     if matches!(format, OutputFormat::Ply) {

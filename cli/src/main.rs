@@ -81,18 +81,49 @@ fn main() -> ExitCode {
     }
 }
 
-/// A distance as text: shortest round-trip form, `inf` when unreachable, `0` for -0.
+/// A number as data (distances, costs, lengths): the shortest text that reads back as
+/// the same f64, in scientific notation (`1.5e300`) when its magnitude is at least 1e16
+/// or below 1e-5, so that no value prints as hundreds of digits; `inf` when
+/// unreachable, `0` for -0.
 pub(crate) struct Value(pub f64);
 
 impl std::fmt::Display for Value {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        if self.0.is_infinite() {
-            f.write_str("inf")
+        // An empty sum of floats is -0 (a path of one point); adding 0 makes it 0 and
+        // leaves every other value as it is.
+        let x = self.0 + 0.0;
+        let a = x.abs();
+        if x.is_infinite() {
+            f.write_str(if x > 0.0 { "inf" } else { "-inf" })
+        } else if x == 0.0 || x.is_nan() || (1e-5..1e16).contains(&a) {
+            write!(f, "{x}")
         } else {
-            // An empty sum of floats is -0 (a path of one point); adding 0 makes it 0
-            // and leaves every other value as it is.
-            write!(f, "{}", self.0 + 0.0)
+            write!(f, "{x:e}")
         }
+    }
+}
+
+/// A number for people (summaries on the terminal): 6 significant digits, trailing
+/// zeros dropped, scientific notation outside [1e-4, 1e6).
+pub(crate) struct Short(pub f64);
+
+impl std::fmt::Display for Short {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let x = self.0 + 0.0;
+        let a = x.abs();
+        if !x.is_finite() || x == 0.0 {
+            return Value(x).fmt(f);
+        }
+        if !(1e-4..1e6).contains(&a) {
+            return write!(f, "{x:.5e}");
+        }
+        let decimals = (5 - a.log10().floor() as i32).max(0) as usize;
+        let text = format!("{x:.decimals$}");
+        let text = match text.contains('.') {
+            true => text.trim_end_matches('0').trim_end_matches('.'),
+            false => &text,
+        };
+        f.write_str(text)
     }
 }
 
@@ -158,4 +189,28 @@ fn info(path: &std::path::Path) -> CliResult {
     println!("{}", path.display());
     println!("{}", mesh.report());
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Short, Value};
+
+    #[test]
+    fn numbers_are_never_hundreds_of_digits() {
+        assert_eq!(Value(1e300).to_string(), "1e300");
+        assert_eq!(Value(-2.5e-300).to_string(), "-2.5e-300");
+        assert_eq!(Value(1.25).to_string(), "1.25");
+        assert_eq!(Value(0.1 + 0.2).to_string(), "0.30000000000000004");
+        assert_eq!(Value(123456789.0).to_string(), "123456789");
+        assert_eq!(Value(1e16).to_string(), "1e16");
+        assert_eq!(Value(-0.0).to_string(), "0");
+        assert_eq!(Value(f64::INFINITY).to_string(), "inf");
+        for x in [1e300, 3.0e-7, 0.1 + 0.2, 7e15, 123.456] {
+            assert_eq!(Value(x).to_string().parse::<f64>().unwrap(), x);
+        }
+        assert_eq!(Short(1.5697123).to_string(), "1.56971");
+        assert_eq!(Short(2.0).to_string(), "2");
+        assert_eq!(Short(1e300).to_string(), "1.00000e300");
+        assert_eq!(Short(12345.678).to_string(), "12345.7");
+    }
 }

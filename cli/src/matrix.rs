@@ -26,9 +26,7 @@ pub struct MatrixArgs {
 }
 
 pub fn run(args: &MatrixArgs) -> CliResult {
-    if args.output.extension().and_then(|e| e.to_str()) != Some("csv") {
-        return Err(format!("{}: the matrix is written as .csv", args.output.display()).into());
-    }
+    crate::output_format(&args.output, &[("csv", ())])?;
     let inputs = [
         Some(&args.mesh),
         Some(&args.sources),

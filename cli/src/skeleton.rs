@@ -1,7 +1,7 @@
 //! `geotracks skeleton`: the skeleton of a medial axis, burnt from its boundary.
 
 use crate::output::Outputs;
-use crate::CliResult;
+use crate::{CliResult, Short};
 use geotracks::mesh::io::{read_medial_axis, write_obj_lines_to, write_ply_with_distance_to};
 use geotracks::skeleton::medial_axis_skeleton;
 use geotracks::{Method, Options};
@@ -101,12 +101,12 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
     outputs.write(&args.output, |w| write_obj_lines_to(w, &points, &lines))?;
     outputs.commit()?;
     eprintln!(
-        "{}: {} skeleton points, {} polylines, {} component(s), length {:.6}, {:.3} s; wrote {}",
+        "{}: {} skeleton points, {} polylines, {} component(s), length {}, {:.3} s; wrote {}",
         args.axis.display(),
         skeleton.points.len(),
         lines.len(),
         skeleton.component_count(),
-        skeleton.length(),
+        Short(skeleton.length()),
         start.elapsed().as_secs_f64(),
         args.output.display()
     );

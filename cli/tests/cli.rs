@@ -393,6 +393,91 @@ fn errors_name_the_target_not_the_temporary_file() {
     assert!(!stderr.contains(".geotracks-"), "{stderr}");
 }
 
+/// Costs print as floats, never as 300-digit integers (a density of 1e300 made every
+/// distance a line of 301 digits).
+#[test]
+fn huge_costs_print_in_scientific_notation() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let density = dir.path().join("rho.txt");
+    std::fs::write(&density, "1e300\n1e300\n1e300\n1e300\n").unwrap();
+    let out = dir.path().join("d.txt");
+    let o = geotracks_ok(&[
+        "distance",
+        mesh.to_str().unwrap(),
+        "--source",
+        "0",
+        "--density",
+        density.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--stats",
+        dir.path().join("S.JSON").to_str().unwrap(),
+    ]);
+    assert!(o.status.success());
+    let values = read_values(&out);
+    assert_eq!(values[1], 1e300);
+    for line in std::fs::read_to_string(&out).unwrap().lines() {
+        assert!(line.len() < 30, "{line}");
+    }
+    let path = dir.path().join("p.csv");
+    let o = geotracks_ok(&[
+        "path",
+        mesh.to_str().unwrap(),
+        "--source",
+        "0",
+        "--target",
+        "2",
+        "--density",
+        density.to_str().unwrap(),
+        "-o",
+        path.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.lines().all(|l| l.len() < 120), "{stdout}");
+    assert!((last_value(&o) / (2f64.sqrt() * 1e300) - 1.0).abs() < 1e-12);
+}
+
+/// A tensor with a NaN entry is "not finite", on its line, not "not positive-definite
+/// [NaN …]".
+#[test]
+fn a_nan_tensor_is_reported_as_not_finite() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let tensor = dir.path().join("m.txt");
+    std::fs::write(&tensor, "1 0 0 1 0 1\nNaN 0 0 1 0 1\n").unwrap();
+    let out = dir.path().join("d.txt");
+    assert_fails(
+        &[
+            "distance",
+            mesh.to_str().unwrap(),
+            "--source",
+            "0",
+            "--tensor",
+            tensor.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ],
+        &out,
+        "m.txt:2: tensor of face 1 is not finite",
+    );
+}
+
+/// Usage errors (clap) exit with 2, every other error with 1, as the README says.
+#[test]
+fn usage_errors_exit_2_and_other_errors_1() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let m = mesh.to_str().unwrap();
+    let usage = geotracks(&["distance", m, "-o", "d.txt"]); // no --source
+    assert_eq!(usage.status.code(), Some(2));
+    let usage = geotracks(&["distance", m, "--source", "0", "--bogus", "-o", "d.txt"]);
+    assert_eq!(usage.status.code(), Some(2));
+    let out = dir.path().join("d.txt");
+    let bad = geotracks(&["distance", m, "--source", "99", "-o", out.to_str().unwrap()]);
+    assert_eq!(bad.status.code(), Some(1));
+}
+
 /// No `.geotracks-*` file (temporary output or backup) in `dir`.
 fn assert_no_temporary_files(dir: &Path) {
     let left: Vec<_> = std::fs::read_dir(dir)
@@ -524,8 +609,19 @@ fn matrix_writes_rows_per_source() {
             out3.to_str().unwrap(),
         ],
         &out3,
-        "written as .csv",
+        "m3.txt: unknown output format (expected .csv)",
     );
+    // The extension in any case: `OUT.CSV` was refused.
+    let upper = dir.path().join("M.CSV");
+    geotracks_ok(&[
+        "matrix",
+        mesh,
+        "--sources",
+        sources.to_str().unwrap(),
+        "-o",
+        upper.to_str().unwrap(),
+    ]);
+    assert!(upper.exists());
 }
 
 /// A flat `n` × `n` grid of unit squares in the plane z = 0: vertex `j * (n + 1) + i` is
@@ -959,7 +1055,7 @@ fn bad_surface_points_fail_cleanly() {
     assert_fails(
         &[&args[..], &["--voronoi", bad.to_str().unwrap()]].concat(),
         &bad,
-        "the --voronoi file must end in .txt",
+        "v.csv: unknown output format (expected .txt)",
     );
     assert!(!txt.exists());
 }
