@@ -44,7 +44,10 @@ pub fn run(args: &MatrixArgs) -> CliResult {
     };
     let start = std::time::Instant::now();
     let solver = Solver::new(&mesh, args.metric.metric(&mesh)?, &args.metric.options())?;
-    let rows = solver.distance_rows(&sources, targets.as_deref())?;
+    // With targets, each row stops once they are final.
+    let rows = solver.distance_rows_with_stats(&sources, targets.as_deref())?;
+    let stopped = rows.iter().filter(|(_, s)| s.stopped_early).count();
+    let rows: Vec<Vec<f64>> = rows.into_iter().map(|(row, _)| row).collect();
     let unreachable = rows.iter().flatten().filter(|d| d.is_infinite()).count();
     if unreachable > 0 {
         eprintln!(
@@ -69,12 +72,16 @@ pub fn run(args: &MatrixArgs) -> CliResult {
     })?;
     outputs.commit()?;
     eprintln!(
-        "{}: {} sources × {} columns on {} threads in {:.3} s; wrote {}",
+        "{}: {} sources × {} columns on {} threads in {:.3} s{}; wrote {}",
         args.mesh.display(),
         sources.len(),
         columns.len(),
         rayon::current_num_threads(),
         start.elapsed().as_secs_f64(),
+        match stopped {
+            0 => String::new(),
+            n => format!(", {n} row(s) stopped at their targets"),
+        },
         args.output.display()
     );
     Ok(())

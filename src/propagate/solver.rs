@@ -491,8 +491,14 @@ impl<'m, M: Metric> Solver<'m, M> {
     }
 
     /// One row of distances per source, computed on all cores (rayon; workspaces are
-    /// pooled, at most one per worker thread, and reused across sources): row `i` holds the distance from
-    /// `sources[i]` to each of `targets`, or to every vertex when `targets` is `None`.
+    /// pooled, at most one per worker thread, and reused across sources): row `i` holds
+    /// the distance from `sources[i]` to each of `targets`, or to every vertex when
+    /// `targets` is `None`. With targets, each row's run stops once its targets are
+    /// final ([`Stop::with_targets`]), so near targets cost little.
+    ///
+    /// # Complexity
+    /// One run per source; with targets, each run settles only the nodes closer than
+    /// its farthest target.
     ///
     /// # Errors
     /// As [`Solver::run`], plus [`Error::TargetOutOfRange`] for a target that is not a
@@ -514,6 +520,20 @@ impl<'m, M: Metric> Solver<'m, M> {
         sources: &[u32],
         targets: Option<&[u32]>,
     ) -> Result<Vec<Vec<f64>>, Error> {
+        let rows = self.distance_rows_with_stats(sources, targets)?;
+        Ok(rows.into_iter().map(|(row, _)| row).collect())
+    }
+
+    /// As [`Solver::distance_rows`], with each row's [`Stats`] (whether it stopped
+    /// early, how much work it did).
+    ///
+    /// # Errors
+    /// As [`Solver::distance_rows`].
+    pub fn distance_rows_with_stats(
+        &self,
+        sources: &[u32],
+        targets: Option<&[u32]>,
+    ) -> Result<Vec<(Vec<f64>, Stats)>, Error> {
         use rayon::prelude::*;
         let vertex_count = self.mesh.vertex_count();
         if let Some(&vertex) = targets
@@ -526,6 +546,12 @@ impl<'m, M: Metric> Solver<'m, M> {
                 vertex_count,
             });
         }
+        let stop = match targets {
+            Some(t) => {
+                Stop::NONE.with_targets(t.iter().map(|&v| SurfacePoint::Vertex(v)).collect())
+            }
+            None => Stop::NONE,
+        };
         // Workspaces are taken from and returned to a pool, so there are never more
         // than there are worker threads (rayon's map_init may create one per split).
         let pool = std::sync::Mutex::new(Vec::<Workspace>::new());
@@ -539,13 +565,16 @@ impl<'m, M: Metric> Solver<'m, M> {
             .par_iter()
             .map(|&source| {
                 let mut ws = take();
-                let row = self.run(&mut ws, &[source]).map(|_| {
-                    let d = ws.vertex_distances();
-                    match targets {
-                        Some(t) => t.iter().map(|&v| d[v as usize]).collect(),
-                        None => d.to_vec(),
-                    }
-                });
+                let row = self
+                    .run_from(&mut ws, &[Source::new(source)], &stop)
+                    .map(|stats| {
+                        let d = ws.vertex_distances();
+                        let row = match targets {
+                            Some(t) => t.iter().map(|&v| d[v as usize]).collect(),
+                            None => d.to_vec(),
+                        };
+                        (row, stats)
+                    });
                 if let Ok(mut p) = pool.lock() {
                     p.push(ws);
                 }
