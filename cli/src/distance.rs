@@ -3,7 +3,7 @@
 use crate::inputs::load_mesh;
 use crate::metric::MetricArgs;
 use crate::output::Outputs;
-use crate::{points, CliResult, Short, Value};
+use crate::{points, ui, CliResult, Short, Value};
 use geotracks::mesh::{io, TriMesh, NONE};
 use geotracks::{Euclidean, GeodesicField, Metric, Options, Solver, Source, Stop, SurfacePoint};
 use std::path::{Path, PathBuf};
@@ -44,13 +44,14 @@ enum OutputFormat {
 }
 
 fn output_format(path: &Path) -> CliResult<OutputFormat> {
-    crate::output_format(
+    crate::text_output_format(
         path,
         &[
             ("txt", OutputFormat::Txt),
             ("csv", OutputFormat::Csv),
             ("ply", OutputFormat::Ply),
         ],
+        OutputFormat::Csv,
     )
 }
 
@@ -58,10 +59,10 @@ pub fn run(args: &DistanceArgs) -> CliResult {
     // Check everything that can be checked before the (possibly long) computation.
     let format = output_format(&args.output)?;
     if let Some(stats) = &args.stats {
-        crate::output_format(stats, &[("json", ())])?;
+        crate::text_output_format(stats, &[("json", ())], ())?;
     }
     if let Some(voronoi) = &args.voronoi {
-        crate::output_format(voronoi, &[("txt", ())])?;
+        crate::text_output_format(voronoi, &[("txt", ())], ())?;
     }
     let max_distance = args.max_distance.unwrap_or(f64::INFINITY);
     if max_distance.is_nan() || max_distance < 0.0 {
@@ -80,6 +81,7 @@ pub fn run(args: &DistanceArgs) -> CliResult {
     ] {
         outputs.declare_some(path)?;
     }
+    let spinner = ui::Spinner::start("reading the mesh and propagating");
     let mesh = load_mesh(&args.mesh)?;
     let sources = points::sources(&mesh, &args.sources)?;
     let stop = Stop::NONE.with_max_distance(max_distance);
@@ -90,6 +92,7 @@ pub fn run(args: &DistanceArgs) -> CliResult {
         Some(_) => Some(solver.query(&field)?.vertex_labels()),
         None => None,
     };
+    drop(spinner);
     write_field(&mut outputs, &args.output, format, &mesh, &field)?;
     if let (Some(voronoi), Some(labels)) = (&args.voronoi, labels) {
         write_labels(&mut outputs, voronoi, labels)?;
@@ -112,7 +115,7 @@ fn compute<M: Metric>(
     let unreachable = field.unreachable_vertices();
     if unreachable > 0 {
         if stop.max_distance.is_finite() {
-            eprintln!(
+            ui::info!(
                 "{unreachable} vertices are farther than --max-distance {} or not reachable from the sources; their distance is inf",
                 Value(stop.max_distance)
             );
@@ -192,8 +195,15 @@ fn write_stats(outputs: &mut Outputs, path: &Path, field: &GeodesicField) -> Cli
 /// The bundled default mesh: Spot by Keenan Crane (CC0), also used by the tests.
 const SPOT_OBJ: &[u8] = include_bytes!("../data/spot.obj");
 
+/// Where `geotracks demo` writes by default: a folder that git ignores.
+pub const DEMO_OUTPUT: &str = "geotracks-out/spot_distance.ply";
+
 pub fn demo(output: &Path) -> CliResult {
     let format = output_format(output)?;
+    if output == Path::new(DEMO_OUTPUT) {
+        let dir = Path::new(DEMO_OUTPUT).parent().expect("a folder");
+        std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    }
     let mut outputs = Outputs::new([]);
     outputs.declare(output)?;
     let mesh = io::read_obj_bytes(SPOT_OBJ)?;
@@ -209,25 +219,36 @@ pub fn demo(output: &Path) -> CliResult {
         .iter()
         .cloned()
         .fold(0.0f64, f64::max);
-    println!(
-        "Spot (CC0, Keenan Crane): {} vertices, {} faces; geodesic distance from vertex {source}",
-        s.vertices, s.faces
-    );
-    println!(
-        "method {}, k = {}, {} Steiner points, {} distance tests, {:.3} s; farthest vertex at {}",
-        s.method,
-        s.k,
-        s.steiner_points,
-        s.distance_tests,
-        s.setup_seconds + s.propagate_seconds,
-        Short(far)
-    );
-    println!("wrote {}", output.display());
+    let lines = [
+        format!(
+            "Spot (CC0, Keenan Crane): {} vertices, {} faces; geodesic distance from vertex {source}",
+            s.vertices, s.faces
+        ),
+        format!(
+            "method {}, k = {}, {} Steiner points, {} distance tests, {:.3} s; farthest vertex at {}",
+            s.method,
+            s.k,
+            s.steiner_points,
+            s.distance_tests,
+            s.setup_seconds + s.propagate_seconds,
+            Short(far)
+        ),
+        format!("wrote {}", crate::shown(output)),
+    ];
+    for line in lines {
+        // Standard output holds the data when it is the output.
+        if output.as_os_str() == "-" {
+            ui::info!("{line}");
+        } else {
+            ui::say!("{line}");
+        }
+    }
     if matches!(format, OutputFormat::Ply) {
-        println!(
+        ui::say!(
             "view it with any PLY viewer that shows vertex colours, e.g. `meshlab {0}`, `f3d {0}` or Blender (File > Import > PLY)",
             output.display()
         );
     }
+    crate::report_stats(s);
     Ok(())
 }

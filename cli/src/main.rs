@@ -14,6 +14,7 @@ mod path;
 mod points;
 mod skeleton;
 mod terrain;
+mod ui;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -21,48 +22,107 @@ use std::process::ExitCode;
 
 /// Geodesic distances on triangle meshes (geodesic tracks method).
 #[derive(Parser)]
-#[command(name = "geotracks", version, about)]
+#[command(name = "geotracks", version, about, after_help = MAIN_HELP)]
 struct Cli {
+    /// Print only warnings and errors: no summaries, no progress.
+    #[arg(short, long, global = true, conflicts_with = "verbose")]
+    quiet: bool,
+    /// Also print the run's counters and timings.
+    #[arg(short, long, global = true)]
+    verbose: bool,
     #[command(subcommand)]
     command: Command,
 }
+
+const MAIN_HELP: &str = "\
+Outputs are written all or nothing: checked before the work, replaced only when all of
+them are written. `-o -` writes a text output to standard output.
+
+Exit status: 0 on success, 1 on an error (bad input, failed output), 2 when the command
+line cannot be parsed, 130 when interrupted.
+
+Examples:
+  geotracks demo
+  geotracks distance mesh.obj --source 0 -o distance.ply
+  geotracks path mesh.obj --source 0 --target 100 -o path.obj
+  geotracks <COMMAND> --help";
 
 #[derive(Subcommand)]
 enum Command {
     /// Compute a distance field from one or more sources (vertices, or any surface
     /// points).
-    #[command(after_help = points::SP_HELP)]
+    #[command(after_help = with_examples(points::SP_HELP, DISTANCE_EXAMPLES))]
     Distance(distance::DistanceArgs),
     /// Trace the shortest path from a target point to the nearest source and write it as
     /// a polyline (.obj or .csv); print its length on the last line.
-    #[command(after_help = points::SP_HELP)]
+    #[command(after_help = with_examples(points::SP_HELP, PATH_EXAMPLES))]
     Path(path::PathArgs),
     /// Distances from many sources (rows) to every vertex or to listed targets
     /// (columns), computed on all cores.
+    #[command(after_help = with_examples("", MATRIX_EXAMPLES))]
     Matrix(matrix::MatrixArgs),
     /// Burn a medial axis (.ma) from its boundary and write the skeleton of its ridges,
     /// joined with its free edges, as OBJ polylines.
+    #[command(after_help = with_examples("", SKELETON_EXAMPLES))]
     Skeleton(skeleton::SkeletonArgs),
     /// The cheapest route between two map points of an elevation grid (ESRI .asc or
     /// GeoTIFF) under a terrain cost, written as GeoJSON or CSV, with an optional map
     /// (.png); print its cost on the last line.
+    #[command(after_help = with_examples("", TERRAIN_EXAMPLES))]
     Terrain(terrain::TerrainArgs),
     /// Print what a mesh is made of: counts, boundary, non-manifold edges, components.
+    #[command(after_help = with_examples("", INFO_EXAMPLES))]
     Info {
         /// The mesh (OBJ, PLY, OFF, STL or .ma).
         mesh: PathBuf,
     },
     /// Compute a distance field on the bundled Spot model and write a coloured PLY.
+    #[command(after_help = with_examples("", DEMO_EXAMPLES))]
     Demo {
-        /// Where to write the coloured mesh.
-        #[arg(short, long, default_value = "spot_distance.ply")]
+        /// Where to write the mesh: .ply (coloured), .txt or .csv; by default into
+        /// geotracks-out/ (created if needed; git ignores it).
+        #[arg(short, long, default_value = distance::DEMO_OUTPUT)]
         output: PathBuf,
     },
 }
 
+/// A subcommand's text after its options: `before` (if any), then its examples.
+fn with_examples(before: &str, examples: &str) -> String {
+    match before {
+        "" => format!("Examples:\n{examples}"),
+        _ => format!("{before}\n\nExamples:\n{examples}"),
+    }
+}
+
+const DISTANCE_EXAMPLES: &str = "  geotracks distance mesh.obj --source 0 -o distance.ply
+  geotracks distance mesh.obj --source 0 --source f:12:0.2,0.3,0.5 --voronoi cells.txt -o d.csv
+  geotracks distance mesh.obj --source 0 --density rho.txt --max-distance 2.5 -o d.txt --stats run.json
+  geotracks distance mesh.obj --source 0 -o - | head   # vertex,distance on standard output";
+
+const PATH_EXAMPLES: &str = "  geotracks path mesh.obj --source 0 --target 100 -o path.obj
+  geotracks path mesh.obj --source e:40:0.25 --target f:12:0.2,0.3,0.5 --tensor m.txt -o path.csv
+  geotracks path mesh.obj --source 0 --target 100 -o -   # x,y,z,point on standard output";
+
+const MATRIX_EXAMPLES: &str = "  geotracks matrix mesh.obj --sources sources.txt -o all.csv
+  geotracks matrix mesh.obj --sources sources.txt --targets targets.txt -o pairs.csv";
+
+const SKELETON_EXAMPLES: &str =
+    "  geotracks skeleton cow.ma --prune 3% -o cow_skeleton.obj --field cow_fire.ply
+  geotracks skeleton axis.ma --speed radius --prune 0.05 -o skeleton.obj";
+
+const TERRAIN_EXAMPLES: &str = "  geotracks terrain dem.tif --from 499.5,499.5 --to 9490.5,9290.7 -o route.geojson
+  geotracks terrain dem.asc --from 1010,5010 --to 1290,5180 --cost slope:4,max:30 -o route.csv --png map.png";
+
+const INFO_EXAMPLES: &str = "  geotracks info mesh.obj
+  geotracks info axis.ma";
+
+const DEMO_EXAMPLES: &str = "  geotracks demo
+  geotracks demo -o spot.csv";
+
 fn main() -> ExitCode {
     output::remove_on_signal();
     let cli = Cli::parse();
+    ui::set_level(cli.quiet, cli.verbose);
     let result = match cli.command {
         Command::Distance(args) => distance::run(&args),
         Command::Path(args) => path::run(&args),
@@ -148,14 +208,53 @@ pub(crate) fn run_summary(s: &geotracks::Stats) -> String {
 /// The run's line on stderr for a command on a mesh: the mesh, its size, the method,
 /// [`run_summary`], and the file written.
 pub(crate) fn report_run(mesh: &std::path::Path, s: &geotracks::Stats, output: &std::path::Path) {
-    eprintln!(
+    ui::info!(
         "{}: {} vertices, method {}, {}; wrote {}",
         mesh.display(),
         s.vertices,
         s.method,
         run_summary(s),
-        output.display()
+        shown(output)
     );
+    report_stats(s);
+}
+
+/// With `--verbose`, the run's counters and timings.
+pub(crate) fn report_stats(s: &geotracks::Stats) {
+    if ui::verbose() {
+        eprintln!(
+            "  {} faces, k = {}; setup {:.4} s, propagation {:.4} s; {} pushes, {} distance tests (+ {} in setup)",
+            s.faces,
+            s.k,
+            s.setup_seconds,
+            s.propagate_seconds,
+            s.pushes,
+            s.distance_tests,
+            s.setup_distance_tests
+        );
+    }
+}
+
+/// An output's name in messages: `standard output` for `-`.
+pub(crate) fn shown(path: &std::path::Path) -> String {
+    if path.as_os_str() == "-" {
+        "standard output".into()
+    } else {
+        path.display().to_string()
+    }
+}
+
+/// The format of an output that may go to standard output (`-`): there, `on_stdout`
+/// (a text format); elsewhere as [`output_format`].
+pub(crate) fn text_output_format<F: Copy>(
+    path: &std::path::Path,
+    formats: &[(&str, F)],
+    on_stdout: F,
+) -> CliResult<F> {
+    if path.as_os_str() == "-" {
+        return Ok(on_stdout);
+    }
+    output_format(path, formats)
 }
 
 /// The format of output file `path`, by its extension (any case), among `formats`
@@ -164,6 +263,11 @@ pub(crate) fn output_format<F: Copy>(
     path: &std::path::Path,
     formats: &[(&str, F)],
 ) -> CliResult<F> {
+    if path.as_os_str() == "-" {
+        return Err(
+            "standard output (-) takes text outputs only; give this one a file name".into(),
+        );
+    }
     let ext = path
         .extension()
         .and_then(|e| e.to_str())

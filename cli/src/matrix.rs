@@ -3,7 +3,7 @@
 use crate::inputs::{load_mesh, read_vertex_ids};
 use crate::metric::MetricArgs;
 use crate::output::Outputs;
-use crate::{CliResult, Value};
+use crate::{ui, CliResult, Value};
 use geotracks::Solver;
 use std::path::PathBuf;
 
@@ -26,7 +26,7 @@ pub struct MatrixArgs {
 }
 
 pub fn run(args: &MatrixArgs) -> CliResult {
-    crate::output_format(&args.output, &[("csv", ())])?;
+    crate::text_output_format(&args.output, &[("csv", ())], ())?;
     let inputs = [
         Some(&args.mesh),
         Some(&args.sources),
@@ -36,6 +36,7 @@ pub fn run(args: &MatrixArgs) -> CliResult {
     ];
     let mut outputs = Outputs::new(inputs.into_iter().flatten().map(PathBuf::as_path));
     outputs.declare(&args.output)?;
+    let spinner = ui::Spinner::start("reading the mesh and computing the rows");
     let mesh = load_mesh(&args.mesh)?;
     let sources = read_vertex_ids(&args.sources, mesh.vertex_count())?;
     let targets = match &args.targets {
@@ -47,7 +48,13 @@ pub fn run(args: &MatrixArgs) -> CliResult {
     // With targets, each row stops once they are final.
     let rows = solver.distance_rows_with_stats(&sources, targets.as_deref())?;
     let stopped = rows.iter().filter(|(_, s)| s.stopped_early).count();
+    if ui::verbose() {
+        let tests: u64 = rows.iter().map(|(_, s)| s.distance_tests).sum();
+        let pushes: u64 = rows.iter().map(|(_, s)| s.pushes).sum();
+        eprintln!("  {pushes} pushes and {tests} distance tests over all rows");
+    }
     let rows: Vec<Vec<f64>> = rows.into_iter().map(|(row, _)| row).collect();
+    drop(spinner);
     let unreachable = rows.iter().flatten().filter(|d| d.is_infinite()).count();
     if unreachable > 0 {
         eprintln!(
@@ -71,7 +78,7 @@ pub fn run(args: &MatrixArgs) -> CliResult {
         Ok(())
     })?;
     outputs.commit()?;
-    eprintln!(
+    ui::info!(
         "{}: {} sources × {} columns on {} threads in {:.3} s{}; wrote {}",
         args.mesh.display(),
         sources.len(),
@@ -82,7 +89,7 @@ pub fn run(args: &MatrixArgs) -> CliResult {
             0 => String::new(),
             n => format!(", {n} row(s) stopped at their targets"),
         },
-        args.output.display()
+        crate::shown(&args.output)
     );
     Ok(())
 }

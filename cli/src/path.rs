@@ -3,7 +3,7 @@
 use crate::inputs::load_mesh;
 use crate::metric::MetricArgs;
 use crate::output::Outputs;
-use crate::{points, CliResult, Value};
+use crate::{points, ui, CliResult, Value};
 use geotracks::mesh::TriMesh;
 use geotracks::{GeodesicPath, Solver, Stop, SurfacePoint};
 use std::path::{Path, PathBuf};
@@ -36,9 +36,10 @@ enum OutputFormat {
 }
 
 fn output_format(path: &Path) -> CliResult<OutputFormat> {
-    crate::output_format(
+    crate::text_output_format(
         path,
         &[("obj", OutputFormat::Obj), ("csv", OutputFormat::Csv)],
+        OutputFormat::Csv,
     )
 }
 
@@ -52,6 +53,7 @@ pub fn run(args: &PathArgs) -> CliResult {
     ];
     let mut outputs = Outputs::new(inputs.into_iter().flatten().map(PathBuf::as_path));
     outputs.declare(&args.output)?;
+    let spinner = ui::Spinner::start("reading the mesh, propagating and tracing");
     let mesh = load_mesh(&args.mesh)?;
     let sources = points::sources(&mesh, &args.sources)?;
     let target = points::check(&mesh, "target", args.target)?;
@@ -59,18 +61,33 @@ pub fn run(args: &PathArgs) -> CliResult {
     // The run stops once the target's value is final.
     let field = solver.solve_from(&sources, &Stop::NONE.with_targets(vec![target]))?;
     let path = solver.query(&field)?.path(target)?;
+    drop(spinner);
     write_path(&mut outputs, &args.output, format, &mesh, &path)?;
     outputs.commit()?;
 
     let source = path.source as usize;
-    println!("target: {}", args.target);
-    println!("source: {source} ({})", args.sources[source]);
-    println!("points: {}", path.points.len());
-    println!(
-        "traced length: {} (the Steiner graph's distance, before straightening)",
-        Value(path.traced_length)
-    );
-    println!("{}", Value(path.length));
+    let summary = [
+        format!("target: {}", args.target),
+        format!("source: {source} ({})", args.sources[source]),
+        format!("points: {}", path.points.len()),
+        format!(
+            "traced length: {} (the Steiner graph's distance, before straightening)",
+            Value(path.traced_length)
+        ),
+    ];
+    if args.output.as_os_str() == "-" {
+        // Standard output holds the path: the summary and the length go to stderr.
+        for line in summary {
+            ui::info!("{line}");
+        }
+        ui::info!("length: {}", Value(path.length));
+    } else {
+        for line in summary {
+            ui::say!("{line}");
+        }
+        // The result, alone on the last line (also with --quiet).
+        println!("{}", Value(path.length));
+    }
     crate::report_run(&args.mesh, field.stats(), &args.output);
     Ok(())
 }

@@ -1,7 +1,7 @@
 //! `geotracks skeleton`: the skeleton of a medial axis, burnt from its boundary.
 
 use crate::output::Outputs;
-use crate::{CliResult, Short};
+use crate::{ui, CliResult, Short};
 use geotracks::mesh::io::{read_medial_axis, write_obj_lines_to, write_ply_with_distance_to};
 use geotracks::skeleton::medial_axis_skeleton;
 use geotracks::{Method, Options};
@@ -45,7 +45,7 @@ pub struct SkeletonArgs {
 }
 
 pub fn run(args: &SkeletonArgs) -> CliResult {
-    crate::output_format(&args.output, &[("obj", ())])?;
+    crate::text_output_format(&args.output, &[("obj", ())], ())?;
     if let Some(field) = &args.field {
         crate::output_format(field, &[("ply", ())])?;
     }
@@ -67,6 +67,7 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
     outputs.declare(&args.output)?;
     outputs.declare_some(args.field.as_ref())?;
     let start = Instant::now();
+    let spinner = ui::Spinner::start("reading the medial axis, burning and tracing ridges");
     let axis = read_medial_axis(&args.axis)?;
     let prune = if percent {
         prune / 100.0 * diagonal(&axis.positions)
@@ -76,6 +77,7 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
     let options = Options::DEFAULT.with_k(args.k).with_method(args.method);
     let radius_aware = matches!(args.speed, Speed::Radius);
     let (skeleton, fire) = medial_axis_skeleton(&axis, radius_aware, &options, prune)?;
+    drop(spinner);
     if skeleton.closed_components > 0 {
         eprintln!(
             "warning: {} closed part(s) of the medial axis have no boundary to burn from and no skeleton",
@@ -100,7 +102,7 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
     }
     outputs.write(&args.output, |w| write_obj_lines_to(w, &points, &lines))?;
     outputs.commit()?;
-    eprintln!(
+    ui::info!(
         "{}: {} skeleton points, {} polylines, {} component(s), length {}, {:.3} s; wrote {}",
         args.axis.display(),
         skeleton.points.len(),
@@ -108,7 +110,7 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
         skeleton.component_count(),
         Short(skeleton.length()),
         start.elapsed().as_secs_f64(),
-        args.output.display()
+        crate::shown(&args.output)
     );
     Ok(())
 }

@@ -1,7 +1,7 @@
 //! `geotracks terrain`: the cheapest route between two map points of an elevation grid.
 
 use crate::output::Outputs;
-use crate::{CliResult, Value};
+use crate::{ui, CliResult, Value};
 use geotracks::terrain::{self, map, Route, TerrainCost};
 use geotracks::{Error, Options, Solver};
 use std::path::{Path, PathBuf};
@@ -58,13 +58,14 @@ enum OutputFormat {
 
 pub fn run(args: &TerrainArgs) -> CliResult {
     // Check everything that can be checked before reading the grid.
-    let format = crate::output_format(
+    let format = crate::text_output_format(
         &args.output,
         &[
             ("geojson", OutputFormat::GeoJson),
             ("json", OutputFormat::GeoJson),
             ("csv", OutputFormat::Csv),
         ],
+        OutputFormat::GeoJson,
     )?;
     if let Some(png) = &args.png {
         crate::output_format(png, &[("png", ())])?;
@@ -75,6 +76,7 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     let mut outputs = Outputs::new([args.dem.as_path()]);
     outputs.declare(&args.output)?;
     outputs.declare_some(args.png.as_ref())?;
+    let spinner = ui::Spinner::start("reading the grid and routing");
     let (grid, terrain) = terrain::read_terrain(&args.dem)?;
     let locate = |arg: &str, [x, y]: [f64; 2]| {
         terrain
@@ -105,6 +107,7 @@ pub fn run(args: &TerrainArgs) -> CliResult {
         )
     });
 
+    drop(spinner);
     let (cost, length, length_2d) = (route.cost(), route.length(), route.length_2d());
     match format {
         OutputFormat::GeoJson => write_geojson(&mut outputs, args, &route)?,
@@ -117,26 +120,40 @@ pub fn run(args: &TerrainArgs) -> CliResult {
 
     let [x0, y0] = args.from;
     let [x1, y1] = args.to;
-    println!("from: {x0},{y0} ({from})");
-    println!("to: {x1},{y1} ({to})");
-    println!("cost model: {}", args.cost);
-    println!("points: {}", route.points.len());
-    println!("length: {} (3D), {} (map)", Value(length), Value(length_2d));
-    println!(
-        "traced cost: {} (the Steiner graph's, before straightening)",
-        Value(route.traced_cost)
-    );
-    println!("{}", Value(cost));
+    let summary = [
+        format!("from: {x0},{y0} ({from})"),
+        format!("to: {x1},{y1} ({to})"),
+        format!("cost model: {}", args.cost),
+        format!("points: {}", route.points.len()),
+        format!("length: {} (3D), {} (map)", Value(length), Value(length_2d)),
+        format!(
+            "traced cost: {} (the Steiner graph's, before straightening)",
+            Value(route.traced_cost)
+        ),
+    ];
+    if args.output.as_os_str() == "-" {
+        // Standard output holds the route: the summary and the cost go to stderr.
+        for line in summary {
+            ui::info!("{line}");
+        }
+        ui::info!("cost: {}", Value(cost));
+    } else {
+        for line in summary {
+            ui::say!("{line}");
+        }
+        // The result, alone on the last line (also with --quiet).
+        println!("{}", Value(cost));
+    }
     let s = &route.stats;
     let g = grid.geometry();
-    eprintln!(
+    ui::info!(
         "{}: {} × {} samples, {} faces, {}; wrote {}{}",
         args.dem.display(),
         g.ncols,
         g.nrows,
         s.faces,
         crate::run_summary(s),
-        args.output.display(),
+        crate::shown(&args.output),
         match (&args.png, &picture) {
             (Some(p), Some(m)) => format!(
                 " and {} ({} × {} px{})",
@@ -150,6 +167,7 @@ pub fn run(args: &TerrainArgs) -> CliResult {
             _ => String::new(),
         }
     );
+    crate::report_stats(s);
     Ok(())
 }
 

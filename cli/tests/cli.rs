@@ -1182,3 +1182,172 @@ fn skeleton_bad_input_fails_cleanly() {
     let (points, lines) = read_obj_graph(&obj);
     assert_eq!((points.len(), lines.len()), (4, 3));
 }
+
+/// Every command's `--help` ends with examples (and so does the tool's).
+#[test]
+fn every_help_ends_with_examples() {
+    for command in [
+        None,
+        Some("distance"),
+        Some("path"),
+        Some("matrix"),
+        Some("skeleton"),
+        Some("terrain"),
+        Some("info"),
+        Some("demo"),
+    ] {
+        let mut args: Vec<&str> = command.into_iter().collect();
+        args.push("--help");
+        let out = geotracks_ok(&args);
+        let help = String::from_utf8_lossy(&out.stdout);
+        let (_, examples) = help
+            .rsplit_once("Examples:\n")
+            .unwrap_or_else(|| panic!("{args:?}: no examples in {help}"));
+        let lines: Vec<&str> = examples.lines().filter(|l| !l.trim().is_empty()).collect();
+        assert!(!lines.is_empty(), "{args:?}");
+        assert!(
+            lines.iter().all(|l| l.starts_with("  geotracks ")),
+            "{args:?}: {lines:?}"
+        );
+    }
+}
+
+/// `--quiet` leaves stderr empty on success; `--verbose` adds the counters.
+#[test]
+fn quiet_and_verbose() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let out = dir.path().join("d.txt");
+    let args = [
+        "distance",
+        mesh.to_str().unwrap(),
+        "--source",
+        "0",
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    let normal = geotracks_ok(&args);
+    assert!(String::from_utf8_lossy(&normal.stderr).contains("wrote"));
+    let quiet = geotracks_ok(&[&args[..], &["--quiet"]].concat());
+    assert_eq!(String::from_utf8_lossy(&quiet.stderr), "");
+    let verbose = geotracks_ok(&[&["-v"], &args[..]].concat());
+    let stderr = String::from_utf8_lossy(&verbose.stderr);
+    assert!(stderr.contains("distance tests"), "{stderr}");
+    // `path` keeps its result, the length, on stdout with --quiet.
+    let p = dir.path().join("p.obj");
+    let m = mesh.to_str().unwrap();
+    let quiet = geotracks_ok(&[
+        "path",
+        m,
+        "--source",
+        "0",
+        "--target",
+        "2",
+        "-o",
+        p.to_str().unwrap(),
+        "-q",
+    ]);
+    let stdout = String::from_utf8_lossy(&quiet.stdout);
+    assert_eq!(stdout.lines().count(), 1, "{stdout}");
+    assert!((last_value(&quiet) - 2f64.sqrt()).abs() < 1e-12);
+}
+
+/// `-o -` writes a text output to standard output, and the summary goes to stderr.
+#[test]
+fn dash_writes_to_standard_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let m = mesh.to_str().unwrap();
+    let out = geotracks_ok(&["distance", m, "--source", "0", "-o", "-"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.starts_with("vertex,distance\n0,0\n"), "{stdout}");
+    assert_eq!(stdout.lines().count(), 5);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("wrote standard output"));
+    let out = geotracks_ok(&["path", m, "--source", "0", "--target", "2", "-o", "-"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.starts_with("x,y,z,point\n"), "{stdout}");
+    assert!(String::from_utf8_lossy(&out.stderr).contains("length: "));
+    // Binary outputs need a file; two outputs cannot share standard output.
+    let out = geotracks(&["skeleton", "x.ma", "-o", "s.obj", "--field", "-"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("text outputs only"));
+    let out = geotracks(&["distance", m, "--source", "0", "-o", "-", "--stats", "-"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("two outputs"));
+}
+
+/// The demo writes into geotracks-out/ (which git ignores) and says so.
+#[test]
+fn the_demo_writes_into_an_ignored_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_geotracks"))
+        .arg("demo")
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.contains("wrote geotracks-out/spot_distance.ply"),
+        "{stdout}"
+    );
+    assert!(dir.path().join("geotracks-out/spot_distance.ply").is_file());
+    let ignore = concat!(env!("CARGO_MANIFEST_DIR"), "/../.gitignore");
+    if let Ok(text) = std::fs::read_to_string(ignore) {
+        assert!(text.lines().any(|l| l == "/geotracks-out/"), "{text}");
+    }
+}
+
+/// An interrupted run removes its temporary files and exits 130: here a run whose
+/// standard output nobody reads, caught with `--voronoi`'s temporary file written.
+#[cfg(unix)]
+#[test]
+fn an_interrupted_run_leaves_no_temporary_file() {
+    use std::process::{Command, Stdio};
+    use std::time::{Duration, Instant};
+    let dir = tempfile::tempdir().unwrap();
+    // 22K vertices: the CSV (≈ 600 KB) outgrows the pipe's buffer.
+    let mesh = grid_obj(dir.path(), 150);
+    let voronoi = dir.path().join("v.txt");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_geotracks"))
+        .args([
+            "distance",
+            mesh.to_str().unwrap(),
+            "--source",
+            "0",
+            "--k",
+            "1",
+            "--voronoi",
+            voronoi.to_str().unwrap(),
+            "-o",
+            "-",
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let temporary = || {
+        std::fs::read_dir(dir.path())
+            .unwrap()
+            .filter_map(|e| e.ok())
+            .any(|e| e.file_name().to_string_lossy().starts_with(".geotracks-"))
+    };
+    let start = Instant::now();
+    while !temporary() {
+        assert!(
+            start.elapsed() < Duration::from_secs(60),
+            "no temporary file"
+        );
+        assert!(child.try_wait().unwrap().is_none(), "the run ended");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let killed = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(130));
+    assert_no_temporary_files(dir.path());
+    assert!(!voronoi.exists());
+}
