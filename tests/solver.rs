@@ -127,16 +127,15 @@ fn tracks_work_grows_about_linearly_in_k_on_spot() {
     check_linear_work(&spot(), "spot");
 }
 
-/// The criterion is on the shared bunny; it runs where ../shared/data exists
-/// (CI has it; a fresh clone may not, and then this says so and checks nothing more
-/// than the Spot test above).
+/// The criterion is on the shared bunny, which a fresh clone does not have:
+/// ignored by `cargo test` (which says so), run by `.ci/run` with `--ignored` where
+/// ../shared/data is beside the clone. Without the data it fails rather than pass
+/// having checked nothing.
 #[test]
+#[ignore = "needs ../shared/data beside the clone; .ci/run runs it with --ignored"]
 fn tracks_work_grows_about_linearly_in_k_on_the_shared_bunny() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/meshes/bunny.obj");
-    if !path.exists() {
-        eprintln!("skipped: {} not found", path.display());
-        return;
-    }
+    assert!(path.exists(), "{} not found", path.display());
     let mesh = read_mesh(&path).unwrap();
     assert_eq!(mesh.face_count(), 69451);
     check_linear_work(&mesh, "bunny");
