@@ -23,7 +23,12 @@
 //! - [`skeleton`]: grassfire on a medial axis from its boundary, and the skeleton of its
 //!   ridges.
 //! - [`terrain`]: elevation grids (ESRI ASCII, GeoTIFF) as meshes, terrain costs (slope
-//!   density, impassable faces, uphill tensor) and maps of routes.
+//!   density, impassable faces, uphill tensor), routes ([`terrain::route`]) and maps.
+//!
+//! Dependencies point one way: applications ([`skeleton`], [`terrain`]) use
+//! [`propagate`], which makes fields and hands out [`Query`]s; [`trace`] reads fields;
+//! [`field`] is plain data over [`steiner`] and [`mesh`]; the metrics know nothing of
+//! the rest. The command-line tool is the separate crate `geotracks-cli`.
 //!
 //! ## Example
 //! ```
@@ -37,6 +42,23 @@
 //! let field = distance_field(&mesh, &Euclidean, &[0], &Options::DEFAULT.with_k(3.0))?;
 //! assert!((field.distance(2) - 2f64.sqrt()).abs() < 1e-12);
 //! println!("{} distance tests", field.stats().distance_tests);
+//! # Ok::<(), geotracks::Error>(())
+//! ```
+//!
+//! Paths and the distance at any surface point ask the solver that made the field:
+//! ```
+//! use geotracks::{mesh::TriMesh, Euclidean, Options, Solver, SurfacePoint};
+//!
+//! let mesh = TriMesh::new(
+//!     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+//!     vec![[0, 1, 2], [0, 2, 3]],
+//! )?;
+//! let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT)?;
+//! let field = solver.solve(&[0])?;
+//! let query = solver.query(&field)?;
+//! let middle = SurfacePoint::Edge { edge: 1, t: 0.5 };
+//! let path = query.path(middle)?; // from the point back to vertex 0
+//! assert!((path.length - query.distance_at(middle)?).abs() < 1e-12);
 //! # Ok::<(), geotracks::Error>(())
 //! ```
 #![forbid(unsafe_code)]
