@@ -14,9 +14,9 @@
 //!
 //! Without arguments it builds a 300 m hill in memory and routes across it.
 
-use geotracks::mesh::{Topology, TriMesh};
+use geotracks::mesh::TriMesh;
 use geotracks::terrain::{read_terrain, ElevationGrid, GridGeometry};
-use geotracks::{Euclidean, FacePoint, Metric, Options, Solver, Source, Stop};
+use geotracks::{Euclidean, FacePoint, Metric, Options, Solver, Source};
 
 /// Walking time (hours, lengths in metres) by Tobler's hiking function.
 struct Tobler {
@@ -86,13 +86,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     let tobler = Tobler::new(mesh);
     let options = Options::DEFAULT.with_k(3.0);
-    let stop = Stop::NONE.with_targets(vec![to]);
-    let fastest = Solver::new(mesh, &tobler, &options)?
-        .solve_from(&[Source::new(from)], &stop)?
-        .path(mesh, &tobler, to)?;
-    let shortest = Solver::new(mesh, Euclidean, &options)?
-        .solve_from(&[Source::new(from)], &stop)?
-        .path(mesh, &Euclidean, to)?;
+    let from = [Source::new(from)];
+    let fastest = Solver::new(mesh, &tobler, &options)?.shortest_path(&from, to)?;
+    let shortest = Solver::new(mesh, Euclidean, &options)?.shortest_path(&from, to)?;
     for (name, path) in [("shortest", &shortest), ("fastest", &fastest)] {
         println!(
             "{name} route: {:.0} m, {:.2} h on foot",

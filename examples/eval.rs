@@ -28,7 +28,7 @@
 //! mean and max relative error over the references of each mesh (|d − d*| / d* over
 //! vertices with d* > 0), and the distance tests of one run.
 
-use geotracks::mesh::{io::read_mesh, Topology, TriMesh};
+use geotracks::mesh::{io::read_mesh, TriMesh};
 use geotracks::{distance_field, Euclidean, Method, Options, Solver, SurfacePoint};
 use std::path::PathBuf;
 use std::time::Instant;
@@ -302,6 +302,7 @@ fn paths(args: &Args, meshes: &[&MeshEntry], count: usize) -> Result<(), String>
                 let field = solver
                     .solve(&[source_of(reference)?])
                     .map_err(|e| e.to_string())?;
+                let query = solver.query(&field).map_err(|e| e.to_string())?;
                 // Vertices spread over the mesh by a multiplicative hash of 0, 1, 2, …
                 let vertices = mesh.vertex_count() as u64;
                 for i in 0..count as u64 {
@@ -311,8 +312,8 @@ fn paths(args: &Args, meshes: &[&MeshEntry], count: usize) -> Result<(), String>
                         continue;
                     }
                     let start = Instant::now();
-                    let path = field
-                        .path(&mesh, &Euclidean, SurfacePoint::Vertex(v))
+                    let path = query
+                        .path(SurfacePoint::Vertex(v))
                         .map_err(|e| e.to_string())?;
                     seconds += start.elapsed().as_secs_f64();
                     let (t, s) = ((path.traced_length - d) / d, (path.length - d) / d);

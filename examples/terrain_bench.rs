@@ -15,8 +15,8 @@
 //! straightened at k = 1 and 2 and compared with the same route at k = 6 (a finer graph
 //! finds a better corridor; there is no exact reference on a hilly grid). Minutes.
 
-use geotracks::terrain::{read_terrain, TerrainCost, WithTerrainMetric};
-use geotracks::{Metric, Options, Solver, Source, Stop, SurfacePoint};
+use geotracks::terrain::{read_terrain, route, TerrainCost};
+use geotracks::{mesh::TriMesh, Options, Solver, SurfacePoint};
 use std::io::Write;
 use std::time::Instant;
 
@@ -64,18 +64,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let mesh = t.elapsed().as_secs_f64();
         let a = terrain.locate(from[0], from[1])?;
         let b = terrain.locate(to[0], to[1])?;
-        let cost_model: TerrainCost = cost.parse()?;
-        let t = Instant::now();
-        let times = cost_model.with_metric(
-            &terrain.mesh,
-            Run {
-                mesh: &terrain.mesh,
-                from: a,
-                to: b,
-                k,
-                metric_start: t,
-            },
-        )?;
+        let times = time_route(&terrain.mesh, cost.parse()?, a, b, k)?;
         let total = t0.elapsed().as_secs_f64();
         println!(
             "| {cost} | {k} | {read:.2} s | {mesh:.2} s | {:.2} s | {:.2} s | {:.2} s | {:.2} s | {total:.2} s | {:.1} | {} |",
@@ -109,14 +98,7 @@ fn route_accuracy(path: &std::path::Path, extent: f64) -> Result<(), Box<dyn std
             let cost_model: TerrainCost = cost.parse()?;
             let mut costs = [0.0; 3];
             for (i, k) in [6.0, 1.0, 2.0].into_iter().enumerate() {
-                let run = Run {
-                    mesh: &terrain.mesh,
-                    from,
-                    to,
-                    k,
-                    metric_start: Instant::now(),
-                };
-                costs[i] = cost_model.with_metric(&terrain.mesh, run)?.cost;
+                costs[i] = time_route(&terrain.mesh, cost_model, from, to, k)?.cost;
             }
             let excess = |c: f64| format!("{:+.2} %", 100.0 * (c - costs[0]) / costs[0]);
             println!(
@@ -142,38 +124,30 @@ struct Times {
     cost: f64,
 }
 
-struct Run<'a> {
-    mesh: &'a geotracks::mesh::TriMesh,
+/// Builds the metric and the solver, and routes from `from` to `to` (stopping at `to`).
+fn time_route(
+    mesh: &TriMesh,
+    cost: TerrainCost,
     from: SurfacePoint,
     to: SurfacePoint,
     k: f64,
-    metric_start: Instant,
-}
-
-impl WithTerrainMetric for Run<'_> {
-    type Output = Times;
-    type Error = Box<dyn std::error::Error>;
-    fn run<M: Metric>(self, metric: &M) -> Result<Times, Self::Error> {
-        let metric_time = self.metric_start.elapsed().as_secs_f64();
-        let t = Instant::now();
-        let solver = Solver::new(self.mesh, metric, &Options::DEFAULT.with_k(self.k))?;
-        let setup = t.elapsed().as_secs_f64();
-        let t = Instant::now();
-        let field = solver.solve_from(
-            &[Source::new(self.from)],
-            &Stop::NONE.with_targets(vec![self.to]),
-        )?;
-        let propagate = t.elapsed().as_secs_f64();
-        let t = Instant::now();
-        let path = field.path(self.mesh, metric, self.to)?;
-        Ok(Times {
-            metric: metric_time,
-            setup,
-            propagate,
-            path: t.elapsed().as_secs_f64(),
-            cost: path.length,
-        })
-    }
+) -> Result<Times, Box<dyn std::error::Error>> {
+    let t = Instant::now();
+    let metric = cost.metric(mesh)?;
+    let metric_time = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let solver = Solver::new(mesh, &metric, &Options::DEFAULT.with_k(k))?;
+    let setup = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let r = route(&solver, from, to, false)?;
+    let total = t.elapsed().as_secs_f64();
+    Ok(Times {
+        metric: metric_time,
+        setup,
+        propagate: total - r.path_seconds,
+        path: r.path_seconds,
+        cost: r.cost(),
+    })
 }
 
 /// Gaussian hills on rolling sines, 10 m cells, lower-left sample centre at (0, 0).

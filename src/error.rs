@@ -1,6 +1,52 @@
 use crate::mesh::MeshError;
+use crate::surface::{PointError, SurfacePoint};
 use geotracks_metrics::MetricError;
+use std::fmt;
 use thiserror::Error;
+
+/// Which point of a run or a query an [`Error::InvalidPoint`] is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum PointRole {
+    /// A run's source, by its index in the sources given.
+    Source(usize),
+    /// A target of a [`Stop`](crate::Stop), by its index in `Stop::targets`.
+    Target(usize),
+    /// The point given to a [`Query`](crate::Query).
+    Query,
+}
+
+impl fmt::Display for PointRole {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            PointRole::Source(i) => write!(f, "source {i}"),
+            PointRole::Target(i) => write!(f, "target {i}"),
+            PointRole::Query => f.write_str("the query point"),
+        }
+    }
+}
+
+/// Which number an [`Error::InvalidValue`] is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum ValueRole {
+    /// [`Stop::max_distance`](crate::Stop::max_distance).
+    MaxDistance,
+    /// The start value of a run's source, by its index in the sources given.
+    Start {
+        /// The source's index.
+        source: usize,
+    },
+}
+
+impl fmt::Display for ValueRole {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ValueRole::MaxDistance => f.write_str("the maximum distance"),
+            ValueRole::Start { source } => write!(f, "the start value of source {source}"),
+        }
+    }
+}
 
 /// Everything that can go wrong in geotracks, each variant naming the problem and where.
 #[derive(Debug, Error)]
@@ -31,41 +77,51 @@ pub enum Error {
         /// How many vertices the mesh has.
         vertex_count: usize,
     },
-    /// A source, target or query point is not a point of the mesh.
-    #[error("{what}: {error}")]
+    /// A source, target or query point is not a point of the mesh (no such vertex,
+    /// edge or face; a parameter or barycentrics out of range). Fix the point; its
+    /// error says what is wrong.
+    #[error("{which}: {error}")]
     InvalidPoint {
-        /// Which point: "source 2", "target 0", "the query point".
-        what: String,
+        /// Which point.
+        which: PointRole,
         /// What is wrong with it.
-        error: crate::surface::PointError,
+        error: PointError,
     },
-    /// A number given as input is not usable (NaN, or infinite where a finite value is
-    /// needed).
-    #[error("{what} is {value}; it must be a finite number")]
+    /// A number given as input is not usable: NaN, or infinite where a finite value is
+    /// needed.
+    #[error("{which} is {value}; it must be a finite number")]
     InvalidValue {
         /// Which value.
-        what: String,
+        which: ValueRole,
         /// The value given.
         value: f64,
     },
-    /// No source reaches the point a path or a distance was asked for.
-    #[error("{what} is not reached from any source (another component, beyond the maximum distance, or past an early stop)")]
+    /// No source reaches the point a path was asked for: it lies on another component,
+    /// beyond the maximum distance, or past an early stop (a run that stopped at other
+    /// targets). Run without the stop, or with the point among the targets.
+    #[error("point {point} is not reached from any source (another component, beyond the maximum distance, or past an early stop)")]
     Unreachable {
-        /// Which point.
-        what: String,
+        /// The point.
+        point: SurfacePoint,
     },
-    /// A field was queried with a mesh other than the one it was computed on.
-    #[error("the mesh has {vertices} vertices and {edges} edges, but the field was computed on one with {field_vertices} and {field_edges}")]
-    MeshMismatch {
-        /// The mesh given: vertices.
-        vertices: usize,
-        /// The mesh given: edges.
-        edges: usize,
-        /// The field's mesh: vertices.
-        field_vertices: usize,
-        /// The field's mesh: edges.
-        field_edges: usize,
+    /// Following parents back from a point loops: the metric returned zero costs
+    /// between distinct points, so values do not decrease along the path. Metrics must
+    /// be zero only for a segment of length zero.
+    #[error("the path from point {point} loops: its parents form a cycle (the metric returned zero costs between distinct points)")]
+    ParentCycle {
+        /// The point the path was asked from.
+        point: SurfacePoint,
     },
+    /// A field (or a workspace's last run) was given to a solver other than the one that
+    /// computed it. Queries need the mesh, metric and Steiner layout of the run, and
+    /// only its own solver has them: query a field with the solver that made it (two
+    /// solvers built from the same mesh and metric are still two solvers).
+    #[error("the field was computed by another solver: query it with the solver that made it")]
+    ForeignField,
+    /// A workspace was queried before any run finished in it (no run yet, or the last
+    /// one failed). Run the solver into it first.
+    #[error("the workspace holds no finished run: run the solver into it first")]
+    NoRun,
     /// The Steiner scheme asks for no points (k = 0), or a non-finite number of them.
     #[error("invalid number of Steiner points per edge: k = {k} (it must be finite and > 0)")]
     InvalidK {

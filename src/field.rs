@@ -1,14 +1,17 @@
-//! [`GeodesicField`]: what a propagation returns, and queries on it: the distance at any
-//! surface point, the nearest source of each vertex (geodesic Voronoi), and paths
-//! ([`crate::trace`]).
+//! [`GeodesicField`]: what a propagation returns, as plain data: per node its value and
+//! parent, the sources, and the run's [`Stats`].
+//!
+//! A field knows nothing of the engine or of paths. Queries that need the mesh and the
+//! metric (the distance at any surface point, paths, nearest-source labels) go through a
+//! [`Query`](crate::trace::Query) made by the [`Solver`](crate::Solver) that computed
+//! the field ([`Solver::query`](crate::Solver::query)), which refuses a field made by
+//! another solver.
 
-use crate::mesh::{Topology, TriMesh, NONE};
-use crate::propagate::{Method, Seed};
+use crate::mesh::NONE;
+use crate::options::Method;
 use crate::steiner::SteinerLayout;
-use crate::surface::{Source, SurfacePoint};
-use crate::trace::GeodesicPath;
-use crate::Error;
-use geotracks_metrics::Metric;
+use crate::surface::Source;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 
 /// Counters and timings of one run.
@@ -16,6 +19,7 @@ use std::sync::Arc;
 /// `distance_tests` counts every metric evaluation made during propagation, whatever the
 /// method, so it measures the work done independently of the machine.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct Stats {
     /// Vertices of the mesh.
     pub vertices: usize,
@@ -48,34 +52,87 @@ pub struct Stats {
     pub stopped_early: bool,
 }
 
+/// The identity of the [`Solver`](crate::Solver) that computed a field: unique per
+/// `Solver::new` in a process, so a field can be matched with its mesh, metric and
+/// layout without comparing them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(crate) struct SolverId(u64);
+
+impl SolverId {
+    /// A fresh id, never handed out before in this process.
+    pub(crate) fn fresh() -> SolverId {
+        static NEXT: AtomicU64 = AtomicU64::new(0);
+        SolverId(NEXT.fetch_add(1, Ordering::Relaxed))
+    }
+}
+
+/// A node that a source reached directly (not through a parent), and which source:
+/// where paths and labels end.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Root {
+    /// The node.
+    pub node: u32,
+    /// Its source, as an index into the run's sources.
+    pub source: u32,
+}
+
 /// A distance field over a mesh's nodes (vertices and Steiner points), with the parent of
 /// each node for tracing paths back to a source.
+///
+/// Plain data: values at vertices and nodes, parents, sources and the run's
+/// [`Stats`]. For the distance at any surface point, paths and labels, ask the solver
+/// that made it for a [`Query`](crate::trace::Query):
+/// [`Solver::query`](crate::Solver::query).
 #[derive(Clone, Debug)]
 pub struct GeodesicField {
     layout: Arc<SteinerLayout>,
+    solver: SolverId,
     distance: Vec<f64>,
     parent: Vec<u32>,
     parent_face: Vec<u32>,
     sources: Vec<Source>,
-    roots: Vec<Seed>,
+    roots: Vec<Root>,
     stats: Stats,
 }
 
+/// The per-node state of a finished run, borrowed: what [`GeodesicField`] owns and a
+/// [`Workspace`](crate::Workspace) holds after a run.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FieldView<'a> {
+    pub layout: &'a SteinerLayout,
+    pub distance: &'a [f64],
+    pub parent: &'a [u32],
+    pub parent_face: &'a [u32],
+    pub sources: &'a [Source],
+    /// Per node that a source reached directly, its source, sorted by node.
+    pub roots: &'a [Root],
+}
+
+impl<'a> FieldView<'a> {
+    /// The source (index into the run's sources) that gave a root node its value.
+    pub fn root_source(&self, node: u32) -> Option<u32> {
+        let at = self.roots.binary_search_by_key(&node, |r| r.node).ok()?;
+        Some(self.roots[at].source)
+    }
+}
+
 impl GeodesicField {
-    /// Assembles a field from per-node state (used by the propagation engines).
+    /// Assembles a field from per-node state (used by the solver).
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn new(
         layout: Arc<SteinerLayout>,
+        solver: SolverId,
         distance: Vec<f64>,
         parent: Vec<u32>,
         parent_face: Vec<u32>,
         sources: Vec<Source>,
-        roots: Vec<Seed>,
+        roots: Vec<Root>,
         stats: Stats,
     ) -> GeodesicField {
         debug_assert_eq!(distance.len(), layout.node_count());
         GeodesicField {
             layout,
+            solver,
             distance,
             parent,
             parent_face,
@@ -85,8 +142,13 @@ impl GeodesicField {
         }
     }
 
-    /// The field as a borrowed view, which answers the queries.
-    pub fn view(&self) -> FieldView<'_> {
+    /// The solver that computed the field.
+    pub(crate) fn solver(&self) -> SolverId {
+        self.solver
+    }
+
+    /// The field's state, borrowed.
+    pub(crate) fn view(&self) -> FieldView<'_> {
         FieldView {
             layout: &self.layout,
             distance: &self.distance,
@@ -95,38 +157,6 @@ impl GeodesicField {
             sources: &self.sources,
             roots: &self.roots,
         }
-    }
-
-    /// The distance at any surface point: see [`FieldView::distance_at`].
-    ///
-    /// # Errors
-    /// As [`FieldView::distance_at`].
-    pub fn distance_at<M: Metric>(
-        &self,
-        mesh: &TriMesh,
-        metric: &M,
-        point: SurfacePoint,
-    ) -> Result<f64, Error> {
-        self.view().distance_at(mesh, metric, point)
-    }
-
-    /// The straightened path from `point` to its nearest source: see
-    /// [`FieldView::path`].
-    ///
-    /// # Errors
-    /// As [`FieldView::path`].
-    pub fn path<M: Metric>(
-        &self,
-        mesh: &TriMesh,
-        metric: &M,
-        point: SurfacePoint,
-    ) -> Result<GeodesicPath, Error> {
-        self.view().path(mesh, metric, point)
-    }
-
-    /// The nearest source of every vertex: see [`FieldView::vertex_labels`].
-    pub fn vertex_labels(&self) -> Vec<u32> {
-        self.view().vertex_labels()
     }
 
     /// The sources of the run, validated (in canonical form).
@@ -177,173 +207,5 @@ impl GeodesicField {
     /// Counters and timings of the run.
     pub fn stats(&self) -> &Stats {
         &self.stats
-    }
-}
-
-/// A borrowed distance field: per-node values and parents, and the sources they came
-/// from. Made by [`GeodesicField::view`] or [`crate::Workspace::view`]; it answers the
-/// queries on a field without copying it.
-#[derive(Clone, Copy, Debug)]
-pub struct FieldView<'a> {
-    pub(crate) layout: &'a SteinerLayout,
-    pub(crate) distance: &'a [f64],
-    pub(crate) parent: &'a [u32],
-    pub(crate) parent_face: &'a [u32],
-    pub(crate) sources: &'a [Source],
-    /// Per node that a source reached directly, the seed it kept, sorted by node.
-    pub(crate) roots: &'a [Seed],
-}
-
-/// Where the value at a surface point comes from: a node of one of its faces, or a
-/// source that shares a face with it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) enum Origin {
-    /// The point is this node.
-    Node(u32),
-    /// A straight segment in `face` from this node.
-    NodeInFace(u32, u32),
-    /// A straight segment in `face` from this source.
-    SourceInFace(u32, u32),
-}
-
-impl<'a> FieldView<'a> {
-    /// Distance at every vertex.
-    pub fn vertex_distances(&self) -> &'a [f64] {
-        &self.distance[..self.layout.vertex_count() as usize]
-    }
-
-    /// Errors unless `mesh` is the mesh the field was computed on (by its counts).
-    pub(crate) fn check_mesh(&self, mesh: &TriMesh) -> Result<(), Error> {
-        if mesh.vertex_count() != self.layout.vertex_count() as usize
-            || mesh.edge_count() != self.layout.edge_count()
-        {
-            return Err(Error::MeshMismatch {
-                vertices: mesh.vertex_count(),
-                edges: mesh.edge_count(),
-                field_vertices: self.layout.vertex_count() as usize,
-                field_edges: self.layout.edge_count(),
-            });
-        }
-        Ok(())
-    }
-
-    /// The distance at any surface point, as the Steiner graph defines it: at a node,
-    /// its value; elsewhere, the least over the nodes on the boundary of the faces
-    /// holding the point of the node's value plus the metric's cost of the straight
-    /// segment to the point (and, from a source sharing one of those faces, the
-    /// source's start plus its segment). Not an interpolation of vertex values. `inf`
-    /// when no source reaches the point.
-    ///
-    /// Cost: O(k) metric evaluations per face around the point.
-    ///
-    /// # Errors
-    /// [`Error::InvalidPoint`] if `point` is not a point of `mesh`;
-    /// [`Error::MeshMismatch`] if `mesh` is not the field's mesh.
-    pub fn distance_at<M: Metric>(
-        &self,
-        mesh: &TriMesh,
-        metric: &M,
-        point: SurfacePoint,
-    ) -> Result<f64, Error> {
-        Ok(self.origin(mesh, metric, point)?.0)
-    }
-
-    /// The value at `point` and where it comes from (`None` when unreached).
-    pub(crate) fn origin<M: Metric>(
-        &self,
-        mesh: &TriMesh,
-        metric: &M,
-        point: SurfacePoint,
-    ) -> Result<(f64, Option<Origin>), Error> {
-        self.check_mesh(mesh)?;
-        let point = point.validated(mesh).map_err(|error| Error::InvalidPoint {
-            what: "the query point".into(),
-            error,
-        })?;
-        if let SurfacePoint::Vertex(v) = point {
-            let d = self.distance[v as usize];
-            return Ok((d, d.is_finite().then_some(Origin::Node(v))));
-        }
-        let mut best = (f64::INFINITY, None);
-        for &f in point.faces(mesh).iter() {
-            let x = point.in_face(mesh, f).expect("the point lies on its faces");
-            for (node, p) in self.layout.face_nodes(mesh, f) {
-                let g = self.distance[node as usize];
-                if g < best.0 {
-                    let d = g + metric.cost(f, &p, &x);
-                    if d < best.0 {
-                        best = (d, Some(Origin::NodeInFace(node, f)));
-                    }
-                }
-            }
-            for (i, source) in self.sources.iter().enumerate() {
-                if let Some(s) = source.point.in_face(mesh, f) {
-                    let d = source.start + metric.cost(f, &s, &x);
-                    if d < best.0 {
-                        best = (d, Some(Origin::SourceInFace(i as u32, f)));
-                    }
-                }
-            }
-        }
-        Ok(best)
-    }
-
-    /// The source (index into the run's sources) that gave a root node its value.
-    pub(crate) fn root_source(&self, node: u32) -> Option<u32> {
-        let at = self.roots.binary_search_by_key(&node, |s| s.node).ok()?;
-        Some(self.roots[at].source)
-    }
-
-    /// The index of the nearest source of every vertex (the geodesic Voronoi diagram of
-    /// the sources, start values included), [`NONE`] where unreached.
-    ///
-    /// Found by following parents to the source that started each chain, with every
-    /// node labelled once: O(nodes).
-    pub fn vertex_labels(&self) -> Vec<u32> {
-        let mut label = self.labels(self.layout.vertex_count());
-        label.truncate(self.layout.vertex_count() as usize);
-        label
-    }
-
-    /// As [`FieldView::vertex_labels`], for every node (vertices, then Steiner points in
-    /// [`SteinerLayout`] order).
-    pub fn node_labels(&self) -> Vec<u32> {
-        self.labels(self.distance.len() as u32)
-    }
-
-    /// Labels of nodes `0..count` (and of the nodes their chains pass through).
-    fn labels(&self, count: u32) -> Vec<u32> {
-        let n = self.distance.len();
-        let mut label = vec![NONE; n];
-        let mut known = vec![false; n];
-        let mut chain = Vec::new();
-        for start in 0..count {
-            let mut node = start;
-            // Walk up to a labelled node or a root; parents have lower values, so the
-            // walk ends (a step cap guards against a metric with zero costs).
-            let found = loop {
-                if known[node as usize] {
-                    break label[node as usize];
-                }
-                if self.distance[node as usize].is_infinite() {
-                    break NONE;
-                }
-                chain.push(node);
-                let p = self.parent[node as usize];
-                if p == NONE {
-                    break self.root_source(node).unwrap_or(NONE);
-                }
-                if chain.len() > n {
-                    break NONE;
-                }
-                node = p;
-            };
-            for &c in &chain {
-                label[c as usize] = found;
-                known[c as usize] = true;
-            }
-            chain.clear();
-        }
-        label
     }
 }

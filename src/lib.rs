@@ -5,20 +5,30 @@
 //! Dijkstra-like propagation between them.
 //!
 //! ## Map of the crate
-//! - [`mesh`]: [`TriMesh`](mesh::TriMesh) (an edge may have any number of faces), the
-//!   [`Topology`](mesh::Topology) trait, readers and writers ([`mesh::io`]).
+//! - [`mesh`]: [`TriMesh`](mesh::TriMesh) (an edge may have any number of faces; its
+//!   connectivity is its own methods: faces of an edge, edges of a face, …), readers
+//!   and writers ([`mesh::io`]).
 //! - [`metrics`] (re-exported crate `geotracks-metrics`): the [`Metric`] trait and the
 //!   built-ins [`Euclidean`], [`Density`], [`Tensor`].
 //! - [`steiner`]: where Steiner points go on each edge and how nodes are numbered.
-//! - [`propagate`]: the engines ([`Method`]: the track-pruned `Tracks` by default, the
+//! - [`options`]: how a run goes: [`Method`] (the track-pruned `Tracks` by default, the
 //!   complete Steiner graph `Graph` it is checked against, `Dijkstra` on edges),
-//!   [`distance_field`] for one query, and [`Solver`] / [`Workspace`] for many (reused
-//!   buffers, parallel rows).
-//! - [`field`]: [`GeodesicField`], what a run returns.
+//!   [`Options`] (Steiner points and method) and [`Stop`] (early stops).
+//! - [`propagate`]: the engines, [`distance_field`] for one run, and [`Solver`] /
+//!   [`Workspace`] for many (reused buffers, parallel rows).
+//! - [`field`]: [`GeodesicField`], what a run returns: plain data.
+//! - [`trace`]: [`Query`], made by the solver that computed a field
+//!   ([`Solver::query`]): the distance at any surface point, paths ([`GeodesicPath`],
+//!   straightened) and nearest sources.
 //! - [`skeleton`]: grassfire on a medial axis from its boundary, and the skeleton of its
 //!   ridges.
 //! - [`terrain`]: elevation grids (ESRI ASCII, GeoTIFF) as meshes, terrain costs (slope
-//!   density, impassable faces, uphill tensor) and maps of routes.
+//!   density, impassable faces, uphill tensor), routes ([`terrain::route`]) and maps.
+//!
+//! Dependencies point one way: applications ([`skeleton`], [`terrain`]) use
+//! [`propagate`], which makes fields and hands out [`Query`]s; [`trace`] reads fields;
+//! [`field`] is plain data over [`steiner`] and [`mesh`]; the metrics know nothing of
+//! the rest. The command-line tool is the separate crate `geotracks-cli`.
 //!
 //! ## Example
 //! ```
@@ -34,11 +44,29 @@
 //! println!("{} distance tests", field.stats().distance_tests);
 //! # Ok::<(), geotracks::Error>(())
 //! ```
+//!
+//! Paths and the distance at any surface point ask the solver that made the field:
+//! ```
+//! use geotracks::{mesh::TriMesh, Euclidean, Options, Solver, SurfacePoint};
+//!
+//! let mesh = TriMesh::new(
+//!     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+//!     vec![[0, 1, 2], [0, 2, 3]],
+//! )?;
+//! let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT)?;
+//! let field = solver.solve(&[0])?;
+//! let query = solver.query(&field)?;
+//! let middle = SurfacePoint::Edge { edge: 1, t: 0.5 };
+//! let path = query.path(middle)?; // from the point back to vertex 0
+//! assert!((path.length - query.distance_at(middle)?).abs() < 1e-12);
+//! # Ok::<(), geotracks::Error>(())
+//! ```
 #![forbid(unsafe_code)]
 
 mod error;
 pub mod field;
 pub mod mesh;
+pub mod options;
 pub mod propagate;
 pub mod skeleton;
 pub mod steiner;
@@ -49,13 +77,19 @@ pub mod trace;
 /// The metric crate, `geotracks-metrics`.
 pub use geotracks_metrics as metrics;
 
-pub use error::{Error, SizeLimit};
-pub use field::{FieldView, GeodesicField, Stats};
+/// The vector library of the public API: positions come back as `glam::DVec3` (e.g.
+/// [`TriMesh::position`](mesh::TriMesh::position), [`GeodesicPath::positions`]), so
+/// callers can name the type without depending on the same `glam` version themselves.
+pub use glam;
+
+pub use error::{Error, PointRole, SizeLimit, ValueRole};
+pub use field::{GeodesicField, Stats};
 pub use geotracks_metrics::{Density, Euclidean, FacePoint, Metric, MetricError, Tensor};
-pub use propagate::{distance_field, Method, Options, Solver, Stop, Workspace};
+pub use options::{Method, Options, Stop};
+pub use propagate::{distance_field, Solver, Workspace};
 pub use steiner::{SteinerLayout, SteinerScheme};
 pub use surface::{PointError, Source, SurfacePoint};
-pub use trace::GeodesicPath;
+pub use trace::{GeodesicPath, Query};
 
 /// The README's code blocks, compiled and run as doctests so they stay true.
 #[cfg(doctest)]

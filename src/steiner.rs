@@ -8,7 +8,7 @@
 //! Points are implicit: a node is an edge and an index, and its position in a face is
 //! computed when needed, never stored per face.
 
-use crate::mesh::{morton_order, EdgeLine, Topology, TriMesh, NONE};
+use crate::mesh::{morton_order, EdgeLine, TriMesh, NONE};
 use crate::surface::SurfacePoint;
 use crate::Error;
 use geotracks_metrics::FacePoint;

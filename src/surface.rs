@@ -19,7 +19,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use crate::mesh::{Topology, TriMesh};
+use crate::mesh::TriMesh;
 use geotracks_metrics::FacePoint;
 use glam::DVec3;
 use std::fmt;
@@ -403,6 +403,7 @@ impl From<u32> for SurfacePoint {
 /// A source of a propagation: a surface point and the value the distance starts from
 /// there (0 by default; offsets give weighted Voronoi diagrams and grassfire fronts).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct Source {
     /// Where.
     pub point: SurfacePoint,

@@ -157,10 +157,11 @@ fn run<M: Metric>(case: &Case, metric: &M, method: Method) -> Option<(Vec<f64>, 
         case.name,
         stats.settles
     );
+    let query = solver.query(&field).unwrap();
     for &q in &case.queries {
-        let d = field.distance_at(&case.mesh, metric, q).unwrap();
+        let d = query.distance_at(q).unwrap();
         assert!(!d.is_nan(), "{}: distance at {q} is NaN", case.name);
-        match field.path(&case.mesh, metric, q) {
+        match query.path(q) {
             Ok(path) => {
                 assert!(
                     path.length <= path.traced_length * (1.0 + 1e-9) || path.length.is_nan(),
@@ -314,7 +315,7 @@ fn straightening_beside_a_wall_does_not_panic() {
     ] {
         let solver = Solver::new(&mesh, &wall, &Options::DEFAULT.with_k(3.0)).unwrap();
         let field = solver.solve_from(&[Source::new(0)], &Stop::NONE).unwrap();
-        match field.path(&mesh, &wall, target) {
+        match solver.query(&field).unwrap().path(target) {
             Ok(path) => assert!(
                 path.length <= path.traced_length * (1.0 + 1e-12),
                 "{target}: {} > {}",

@@ -6,7 +6,7 @@ use geotracks::mesh::io::{
     read_medial_axis, read_mesh, read_obj_bytes, write_atomically, write_obj_polylines,
     write_ply_with_distance,
 };
-use geotracks::mesh::{MeshError, Topology, TriMesh};
+use geotracks::mesh::{MeshError, TriMesh};
 use std::path::{Path, PathBuf};
 
 fn fixture(name: &str) -> PathBuf {
@@ -659,6 +659,8 @@ fn failed_write_leaves_no_file() {
     let err = write_ply_with_distance(&path, &mesh, &[0.0; 4]).unwrap_err();
     assert!(matches!(err, MeshError::Io { .. }), "{err:?}");
     assert!(err.to_string().contains("out.ply"), "{err}");
+    // The temporary file's name is not the user's business (it used to be appended).
+    assert!(!err.to_string().contains(".geotracks-"), "{err}");
     assert!(!path.exists());
 
     // A writer that fails half-way: no target and no temporary file remain.

@@ -7,7 +7,7 @@
 mod common;
 
 use common::{multiscale_mesh, Rng};
-use geotracks::mesh::{Topology, TriMesh};
+use geotracks::mesh::TriMesh;
 use geotracks::{
     Density, Euclidean, Method, Metric, Options, Solver, Source, Stop, SurfacePoint, Tensor,
 };

@@ -3,12 +3,12 @@
 mod common;
 
 use common::{book, grid, random_book, random_mesh, sphere, Rng, GRAPH};
-use geotracks::mesh::{io::read_mesh, Topology, TriMesh};
+use geotracks::glam::DVec3;
+use geotracks::mesh::{io::read_mesh, TriMesh};
 use geotracks::{
-    Error, Euclidean, GeodesicField, GeodesicPath, Metric, Options, PointError, Solver, Source,
-    Stop, SurfacePoint, Tensor,
+    Density, Error, Euclidean, GeodesicField, GeodesicPath, Metric, Options, PointError, PointRole,
+    Query, Solver, Source, Stop, SurfacePoint, Tensor, ValueRole,
 };
-use glam::DVec3;
 
 fn spot() -> TriMesh {
     read_mesh(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/spot.obj")).unwrap()
@@ -37,16 +37,11 @@ fn random_edge_point(mesh: &TriMesh, rng: &mut Rng) -> SurfacePoint {
 }
 
 /// Everything a path must satisfy, whatever the mesh and metric.
-fn check_path<M: Metric>(
-    mesh: &TriMesh,
-    metric: &M,
-    field: &GeodesicField,
-    target: SurfacePoint,
-    path: &GeodesicPath,
-) {
+fn check_path<M: Metric>(query: &Query<'_, M>, target: SurfacePoint, path: &GeodesicPath) {
+    let (mesh, metric) = (query.mesh(), query.metric());
     let target = target.validated(mesh).unwrap();
     assert_eq!(path.points[0], target, "the path starts at the target");
-    let source = field.sources()[path.source as usize].point;
+    let source = query.sources()[path.source as usize].point;
     let end = path.points.last().unwrap();
     assert!(
         (end.position(mesh) - source.position(mesh)).length() < 1e-12,
@@ -64,8 +59,8 @@ fn check_path<M: Metric>(
     let sum: f64 = path.segment_costs(mesh, metric).iter().sum();
     assert!((sum - path.length).abs() <= 1e-12 * sum.max(1.0));
     assert!(path.length <= path.traced_length * (1.0 + 1e-12));
-    let d = field.distance_at(mesh, metric, target).unwrap();
-    let start = field.sources()[path.source as usize].start;
+    let d = query.distance_at(target).unwrap();
+    let start = query.sources()[path.source as usize].start;
     assert!(
         (start + path.traced_length - d).abs() <= 1e-9 * d.max(1e-300),
         "traced {} vs distance {d}",
@@ -87,15 +82,16 @@ fn paths_from_any_point_to_any_source_are_consistent() {
         let field = solver
             .solve_from(&sources[..1 + round % 3], &Stop::NONE)
             .unwrap();
+        let query = solver.query(&field).unwrap();
         for _ in 0..8 {
             let target = match rng.below(3) {
                 0 => random_face_point(&mesh, &mut rng),
                 1 => random_edge_point(&mesh, &mut rng),
                 _ => SurfacePoint::Vertex(rng.below(mesh.vertex_count()) as u32),
             };
-            let path = field.path(&mesh, &Euclidean, target).unwrap();
-            check_path(&mesh, &Euclidean, &field, target, &path);
-            let traced = field.view().trace(&mesh, &Euclidean, target).unwrap();
+            let path = query.path(target).unwrap();
+            check_path(&query, target, &path);
+            let traced = query.trace(target).unwrap();
             assert_eq!(traced.length, path.traced_length);
         }
     }
@@ -120,15 +116,13 @@ fn paths_under_a_tensor_metric_and_on_non_manifold_meshes() {
         let solver = Solver::new(&mesh, &metric, &Options::DEFAULT.with_k(3.0)).unwrap();
         let source = Source::new(random_face_point(&mesh, &mut rng));
         let field = solver.solve_from(&[source], &Stop::NONE).unwrap();
+        let query = solver.query(&field).unwrap();
         for _ in 0..10 {
             let target = random_face_point(&mesh, &mut rng);
-            match field.path(&mesh, &metric, target) {
-                Ok(path) => check_path(&mesh, &metric, &field, target, &path),
+            match query.path(target) {
+                Ok(path) => check_path(&query, target, &path),
                 Err(Error::Unreachable { .. }) => {
-                    assert!(field
-                        .distance_at(&mesh, &metric, target)
-                        .unwrap()
-                        .is_infinite())
+                    assert!(query.distance_at(target).unwrap().is_infinite())
                 }
                 Err(e) => panic!("{e}"),
             }
@@ -139,8 +133,8 @@ fn paths_under_a_tensor_metric_and_on_non_manifold_meshes() {
 #[test]
 fn a_path_on_a_flat_grid_is_a_straight_line() {
     let mesh = grid(12, 1.0);
-    let field = Solver::new(&mesh, Euclidean, &Options::DEFAULT.with_k(3.0))
-        .unwrap()
+    let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT.with_k(3.0)).unwrap();
+    let field = solver
         .solve_from(
             &[Source::new(
                 SurfacePoint::nearest(&mesh, [0.07, 0.11, 0.0]).unwrap(),
@@ -152,7 +146,7 @@ fn a_path_on_a_flat_grid_is_a_straight_line() {
     for _ in 0..10 {
         let xyz = [0.1 + 0.85 * rng.next(), 0.1 + 0.85 * rng.next(), 0.0];
         let target = SurfacePoint::nearest(&mesh, xyz).unwrap();
-        let path = field.path(&mesh, &Euclidean, target).unwrap();
+        let path = solver.query(&field).unwrap().path(target).unwrap();
         let (a, b) = (DVec3::new(0.07, 0.11, 0.0), DVec3::from(xyz));
         if std::env::var("DUMP").is_ok() {
             for (i, p) in path.points.iter().enumerate() {
@@ -186,12 +180,14 @@ fn a_path_between_pages_crosses_the_spine_where_the_unfolding_says() {
         SurfacePoint::nearest(&mesh, [r * angle.cos(), r * angle.sin(), z]).unwrap()
     };
     let (source, target) = ((0.6, 0.2), (0.3, 0.85));
-    let field = Solver::new(&mesh, Euclidean, &Options::DEFAULT)
-        .unwrap()
+    let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
+    let field = solver
         .solve_from(&[Source::new(on_page(0, source.0, source.1))], &Stop::NONE)
         .unwrap();
-    let path = field
-        .path(&mesh, &Euclidean, on_page(1, target.0, target.1))
+    let path = solver
+        .query(&field)
+        .unwrap()
+        .path(on_page(1, target.0, target.1))
         .unwrap();
     // Unfolded: source at (−0.6, 0.2), target at (0.3, 0.85); the spine is x = 0.
     let z_cross = source.1 + (target.1 - source.1) * source.0 / (source.0 + target.0);
@@ -244,29 +240,28 @@ fn prism_paths_match_the_unfolding() {
     let source_xy = (base[0] + base[1] + base[2]) / 3.0;
     let source = SurfacePoint::nearest(&mesh, [source_xy.x, source_xy.y, 0.0]).unwrap();
     assert!(matches!(source, SurfacePoint::Face { .. }));
-    let fields: Vec<GeodesicField> = [Options::DEFAULT, common::DIJKSTRA]
+    let solvers =
+        [Options::DEFAULT, common::DIJKSTRA].map(|o| Solver::new(&mesh, Euclidean, &o).unwrap());
+    let fields: Vec<GeodesicField> = solvers
         .iter()
-        .map(|o| {
-            Solver::new(&mesh, Euclidean, o)
-                .unwrap()
-                .solve_from(&[Source::new(source)], &Stop::NONE)
-                .unwrap()
-        })
+        .map(|s| s.solve_from(&[Source::new(source)], &Stop::NONE).unwrap())
         .collect();
+    let tracks = solvers[0].query(&fields[0]).unwrap();
+    let dijkstra = solvers[1].query(&fields[1]).unwrap();
     let mut worst_dijkstra: f64 = 0.0;
     for (u, e) in [(0.5, 0.05), (0.3, 0.08), (0.65, 0.03), (0.45, 0.12)] {
         // Near the ridge over the edge from base[0] to base[1] (y = 0), `e` inside.
         let target = SurfacePoint::nearest(&mesh, [u, e, h]).unwrap();
         // Unfolded across the side y = 0: the top face lies beyond it.
         let exact = ((u - source_xy.x).powi(2) + (source_xy.y + h + e).powi(2)).sqrt();
-        let path = fields[0].path(&mesh, &Euclidean, target).unwrap();
-        check_path(&mesh, &Euclidean, &fields[0], target, &path);
+        let path = tracks.path(target).unwrap();
+        check_path(&tracks, target, &path);
         assert!(
             (path.length - exact).abs() <= 0.005 * exact,
             "tracks path {} vs exact {exact}",
             path.length
         );
-        let vertex_path = fields[1].view().trace(&mesh, &Euclidean, target).unwrap();
+        let vertex_path = dijkstra.trace(target).unwrap();
         worst_dijkstra = worst_dijkstra.max((vertex_path.length - exact) / exact);
     }
     // Following vertex values alone goes astray.
@@ -323,7 +318,8 @@ fn many_sources_with_start_values_are_the_minimum_and_label_vertices() {
         .iter()
         .map(|s| solver.solve_from(&[*s], &Stop::NONE).unwrap())
         .collect();
-    let labels = together.vertex_labels();
+    let query = solver.query(&together).unwrap();
+    let labels = query.vertex_labels();
     let mut seen = [false; 3];
     for (v, &label) in labels.iter().enumerate() {
         let each: Vec<f64> = alone.iter().map(|f| f.distance(v as u32)).collect();
@@ -341,7 +337,7 @@ fn many_sources_with_start_values_are_the_minimum_and_label_vertices() {
     let v = (0..mesh.vertex_count() as u32)
         .find(|&v| labels[v as usize] == 1)
         .unwrap();
-    let path = together.path(&mesh, &Euclidean, v.into()).unwrap();
+    let path = query.path(v.into()).unwrap();
     assert_eq!(path.source, 1);
 }
 
@@ -397,12 +393,14 @@ fn early_stops_keep_the_full_runs_values() {
             }
         }
         assert!(finite < ws.node_distances().len() / 2);
-        let view = ws.view(solver.layout());
+        let stopped = solver.query_workspace(&ws).unwrap();
+        let full = solver.query(&full).unwrap();
         for t in targets {
-            let stopped = view.distance_at(&mesh, &Euclidean, t).unwrap();
-            assert_eq!(stopped, full.distance_at(&mesh, &Euclidean, t).unwrap());
-            let path = view.path(&mesh, &Euclidean, t).unwrap();
-            assert_eq!(path, full.path(&mesh, &Euclidean, t).unwrap());
+            assert_eq!(
+                stopped.distance_at(t).unwrap(),
+                full.distance_at(t).unwrap()
+            );
+            assert_eq!(stopped.path(t).unwrap(), full.path(t).unwrap());
         }
     }
 }
@@ -424,11 +422,9 @@ fn bad_points_and_unreachable_targets_are_errors() {
         },
     ) {
         Err(Error::InvalidPoint {
-            what,
+            which: PointRole::Source(0),
             error: PointError::NoSuchFace { face, .. },
-        }) => {
-            assert_eq!((what.as_str(), face), ("source 0", faces))
-        }
+        }) => assert_eq!(face, faces),
         other => panic!("{other:?}"),
     }
     let err = run(
@@ -445,12 +441,25 @@ fn bad_points_and_unreachable_targets_are_errors() {
     let start = solver
         .run_from(&mut ws, &[Source::new(0).with_start(f64::NAN)], &Stop::NONE)
         .unwrap_err();
-    assert!(matches!(start, Error::InvalidValue { .. }));
+    assert!(matches!(
+        start,
+        Error::InvalidValue {
+            which: ValueRole::Start { source: 0 },
+            ..
+        }
+    ));
     let stop = Stop::NONE.with_targets(vec![SurfacePoint::Edge { edge: 0, t: 2.0 }]);
     let err = solver
         .run_from(&mut ws, &[Source::new(0)], &stop)
         .unwrap_err();
     assert!(err.to_string().starts_with("target 0:"), "{err}");
+    assert!(matches!(
+        err,
+        Error::InvalidPoint {
+            which: PointRole::Target(0),
+            ..
+        }
+    ));
 
     // Two components: the second is unreachable, by distance and by path.
     let two = TriMesh::new(
@@ -465,25 +474,64 @@ fn bad_points_and_unreachable_targets_are_errors() {
         vec![[0, 1, 2], [3, 4, 5]],
     )
     .unwrap();
-    let field = Solver::new(&two, Euclidean, &Options::DEFAULT)
-        .unwrap()
-        .solve(&[0])
-        .unwrap();
+    let two_solver = Solver::new(&two, Euclidean, &Options::DEFAULT).unwrap();
+    let field = two_solver.solve(&[0]).unwrap();
+    let query = two_solver.query(&field).unwrap();
     let far = SurfacePoint::Face {
         face: 1,
         bary: [0.3, 0.3, 0.4],
     };
-    assert!(field
-        .distance_at(&two, &Euclidean, far)
+    assert!(query.distance_at(far).unwrap().is_infinite());
+    assert!(matches!(query.path(far), Err(Error::Unreachable { point }) if point == far));
+    // A field given to a solver on another mesh.
+    assert!(matches!(solver.query(&field), Err(Error::ForeignField)));
+}
+
+/// A field can only be queried through the solver that computed it: not with another
+/// metric on the same mesh (before, `field.distance_at(&mesh, &other_metric, p)` gave
+/// a silently wrong value, and only the mesh's counts were compared), nor from a
+/// workspace whose run failed or never happened.
+#[test]
+fn a_field_is_queried_only_through_its_own_solver() {
+    let mesh = spot();
+    let euclidean = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
+    let doubled = Density::constant(&mesh, 2.0).unwrap();
+    let dense = Solver::new(&mesh, &doubled, &Options::DEFAULT).unwrap();
+    let field = euclidean.solve(&[0]).unwrap();
+    // Same mesh, same layout, another metric: refused.
+    assert!(matches!(dense.query(&field), Err(Error::ForeignField)));
+    // Same mesh, metric and options, but another solver: refused too (it cannot tell).
+    let twin = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
+    assert!(matches!(twin.query(&field), Err(Error::ForeignField)));
+    let target = SurfacePoint::Face {
+        face: 7,
+        bary: [0.2, 0.3, 0.5],
+    };
+    let d = euclidean
+        .query(&field)
         .unwrap()
-        .is_infinite());
+        .distance_at(target)
+        .unwrap();
+    let dense_field = dense.solve(&[0]).unwrap();
+    let d2 = dense
+        .query(&dense_field)
+        .unwrap()
+        .distance_at(target)
+        .unwrap();
+    assert!((d2 - 2.0 * d).abs() < 1e-9 * d);
+
+    // Workspaces: no run yet, a run by another solver, a failed run.
+    let mut ws = euclidean.workspace();
+    assert!(matches!(euclidean.query_workspace(&ws), Err(Error::NoRun)));
+    dense.run(&mut ws, &[0]).unwrap();
     assert!(matches!(
-        field.path(&two, &Euclidean, far),
-        Err(Error::Unreachable { .. })
+        euclidean.query_workspace(&ws),
+        Err(Error::ForeignField)
     ));
-    // A field queried with another mesh.
-    assert!(matches!(
-        field.distance_at(&mesh, &Euclidean, SurfacePoint::Vertex(0)),
-        Err(Error::MeshMismatch { .. })
-    ));
+    assert!(dense.query_workspace(&ws).is_ok());
+    assert!(dense.run(&mut ws, &[u32::MAX]).is_err());
+    assert!(matches!(dense.query_workspace(&ws), Err(Error::NoRun)));
+    euclidean.run(&mut ws, &[0]).unwrap();
+    let from_ws = euclidean.query_workspace(&ws).unwrap().distance_at(target);
+    assert_eq!(from_ws.unwrap(), d);
 }

@@ -3,7 +3,6 @@
 mod common;
 
 use common::{random_mesh, Rng, DIJKSTRA, GRAPH};
-use geotracks::mesh::Topology;
 use geotracks::{distance_field, Euclidean, Tensor};
 use proptest::prelude::*;
 

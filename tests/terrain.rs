@@ -3,21 +3,19 @@
 //! gap). Measured errors are printed (`cargo test --release --test terrain --
 //! --nocapture`); the README quotes them.
 
-mod cli_support;
 mod common;
 
-use cli_support::{assert_fails, geotracks, geotracks_ok, last_value};
 use common::{random_mesh, Rng, DIJKSTRA, GRAPH};
-use geotracks::mesh::{Topology, TriMesh};
+use geotracks::glam::DVec3;
+use geotracks::mesh::TriMesh;
 use geotracks::terrain::{
     read_asc, read_geotiff, read_grid, slope_density, steeper_than, uphill_tensor, ElevationGrid,
     GridGeometry, Impassable, TerrainCost, TerrainError, TerrainMesh,
 };
 use geotracks::{
     distance_field, Density, Error, Euclidean, GeodesicPath, Method, Metric, Options, Solver,
-    Source, Stop, Tensor,
+    Source, Tensor,
 };
-use glam::DVec3;
 use proptest::prelude::*;
 use std::path::Path;
 
@@ -40,9 +38,7 @@ fn route<M: Metric>(
 ) -> Result<GeodesicPath, Error> {
     let from = terrain.locate(from[0], from[1]).unwrap();
     let to = terrain.locate(to[0], to[1]).unwrap();
-    let solver = Solver::new(&terrain.mesh, metric, options)?;
-    let field = solver.solve_from(&[Source::new(from)], &Stop::NONE.with_targets(vec![to]))?;
-    field.path(&terrain.mesh, metric, to)
+    Solver::new(&terrain.mesh, metric, options)?.shortest_path(&[Source::new(from)], to)
 }
 
 fn relative(a: f64, b: f64) -> f64 {
@@ -470,25 +466,15 @@ fn on_a_flat_grid_every_cost_is_euclidean() {
     let mut worst: f64 = 0.0;
     for cost in ["none", "slope:5", "slope:5,max:10", "uphill:7"] {
         let cost: TerrainCost = cost.parse().unwrap();
-        struct Check<'a>(&'a TerrainMesh, [f64; 2], [f64; 2], &'a [f64]);
-        impl geotracks::terrain::WithTerrainMetric for Check<'_> {
-            type Output = (f64, f64);
-            type Error = Box<dyn std::error::Error>;
-            fn run<M: Metric>(self, metric: &M) -> Result<(f64, f64), Self::Error> {
-                let field = distance_field(&self.0.mesh, metric, &[0], &Options::DEFAULT)?;
-                let field_dev = field
-                    .vertex_distances()
-                    .iter()
-                    .zip(self.3)
-                    .map(|(a, b)| (a - b).abs())
-                    .fold(0.0, f64::max);
-                let path = route(self.0, metric, &Options::DEFAULT, self.1, self.2)?;
-                Ok((path.length, field_dev))
-            }
-        }
-        let (length, field_dev) = cost
-            .with_metric(mesh, Check(&terrain, from, to, euclid.vertex_distances()))
-            .unwrap();
+        let metric = cost.metric(mesh).unwrap();
+        let field = distance_field(mesh, &metric, &[0], &options).unwrap();
+        let field_dev = field
+            .vertex_distances()
+            .iter()
+            .zip(euclid.vertex_distances())
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        let length = route(&terrain, &metric, &options, from, to).unwrap().length;
         assert!(field_dev <= 1e-12, "{cost}: field differs by {field_dev}");
         let err = relative(length, straight);
         worst = worst.max(err);
@@ -857,313 +843,4 @@ proptest! {
             Err(e) => prop_assert!(false, "{}", e),
         }
     }
-}
-
-// ---------------------------------------------------------------------------------
-// The command line
-
-/// A 30 × 20 grid, 10 m apart, with a hill and a NODATA hole, as an ESRI ASCII grid.
-fn hill_asc(dir: &Path) -> std::path::PathBuf {
-    let mut text = String::from(
-        "ncols 30\nnrows 20\nxllcorner 1000\nyllcorner 5000\ncellsize 10\nnodata_value -9999\n",
-    );
-    for r in 0..20 {
-        let y = 5005.0 + (19 - r) as f64 * 10.0;
-        let row: Vec<String> = (0..30)
-            .map(|c| {
-                let x = 1005.0 + c as f64 * 10.0;
-                if (x - 1100.0).abs() < 15.0 && (y - 5170.0).abs() < 15.0 {
-                    "-9999".to_string()
-                } else {
-                    let d2 = (x - 1150.0).powi(2) + (y - 5100.0).powi(2);
-                    format!("{:.3}", 40.0 * (-d2 / 5000.0).exp())
-                }
-            })
-            .collect();
-        text.push_str(&row.join(" "));
-        text.push('\n');
-    }
-    write(dir, "hill.asc", &text)
-}
-
-#[test]
-fn cli_writes_geojson_csv_and_png() {
-    let dir = tempfile::tempdir().unwrap();
-    let dem = hill_asc(dir.path());
-    let dem = dem.to_str().unwrap();
-    let json = dir.path().join("route.geojson");
-    let png = dir.path().join("map.png");
-    let out = geotracks_ok(&[
-        "terrain",
-        dem,
-        "--from",
-        "1010,5010",
-        "--to",
-        "1290,5180",
-        "--cost",
-        "slope:3",
-        "-o",
-        json.to_str().unwrap(),
-        "--png",
-        png.to_str().unwrap(),
-    ]);
-    let cost = last_value(&out);
-    let value: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
-    let feature = &value["features"][0];
-    assert_eq!(feature["geometry"]["type"], "LineString");
-    let coords = feature["geometry"]["coordinates"].as_array().unwrap();
-    let xyz = |i: usize| -> Vec<f64> {
-        coords[i]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|v| v.as_f64().unwrap())
-            .collect()
-    };
-    assert_eq!(xyz(0).len(), 3);
-    assert!((xyz(0)[0] - 1010.0).abs() < 1e-9 && (xyz(0)[1] - 5010.0).abs() < 1e-9);
-    let last = xyz(coords.len() - 1);
-    assert!((last[0] - 1290.0).abs() < 1e-9 && (last[1] - 5180.0).abs() < 1e-9);
-    let props = &feature["properties"];
-    assert!((props["cost"].as_f64().unwrap() - cost).abs() <= 1e-9 * cost);
-    let length = props["length"].as_f64().unwrap();
-    let straight = (280f64).hypot(170.0);
-    assert!(length >= straight && props["length_2d"].as_f64().unwrap() <= length);
-    assert!(cost >= length, "a slope density is at least 1");
-    assert_eq!(props["cost_model"], "slope:3");
-    // The PNG: 30 × 20 samples upsampled to a long side of 512.
-    let bytes = std::fs::read(&png).unwrap();
-    assert_eq!(&bytes[1..4], b"PNG");
-    let width = u32::from_be_bytes(bytes[16..20].try_into().unwrap());
-    let height = u32::from_be_bytes(bytes[20..24].try_into().unwrap());
-    assert_eq!((width, height), (512, 341));
-
-    // CSV: x,y,z,cost,length per point, cumulative; the same route.
-    let csv = dir.path().join("route.csv");
-    let out = geotracks_ok(&[
-        "terrain",
-        dem,
-        "--from",
-        "1010,5010",
-        "--to",
-        "1290,5180",
-        "--cost",
-        "slope:3",
-        "-o",
-        csv.to_str().unwrap(),
-    ]);
-    let text = std::fs::read_to_string(&csv).unwrap();
-    let mut lines = text.lines();
-    assert_eq!(lines.next(), Some("x,y,z,cost,length"));
-    let rows: Vec<Vec<f64>> = lines
-        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
-        .collect();
-    assert_eq!(rows.len(), coords.len());
-    let end = &rows[rows.len() - 1];
-    assert!((end[3] - cost).abs() <= 1e-9 * cost, "{} vs {cost}", end[3]);
-    assert!((end[4] - length).abs() <= 1e-9 * length);
-    assert!(rows.windows(2).all(|w| w[1][3] >= w[0][3]));
-    // Without the map the run stops at the target: the same cost.
-    assert!((last_value(&out) - cost).abs() <= 1e-9 * cost);
-}
-
-#[test]
-fn cli_costs_order_as_expected_and_max_slope_walls_off() {
-    let dir = tempfile::tempdir().unwrap();
-    let dem = hill_asc(dir.path());
-    let dem = dem.to_str().unwrap();
-    let out_path = dir.path().join("r.json");
-    let run = |cost: &str| {
-        let out = geotracks_ok(&[
-            "terrain",
-            dem,
-            "--from",
-            "1010,5100",
-            "--to",
-            "1290,5100",
-            "--cost",
-            cost,
-            "-o",
-            out_path.to_str().unwrap(),
-        ]);
-        last_value(&out)
-    };
-    let none = run("none");
-    assert!(none >= 280.0);
-    assert!(run("slope:2") > none);
-    assert!(run("uphill:5") > none);
-    // The hill's flanks reach about 25°: a 5° limit walls the route off.
-    let walled = dir.path().join("walled.json");
-    assert_fails(
-        &[
-            "terrain",
-            dem,
-            "--from",
-            "1010,5100",
-            "--to",
-            "1290,5100",
-            "--cost",
-            "slope:1,max:5",
-            "-o",
-            walled.to_str().unwrap(),
-        ],
-        &walled,
-        "error: no route",
-    );
-}
-
-#[test]
-fn cli_errors_leave_no_file() {
-    let dir = tempfile::tempdir().unwrap();
-    let dem = hill_asc(dir.path());
-    let dem = dem.to_str().unwrap();
-    let out = dir.path().join("route.geojson");
-    let o = out.to_str().unwrap();
-    let png = dir.path().join("map.png");
-    let bad_dem = write(dir.path(), "bad.asc", "ncols 2\nnrows 2\nxllcorner 0\n");
-    let cases: Vec<(Vec<&str>, &str)> = vec![
-        (
-            vec![
-                "--from",
-                "1010,5010",
-                "--to",
-                "1290,5180",
-                "--cost",
-                "steep:2",
-            ],
-            "cannot read cost 'steep:2'",
-        ),
-        (
-            vec![
-                "--from",
-                "1010,5010",
-                "--to",
-                "1290,5180",
-                "--cost",
-                "slope:1,max:120",
-            ],
-            "maximum slope",
-        ),
-        (
-            vec!["--from", "10,10", "--to", "1290,5180"],
-            "--from 10,10: point (10, 10) is outside the grid",
-        ),
-        (
-            vec!["--from", "1010,5010", "--to", "1100,5170"],
-            "--to 1100,5170: point (1100, 5170) lies on NODATA",
-        ),
-        (vec!["--from", "1010", "--to", "1290,5180"], "is not X,Y"),
-        (
-            vec!["--from", "1010,5010", "--to", "1290,5180", "--k", "0"],
-            "k = 0",
-        ),
-    ];
-    for (extra, expected) in cases {
-        let mut args = vec!["terrain", dem];
-        args.extend(extra);
-        args.extend(["-o", o, "--png", png.to_str().unwrap()]);
-        assert_fails(&args, &out, expected);
-        assert!(!png.exists(), "{args:?} left the map");
-    }
-    for (args, expected) in [
-        (
-            vec![
-                "terrain",
-                bad_dem.to_str().unwrap(),
-                "--from",
-                "0,0",
-                "--to",
-                "1,1",
-                "-o",
-                o,
-            ],
-            "bad.asc: the header has no 'yllcorner'",
-        ),
-        (
-            vec![
-                "terrain",
-                dem,
-                "--from",
-                "1010,5010",
-                "--to",
-                "1290,5180",
-                "-o",
-                "x.shp",
-            ],
-            "unknown output format",
-        ),
-        (
-            vec![
-                "terrain",
-                dem,
-                "--from",
-                "1010,5010",
-                "--to",
-                "1290,5180",
-                "-o",
-                o,
-                "--png",
-                "m.jpg",
-            ],
-            "m.jpg: unknown output format",
-        ),
-        (
-            vec![
-                "terrain", "dem.xyz", "--from", "0,0", "--to", "1,1", "-o", o,
-            ],
-            "unknown elevation grid format",
-        ),
-    ] {
-        let result = geotracks(&args);
-        let stderr = String::from_utf8_lossy(&result.stderr);
-        assert!(!result.status.success());
-        assert!(
-            stderr.contains(expected),
-            "{args:?}: {stderr:?} lacks {expected:?}"
-        );
-        assert!(!out.exists());
-    }
-    let leftovers = std::fs::read_dir(dir.path())
-        .unwrap()
-        .filter_map(|e| e.ok())
-        .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
-        .count();
-    assert_eq!(leftovers, 0);
-}
-
-#[test]
-fn cli_reads_a_geotiff() {
-    use tiff::encoder::colortype::Gray32Float;
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("plane.tif");
-    // 20 × 20 pixels of 5 m, a plane rising 1 m per 5 m eastwards (11.3°).
-    let data: Vec<f32> = (0..400).map(|i| (i % 20) as f32).collect();
-    write_tiff::<Gray32Float>(
-        &path,
-        (20, 20),
-        &data,
-        Some([5.0, 5.0, 0.0]),
-        Some([0.0, 0.0, 0.0, 0.0, 100.0, 0.0]),
-        Some(&geo_keys(1)),
-        None,
-    );
-    let out = dir.path().join("r.csv");
-    // Sample centres: x from 2.5 to 97.5; along the slope from x = 10 to 90.
-    let result = geotracks_ok(&[
-        "terrain",
-        path.to_str().unwrap(),
-        "--from",
-        "10,50",
-        "--to",
-        "90,50",
-        "--cost",
-        "slope:2",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
-    let tan = 0.2f64;
-    let expected = (1.0 + 2.0 * tan * tan) * 80.0 * (1.0 + tan * tan).sqrt();
-    let cost = last_value(&result);
-    assert!(relative(cost, expected) < 1e-6, "{cost} vs {expected}");
 }

@@ -4,7 +4,7 @@
 mod common;
 
 use common::{random_book, random_mesh, sphere, Rng};
-use geotracks::mesh::{Topology, TriMesh};
+use geotracks::mesh::TriMesh;
 use geotracks::{distance_field, Density, Euclidean, Method, Metric, Options, Tensor};
 use proptest::prelude::*;
 

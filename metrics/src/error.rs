@@ -25,8 +25,15 @@ pub enum MetricError {
         /// The offending value.
         value: f64,
     },
-    /// A tensor, once restricted to its face's plane, is not symmetric positive-definite
-    /// (or has a non-finite entry).
+    /// A tensor has a NaN or infinite entry (given, or once restricted to its face's
+    /// plane). Fix: give finite numbers.
+    #[error("tensor of face {face} is not finite: a NaN or infinite entry")]
+    NotFinite {
+        /// The face index.
+        face: usize,
+    },
+    /// A tensor, once restricted to its face's plane, is not symmetric positive-definite.
+    /// Fix: give a matrix whose restriction to the face has positive eigenvalues.
     #[error("tensor of face {face} is not positive-definite in the face plane (restricted to [{m11}, {m12}; {m12}, {m22}])")]
     NotPositiveDefinite {
         /// The face index.

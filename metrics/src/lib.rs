@@ -1,4 +1,4 @@
-//! The cost model of [geotracks](https://example.invalid/geotracks): how long a straight
+//! The cost model of [geotracks](https://github.com/geotracks/geotracks): how long a straight
 //! segment inside one triangle is.
 //!
 //! The propagation engine of geotracks never measures anything itself. Every time it

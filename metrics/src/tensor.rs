@@ -45,7 +45,8 @@ impl Tensor {
     /// Builds from the 2×2 matrices `[m11, m12, m22]` in each face's local frame.
     ///
     /// # Errors
-    /// [`MetricError::NotPositiveDefinite`] for a matrix that is not SPD or not finite.
+    /// [`MetricError::NotFinite`] for a matrix with a NaN or infinite entry;
+    /// [`MetricError::NotPositiveDefinite`] for one that is not SPD.
     pub fn from_local(local: Vec<[f64; 3]>) -> Result<Self, MetricError> {
         for (face, m) in local.iter().enumerate() {
             check_spd(face, *m)?;
@@ -58,6 +59,7 @@ impl Tensor {
     ///
     /// # Errors
     /// [`MetricError::CountMismatch`] unless there is one matrix per face;
+    /// [`MetricError::NotFinite`] if an entry (or a restriction's) is NaN or infinite;
     /// [`MetricError::NotPositiveDefinite`] if a restriction is not SPD.
     pub fn from_world<G: FaceGeometry + ?Sized>(
         mesh: &G,
@@ -99,7 +101,8 @@ impl Tensor {
     /// # Errors
     /// [`MetricError::CountMismatch`] unless there is one entry per face;
     /// [`MetricError::DegenerateDirection`] if `d` projects to zero;
-    /// [`MetricError::NotPositiveDefinite`] unless λ₁, λ₂ are finite and > 0.
+    /// [`MetricError::NotFinite`] for a NaN or infinite λ;
+    /// [`MetricError::NotPositiveDefinite`] unless λ₁, λ₂ are > 0.
     pub fn from_principal<G: FaceGeometry + ?Sized>(
         mesh: &G,
         principal: &[(f64, f64, [f64; 3])],
@@ -123,7 +126,10 @@ impl Tensor {
                     (l1 - l2) * c * s,
                     l1 * s * s + l2 * c * c,
                 ];
-                if !(l1.is_finite() && l2.is_finite() && l1 > 0.0 && l2 > 0.0) {
+                if !(l1.is_finite() && l2.is_finite()) {
+                    return Err(MetricError::NotFinite { face });
+                }
+                if !(l1 > 0.0 && l2 > 0.0) {
                     return Err(MetricError::NotPositiveDefinite {
                         face,
                         m11: r[0],
@@ -161,10 +167,12 @@ fn check_count<G: FaceGeometry + ?Sized>(mesh: &G, found: usize) -> Result<(), M
 }
 
 fn check_spd(face: usize, [m11, m12, m22]: [f64; 3]) -> Result<(), MetricError> {
-    let finite = m11.is_finite() && m12.is_finite() && m22.is_finite();
+    if !(m11.is_finite() && m12.is_finite() && m22.is_finite()) {
+        return Err(MetricError::NotFinite { face });
+    }
     // Relative test so that a nearly singular tensor counts as not positive-definite.
     let det = m11 * m22 - m12 * m12;
-    if finite && m11 > 0.0 && m22 > 0.0 && det > 1e-12 * (m11 * m22) {
+    if m11 > 0.0 && m22 > 0.0 && det > 1e-12 * (m11 * m22) {
         Ok(())
     } else {
         Err(MetricError::NotPositiveDefinite {
@@ -205,5 +213,26 @@ impl Metric for Tensor {
     }
     fn name(&self) -> &str {
         "tensor"
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A NaN entry was reported as "not positive-definite … [NaN, …]".
+    #[test]
+    fn a_nan_tensor_is_not_finite_rather_than_not_positive_definite() {
+        let e = Tensor::from_local(vec![[1.0, 0.0, 1.0], [f64::NAN, 0.0, 1.0]]).unwrap_err();
+        assert_eq!(e, MetricError::NotFinite { face: 1 });
+        assert!(e.to_string().contains("not finite"), "{e}");
+        assert!(!e.to_string().contains("positive-definite"), "{e}");
+        let e = Tensor::from_local(vec![[1.0, f64::INFINITY, 1.0]]).unwrap_err();
+        assert_eq!(e, MetricError::NotFinite { face: 0 });
+        let e = Tensor::from_local(vec![[1.0, 2.0, 1.0]]).unwrap_err();
+        assert!(matches!(
+            e,
+            MetricError::NotPositiveDefinite { face: 0, .. }
+        ));
     }
 }

@@ -1,9 +1,10 @@
-use super::{DisjointSets, Topology, TriMesh};
+use super::{DisjointSets, TriMesh};
 use std::collections::HashMap;
 use std::fmt;
 
 /// What a mesh is made of, and what in it may surprise an algorithm.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct MeshReport {
     /// Vertices, unreferenced ones included.
     pub vertices: usize,
@@ -257,7 +258,7 @@ fn boundary_loops(mesh: &TriMesh, labels: &[u32], count: usize) -> Vec<usize> {
 
 /// Labels each vertex with its component (vertices joined by face edges) and counts the
 /// components, unreferenced vertices counting as one each.
-pub(crate) fn vertex_components<T: Topology>(mesh: &T) -> (Vec<u32>, usize) {
+pub(crate) fn vertex_components(mesh: &TriMesh) -> (Vec<u32>, usize) {
     let mut sets = DisjointSets::new(mesh.vertex_count());
     for e in 0..mesh.edge_count() as u32 {
         let [a, b] = mesh.edge_vertices(e);

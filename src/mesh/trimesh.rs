@@ -1,4 +1,4 @@
-use super::{Csr, MeshError, MeshReport, Topology};
+use super::{Csr, MeshError, MeshReport};
 use geotracks_metrics::{FaceGeometry, FacePoint};
 use glam::DVec3;
 use rayon::slice::ParallelSliceMut;
@@ -95,6 +95,7 @@ impl EdgeLine {
 
 /// A face that was left out because it is degenerate.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct DroppedFace {
     /// Its index in the input.
     pub input_index: usize,
@@ -110,7 +111,7 @@ pub struct DroppedFace {
 /// [`TriMesh::input_face`] maps them back. Vertices are never renumbered.
 ///
 /// ```
-/// use geotracks::mesh::{TriMesh, Topology};
+/// use geotracks::mesh::TriMesh;
 /// // Three faces sharing the edge 0–1: a non-manifold "book".
 /// let mesh = TriMesh::new(
 ///     vec![[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]],
@@ -452,41 +453,74 @@ fn build_edges(triangles: &[[u32; 3]]) -> (Vec<[u32; 3]>, Vec<[u32; 2]>, Csr) {
     (face_edges, edge_vertices, edge_faces)
 }
 
-impl Topology for TriMesh {
+/// The connectivity the engine needs, and nothing more: no half-edges, so an edge may
+/// have one face (boundary), two (manifold) or any number (non-manifold).
+///
+/// Face `f` with vertices `[a, b, c]` has edges `[ab, bc, ca]` in that fixed cyclic
+/// order: edge `i` joins corner `i` to corner `(i + 1) % 3`. An edge's two vertices are
+/// stored lower id first, and Steiner points on it are numbered from that end.
+impl TriMesh {
+    /// Number of vertices (including unreferenced ones).
     #[inline]
-    fn vertex_count(&self) -> usize {
+    pub fn vertex_count(&self) -> usize {
         self.positions.len()
     }
+    /// Number of faces.
     #[inline]
-    fn face_count(&self) -> usize {
+    pub fn face_count(&self) -> usize {
         self.triangles.len()
     }
+    /// Number of edges that belong to at least one face.
     #[inline]
-    fn edge_count(&self) -> usize {
+    pub fn edge_count(&self) -> usize {
         self.edge_vertices.len()
     }
+    /// The vertices of face `f`, in its cyclic order.
+    ///
+    /// # Panics
+    /// If `f` is not a face of the mesh.
     #[inline]
-    fn face_vertices(&self, f: u32) -> [u32; 3] {
+    pub fn face_vertices(&self, f: u32) -> [u32; 3] {
         self.triangles[f as usize]
     }
+    /// The edges of face `f`: edge `i` joins corner `i` to corner `(i + 1) % 3`.
+    ///
+    /// # Panics
+    /// If `f` is not a face of the mesh.
     #[inline]
-    fn face_edges(&self, f: u32) -> [u32; 3] {
+    pub fn face_edges(&self, f: u32) -> [u32; 3] {
         self.face_edges[f as usize]
     }
+    /// The two vertices of edge `e`, lower id first.
+    ///
+    /// # Panics
+    /// If `e` is not an edge of the mesh.
     #[inline]
-    fn edge_vertices(&self, e: u32) -> [u32; 2] {
+    pub fn edge_vertices(&self, e: u32) -> [u32; 2] {
         self.edge_vertices[e as usize]
     }
+    /// The faces around edge `e` (1, 2 or more).
+    ///
+    /// # Panics
+    /// If `e` is not an edge of the mesh.
     #[inline]
-    fn edge_faces(&self, e: u32) -> &[u32] {
+    pub fn edge_faces(&self, e: u32) -> &[u32] {
         self.edge_faces.row(e)
     }
+    /// The faces around vertex `v` (empty for an unreferenced vertex).
+    ///
+    /// # Panics
+    /// If `v` is not a vertex of the mesh.
     #[inline]
-    fn vertex_faces(&self, v: u32) -> &[u32] {
+    pub fn vertex_faces(&self, v: u32) -> &[u32] {
         self.vertex_faces.row(v)
     }
+    /// The face edges around vertex `v`.
+    ///
+    /// # Panics
+    /// If `v` is not a vertex of the mesh.
     #[inline]
-    fn vertex_edges(&self, v: u32) -> &[u32] {
+    pub fn vertex_edges(&self, v: u32) -> &[u32] {
         self.vertex_edges.row(v)
     }
 }

@@ -5,7 +5,7 @@
 
 use super::Method;
 use crate::error::SizeLimit;
-use crate::mesh::{Topology, TriMesh, NONE};
+use crate::mesh::{TriMesh, NONE};
 use crate::steiner::SteinerScheme;
 use crate::Error;
 

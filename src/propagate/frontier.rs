@@ -1,7 +1,7 @@
 //! What every engine shares: per-node distances and parents, the work counters, the
 //! metric call with its sanity check, and relaxation along edges.
 
-use crate::mesh::{Topology, TriMesh, NONE};
+use crate::mesh::{TriMesh, NONE};
 use crate::steiner::{NodeKind, SteinerLayout};
 use geotracks_metrics::{FacePoint, Metric};
 

@@ -6,7 +6,6 @@
 //! node is settled. With no Steiner points this is Dijkstra on mesh edges.
 
 use super::frontier::{Frontier, Queue};
-use crate::mesh::Topology;
 use crate::steiner::NodeKind;
 use geotracks_metrics::{FacePoint, Metric};
 

@@ -7,11 +7,12 @@ use super::queue::{BucketQueue, HeapQueue};
 use super::tracks::{Track, TrackTables};
 use super::wave::{self, Wave};
 use super::{graph, tracks, Method, Options, Stop};
-use crate::field::{FieldView, GeodesicField, Stats};
-use crate::mesh::{FaceFrame, Topology, TriMesh, NONE};
+use crate::field::{FieldView, GeodesicField, Root, SolverId, Stats};
+use crate::mesh::{FaceFrame, TriMesh, NONE};
 use crate::steiner::SteinerLayout;
 use crate::surface::{PointError, Source, SurfacePoint};
-use crate::Error;
+use crate::trace::Query;
+use crate::{Error, PointRole, ValueRole};
 use geotracks_metrics::Metric;
 use std::sync::Arc;
 use std::time::Instant;
@@ -23,6 +24,10 @@ use std::time::Instant;
 /// [`Workspace`] whose buffers are reused, so a warm run allocates nothing. A solver is
 /// `Sync`: threads can share it, each with its own workspace (see
 /// [`Solver::distance_rows`]).
+///
+/// Queries that need the mesh and the metric (the distance at any surface point, paths,
+/// labels) go through the solver that computed the field: [`Solver::query`] and
+/// [`Solver::query_workspace`].
 ///
 /// ```
 /// use geotracks::{mesh::TriMesh, Euclidean, Options, Solver};
@@ -39,6 +44,8 @@ use std::time::Instant;
 /// # Ok::<(), geotracks::Error>(())
 /// ```
 pub struct Solver<'m, M> {
+    /// Who this solver is, recorded in the fields it computes.
+    id: SolverId,
     mesh: &'m TriMesh,
     metric: M,
     method: Method,
@@ -73,6 +80,11 @@ pub struct Workspace {
     seeds: Vec<Seed>,
     /// Nodes whose values decide when the last run could stop.
     targets: Vec<u32>,
+    /// After a run, per node that a source reached directly, its source (from `seeds`).
+    roots: Vec<Root>,
+    /// The solver whose run the buffers hold; `None` before the first run and after a
+    /// run that failed.
+    solver: Option<SolverId>,
 }
 
 impl Workspace {
@@ -86,31 +98,15 @@ impl Workspace {
         &self.distance
     }
 
-    /// The last run's field, borrowed: distances at any surface point, paths, labels.
-    /// `layout` is the solver's ([`Solver::layout`]).
-    ///
-    /// ```
-    /// use geotracks::{mesh::TriMesh, Euclidean, Options, Solver, SurfacePoint};
-    /// let mesh = TriMesh::new(
-    ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
-    ///     vec![[0, 1, 2], [0, 2, 3]],
-    /// )?;
-    /// let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT)?;
-    /// let mut workspace = solver.workspace();
-    /// solver.run(&mut workspace, &[0])?;
-    /// let field = workspace.view(solver.layout());
-    /// let path = field.path(&mesh, &Euclidean, SurfacePoint::Vertex(2))?;
-    /// assert!((path.length - 2f64.sqrt()).abs() < 1e-12);
-    /// # Ok::<(), geotracks::Error>(())
-    /// ```
-    pub fn view<'a>(&'a self, layout: &'a SteinerLayout) -> FieldView<'a> {
+    /// The last run's state, borrowed.
+    fn view<'a>(&'a self, layout: &'a SteinerLayout) -> FieldView<'a> {
         FieldView {
             layout,
             distance: &self.distance,
             parent: &self.parent,
             parent_face: &self.parent_face,
             sources: &self.sources,
-            roots: &self.seeds,
+            roots: &self.roots,
         }
     }
 
@@ -202,6 +198,7 @@ impl<'m, M: Metric> Solver<'m, M> {
         // The tracks engine keeps its steps in its edge records.
         let edge_steps = edge_steps.filter(|_| tables.is_none());
         Ok(Solver {
+            id: SolverId::fresh(),
             mesh,
             metric,
             method: options.method,
@@ -230,8 +227,74 @@ impl<'m, M: Metric> Solver<'m, M> {
     }
 
     /// The mesh.
-    pub fn mesh(&self) -> &TriMesh {
+    pub fn mesh(&self) -> &'m TriMesh {
         self.mesh
+    }
+
+    /// The metric.
+    pub fn metric(&self) -> &M {
+        &self.metric
+    }
+
+    /// Queries on `field` (the distance at any surface point, paths, labels) with this
+    /// solver's mesh, metric and layout.
+    ///
+    /// ```
+    /// use geotracks::{mesh::TriMesh, Error, Euclidean, Options, Solver, SurfacePoint};
+    /// let mesh = TriMesh::new(
+    ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+    ///     vec![[0, 1, 2], [0, 2, 3]],
+    /// )?;
+    /// let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT)?;
+    /// let field = solver.solve(&[0])?;
+    /// let path = solver.query(&field)?.path(SurfacePoint::Vertex(2))?;
+    /// assert!((path.length - 2f64.sqrt()).abs() < 1e-12);
+    /// // Another solver, even on the same mesh and metric, refuses the field.
+    /// let other = Solver::new(&mesh, Euclidean, &Options::DEFAULT.with_k(2.0))?;
+    /// assert!(matches!(other.query(&field), Err(Error::ForeignField)));
+    /// # Ok::<(), geotracks::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::ForeignField`] if another solver computed `field`.
+    pub fn query<'a>(&'a self, field: &'a GeodesicField) -> Result<Query<'a, M>, Error> {
+        if field.solver() != self.id {
+            return Err(Error::ForeignField);
+        }
+        Ok(Query::new(self.mesh, &self.metric, field.view()))
+    }
+
+    /// Queries on the last run in `workspace`, without copying it out (see
+    /// [`Solver::query`]).
+    ///
+    /// ```
+    /// use geotracks::{mesh::TriMesh, Euclidean, Options, Solver, SurfacePoint};
+    /// let mesh = TriMesh::new(
+    ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+    ///     vec![[0, 1, 2], [0, 2, 3]],
+    /// )?;
+    /// let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT)?;
+    /// let mut workspace = solver.workspace();
+    /// solver.run(&mut workspace, &[0])?;
+    /// let query = solver.query_workspace(&workspace)?;
+    /// let path = query.path(SurfacePoint::Vertex(2))?;
+    /// assert!((path.length - 2f64.sqrt()).abs() < 1e-12);
+    /// # Ok::<(), geotracks::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::NoRun`] if the workspace holds no finished run (none yet, or the last
+    /// one failed); [`Error::ForeignField`] if another solver made its last run.
+    pub fn query_workspace<'a>(&'a self, workspace: &'a Workspace) -> Result<Query<'a, M>, Error> {
+        match workspace.solver {
+            None => Err(Error::NoRun),
+            Some(id) if id != self.id => Err(Error::ForeignField),
+            Some(_) => Ok(Query::new(
+                self.mesh,
+                &self.metric,
+                workspace.view(&self.layout),
+            )),
+        }
     }
 
     /// Propagates from `sources` (vertex ids, start value 0) into `workspace`.
@@ -292,12 +355,13 @@ impl<'m, M: Metric> Solver<'m, M> {
     fn execute(&self, workspace: &mut Workspace, stop: &Stop) -> Result<Stats, Error> {
         let start = Instant::now();
         let mesh = self.mesh;
+        workspace.solver = None;
         if workspace.sources.is_empty() {
             return Err(Error::NoSource);
         }
         if stop.max_distance.is_nan() {
             return Err(Error::InvalidValue {
-                what: "the maximum distance".into(),
+                which: ValueRole::MaxDistance,
                 value: stop.max_distance,
             });
         }
@@ -307,7 +371,7 @@ impl<'m, M: Metric> Solver<'m, M> {
             let point = target
                 .validated(mesh)
                 .map_err(|error| Error::InvalidPoint {
-                    what: format!("target {i}"),
+                    which: PointRole::Target(i),
                     error,
                 })?;
             match point {
@@ -343,6 +407,8 @@ impl<'m, M: Metric> Solver<'m, M> {
             seeds,
             targets,
             sources,
+            roots,
+            solver,
             ..
         } = workspace;
         let search = Frontier {
@@ -401,6 +467,12 @@ impl<'m, M: Metric> Solver<'m, M> {
                 .then(a.source.cmp(&b.source))
         });
         seeds.dedup_by_key(|s| s.node);
+        roots.clear();
+        roots.extend(seeds.iter().map(|s| Root {
+            node: s.node,
+            source: s.source,
+        }));
+        *solver = Some(self.id);
         Ok(Stats {
             vertices: mesh.vertex_count(),
             faces: mesh.face_count(),
@@ -429,13 +501,13 @@ impl<'m, M: Metric> Solver<'m, M> {
                         vertex_count: count,
                     },
                     error => Error::InvalidPoint {
-                        what: format!("source {i}"),
+                        which: PointRole::Source(i),
                         error,
                     },
                 })?;
             if !source.start.is_finite() {
                 return Err(Error::InvalidValue {
-                    what: format!("the start value of source {i}"),
+                    which: ValueRole::Start { source: i },
                     value: source.start,
                 });
             }
@@ -486,8 +558,14 @@ impl<'m, M: Metric> Solver<'m, M> {
     }
 
     /// One row of distances per source, computed on all cores (rayon; workspaces are
-    /// pooled, at most one per worker thread, and reused across sources): row `i` holds the distance from
-    /// `sources[i]` to each of `targets`, or to every vertex when `targets` is `None`.
+    /// pooled, at most one per worker thread, and reused across sources): row `i` holds
+    /// the distance from `sources[i]` to each of `targets`, or to every vertex when
+    /// `targets` is `None`. With targets, each row's run stops once its targets are
+    /// final ([`Stop::with_targets`]), so near targets cost little.
+    ///
+    /// # Complexity
+    /// One run per source; with targets, each run settles only the nodes closer than
+    /// its farthest target.
     ///
     /// # Errors
     /// As [`Solver::run`], plus [`Error::TargetOutOfRange`] for a target that is not a
@@ -509,6 +587,20 @@ impl<'m, M: Metric> Solver<'m, M> {
         sources: &[u32],
         targets: Option<&[u32]>,
     ) -> Result<Vec<Vec<f64>>, Error> {
+        let rows = self.distance_rows_with_stats(sources, targets)?;
+        Ok(rows.into_iter().map(|(row, _)| row).collect())
+    }
+
+    /// As [`Solver::distance_rows`], with each row's [`Stats`] (whether it stopped
+    /// early, how much work it did).
+    ///
+    /// # Errors
+    /// As [`Solver::distance_rows`].
+    pub fn distance_rows_with_stats(
+        &self,
+        sources: &[u32],
+        targets: Option<&[u32]>,
+    ) -> Result<Vec<(Vec<f64>, Stats)>, Error> {
         use rayon::prelude::*;
         let vertex_count = self.mesh.vertex_count();
         if let Some(&vertex) = targets
@@ -521,6 +613,12 @@ impl<'m, M: Metric> Solver<'m, M> {
                 vertex_count,
             });
         }
+        let stop = match targets {
+            Some(t) => {
+                Stop::NONE.with_targets(t.iter().map(|&v| SurfacePoint::Vertex(v)).collect())
+            }
+            None => Stop::NONE,
+        };
         // Workspaces are taken from and returned to a pool, so there are never more
         // than there are worker threads (rayon's map_init may create one per split).
         let pool = std::sync::Mutex::new(Vec::<Workspace>::new());
@@ -534,13 +632,16 @@ impl<'m, M: Metric> Solver<'m, M> {
             .par_iter()
             .map(|&source| {
                 let mut ws = take();
-                let row = self.run(&mut ws, &[source]).map(|_| {
-                    let d = ws.vertex_distances();
-                    match targets {
-                        Some(t) => t.iter().map(|&v| d[v as usize]).collect(),
-                        None => d.to_vec(),
-                    }
-                });
+                let row = self
+                    .run_from(&mut ws, &[Source::new(source)], &stop)
+                    .map(|stats| {
+                        let d = ws.vertex_distances();
+                        let row = match targets {
+                            Some(t) => t.iter().map(|&v| d[v as usize]).collect(),
+                            None => d.to_vec(),
+                        };
+                        (row, stats)
+                    });
                 if let Ok(mut p) = pool.lock() {
                     p.push(ws);
                 }
@@ -571,7 +672,7 @@ impl<'m, M: Metric> Solver<'m, M> {
     /// let source = Source::new("e:0:0.5".parse::<SurfacePoint>()?);
     /// let field = solver.solve_from(&[source], &Stop::NONE)?;
     /// let target = SurfacePoint::Face { face: 1, bary: [0.2, 0.3, 0.5] };
-    /// let path = field.path(&mesh, &Euclidean, target)?;
+    /// let path = solver.query(&field)?.path(target)?;
     /// assert_eq!(path.points[0], target);
     /// assert!(path.length <= path.traced_length);
     /// # Ok::<(), Box<dyn std::error::Error>>(())
@@ -584,11 +685,12 @@ impl<'m, M: Metric> Solver<'m, M> {
         let stats = self.run_from(&mut ws, sources, stop)?;
         Ok(GeodesicField::new(
             Arc::clone(&self.layout),
+            self.id,
             ws.distance,
             ws.parent,
             ws.parent_face,
             ws.sources,
-            ws.seeds,
+            ws.roots,
             stats,
         ))
     }
@@ -671,6 +773,35 @@ fn check_cost_range<M: Metric>(
     Err(Error::CostOverflow {
         metric: metric.name().to_string(),
     })
+}
+
+impl<M: Metric> Solver<'_, M> {
+    /// The straightened path from `target` to the nearest of `sources`, in one call: a
+    /// run that stops once the target's value is final, then [`Query::path`].
+    ///
+    /// ```
+    /// use geotracks::{mesh::TriMesh, Euclidean, Options, Solver, Source, SurfacePoint};
+    /// let mesh = TriMesh::new(
+    ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+    ///     vec![[0, 1, 2], [0, 2, 3]],
+    /// )?;
+    /// let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT)?;
+    /// let path = solver.shortest_path(&[Source::new(1)], SurfacePoint::Vertex(3))?;
+    /// assert!((path.length - 2f64.sqrt()).abs() < 1e-12);
+    /// # Ok::<(), geotracks::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`Solver::run_from`] and [`Query::path`] ([`Error::Unreachable`] when no source
+    /// reaches the target).
+    pub fn shortest_path(
+        &self,
+        sources: &[Source],
+        target: SurfacePoint,
+    ) -> Result<crate::GeodesicPath, Error> {
+        let field = self.solve_from(sources, &Stop::NONE.with_targets(vec![target]))?;
+        self.query(&field)?.path(target)
+    }
 }
 
 /// The bucket queue's width: a low quantile of the cost between consecutive nodes on an

@@ -50,7 +50,7 @@
 
 use super::frontier::{Frontier, Queue, Seed};
 use super::tracks::{FaceRecord, TrackTables};
-use crate::mesh::{FaceFrame, Topology, TriMesh, NONE};
+use crate::mesh::{FaceFrame, TriMesh, NONE};
 use crate::surface::Source;
 use geotracks_metrics::{FacePoint, Metric};
 

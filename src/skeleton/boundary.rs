@@ -10,7 +10,7 @@
 //! across the junction graph, whose distances are found once per junction asked about.
 
 use super::Ordered;
-use crate::mesh::{Topology, TriMesh, NONE};
+use crate::mesh::{TriMesh, NONE};
 use crate::steiner::SteinerLayout;
 use geotracks_metrics::Metric;
 use std::cell::OnceCell;

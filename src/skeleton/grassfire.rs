@@ -2,8 +2,10 @@
 
 use super::boundary::BoundaryArcs;
 use crate::mesh::{TriMesh, NONE};
-use crate::propagate::{Options, Solver, Stop};
+use crate::options::{Options, Stop};
+use crate::propagate::Solver;
 use crate::surface::Source;
+use crate::trace::Query;
 use crate::{Density, Error, GeodesicField, Metric, MetricError};
 
 /// A distance field from every boundary edge (edges with one face) of a surface, all at
@@ -12,6 +14,9 @@ use crate::{Density, Error, GeodesicField, Metric, MetricError};
 /// Burning a medial axis from its boundary is the classical *grassfire*: where fronts
 /// from boundary points far apart along the boundary meet, the surface has a ridge (see
 /// [`crate::skeleton::Skeleton`]).
+///
+/// It keeps the solver it burnt with, so the skeleton's later questions (paths, a second
+/// field for bridges) use the same mesh, metric and Steiner points.
 ///
 /// ```
 /// use geotracks::{mesh::TriMesh, skeleton::Grassfire, Euclidean, Options};
@@ -26,7 +31,8 @@ use crate::{Density, Error, GeodesicField, Metric, MetricError};
 /// assert!((fire.field().distance(4) - 0.5).abs() < 1e-12);
 /// # Ok::<(), geotracks::Error>(())
 /// ```
-pub struct Grassfire {
+pub struct Grassfire<'m, M> {
+    solver: Solver<'m, M>,
     field: GeodesicField,
     /// The boundary; source `i` is its node number `i`.
     boundary: BoundaryArcs,
@@ -34,21 +40,18 @@ pub struct Grassfire {
     origins: Vec<u32>,
 }
 
-impl Grassfire {
-    /// Burns `mesh` from its boundary under `metric`. Every node on a boundary edge is a
-    /// source at 0; components without a boundary stay unreached (`inf`).
+impl<'m, M: Metric> Grassfire<'m, M> {
+    /// Burns `mesh` from its boundary under `metric` (a metric or a reference to one).
+    /// Every node on a boundary edge is a source at 0; components without a boundary
+    /// stay unreached (`inf`).
     ///
     /// # Errors
-    /// [`Error::NoBoundary`] if no edge has exactly one face; as [`Solver::solve_from`]
-    /// otherwise.
-    pub fn burn<M: Metric>(
-        mesh: &TriMesh,
-        metric: &M,
-        options: &Options,
-    ) -> Result<Grassfire, Error> {
+    /// [`Error::NoBoundary`] if no edge has exactly one face; as [`Solver::new`] and
+    /// [`Solver::solve_from`] otherwise.
+    pub fn burn(mesh: &'m TriMesh, metric: M, options: &Options) -> Result<Self, Error> {
         let solver = Solver::new(mesh, metric, options)?;
         let layout = solver.layout();
-        let boundary = BoundaryArcs::new(mesh, layout, metric);
+        let boundary = BoundaryArcs::new(mesh, layout, solver.metric());
         if boundary.nodes().is_empty() {
             return Err(Error::NoBoundary);
         }
@@ -58,8 +61,9 @@ impl Grassfire {
             .map(|&node| Source::new(layout.surface_point(node)))
             .collect();
         let field = solver.solve_from(&sources, &Stop::NONE)?;
-        let origins = field.view().node_labels();
+        let origins = solver.query(&field)?.node_labels();
         Ok(Grassfire {
+            solver,
             field,
             boundary,
             origins,
@@ -69,6 +73,23 @@ impl Grassfire {
     /// The distance field (every boundary node a source at 0).
     pub fn field(&self) -> &GeodesicField {
         &self.field
+    }
+
+    /// The distance field, given up.
+    pub fn into_field(self) -> GeodesicField {
+        self.field
+    }
+
+    /// The solver the fire burnt with (its mesh, metric and Steiner layout).
+    pub fn solver(&self) -> &Solver<'m, M> {
+        &self.solver
+    }
+
+    /// Queries on the field: distances at any point, paths back to the boundary.
+    pub fn query(&self) -> Query<'_, M> {
+        self.solver
+            .query(&self.field)
+            .expect("the fire's own solver computed its field")
     }
 
     /// The boundary source `node` burnt from, as an index into the field's sources

@@ -40,16 +40,17 @@ mod ridges;
 pub use grassfire::{radius_speed, Grassfire};
 
 use crate::mesh::io::MedialAxis;
-use crate::mesh::{DisjointSets, Topology, TriMesh, NONE};
-use crate::propagate::{Options, Solver, Stop};
+use crate::mesh::{DisjointSets, TriMesh, NONE};
+use crate::options::{Options, Stop};
 use crate::steiner::SteinerLayout;
 use crate::surface::{Source, SurfacePoint};
-use crate::{Error, Euclidean, Metric};
+use crate::{Error, Euclidean, GeodesicField, Metric};
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
 /// A point of a [`Skeleton`].
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct SkeletonPoint {
     /// World position.
     pub position: [f64; 3],
@@ -66,6 +67,7 @@ pub struct SkeletonPoint {
 /// A skeleton: a graph of points on a surface (and on its free edges), with straight
 /// edges that each lie in one face or along one free edge.
 #[derive(Clone, Debug, Default, PartialEq)]
+#[non_exhaustive]
 pub struct Skeleton {
     /// The graph's points.
     pub points: Vec<SkeletonPoint>,
@@ -88,10 +90,11 @@ impl Skeleton {
         options: &Options,
     ) -> Result<Skeleton, Error> {
         let fire = Grassfire::burn(mesh, metric, options)?;
-        Skeleton::from_grassfire(mesh, metric, &fire, options)
+        Skeleton::from_grassfire(&fire)
     }
 
-    /// The unpruned skeleton from a grassfire already burnt on `mesh` with `metric`:
+    /// The unpruned skeleton from a grassfire already burnt (on its mesh, under its
+    /// metric and Steiner points):
     /// - the ridges: crossings on edges where fronts from origins far apart along the
     ///   boundary meet head-on, joined across each face;
     /// - the mesh's line elements (a medial axis's free edges), whole;
@@ -102,18 +105,12 @@ impl Skeleton {
     ///   surface on which no ridge is found still gets one point: where the fire burnt
     ///   last.
     ///
-    /// `options` are used for the bridges' distance field.
+    /// The bridges' distance field is computed by the fire's solver.
     ///
     /// # Errors
-    /// [`Error::MeshMismatch`] if the grassfire was burnt on another mesh; as
-    /// [`Solver::solve_from`] for the bridges.
-    pub fn from_grassfire<M: Metric>(
-        mesh: &TriMesh,
-        metric: &M,
-        fire: &Grassfire,
-        options: &Options,
-    ) -> Result<Skeleton, Error> {
-        fire.field().view().check_mesh(mesh)?;
+    /// As [`Solver::solve_from`](crate::Solver::solve_from), for the bridges.
+    pub fn from_grassfire<M: Metric>(fire: &Grassfire<'_, M>) -> Result<Skeleton, Error> {
+        let (mesh, metric) = (fire.solver().mesh(), fire.solver().metric());
         let mut skeleton = ridges::ridges(mesh, metric, fire);
         skeleton.drop_isolated();
         skeleton.add_free_edges(mesh, mesh.line_edges());
@@ -147,7 +144,7 @@ impl Skeleton {
             has_faces[component[t[0] as usize] as usize] = true;
         }
         skeleton.closed_components = (0..count).filter(|&c| !burnt[c] && has_faces[c]).count();
-        skeleton.bridge(mesh, metric, options)?;
+        skeleton.bridge(fire.solver())?;
         Ok(skeleton)
     }
 
@@ -374,12 +371,8 @@ impl Skeleton {
 
     /// Joins the pieces of the graph that lie on one connected surface by shortest
     /// paths, cheapest first.
-    fn bridge<M: Metric>(
-        &mut self,
-        mesh: &TriMesh,
-        metric: &M,
-        options: &Options,
-    ) -> Result<(), Error> {
+    fn bridge<M: Metric>(&mut self, solver: &crate::Solver<'_, M>) -> Result<(), Error> {
+        let (mesh, metric) = (solver.mesh(), solver.metric());
         let (piece, _) = self.components();
         let (surface, _) = mesh.vertex_components();
         // A piece may touch several surfaces (through free edges): count each pair once.
@@ -402,10 +395,9 @@ impl Skeleton {
             .iter()
             .map(|&i| Source::new(self.points[i as usize].on))
             .collect();
-        let solver = Solver::new(mesh, metric, options)?;
         let field = solver.solve_from(&sources, &Stop::NONE)?;
-        let view = field.view();
-        let labels = view.node_labels();
+        let query = solver.query(&field)?;
+        let labels = query.node_labels();
         let layout = field.layout();
         let distances = field.node_distances();
         // Neighbouring nodes along an edge from two different pieces: a candidate bridge.
@@ -442,8 +434,8 @@ impl Skeleton {
                 continue;
             }
             // Paths end at the sources their labels name: a and b.
-            let from_p = view.path(mesh, metric, layout.surface_point(p))?;
-            let from_q = view.path(mesh, metric, layout.surface_point(q))?;
+            let from_p = query.path(layout.surface_point(p))?;
+            let from_q = query.path(layout.surface_point(q))?;
             let significance = self.points[a as usize]
                 .significance
                 .min(self.points[b as usize].significance);
@@ -466,7 +458,7 @@ impl Skeleton {
 /// [`Skeleton::pruned`]: its sheets burnt from their boundary (with a
 /// [`radius_speed`] density when `radius_aware`, else Euclidean) and joined with its
 /// free edges; for a medial axis of curves only, its free edges. Also returns the
-/// grassfire, if there were sheets.
+/// grassfire's distance field, if there were sheets.
 ///
 /// # Errors
 /// As [`Skeleton::extract`]; [`Error::Metric`] if a radius is unusable for the
@@ -476,26 +468,19 @@ pub fn medial_axis_skeleton(
     radius_aware: bool,
     options: &Options,
     prune: f64,
-) -> Result<(Skeleton, Option<Grassfire>), Error> {
+) -> Result<(Skeleton, Option<GeodesicField>), Error> {
     let Some(mesh) = &axis.surface else {
         let skeleton = Skeleton::from_curves(&axis.positions, &axis.free_edges);
         return Ok((skeleton.pruned(prune), None));
     };
-    let (skeleton, fire) = if radius_aware {
-        let density = radius_speed(mesh, &axis.radii)?;
-        let fire = Grassfire::burn(mesh, &density, options)?;
-        (
-            Skeleton::from_grassfire(mesh, &density, &fire, options)?,
-            fire,
-        )
+    let (skeleton, field) = if radius_aware {
+        let fire = Grassfire::burn(mesh, radius_speed(mesh, &axis.radii)?, options)?;
+        (Skeleton::from_grassfire(&fire)?, fire.into_field())
     } else {
-        let fire = Grassfire::burn(mesh, &Euclidean, options)?;
-        (
-            Skeleton::from_grassfire(mesh, &Euclidean, &fire, options)?,
-            fire,
-        )
+        let fire = Grassfire::burn(mesh, Euclidean, options)?;
+        (Skeleton::from_grassfire(&fire)?, fire.into_field())
     };
-    Ok((skeleton.pruned(prune), Some(fire)))
+    Ok((skeleton.pruned(prune), Some(field)))
 }
 
 /// The nodes along edge `e` from its lower vertex to its higher one.

@@ -10,7 +10,7 @@
 
 use super::boundary::is_boundary_edge;
 use super::{cost_along, edge_sequence, Grassfire, Skeleton, SkeletonPoint};
-use crate::mesh::{Topology, TriMesh, NONE};
+use crate::mesh::{TriMesh, NONE};
 use crate::surface::SurfacePoint;
 use geotracks_metrics::Metric;
 
@@ -26,7 +26,7 @@ pub(crate) const FLOOR_STEPS: f64 = 3.0;
 
 /// The ridge crossings of every edge and their joins in every face, as an unpruned
 /// skeleton (line elements not yet added).
-pub(crate) fn ridges<M: Metric>(mesh: &TriMesh, metric: &M, fire: &Grassfire) -> Skeleton {
+pub(crate) fn ridges<M: Metric>(mesh: &TriMesh, metric: &M, fire: &Grassfire<'_, M>) -> Skeleton {
     let layout = fire.field().layout();
     let mut skeleton = Skeleton::default();
     // Per edge, the crossing node of each segment between neighbouring nodes.
@@ -92,7 +92,7 @@ pub(crate) fn ridges<M: Metric>(mesh: &TriMesh, metric: &M, fire: &Grassfire) ->
 fn meeting<M: Metric>(
     mesh: &TriMesh,
     metric: &M,
-    fire: &Grassfire,
+    fire: &Grassfire<'_, M>,
     e: u32,
     pair: &[u32],
     j: usize,

@@ -2,7 +2,7 @@
 //! ([`TerrainMesh`]), which also finds the triangle under any map point in O(1).
 
 use super::TerrainError;
-use crate::mesh::{Topology, TriMesh, NONE};
+use crate::mesh::{TriMesh, NONE};
 use crate::surface::SurfacePoint;
 
 /// Where a grid's samples are: how many, where the first one is and how far apart.
@@ -95,7 +95,6 @@ impl GridGeometry {
 /// assert_eq!(terrain.mesh.face_count(), 3); // two in the full cell, one in the other
 /// let p = terrain.locate(105.0, 205.0)?;    // the middle of the first cell
 /// assert!((p.position(&terrain.mesh).z - 5.0).abs() < 1e-12);
-/// # use geotracks::mesh::Topology;
 /// # Ok::<(), geotracks::terrain::TerrainError>(())
 /// ```
 #[derive(Clone, Debug, PartialEq)]

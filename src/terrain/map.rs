@@ -10,6 +10,7 @@ use glam::DVec2;
 
 /// An RGBA picture, row-major from the top (north), 4 bytes per pixel.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct MapImage {
     /// Width in pixels.
     pub width: u32,
@@ -325,17 +326,23 @@ impl MapImage {
         &self,
         path: impl AsRef<std::path::Path>,
     ) -> Result<(), crate::mesh::MeshError> {
+        crate::mesh::io::write_atomically(path.as_ref(), |w| self.write_png_to(w))
+    }
+
+    /// As [`MapImage::write_png`], into `w`.
+    ///
+    /// # Errors
+    /// What `w` or the PNG encoder returns.
+    pub fn write_png_to(&self, w: &mut dyn std::io::Write) -> std::io::Result<()> {
         use image::ImageEncoder;
-        crate::mesh::io::write_atomically(path.as_ref(), |w| {
-            image::codecs::png::PngEncoder::new(w)
-                .write_image(
-                    &self.rgba,
-                    self.width,
-                    self.height,
-                    image::ExtendedColorType::Rgba8,
-                )
-                .map_err(std::io::Error::other)
-        })
+        image::codecs::png::PngEncoder::new(w)
+            .write_image(
+                &self.rgba,
+                self.width,
+                self.height,
+                image::ExtendedColorType::Rgba8,
+            )
+            .map_err(std::io::Error::other)
     }
 }
 

@@ -8,7 +8,10 @@
 //! - Costs ([`cost`]): [`slope_density`] (`ρ = 1 + a·tan²(slope)`), [`Impassable`]
 //!   (walls: faces no route crosses), [`uphill_tensor`] (climbing the steepest line
 //!   costs more than following a contour); [`TerrainCost`] names them as the command
-//!   line does.
+//!   line does, and [`TerrainCost::metric`] builds it ([`TerrainMetric`], one type for
+//!   all of them).
+//! - [`route`]: the cheapest route between two points, start first, with its
+//!   cumulative cost.
 //! - [`map`]: a hillshaded picture of the grid with cost contours and a route.
 //!
 //! ```
@@ -23,7 +26,7 @@
 //! let density = slope_density(&terrain.mesh, 4.0)?; // ρ = 1 + 4 · 0.5² = 2
 //! let solver = Solver::new(&terrain.mesh, &density, &Options::DEFAULT.with_k(2.0))?;
 //! let field = solver.solve_from(&[Source::new(from)], &Stop::NONE.with_targets(vec![to]))?;
-//! let route = field.path(&terrain.mesh, &density, to)?;
+//! let route = solver.query(&field)?.path(to)?;
 //! let expected = 2.0 * 16.0 * 1.25f64.sqrt(); // ρ × the 3D length
 //! assert!((route.length - expected).abs() < 1e-6 * expected);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
@@ -35,15 +38,17 @@ mod error;
 mod geotiff;
 mod grid;
 pub mod map;
+mod route;
 
 pub use asc::{read_asc, read_asc_bytes};
 pub use cost::{
     face_slopes, slope_density, steeper_than, uphill_tensor, vertex_slope_tan2, Impassable,
-    TerrainCost, WithTerrainMetric,
+    TerrainCost, TerrainMetric,
 };
 pub use error::TerrainError;
 pub use geotiff::{read_geotiff, read_geotiff_bytes};
 pub use grid::{ElevationGrid, GridGeometry, TerrainMesh};
+pub use route::{route, Route};
 
 use std::path::Path;
 

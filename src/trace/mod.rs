@@ -1,5 +1,6 @@
-//! Geodesic paths: traced back from any surface point to its nearest source through the
-//! parents the propagation recorded, then straightened.
+//! Queries on a finished run ([`Query`]: the distance at any surface point, nearest
+//! sources) and geodesic paths: traced back from any surface point to its nearest source
+//! through the parents the propagation recorded, then straightened.
 //!
 //! A traced path is a polyline whose every segment lies inside one face (from a node to
 //! its parent, or along an edge), so its length in the metric is the distance the
@@ -7,16 +8,18 @@
 //! each edge crossing along its edge, and lets the path leave a vertex where it can cut
 //! the corner, never making it longer.
 
+mod query;
 mod straighten;
 
-use crate::field::{FieldView, Origin};
-use crate::mesh::{Topology, TriMesh, NONE};
+use crate::mesh::{TriMesh, NONE};
 use crate::steiner::NodeKind;
 use crate::surface::SurfacePoint;
 use crate::Error;
 use geotracks_metrics::Metric;
 use glam::DVec3;
 
+use query::Origin;
+pub use query::Query;
 pub use straighten::straighten;
 
 /// A path on the surface, from a query point to a source.
@@ -25,6 +28,7 @@ pub use straighten::straighten;
 /// `points[i]` and `points[i + 1]` inside face `faces[i]` (a segment along an edge lies
 /// in each face of the edge; it names the one where it costs least).
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct GeodesicPath {
     /// The polyline's points, each a vertex, an edge point or a face point.
     pub points: Vec<SurfacePoint>,
@@ -82,91 +86,87 @@ pub(crate) fn segment_cost<M: Metric>(
     metric.cost(f, &pa, &pb)
 }
 
-impl FieldView<'_> {
+impl<M: Metric> Query<'_, M> {
     /// The path from `point` to its nearest source, as the propagation found it: from
     /// the point to the best node of its faces (or straight to a source in one of
     /// them), then from parent to parent. Its length is the distance at `point`.
     ///
+    /// # Complexity
+    /// O(k) metric evaluations per face around the point, then one step per node on
+    /// the path.
+    ///
     /// # Errors
-    /// [`Error::InvalidPoint`] for a point not on `mesh`, [`Error::MeshMismatch`] for a
-    /// mesh other than the field's, [`Error::Unreachable`] when no source reaches the
-    /// point.
-    pub fn trace<M: Metric>(
-        &self,
-        mesh: &TriMesh,
-        metric: &M,
-        point: SurfacePoint,
-    ) -> Result<GeodesicPath, Error> {
-        let (_, origin) = self.origin(mesh, metric, point)?;
+    /// [`Error::InvalidPoint`] for a point not on the mesh, [`Error::Unreachable`] when
+    /// no source reaches the point.
+    pub fn trace(&self, point: SurfacePoint) -> Result<GeodesicPath, Error> {
+        let (mesh, metric, field) = (self.mesh, self.metric, &self.field);
+        let (_, origin) = self.origin(point)?;
         let Some(origin) = origin else {
-            return Err(Error::Unreachable {
-                what: format!("point {point}"),
-            });
+            return Err(Error::Unreachable { point });
         };
         let mut points = vec![point.validated(mesh).expect("checked by origin")];
         let mut faces = Vec::new();
         let mut node = match origin {
             Origin::Node(v) => v,
             Origin::NodeInFace(n, f) => {
-                points.push(self.layout.surface_point(n));
+                points.push(field.layout.surface_point(n));
                 faces.push(f);
                 n
             }
             Origin::SourceInFace(s, f) => {
-                points.push(self.sources[s as usize].point);
+                points.push(field.sources[s as usize].point);
                 faces.push(f);
                 return Ok(finish(mesh, metric, points, faces, s));
             }
         };
         // Parents have lower values, so the walk ends at a root; the cap guards against
         // a metric that returns zero costs between distinct points.
-        for _ in 0..self.distance.len() {
-            let (p, pf) = (self.parent[node as usize], self.parent_face[node as usize]);
+        for _ in 0..field.distance.len() {
+            let (p, pf) = (
+                field.parent[node as usize],
+                field.parent_face[node as usize],
+            );
             if p == NONE {
-                let s = self
+                let s = field
                     .root_source(node)
                     .expect("a reached node without a parent was reached by a source");
                 if pf != NONE {
-                    points.push(self.sources[s as usize].point);
+                    points.push(field.sources[s as usize].point);
                     faces.push(pf);
                 }
                 return Ok(finish(mesh, metric, points, faces, s));
             }
-            points.push(self.layout.surface_point(p));
+            points.push(field.layout.surface_point(p));
             faces.push(if pf != NONE {
                 pf
             } else {
-                self.cheapest_face_along(mesh, metric, node, p)
+                self.cheapest_face_along(node, p)
             });
             node = p;
         }
-        Err(Error::Unreachable {
-            what: format!(
-                "point {point} (its parents form a cycle: the metric returned zero costs)"
-            ),
-        })
+        Err(Error::ParentCycle { point })
     }
 
     /// The traced path from `point`, straightened ([`straighten`]): the path users
     /// want, at most as long as the traced one.
     ///
+    /// # Complexity
+    /// As [`Query::trace`], then a few rounds of Newton's method on the path's edge
+    /// crossings (tridiagonal: linear in the path's length per step).
+    ///
     /// # Errors
-    /// As [`FieldView::trace`].
-    pub fn path<M: Metric>(
-        &self,
-        mesh: &TriMesh,
-        metric: &M,
-        point: SurfacePoint,
-    ) -> Result<GeodesicPath, Error> {
-        let mut path = self.trace(mesh, metric, point)?;
-        straighten(&mut path, mesh, metric);
+    /// As [`Query::trace`].
+    pub fn path(&self, point: SurfacePoint) -> Result<GeodesicPath, Error> {
+        let mut path = self.trace(point)?;
+        straighten(&mut path, self.mesh, self.metric);
         Ok(path)
     }
 
     /// The face around the edge that joins nodes `a` and `b` (neighbours along it) in
     /// which the segment between them costs least.
-    fn cheapest_face_along<M: Metric>(&self, mesh: &TriMesh, metric: &M, a: u32, b: u32) -> u32 {
-        let edge = match (self.layout.kind(a), self.layout.kind(b)) {
+    fn cheapest_face_along(&self, a: u32, b: u32) -> u32 {
+        let (mesh, metric, layout) = (self.mesh, self.metric, self.field.layout);
+        let edge = match (layout.kind(a), layout.kind(b)) {
             (NodeKind::Steiner { edge, .. }, _) | (_, NodeKind::Steiner { edge, .. }) => edge,
             (NodeKind::Vertex(u), NodeKind::Vertex(v)) => *mesh
                 .vertex_edges(u)
@@ -174,7 +174,7 @@ impl FieldView<'_> {
                 .find(|&&e| mesh.edge_vertices(e).contains(&v))
                 .expect("nodes joined along an edge share it"),
         };
-        let (pa, pb) = (self.layout.surface_point(a), self.layout.surface_point(b));
+        let (pa, pb) = (layout.surface_point(a), layout.surface_point(b));
         let faces = mesh.edge_faces(edge);
         faces
             .iter()

@@ -23,7 +23,7 @@
 //! across a book's spine.
 
 use super::{segment_cost, GeodesicPath};
-use crate::mesh::{Topology, TriMesh};
+use crate::mesh::TriMesh;
 use crate::surface::SurfacePoint;
 use geotracks_metrics::{FacePoint, Metric};
 use glam::DVec3;

@@ -8,7 +8,7 @@
 use super::sniff;
 use super::text::{at_line, capacity, next_number, parse_error, Lines};
 use super::MedialAxis;
-use crate::mesh::{MeshError, Topology, TriMesh};
+use crate::mesh::{MeshError, TriMesh};
 use std::path::Path;
 
 /// Reads a medial axis; one of curves only (no usable face) is an error unless

@@ -16,7 +16,7 @@
 //! with an error instead of exhausting memory.
 //!
 //! ```
-//! use geotracks::mesh::{io, Topology};
+//! use geotracks::mesh::{io};
 //! let dir = tempfile::tempdir()?;
 //! let path = dir.path().join("square.off");
 //! std::fs::write(&path, "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n")?;
@@ -34,7 +34,10 @@ mod stl;
 mod text;
 mod write;
 
-pub use write::{write_atomically, write_obj_lines, write_obj_polylines, write_ply_with_distance};
+pub use write::{
+    write_atomically, write_obj_lines, write_obj_lines_to, write_obj_polylines,
+    write_ply_with_distance, write_ply_with_distance_to,
+};
 
 use super::{MeshError, TriMesh};
 use std::path::Path;
@@ -42,6 +45,7 @@ use std::path::Path;
 /// A medial axis read from a `.ma` file: its sheets (faces), its curves (free edges) and
 /// the medial ball radius at each vertex.
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub struct MedialAxis {
     /// The sheets, with the free edges as line elements; `None` when no face is usable
     /// (a medial axis made only of curves).
@@ -126,7 +130,6 @@ impl Default for ReadOptions {
 ///
 /// ```
 /// use geotracks::mesh::io::{read_mesh_with, ReadOptions};
-/// use geotracks::mesh::Topology;
 /// let dir = tempfile::tempdir()?;
 /// let path = dir.path().join("seam.obj");
 /// // Two triangles that meet along x = 1, each with its own copies of the seam.
@@ -197,7 +200,7 @@ fn weld_positions(positions: &mut Vec<[f64; 3]>) -> Option<Vec<u32>> {
 /// As [`read_mesh`], without [`MeshError::Io`] and [`MeshError::IsDirectory`].
 ///
 /// ```
-/// use geotracks::mesh::{io, Topology};
+/// use geotracks::mesh::io;
 /// let off = b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
 /// let mesh = io::read_mesh_bytes("triangle.off", off)?;
 /// assert_eq!(mesh.face_count(), 1);

@@ -1,8 +1,11 @@
 //! Writers. Each writes a temporary file beside the target and renames it over the
 //! target only once everything was written, so a failure leaves no partial file and an
 //! existing file is replaced whole or not at all.
+//!
+//! Each has a twin ending in `_to` that writes into any [`Write`] (a file of the
+//! caller's, standard output, memory), for callers that commit several files together.
 
-use crate::mesh::{MeshError, Topology, TriMesh};
+use crate::mesh::{MeshError, TriMesh};
 use std::io::{BufWriter, Write};
 use std::path::Path;
 
@@ -46,7 +49,9 @@ pub fn write_atomically(
         use std::os::unix::fs::PermissionsExt;
         builder.permissions(std::fs::Permissions::from_mode(0o666));
     }
-    let mut temp = builder.tempfile_in(dir).map_err(io)?;
+    let mut temp = builder
+        .tempfile_in(dir)
+        .map_err(|e| io(without_temp_path(e)))?;
     {
         let mut out = BufWriter::new(temp.as_file_mut());
         write(&mut out).map_err(io)?;
@@ -56,6 +61,26 @@ pub fn write_atomically(
     // not against power loss, and syncing large outputs would cost more than the write.
     temp.persist(path).map_err(|e| io(e.error))?;
     Ok(())
+}
+
+/// The error of creating a temporary file, without the temporary file's name (tempfile
+/// appends "at path …/.geotracks-XXXX.tmp", a name the user never asked for): the
+/// operating system's error alone, reported against the target.
+pub(crate) fn without_temp_path(e: std::io::Error) -> std::io::Error {
+    if e.raw_os_error().is_some() {
+        return e;
+    }
+    let kind = e.kind();
+    let inner = e.into_inner();
+    let os = inner
+        .as_deref()
+        .and_then(std::error::Error::source)
+        .and_then(|s| s.downcast_ref::<std::io::Error>())
+        .and_then(std::io::Error::raw_os_error);
+    match os {
+        Some(code) => std::io::Error::from_raw_os_error(code),
+        None => std::io::Error::from(kind),
+    }
 }
 
 /// Writes `mesh` as binary little-endian PLY with a per-vertex `distance` (f64) and a
@@ -71,13 +96,36 @@ pub fn write_ply_with_distance(
     mesh: &TriMesh,
     distance: &[f64],
 ) -> Result<(), MeshError> {
-    let n = Topology::vertex_count(mesh);
+    let n = mesh.vertex_count();
     if distance.len() != n {
         return Err(MeshError::AttributeLength {
             what: "distance",
             expected: n,
             found: distance.len(),
         });
+    }
+    write_atomically(path.as_ref(), |w| {
+        write_ply_with_distance_to(w, mesh, distance)
+    })
+}
+
+/// As [`write_ply_with_distance`], into `w`.
+///
+/// # Errors
+/// What `w` returns; an error of kind [`std::io::ErrorKind::InvalidInput`] if
+/// `distance` does not have one value per vertex or a vertex id does not fit a PLY
+/// `int`.
+pub fn write_ply_with_distance_to(
+    w: &mut dyn Write,
+    mesh: &TriMesh,
+    distance: &[f64],
+) -> std::io::Result<()> {
+    let n = mesh.vertex_count();
+    if distance.len() != n {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            format!("{} distances for {n} vertices", distance.len()),
+        ));
     }
     let (lo, hi) = distance
         .iter()
@@ -96,7 +144,7 @@ pub fn write_ply_with_distance(
     // Written by hand rather than with ply-rs-bw's writer, which wants a map or a
     // property-getter object per element: the records here are fixed-size and the whole
     // format is a ten-line header plus `to_le_bytes`.
-    write_atomically(path.as_ref(), |w| {
+    {
         write!(
             w,
             "ply\nformat binary_little_endian 1.0\ncomment written by geotracks\n\
@@ -126,7 +174,7 @@ pub fn write_ply_with_distance(
             }
         }
         Ok(())
-    })
+    }
 }
 
 /// Writes polylines (geodesic paths, isolines) as OBJ: all points as `v` lines, then one
@@ -184,7 +232,31 @@ pub fn write_obj_lines(
             });
         }
     }
-    write_atomically(path.as_ref(), |w| {
+    write_atomically(path.as_ref(), |w| write_obj_lines_to(w, points, lines))
+}
+
+/// As [`write_obj_lines`], into `w`.
+///
+/// # Errors
+/// What `w` returns; an error of kind [`std::io::ErrorKind::InvalidInput`] for a point
+/// with a NaN or infinite coordinate or an index past `points`.
+pub fn write_obj_lines_to(
+    w: &mut dyn Write,
+    points: &[[f64; 3]],
+    lines: &[Vec<u32>],
+) -> std::io::Result<()> {
+    let invalid = |m: String| std::io::Error::new(std::io::ErrorKind::InvalidInput, m);
+    if let Some(i) = points.iter().position(|p| !p.iter().all(|c| c.is_finite())) {
+        return Err(invalid(format!("point {i} is not finite: {:?}", points[i])));
+    }
+    if let Some(i) = lines
+        .iter()
+        .flatten()
+        .find(|&&i| i as usize >= points.len())
+    {
+        return Err(invalid(format!("index {i} past {} points", points.len())));
+    }
+    {
         writeln!(w, "# {} polylines written by geotracks", lines.len())?;
         for [x, y, z] in points {
             writeln!(w, "v {x} {y} {z}")?;
@@ -203,5 +275,5 @@ pub fn write_obj_lines(
             }
         }
         Ok(())
-    })
+    }
 }

@@ -34,7 +34,7 @@
 mod tables;
 
 use super::frontier::{Frontier, Queue, Seed};
-use crate::mesh::{Topology, NONE};
+use crate::mesh::NONE;
 use crate::steiner::SlotPoints;
 use geotracks_metrics::{FacePoint, Metric};
 use tables::EdgeRecord;

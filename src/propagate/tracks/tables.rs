@@ -8,7 +8,7 @@
 //! is close together whatever order the input file had. Incidences name faces by their
 //! record index; the record holds the mesh's face id for the metric and the results.
 
-use crate::mesh::{morton_order, Csr, FaceFrame, Topology, TriMesh, NONE};
+use crate::mesh::{morton_order, Csr, FaceFrame, TriMesh, NONE};
 use crate::steiner::{SlotPoints, SteinerLayout};
 use crate::Error;
 use geotracks_metrics::FacePoint;

@@ -1,12 +1,12 @@
 //! The command-line tool end to end: outputs, and bad input that must fail with one
 //! clear line, a non-zero exit, and no output file.
 
-mod cli_support;
+mod support;
 
-use cli_support::{assert_fails, geotracks, geotracks_ok, last_value};
 use std::path::{Path, PathBuf};
+use support::{assert_fails, geotracks, geotracks_ok, last_value};
 
-const SPOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/spot.obj");
+const SPOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/data/spot.obj");
 
 /// One number per line.
 fn read_values(path: &Path) -> Vec<f64> {
@@ -290,6 +290,205 @@ fn a_failed_run_keeps_an_existing_output() {
     assert_eq!(std::fs::read_to_string(&out).unwrap(), "old\n");
 }
 
+/// A command's outputs are all or nothing: a bad second output (here `--stats` naming
+/// a directory) used to fail after the main output had replaced the old file.
+#[test]
+fn a_bad_second_output_keeps_the_first_as_it_was() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let out = dir.path().join("keep.txt");
+    std::fs::write(&out, "old\n").unwrap();
+    let stats = dir.path().join("stats.json");
+    std::fs::create_dir(&stats).unwrap();
+    let o = geotracks(&[
+        "distance",
+        mesh.to_str().unwrap(),
+        "--source",
+        "0",
+        "-o",
+        out.to_str().unwrap(),
+        "--stats",
+        stats.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        stderr.contains("stats.json: exists and is not a file"),
+        "{stderr}"
+    );
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), "old\n");
+    assert_no_temporary_files(dir.path());
+}
+
+/// `-o` naming an input overwrote it.
+#[test]
+fn an_output_that_is_an_input_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let density = dir.path().join("rho.txt");
+    std::fs::write(&density, "1\n1\n1\n1\n").unwrap();
+    let sources = dir.path().join("s.csv");
+    std::fs::write(&sources, "0\n").unwrap();
+    let d = density.to_str().unwrap();
+    let s = sources.to_str().unwrap();
+    let m = mesh.to_str().unwrap();
+    for args in [
+        vec!["distance", m, "--source", "0", "--density", d, "-o", d],
+        vec!["matrix", m, "--sources", s, "-o", s],
+    ] {
+        let o = geotracks(&args);
+        assert!(!o.status.success(), "{args:?}");
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(stderr.contains("is also an input"), "{args:?}: {stderr}");
+    }
+    assert_eq!(std::fs::read_to_string(&density).unwrap(), "1\n1\n1\n1\n");
+    assert_eq!(std::fs::read_to_string(&sources).unwrap(), "0\n");
+}
+
+/// A read-only output file was replaced by the rename, whatever its mode.
+#[test]
+fn a_read_only_output_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let out = dir.path().join("locked.txt");
+    std::fs::write(&out, "old\n").unwrap();
+    let mut perms = std::fs::metadata(&out).unwrap().permissions();
+    perms.set_readonly(true);
+    std::fs::set_permissions(&out, perms).unwrap();
+    let o = geotracks(&[
+        "distance",
+        mesh.to_str().unwrap(),
+        "--source",
+        "0",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        stderr.contains("locked.txt: the file is read-only"),
+        "{stderr}"
+    );
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), "old\n");
+}
+
+/// An output that cannot be created is reported by its own name: the error used to
+/// end with `at path "…/.geotracks-XXXX.tmp"`.
+#[test]
+fn errors_name_the_target_not_the_temporary_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let out = dir.path().join("missing").join("d.txt");
+    let o = geotracks(&[
+        "distance",
+        mesh.to_str().unwrap(),
+        "--source",
+        "0",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(stderr.contains("d.txt"), "{stderr}");
+    assert!(!stderr.contains(".geotracks-"), "{stderr}");
+}
+
+/// Costs print as floats, never as 300-digit integers (a density of 1e300 made every
+/// distance a line of 301 digits).
+#[test]
+fn huge_costs_print_in_scientific_notation() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let density = dir.path().join("rho.txt");
+    std::fs::write(&density, "1e300\n1e300\n1e300\n1e300\n").unwrap();
+    let out = dir.path().join("d.txt");
+    let o = geotracks_ok(&[
+        "distance",
+        mesh.to_str().unwrap(),
+        "--source",
+        "0",
+        "--density",
+        density.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--stats",
+        dir.path().join("S.JSON").to_str().unwrap(),
+    ]);
+    assert!(o.status.success());
+    let values = read_values(&out);
+    assert_eq!(values[1], 1e300);
+    for line in std::fs::read_to_string(&out).unwrap().lines() {
+        assert!(line.len() < 30, "{line}");
+    }
+    let path = dir.path().join("p.csv");
+    let o = geotracks_ok(&[
+        "path",
+        mesh.to_str().unwrap(),
+        "--source",
+        "0",
+        "--target",
+        "2",
+        "--density",
+        density.to_str().unwrap(),
+        "-o",
+        path.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.lines().all(|l| l.len() < 120), "{stdout}");
+    assert!((last_value(&o) / (2f64.sqrt() * 1e300) - 1.0).abs() < 1e-12);
+}
+
+/// A tensor with a NaN entry is "not finite", on its line, not "not positive-definite
+/// [NaN …]".
+#[test]
+fn a_nan_tensor_is_reported_as_not_finite() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let tensor = dir.path().join("m.txt");
+    std::fs::write(&tensor, "1 0 0 1 0 1\nNaN 0 0 1 0 1\n").unwrap();
+    let out = dir.path().join("d.txt");
+    assert_fails(
+        &[
+            "distance",
+            mesh.to_str().unwrap(),
+            "--source",
+            "0",
+            "--tensor",
+            tensor.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ],
+        &out,
+        "m.txt:2: tensor of face 1 is not finite",
+    );
+}
+
+/// Usage errors (clap) exit with 2, every other error with 1, as the README says.
+#[test]
+fn usage_errors_exit_2_and_other_errors_1() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let m = mesh.to_str().unwrap();
+    let usage = geotracks(&["distance", m, "-o", "d.txt"]); // no --source
+    assert_eq!(usage.status.code(), Some(2));
+    let usage = geotracks(&["distance", m, "--source", "0", "--bogus", "-o", "d.txt"]);
+    assert_eq!(usage.status.code(), Some(2));
+    let out = dir.path().join("d.txt");
+    let bad = geotracks(&["distance", m, "--source", "99", "-o", out.to_str().unwrap()]);
+    assert_eq!(bad.status.code(), Some(1));
+}
+
+/// No `.geotracks-*` file (temporary output or backup) in `dir`.
+fn assert_no_temporary_files(dir: &Path) {
+    let left: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with(".geotracks-"))
+        .collect();
+    assert!(left.is_empty(), "left behind: {left:?}");
+}
+
 #[test]
 fn info_reports_non_manifold_edges() {
     let dir = tempfile::tempdir().unwrap();
@@ -320,6 +519,21 @@ fn demo_writes_a_coloured_ply() {
     let mesh = geotracks::mesh::io::read_mesh(&out_path).unwrap();
     let spot = geotracks::mesh::io::read_mesh(SPOT).unwrap();
     assert_eq!(mesh.positions().len(), spot.positions().len());
+}
+
+/// The demo's copy of Spot (inside the CLI crate, so that it can be published) is the
+/// library's test mesh.
+#[test]
+fn the_demo_mesh_is_the_tests_spot() {
+    let library = concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/data/spot.obj");
+    match std::fs::read(library) {
+        Ok(bytes) => assert!(
+            bytes == std::fs::read(SPOT).unwrap(),
+            "cli/data/spot.obj differs"
+        ),
+        // A published crate has no library tests beside it.
+        Err(_) => println!("skipped: {library} not found"),
+    }
 }
 
 #[test]
@@ -395,8 +609,19 @@ fn matrix_writes_rows_per_source() {
             out3.to_str().unwrap(),
         ],
         &out3,
-        "written as .csv",
+        "m3.txt: unknown output format (expected .csv)",
     );
+    // The extension in any case: `OUT.CSV` was refused.
+    let upper = dir.path().join("M.CSV");
+    geotracks_ok(&[
+        "matrix",
+        mesh,
+        "--sources",
+        sources.to_str().unwrap(),
+        "-o",
+        upper.to_str().unwrap(),
+    ]);
+    assert!(upper.exists());
 }
 
 /// A flat `n` × `n` grid of unit squares in the plane z = 0: vertex `j * (n + 1) + i` is
@@ -545,7 +770,6 @@ fn path_writes_obj_and_csv_from_target_to_source() {
 
 #[test]
 fn path_from_a_face_point_to_an_edge_point() {
-    use geotracks::mesh::Topology;
     let dir = tempfile::tempdir().unwrap();
     let mesh_path = grid_obj(dir.path(), 4);
     let mesh = mesh_path.to_str().unwrap();
@@ -831,12 +1055,15 @@ fn bad_surface_points_fail_cleanly() {
     assert_fails(
         &[&args[..], &["--voronoi", bad.to_str().unwrap()]].concat(),
         &bad,
-        "the --voronoi file must end in .txt",
+        "v.csv: unknown output format (expected .txt)",
     );
     assert!(!txt.exists());
 }
 
-const SHEET_FINS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/ma/sheet_fins.ma");
+const SHEET_FINS: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../tests/data/ma/sheet_fins.ma"
+);
 
 /// The `v` points and `l`/`p` polylines of an OBJ graph.
 fn read_obj_graph(path: &Path) -> (Vec<[f64; 3]>, Vec<Vec<usize>>) {
@@ -908,7 +1135,7 @@ fn skeleton_bad_input_fails_cleanly() {
     let dir = tempfile::tempdir().unwrap();
     let obj = dir.path().join("skeleton.obj");
     let o = obj.to_str().unwrap();
-    let curves = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/ma/curves.ma");
+    let curves = concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/data/ma/curves.ma");
     let ply = dir.path().join("fire.ply");
     let txt = dir.path().join("skeleton.txt");
     assert_fails(
@@ -954,6 +1181,175 @@ fn skeleton_bad_input_fails_cleanly() {
     geotracks_ok(&["skeleton", curves, "-o", o]);
     let (points, lines) = read_obj_graph(&obj);
     assert_eq!((points.len(), lines.len()), (4, 3));
+}
+
+/// Every command's `--help` ends with examples (and so does the tool's).
+#[test]
+fn every_help_ends_with_examples() {
+    for command in [
+        None,
+        Some("distance"),
+        Some("path"),
+        Some("matrix"),
+        Some("skeleton"),
+        Some("terrain"),
+        Some("info"),
+        Some("demo"),
+    ] {
+        let mut args: Vec<&str> = command.into_iter().collect();
+        args.push("--help");
+        let out = geotracks_ok(&args);
+        let help = String::from_utf8_lossy(&out.stdout);
+        let (_, examples) = help
+            .rsplit_once("Examples:\n")
+            .unwrap_or_else(|| panic!("{args:?}: no examples in {help}"));
+        let lines: Vec<&str> = examples.lines().filter(|l| !l.trim().is_empty()).collect();
+        assert!(!lines.is_empty(), "{args:?}");
+        assert!(
+            lines.iter().all(|l| l.starts_with("  geotracks ")),
+            "{args:?}: {lines:?}"
+        );
+    }
+}
+
+/// `--quiet` leaves stderr empty on success; `--verbose` adds the counters.
+#[test]
+fn quiet_and_verbose() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let out = dir.path().join("d.txt");
+    let args = [
+        "distance",
+        mesh.to_str().unwrap(),
+        "--source",
+        "0",
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    let normal = geotracks_ok(&args);
+    assert!(String::from_utf8_lossy(&normal.stderr).contains("wrote"));
+    let quiet = geotracks_ok(&[&args[..], &["--quiet"]].concat());
+    assert_eq!(String::from_utf8_lossy(&quiet.stderr), "");
+    let verbose = geotracks_ok(&[&["-v"], &args[..]].concat());
+    let stderr = String::from_utf8_lossy(&verbose.stderr);
+    assert!(stderr.contains("distance tests"), "{stderr}");
+    // `path` keeps its result, the length, on stdout with --quiet.
+    let p = dir.path().join("p.obj");
+    let m = mesh.to_str().unwrap();
+    let quiet = geotracks_ok(&[
+        "path",
+        m,
+        "--source",
+        "0",
+        "--target",
+        "2",
+        "-o",
+        p.to_str().unwrap(),
+        "-q",
+    ]);
+    let stdout = String::from_utf8_lossy(&quiet.stdout);
+    assert_eq!(stdout.lines().count(), 1, "{stdout}");
+    assert!((last_value(&quiet) - 2f64.sqrt()).abs() < 1e-12);
+}
+
+/// `-o -` writes a text output to standard output, and the summary goes to stderr.
+#[test]
+fn dash_writes_to_standard_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let m = mesh.to_str().unwrap();
+    let out = geotracks_ok(&["distance", m, "--source", "0", "-o", "-"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.starts_with("vertex,distance\n0,0\n"), "{stdout}");
+    assert_eq!(stdout.lines().count(), 5);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("wrote standard output"));
+    let out = geotracks_ok(&["path", m, "--source", "0", "--target", "2", "-o", "-"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.starts_with("x,y,z,point\n"), "{stdout}");
+    assert!(String::from_utf8_lossy(&out.stderr).contains("length: "));
+    // Binary outputs need a file; two outputs cannot share standard output.
+    let out = geotracks(&["skeleton", "x.ma", "-o", "s.obj", "--field", "-"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("text outputs only"));
+    let out = geotracks(&["distance", m, "--source", "0", "-o", "-", "--stats", "-"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("two outputs"));
+}
+
+/// The demo writes into geotracks-out/ (which git ignores) and says so.
+#[test]
+fn the_demo_writes_into_an_ignored_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_geotracks"))
+        .arg("demo")
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.contains("wrote geotracks-out/spot_distance.ply"),
+        "{stdout}"
+    );
+    assert!(dir.path().join("geotracks-out/spot_distance.ply").is_file());
+    let ignore = concat!(env!("CARGO_MANIFEST_DIR"), "/../.gitignore");
+    if let Ok(text) = std::fs::read_to_string(ignore) {
+        assert!(text.lines().any(|l| l == "/geotracks-out/"), "{text}");
+    }
+}
+
+/// An interrupted run removes its temporary files and exits 130: here a run whose
+/// standard output nobody reads, caught with `--voronoi`'s temporary file written.
+#[cfg(unix)]
+#[test]
+fn an_interrupted_run_leaves_no_temporary_file() {
+    use std::process::{Command, Stdio};
+    use std::time::{Duration, Instant};
+    let dir = tempfile::tempdir().unwrap();
+    // 22K vertices: the CSV (≈ 600 KB) outgrows the pipe's buffer.
+    let mesh = grid_obj(dir.path(), 150);
+    let voronoi = dir.path().join("v.txt");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_geotracks"))
+        .args([
+            "distance",
+            mesh.to_str().unwrap(),
+            "--source",
+            "0",
+            "--k",
+            "1",
+            "--voronoi",
+            voronoi.to_str().unwrap(),
+            "-o",
+            "-",
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let temporary = || {
+        std::fs::read_dir(dir.path())
+            .unwrap()
+            .filter_map(|e| e.ok())
+            .any(|e| e.file_name().to_string_lossy().starts_with(".geotracks-"))
+    };
+    let start = Instant::now();
+    while !temporary() {
+        assert!(
+            start.elapsed() < Duration::from_secs(60),
+            "no temporary file"
+        );
+        assert!(child.try_wait().unwrap().is_none(), "the run ended");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let killed = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(130));
+    assert_no_temporary_files(dir.path());
+    assert!(!voronoi.exists());
 }
 
 #[test]

@@ -1,6 +1,5 @@
-//! Running the `geotracks` binary from the integration tests that exercise the CLI
-//! (`cli.rs`, `terrain.rs`). Kept out of `common`, which every test crate builds: these
-//! need the binary, which only the `cli` feature builds.
+//! Running the `geotracks` binary from the CLI's integration tests (`cli.rs`,
+//! `terrain.rs`).
 #![allow(dead_code)]
 
 use std::path::Path;

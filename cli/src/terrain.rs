@@ -1,10 +1,9 @@
 //! `geotracks terrain`: the cheapest route between two map points of an elevation grid.
 
-use crate::{CliResult, Value};
-use geotracks::mesh::io;
-use geotracks::terrain::{self, map, TerrainCost, TerrainMesh, WithTerrainMetric};
-use geotracks::{Error, Metric, Options, Solver, Source, Stop, SurfacePoint};
-use glam::DVec3;
+use crate::output::Outputs;
+use crate::{ui, CliResult, Value};
+use geotracks::terrain::{self, map, Route, TerrainCost};
+use geotracks::{Error, Options, Solver};
 use std::path::{Path, PathBuf};
 
 /// Arguments of `geotracks terrain`.
@@ -57,75 +56,16 @@ enum OutputFormat {
     Csv,
 }
 
-/// The route, from start to end, and what a map needs.
-struct Route {
-    points: Vec<DVec3>,
-    /// Cumulative cost at each point.
-    cost: Vec<f64>,
-    /// The Steiner graph's cost, before straightening.
-    traced_cost: f64,
-    /// Per vertex, when a map is drawn.
-    field: Option<Vec<f64>>,
-    stats: geotracks::Stats,
-}
-
-struct Work<'a> {
-    terrain: &'a TerrainMesh,
-    from: SurfacePoint,
-    to: SurfacePoint,
-    options: Options,
-    whole_field: bool,
-}
-
-impl WithTerrainMetric for Work<'_> {
-    type Output = Route;
-    type Error = Box<dyn std::error::Error>;
-    fn run<M: Metric>(self, metric: &M) -> CliResult<Route> {
-        let mesh = &self.terrain.mesh;
-        let solver = Solver::new(mesh, metric, &self.options)?;
-        // The map's contours need the whole field; a route alone stops at its end.
-        let stop = if self.whole_field {
-            Stop::NONE
-        } else {
-            Stop::NONE.with_targets(vec![self.to])
-        };
-        let field = solver.solve_from(&[Source::new(self.from)], &stop)?;
-        let path = match field.path(mesh, metric, self.to) {
-            Err(Error::Unreachable { .. }) => {
-                return Err("no route: --to cannot be reached from --from (impassable \
-                            faces or NODATA separate them)"
-                    .into())
-            }
-            other => other?,
-        };
-        // The path runs from its query point (the end) to the source: reverse it.
-        let mut points = path.positions(mesh);
-        points.reverse();
-        let mut costs = path.segment_costs(mesh, metric);
-        costs.reverse();
-        let mut cost = vec![0.0];
-        for c in costs {
-            cost.push(cost[cost.len() - 1] + c);
-        }
-        Ok(Route {
-            points,
-            cost,
-            traced_cost: path.traced_length,
-            field: self.whole_field.then(|| field.vertex_distances().to_vec()),
-            stats: field.stats().clone(),
-        })
-    }
-}
-
 pub fn run(args: &TerrainArgs) -> CliResult {
     // Check everything that can be checked before reading the grid.
-    let format = crate::output_format(
+    let format = crate::text_output_format(
         &args.output,
         &[
             ("geojson", OutputFormat::GeoJson),
             ("json", OutputFormat::GeoJson),
             ("csv", OutputFormat::Csv),
         ],
+        OutputFormat::GeoJson,
     )?;
     if let Some(png) = &args.png {
         crate::output_format(png, &[("png", ())])?;
@@ -133,6 +73,10 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     if !(args.k.is_finite() && args.k > 0.0) {
         return Err(Error::InvalidK { k: args.k }.into());
     }
+    let mut outputs = Outputs::new([args.dem.as_path()]);
+    outputs.declare(&args.output)?;
+    outputs.declare_some(args.png.as_ref())?;
+    let spinner = ui::Spinner::start("reading the grid and routing");
     let (grid, terrain) = terrain::read_terrain(&args.dem)?;
     let locate = |arg: &str, [x, y]: [f64; 2]| {
         terrain
@@ -141,68 +85,75 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     };
     let from = locate("from", args.from)?;
     let to = locate("to", args.to)?;
-    let route = args.cost.with_metric(
-        &terrain.mesh,
-        Work {
-            terrain: &terrain,
-            from,
-            to,
-            options: Options::DEFAULT.with_k(args.k),
-            whole_field: args.png.is_some(),
-        },
-    )?;
+    let metric = args.cost.metric(&terrain.mesh)?;
+    let solver = Solver::new(&terrain.mesh, metric, &Options::DEFAULT.with_k(args.k))?;
+    // The map's contours need the whole field; a route alone stops at its end.
+    let route = match terrain::route(&solver, from, to, args.png.is_some()) {
+        Err(Error::Unreachable { .. }) => {
+            return Err("no route: --to cannot be reached from --from (impassable \
+                        faces or NODATA separate them)"
+                .into())
+        }
+        other => other?,
+    };
     let picture = args.png.as_ref().map(|_| {
         let xy: Vec<[f64; 2]> = route.points.iter().map(|p| [p.x, p.y]).collect();
         map::render(
             &grid,
             &terrain,
-            route.field.as_deref(),
+            route.vertex_costs.as_deref(),
             &xy,
             &map::MapOptions::DEFAULT,
         )
     });
 
-    let length: f64 = route.points.windows(2).map(|w| w[0].distance(w[1])).sum();
-    let length_2d: f64 = route
-        .points
-        .windows(2)
-        .map(|w| w[0].truncate().distance(w[1].truncate()))
-        .sum();
-    let cost = route.cost[route.cost.len() - 1];
+    drop(spinner);
+    let (cost, length, length_2d) = (route.cost(), route.length(), route.length_2d());
     match format {
-        OutputFormat::GeoJson => write_geojson(args, &route, cost, length, length_2d)?,
-        OutputFormat::Csv => write_csv(&args.output, &route)?,
+        OutputFormat::GeoJson => write_geojson(&mut outputs, args, &route)?,
+        OutputFormat::Csv => write_csv(&mut outputs, &args.output, &route)?,
     }
     if let (Some(path), Some(picture)) = (&args.png, &picture) {
-        if let Err(e) = picture.write_png(path) {
-            // Both files or neither.
-            let _ = std::fs::remove_file(&args.output);
-            return Err(e.into());
-        }
+        outputs.write(path, |w| picture.write_png_to(w))?;
     }
+    outputs.commit()?;
 
     let [x0, y0] = args.from;
     let [x1, y1] = args.to;
-    println!("from: {x0},{y0} ({from})");
-    println!("to: {x1},{y1} ({to})");
-    println!("cost model: {}", args.cost);
-    println!("points: {}", route.points.len());
-    println!("length: {} (3D), {} (map)", Value(length), Value(length_2d));
-    println!(
-        "traced cost: {} (the Steiner graph's, before straightening)",
-        Value(route.traced_cost)
-    );
-    println!("{}", Value(cost));
+    let summary = [
+        format!("from: {x0},{y0} ({from})"),
+        format!("to: {x1},{y1} ({to})"),
+        format!("cost model: {}", args.cost),
+        format!("points: {}", route.points.len()),
+        format!("length: {} (3D), {} (map)", Value(length), Value(length_2d)),
+        format!(
+            "traced cost: {} (the Steiner graph's, before straightening)",
+            Value(route.traced_cost)
+        ),
+    ];
+    if args.output.as_os_str() == "-" {
+        // Standard output holds the route: the summary and the cost go to stderr.
+        for line in summary {
+            ui::info!("{line}");
+        }
+        ui::info!("cost: {}", Value(cost));
+    } else {
+        for line in summary {
+            ui::say!("{line}");
+        }
+        // The result, alone on the last line (also with --quiet).
+        println!("{}", Value(cost));
+    }
     let s = &route.stats;
     let g = grid.geometry();
-    eprintln!(
+    ui::info!(
         "{}: {} × {} samples, {} faces, {}; wrote {}{}",
         args.dem.display(),
         g.ncols,
         g.nrows,
         s.faces,
         crate::run_summary(s),
-        args.output.display(),
+        crate::shown(&args.output),
         match (&args.png, &picture) {
             (Some(p), Some(m)) => format!(
                 " and {} ({} × {} px{})",
@@ -216,16 +167,11 @@ pub fn run(args: &TerrainArgs) -> CliResult {
             _ => String::new(),
         }
     );
+    crate::report_stats(s);
     Ok(())
 }
 
-fn write_geojson(
-    args: &TerrainArgs,
-    route: &Route,
-    cost: f64,
-    length: f64,
-    length_2d: f64,
-) -> CliResult {
+fn write_geojson(outputs: &mut Outputs, args: &TerrainArgs, route: &Route) -> CliResult {
     let mut coordinates: Vec<[f64; 3]> = route.points.iter().map(|p| p.to_array()).collect();
     // A LineString needs two positions: a route of one point (start = end) repeats it.
     if coordinates.len() == 1 {
@@ -237,9 +183,9 @@ fn write_geojson(
             "type": "Feature",
             "geometry": { "type": "LineString", "coordinates": coordinates },
             "properties": {
-                "cost": cost,
-                "length": length,
-                "length_2d": length_2d,
+                "cost": route.cost(),
+                "length": route.length(),
+                "length_2d": route.length_2d(),
                 "traced_cost": route.traced_cost,
                 "cost_model": args.cost.to_string(),
                 "k": args.k,
@@ -249,15 +195,15 @@ fn write_geojson(
             }
         }]
     });
-    io::write_atomically(&args.output, |w| {
+    outputs.write(&args.output, |w| {
         serde_json::to_writer_pretty(&mut *w, &json).map_err(std::io::Error::other)?;
         writeln!(w)
     })?;
     Ok(())
 }
 
-fn write_csv(file: &Path, route: &Route) -> CliResult {
-    io::write_atomically(file, |w| {
+fn write_csv(outputs: &mut Outputs, file: &Path, route: &Route) -> CliResult {
+    outputs.write(file, |w| {
         writeln!(w, "x,y,z,cost,length")?;
         let mut length = 0.0;
         for (i, p) in route.points.iter().enumerate() {
@@ -270,7 +216,7 @@ fn write_csv(file: &Path, route: &Route) -> CliResult {
                 p.x,
                 p.y,
                 p.z,
-                Value(route.cost[i]),
+                Value(route.cumulative_cost[i]),
                 Value(length)
             )?;
         }

@@ -1,8 +1,9 @@
 //! `geotracks distance` and `geotracks demo`.
 
 use crate::inputs::load_mesh;
-use crate::metric_args::{MetricArgs, WithMetric};
-use crate::{points, CliResult, Value};
+use crate::metric::MetricArgs;
+use crate::output::Outputs;
+use crate::{points, ui, CliResult, Short, Value};
 use geotracks::mesh::{io, TriMesh, NONE};
 use geotracks::{Euclidean, GeodesicField, Metric, Options, Solver, Source, Stop, SurfacePoint};
 use std::path::{Path, PathBuf};
@@ -47,13 +48,14 @@ enum OutputFormat {
 }
 
 fn output_format(path: &Path) -> CliResult<OutputFormat> {
-    crate::output_format(
+    crate::text_output_format(
         path,
         &[
             ("txt", OutputFormat::Txt),
             ("csv", OutputFormat::Csv),
             ("ply", OutputFormat::Ply),
         ],
+        OutputFormat::Csv,
     )
 }
 
@@ -61,72 +63,63 @@ pub fn run(args: &DistanceArgs) -> CliResult {
     // Check everything that can be checked before the (possibly long) computation.
     let format = output_format(&args.output)?;
     if let Some(stats) = &args.stats {
-        if stats.extension().and_then(|e| e.to_str()) != Some("json") {
-            return Err(format!("{}: the stats file must end in .json", stats.display()).into());
-        }
+        crate::text_output_format(stats, &[("json", ())], ())?;
     }
     if let Some(voronoi) = &args.voronoi {
-        if voronoi.extension().and_then(|e| e.to_str()) != Some("txt") {
-            return Err(
-                format!("{}: the --voronoi file must end in .txt", voronoi.display()).into(),
-            );
-        }
+        crate::text_output_format(voronoi, &[("txt", ())], ())?;
     }
     let max_distance = args.max_distance.unwrap_or(f64::INFINITY);
     if max_distance.is_nan() || max_distance < 0.0 {
         return Err(format!("--max-distance {max_distance}: it must be a number >= 0").into());
     }
+    let inputs = [
+        Some(&args.mesh),
+        args.metric.density.as_ref(),
+        args.metric.tensor.as_ref(),
+    ];
+    let mut outputs = Outputs::new(inputs.into_iter().flatten().map(PathBuf::as_path));
+    for path in [
+        Some(&args.output),
+        args.voronoi.as_ref(),
+        args.stats.as_ref(),
+    ] {
+        outputs.declare_some(path)?;
+    }
+    let spinner = ui::Spinner::start("reading the mesh and propagating");
     let mesh = load_mesh(&args.mesh, args.weld)?;
     let sources = points::sources(&mesh, &args.sources)?;
     let stop = Stop::NONE.with_max_distance(max_distance);
-    let field = args.metric.dispatch(
-        &mesh,
-        Field {
-            sources: &sources,
-            stop: &stop,
-        },
-    )?;
-    write_field(&args.output, format, &mesh, &field)?;
-    if let Some(voronoi) = &args.voronoi {
-        write_labels(voronoi, &field)?;
+    let metric = args.metric.metric(&mesh)?;
+    let solver = Solver::new(&mesh, metric, &args.metric.options())?;
+    let field = compute(&solver, &sources, &stop)?;
+    let labels = match args.voronoi {
+        Some(_) => Some(solver.query(&field)?.vertex_labels()),
+        None => None,
+    };
+    drop(spinner);
+    write_field(&mut outputs, &args.output, format, &mesh, &field)?;
+    if let (Some(voronoi), Some(labels)) = (&args.voronoi, labels) {
+        write_labels(&mut outputs, voronoi, labels)?;
     }
     if let Some(stats) = &args.stats {
-        write_stats(stats, &field)?;
+        write_stats(&mut outputs, stats, &field)?;
     }
+    outputs.commit()?;
     crate::report_run(&args.mesh, field.stats(), &args.output);
     Ok(())
 }
 
-/// A distance field from these sources, stopping as `stop` allows.
-struct Field<'s> {
-    sources: &'s [Source],
-    stop: &'s Stop,
-}
-
-impl WithMetric for Field<'_> {
-    type Output = GeodesicField;
-    fn run<M: Metric>(
-        self,
-        mesh: &TriMesh,
-        metric: &M,
-        options: &Options,
-    ) -> CliResult<GeodesicField> {
-        compute(mesh, metric, self.sources, self.stop, options)
-    }
-}
-
+/// The field from `sources`, with a line on stderr about the vertices it does not reach.
 fn compute<M: Metric>(
-    mesh: &TriMesh,
-    metric: &M,
+    solver: &Solver<'_, M>,
     sources: &[Source],
     stop: &Stop,
-    options: &Options,
 ) -> CliResult<GeodesicField> {
-    let field = Solver::new(mesh, metric, options)?.solve_from(sources, stop)?;
+    let field = solver.solve_from(sources, stop)?;
     let unreachable = field.unreachable_vertices();
     if unreachable > 0 {
         if stop.max_distance.is_finite() {
-            eprintln!(
+            ui::info!(
                 "{unreachable} vertices are farther than --max-distance {} or not reachable from the sources; their distance is inf",
                 Value(stop.max_distance)
             );
@@ -140,9 +133,8 @@ fn compute<M: Metric>(
 }
 
 /// Writes the index of each vertex's nearest source, `-1` where unreached.
-fn write_labels(path: &Path, field: &GeodesicField) -> CliResult {
-    let labels = field.vertex_labels();
-    io::write_atomically(path, |w| {
+fn write_labels(outputs: &mut Outputs, path: &Path, labels: Vec<u32>) -> CliResult {
+    outputs.write(path, |w| {
         for label in labels {
             if label == NONE {
                 writeln!(w, "-1")?;
@@ -156,6 +148,7 @@ fn write_labels(path: &Path, field: &GeodesicField) -> CliResult {
 }
 
 fn write_field(
+    outputs: &mut Outputs,
     path: &Path,
     format: OutputFormat,
     mesh: &TriMesh,
@@ -163,14 +156,14 @@ fn write_field(
 ) -> CliResult {
     let d = field.vertex_distances();
     match format {
-        OutputFormat::Ply => io::write_ply_with_distance(path, mesh, d)?,
-        OutputFormat::Txt => io::write_atomically(path, |w| {
+        OutputFormat::Ply => outputs.write(path, |w| io::write_ply_with_distance_to(w, mesh, d))?,
+        OutputFormat::Txt => outputs.write(path, |w| {
             for x in d {
                 writeln!(w, "{}", Value(*x))?;
             }
             Ok(())
         })?,
-        OutputFormat::Csv => io::write_atomically(path, |w| {
+        OutputFormat::Csv => outputs.write(path, |w| {
             writeln!(w, "vertex,distance")?;
             for (v, x) in d.iter().enumerate() {
                 writeln!(w, "{v},{}", Value(*x))?;
@@ -181,7 +174,7 @@ fn write_field(
     Ok(())
 }
 
-fn write_stats(path: &Path, field: &GeodesicField) -> CliResult {
+fn write_stats(outputs: &mut Outputs, path: &Path, field: &GeodesicField) -> CliResult {
     let s = field.stats();
     let json = serde_json::json!({
         "vertices": s.vertices,
@@ -197,7 +190,7 @@ fn write_stats(path: &Path, field: &GeodesicField) -> CliResult {
         "setup_distance_tests": s.setup_distance_tests,
         "unreachable_vertices": field.unreachable_vertices(),
     });
-    io::write_atomically(path, |w| {
+    outputs.write(path, |w| {
         serde_json::to_writer_pretty(&mut *w, &json)?;
         writeln!(w)
     })?;
@@ -205,45 +198,62 @@ fn write_stats(path: &Path, field: &GeodesicField) -> CliResult {
 }
 
 /// The bundled default mesh: Spot by Keenan Crane (CC0), also used by the tests.
-const SPOT_OBJ: &[u8] = include_bytes!("../../../tests/data/spot.obj");
+const SPOT_OBJ: &[u8] = include_bytes!("../data/spot.obj");
+
+/// Where `geotracks demo` writes by default: a folder that git ignores.
+pub const DEMO_OUTPUT: &str = "geotracks-out/spot_distance.ply";
 
 pub fn demo(output: &Path) -> CliResult {
     let format = output_format(output)?;
+    if output == Path::new(DEMO_OUTPUT) {
+        let dir = Path::new(DEMO_OUTPUT).parent().expect("a folder");
+        std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    }
+    let mut outputs = Outputs::new([]);
+    outputs.declare(output)?;
     let mesh = io::read_obj_bytes(SPOT_OBJ)?;
     let source = 0;
     let options = Options::DEFAULT;
-    let field = compute(
-        &mesh,
-        &Euclidean,
-        &[Source::new(source)],
-        &Stop::NONE,
-        &options,
-    )?;
-    write_field(output, format, &mesh, &field)?;
+    let solver = Solver::new(&mesh, Euclidean, &options)?;
+    let field = compute(&solver, &[Source::new(source)], &Stop::NONE)?;
+    write_field(&mut outputs, output, format, &mesh, &field)?;
+    outputs.commit()?;
     let s = field.stats();
     let far = field
         .vertex_distances()
         .iter()
         .cloned()
         .fold(0.0f64, f64::max);
-    println!(
-        "Spot (CC0, Keenan Crane): {} vertices, {} faces; geodesic distance from vertex {source}",
-        s.vertices, s.faces
-    );
-    println!(
-        "method {}, k = {}, {} Steiner points, {} distance tests, {:.3} s; farthest vertex at {far:.4}",
-        s.method,
-        s.k,
-        s.steiner_points,
-        s.distance_tests,
-        s.setup_seconds + s.propagate_seconds
-    );
-    println!("wrote {}", output.display());
+    let lines = [
+        format!(
+            "Spot (CC0, Keenan Crane): {} vertices, {} faces; geodesic distance from vertex {source}",
+            s.vertices, s.faces
+        ),
+        format!(
+            "method {}, k = {}, {} Steiner points, {} distance tests, {:.3} s; farthest vertex at {}",
+            s.method,
+            s.k,
+            s.steiner_points,
+            s.distance_tests,
+            s.setup_seconds + s.propagate_seconds,
+            Short(far)
+        ),
+        format!("wrote {}", crate::shown(output)),
+    ];
+    for line in lines {
+        // Standard output holds the data when it is the output.
+        if output.as_os_str() == "-" {
+            ui::info!("{line}");
+        } else {
+            ui::say!("{line}");
+        }
+    }
     if matches!(format, OutputFormat::Ply) {
-        println!(
+        ui::say!(
             "view it with any PLY viewer that shows vertex colours, e.g. `meshlab {0}`, `f3d {0}` or Blender (File > Import > PLY)",
             output.display()
         );
     }
+    crate::report_stats(s);
     Ok(())
 }

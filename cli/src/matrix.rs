@@ -1,10 +1,10 @@
 //! `geotracks matrix`: distances from many sources, computed in parallel.
 
 use crate::inputs::{load_mesh, read_vertex_ids};
-use crate::metric_args::{MetricArgs, WithMetric};
-use crate::{CliResult, Value};
-use geotracks::mesh::{io, Topology, TriMesh};
-use geotracks::{Metric, Options, Solver};
+use crate::metric::MetricArgs;
+use crate::output::Outputs;
+use crate::{ui, CliResult, Value};
+use geotracks::Solver;
 use std::path::PathBuf;
 
 /// Arguments of `geotracks matrix`.
@@ -29,28 +29,18 @@ pub struct MatrixArgs {
     output: PathBuf,
 }
 
-struct Rows<'a> {
-    sources: &'a [u32],
-    targets: Option<&'a [u32]>,
-}
-
-impl WithMetric for Rows<'_> {
-    type Output = Vec<Vec<f64>>;
-    fn run<M: Metric>(
-        self,
-        mesh: &TriMesh,
-        metric: &M,
-        options: &Options,
-    ) -> CliResult<Self::Output> {
-        let solver = Solver::new(mesh, metric, options)?;
-        Ok(solver.distance_rows(self.sources, self.targets)?)
-    }
-}
-
 pub fn run(args: &MatrixArgs) -> CliResult {
-    if args.output.extension().and_then(|e| e.to_str()) != Some("csv") {
-        return Err(format!("{}: the matrix is written as .csv", args.output.display()).into());
-    }
+    crate::text_output_format(&args.output, &[("csv", ())], ())?;
+    let inputs = [
+        Some(&args.mesh),
+        Some(&args.sources),
+        args.targets.as_ref(),
+        args.metric.density.as_ref(),
+        args.metric.tensor.as_ref(),
+    ];
+    let mut outputs = Outputs::new(inputs.into_iter().flatten().map(PathBuf::as_path));
+    outputs.declare(&args.output)?;
+    let spinner = ui::Spinner::start("reading the mesh and computing the rows");
     let mesh = load_mesh(&args.mesh, args.weld)?;
     let sources = read_vertex_ids(&args.sources, mesh.vertex_count())?;
     let targets = match &args.targets {
@@ -58,13 +48,17 @@ pub fn run(args: &MatrixArgs) -> CliResult {
         None => None,
     };
     let start = std::time::Instant::now();
-    let rows = args.metric.dispatch(
-        &mesh,
-        Rows {
-            sources: &sources,
-            targets: targets.as_deref(),
-        },
-    )?;
+    let solver = Solver::new(&mesh, args.metric.metric(&mesh)?, &args.metric.options())?;
+    // With targets, each row stops once they are final.
+    let rows = solver.distance_rows_with_stats(&sources, targets.as_deref())?;
+    let stopped = rows.iter().filter(|(_, s)| s.stopped_early).count();
+    if ui::verbose() {
+        let tests: u64 = rows.iter().map(|(_, s)| s.distance_tests).sum();
+        let pushes: u64 = rows.iter().map(|(_, s)| s.pushes).sum();
+        eprintln!("  {pushes} pushes and {tests} distance tests over all rows");
+    }
+    let rows: Vec<Vec<f64>> = rows.into_iter().map(|(row, _)| row).collect();
+    drop(spinner);
     let unreachable = rows.iter().flatten().filter(|d| d.is_infinite()).count();
     if unreachable > 0 {
         eprintln!(
@@ -72,7 +66,7 @@ pub fn run(args: &MatrixArgs) -> CliResult {
         );
     }
     let columns: Vec<u32> = targets.unwrap_or_else(|| (0..mesh.vertex_count() as u32).collect());
-    io::write_atomically(&args.output, |w| {
+    outputs.write(&args.output, |w| {
         write!(w, "source")?;
         for c in &columns {
             write!(w, ",{c}")?;
@@ -87,14 +81,19 @@ pub fn run(args: &MatrixArgs) -> CliResult {
         }
         Ok(())
     })?;
-    eprintln!(
-        "{}: {} sources × {} columns on {} threads in {:.3} s; wrote {}",
+    outputs.commit()?;
+    ui::info!(
+        "{}: {} sources × {} columns on {} threads in {:.3} s{}; wrote {}",
         args.mesh.display(),
         sources.len(),
         columns.len(),
         rayon::current_num_threads(),
         start.elapsed().as_secs_f64(),
-        args.output.display()
+        match stopped {
+            0 => String::new(),
+            n => format!(", {n} row(s) stopped at their targets"),
+        },
+        crate::shown(&args.output)
     );
     Ok(())
 }

@@ -138,9 +138,8 @@ pub fn read_tensor(path: &Path, mesh: &TriMesh) -> CliResult<geotracks::Tensor> 
         .collect();
     geotracks::Tensor::from_world(mesh, &kept).map_err(|e| {
         let line = match e {
-            geotracks::MetricError::NotPositiveDefinite { face, .. } => {
-                rows[mesh.input_face(face as u32)].0
-            }
+            geotracks::MetricError::NotPositiveDefinite { face, .. }
+            | geotracks::MetricError::NotFinite { face } => rows[mesh.input_face(face as u32)].0,
             _ => 0,
         };
         input_error(path, line, e.to_string()).into()

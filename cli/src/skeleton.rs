@@ -1,7 +1,8 @@
 //! `geotracks skeleton`: the skeleton of a medial axis, burnt from its boundary.
 
-use crate::CliResult;
-use geotracks::mesh::io::{read_medial_axis, write_obj_lines, write_ply_with_distance};
+use crate::output::Outputs;
+use crate::{ui, CliResult, Short};
+use geotracks::mesh::io::{read_medial_axis, write_obj_lines_to, write_ply_with_distance_to};
 use geotracks::skeleton::medial_axis_skeleton;
 use geotracks::{Method, Options};
 use std::path::PathBuf;
@@ -44,7 +45,7 @@ pub struct SkeletonArgs {
 }
 
 pub fn run(args: &SkeletonArgs) -> CliResult {
-    crate::output_format(&args.output, &[("obj", ())])?;
+    crate::text_output_format(&args.output, &[("obj", ())], ())?;
     if let Some(field) = &args.field {
         crate::output_format(field, &[("ply", ())])?;
     }
@@ -62,7 +63,11 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
             .into())
         }
     };
+    let mut outputs = Outputs::new([args.axis.as_path()]);
+    outputs.declare(&args.output)?;
+    outputs.declare_some(args.field.as_ref())?;
     let start = Instant::now();
+    let spinner = ui::Spinner::start("reading the medial axis, burning and tracing ridges");
     let axis = read_medial_axis(&args.axis)?;
     let prune = if percent {
         prune / 100.0 * diagonal(&axis.positions)
@@ -72,6 +77,7 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
     let options = Options::DEFAULT.with_k(args.k).with_method(args.method);
     let radius_aware = matches!(args.speed, Speed::Radius);
     let (skeleton, fire) = medial_axis_skeleton(&axis, radius_aware, &options, prune)?;
+    drop(spinner);
     if skeleton.closed_components > 0 {
         eprintln!(
             "warning: {} closed part(s) of the medial axis have no boundary to burn from and no skeleton",
@@ -82,12 +88,8 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
     let lines = skeleton.polylines();
     match (&args.field, &fire, &axis.surface) {
         (Some(path), Some(fire), Some(mesh)) => {
-            write_ply_with_distance(path, mesh, fire.field().vertex_distances())?;
-            if let Err(e) = write_obj_lines(&args.output, &points, &lines) {
-                // Both files or neither.
-                let _ = std::fs::remove_file(path);
-                return Err(e.into());
-            }
+            let d = fire.vertex_distances();
+            outputs.write(path, |w| write_ply_with_distance_to(w, mesh, d))?;
         }
         (Some(path), ..) => {
             return Err(format!(
@@ -96,17 +98,19 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
             )
             .into())
         }
-        (None, ..) => write_obj_lines(&args.output, &points, &lines)?,
+        (None, ..) => {}
     }
-    eprintln!(
-        "{}: {} skeleton points, {} polylines, {} component(s), length {:.6}, {:.3} s; wrote {}",
+    outputs.write(&args.output, |w| write_obj_lines_to(w, &points, &lines))?;
+    outputs.commit()?;
+    ui::info!(
+        "{}: {} skeleton points, {} polylines, {} component(s), length {}, {:.3} s; wrote {}",
         args.axis.display(),
         skeleton.points.len(),
         lines.len(),
         skeleton.component_count(),
-        skeleton.length(),
+        Short(skeleton.length()),
         start.elapsed().as_secs_f64(),
-        args.output.display()
+        crate::shown(&args.output)
     );
     Ok(())
 }

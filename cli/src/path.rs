@@ -1,10 +1,11 @@
 //! `geotracks path`: the shortest path from a surface point to the nearest source.
 
 use crate::inputs::load_mesh;
-use crate::metric_args::{MetricArgs, WithMetric};
-use crate::{points, CliResult, Value};
-use geotracks::mesh::{io, TriMesh};
-use geotracks::{GeodesicField, GeodesicPath, Metric, Options, Solver, Source, Stop, SurfacePoint};
+use crate::metric::MetricArgs;
+use crate::output::Outputs;
+use crate::{points, ui, CliResult, Value};
+use geotracks::mesh::TriMesh;
+use geotracks::{GeodesicPath, Solver, Stop, SurfacePoint};
 use std::path::{Path, PathBuf};
 
 /// Arguments of `geotracks path`.
@@ -39,67 +40,73 @@ enum OutputFormat {
 }
 
 fn output_format(path: &Path) -> CliResult<OutputFormat> {
-    crate::output_format(
+    crate::text_output_format(
         path,
         &[("obj", OutputFormat::Obj), ("csv", OutputFormat::Csv)],
+        OutputFormat::Csv,
     )
-}
-
-/// A run that stops once the target's value is final, and the path from the target.
-struct Trace<'a> {
-    sources: &'a [Source],
-    target: SurfacePoint,
-}
-
-impl WithMetric for Trace<'_> {
-    type Output = (GeodesicField, GeodesicPath);
-    fn run<M: Metric>(
-        self,
-        mesh: &TriMesh,
-        metric: &M,
-        options: &Options,
-    ) -> CliResult<Self::Output> {
-        let solver = Solver::new(mesh, metric, options)?;
-        let stop = Stop::NONE.with_targets(vec![self.target]);
-        let field = solver.solve_from(self.sources, &stop)?;
-        let path = field.path(mesh, metric, self.target)?;
-        Ok((field, path))
-    }
 }
 
 pub fn run(args: &PathArgs) -> CliResult {
     // Check everything that can be checked before the computation.
     let format = output_format(&args.output)?;
+    let inputs = [
+        Some(&args.mesh),
+        args.metric.density.as_ref(),
+        args.metric.tensor.as_ref(),
+    ];
+    let mut outputs = Outputs::new(inputs.into_iter().flatten().map(PathBuf::as_path));
+    outputs.declare(&args.output)?;
+    let spinner = ui::Spinner::start("reading the mesh, propagating and tracing");
     let mesh = load_mesh(&args.mesh, args.weld)?;
     let sources = points::sources(&mesh, &args.sources)?;
     let target = points::check(&mesh, "target", args.target)?;
-    let (field, path) = args.metric.dispatch(
-        &mesh,
-        Trace {
-            sources: &sources,
-            target,
-        },
-    )?;
-    write_path(&args.output, format, &mesh, &path)?;
+    let solver = Solver::new(&mesh, args.metric.metric(&mesh)?, &args.metric.options())?;
+    // The run stops once the target's value is final.
+    let field = solver.solve_from(&sources, &Stop::NONE.with_targets(vec![target]))?;
+    let path = solver.query(&field)?.path(target)?;
+    drop(spinner);
+    write_path(&mut outputs, &args.output, format, &mesh, &path)?;
+    outputs.commit()?;
 
     let source = path.source as usize;
-    println!("target: {}", args.target);
-    println!("source: {source} ({})", args.sources[source]);
-    println!("points: {}", path.points.len());
-    println!(
-        "traced length: {} (the Steiner graph's distance, before straightening)",
-        Value(path.traced_length)
-    );
-    println!("{}", Value(path.length));
+    let summary = [
+        format!("target: {}", args.target),
+        format!("source: {source} ({})", args.sources[source]),
+        format!("points: {}", path.points.len()),
+        format!(
+            "traced length: {} (the Steiner graph's distance, before straightening)",
+            Value(path.traced_length)
+        ),
+    ];
+    if args.output.as_os_str() == "-" {
+        // Standard output holds the path: the summary and the length go to stderr.
+        for line in summary {
+            ui::info!("{line}");
+        }
+        ui::info!("length: {}", Value(path.length));
+    } else {
+        for line in summary {
+            ui::say!("{line}");
+        }
+        // The result, alone on the last line (also with --quiet).
+        println!("{}", Value(path.length));
+    }
     crate::report_run(&args.mesh, field.stats(), &args.output);
     Ok(())
 }
 
 /// Writes the polyline, target first.
-fn write_path(file: &Path, format: OutputFormat, mesh: &TriMesh, path: &GeodesicPath) -> CliResult {
+fn write_path(
+    outputs: &mut Outputs,
+    file: &Path,
+    format: OutputFormat,
+    mesh: &TriMesh,
+    path: &GeodesicPath,
+) -> CliResult {
     let positions = path.positions(mesh);
     match format {
-        OutputFormat::Obj => io::write_atomically(file, |w| {
+        OutputFormat::Obj => outputs.write(file, |w| {
             for p in &positions {
                 writeln!(w, "v {} {} {}", p.x, p.y, p.z)?;
             }
@@ -111,7 +118,7 @@ fn write_path(file: &Path, format: OutputFormat, mesh: &TriMesh, path: &Geodesic
             }
             writeln!(w)
         })?,
-        OutputFormat::Csv => io::write_atomically(file, |w| {
+        OutputFormat::Csv => outputs.write(file, |w| {
             writeln!(w, "x,y,z,point")?;
             for (p, point) in positions.iter().zip(&path.points) {
                 let text = point.to_string();

@@ -1,0 +1,170 @@
+//! How a run goes: which engine ([`Method`]) on which Steiner points ([`Options`], fixed
+//! when a [`Solver`](crate::Solver) is built), and when a run may stop early ([`Stop`],
+//! given per run).
+//!
+//! Plain data, apart from the engine: the field records the [`Method`] that made it, and
+//! the command line parses these by name.
+
+use crate::steiner::SteinerScheme;
+use crate::surface::SurfacePoint;
+use std::fmt;
+use std::str::FromStr;
+
+/// Which propagation runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Method {
+    /// Steiner nodes that carry their wavefront (a virtual source and a window): exact
+    /// on planar and developable meshes, far more accurate than the Steiner graph
+    /// elsewhere. Needs a face-flat metric ([`Metric::face_gram`]); with any other
+    /// metric the tracks engine runs instead (and the stats say so).
+    ///
+    /// [`Metric::face_gram`]: geotracks_metrics::Metric::face_gram
+    Wave,
+    /// Track-pruned Steiner-point propagation (the geodesic tracks method).
+    Tracks,
+    /// The complete Steiner graph per face (naive; the oracle).
+    Graph,
+    /// Dijkstra on mesh edges (no Steiner points).
+    Dijkstra,
+}
+
+impl Method {
+    /// The name used on the command line and in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Wave => "wave",
+            Method::Tracks => "tracks",
+            Method::Graph => "graph",
+            Method::Dijkstra => "dijkstra",
+        }
+    }
+}
+
+impl fmt::Display for Method {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Method {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s {
+            "wave" => Ok(Method::Wave),
+            "tracks" => Ok(Method::Tracks),
+            "graph" => Ok(Method::Graph),
+            "dijkstra" => Ok(Method::Dijkstra),
+            other => Err(format!(
+                "unknown method '{other}' (expected wave, tracks, graph or dijkstra)"
+            )),
+        }
+    }
+}
+
+/// How to propagate: where Steiner points go and which engine runs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct Options {
+    /// Steiner points per edge. Default: `Interval { k: 5.0 }`.
+    pub steiner: SteinerScheme,
+    /// The engine. Default: [`Method::Tracks`].
+    pub method: Method,
+    /// Bytes a solver and one run may take (mesh excluded), checked before anything is
+    /// allocated: a k that would need more is refused with [`Error::KTooLarge`] and the
+    /// largest k that fits. `None` (the default) uses the memory the system reports as
+    /// available (Linux), or checks nothing where it reports none.
+    ///
+    /// [`Error::KTooLarge`]: crate::Error::KTooLarge
+    pub memory_limit: Option<u64>,
+}
+
+impl Options {
+    /// The defaults: interval scheme with k = 5, the tracks engine.
+    pub const DEFAULT: Options = Options {
+        steiner: SteinerScheme::Interval { k: 5.0 },
+        method: Method::Tracks,
+        memory_limit: None,
+    };
+
+    /// Interval scheme with a mean of `k` points per edge.
+    pub const fn with_k(mut self, k: f64) -> Self {
+        self.steiner = SteinerScheme::Interval { k };
+        self
+    }
+
+    /// Exactly `count` points on every edge.
+    pub const fn with_fixed_count(mut self, count: u32) -> Self {
+        self.steiner = SteinerScheme::Fixed { count };
+        self
+    }
+
+    /// The memory budget in bytes (see [`Options::memory_limit`]).
+    pub const fn with_memory_limit(mut self, bytes: u64) -> Self {
+        self.memory_limit = Some(bytes);
+        self
+    }
+
+    /// The engine to run.
+    pub const fn with_method(mut self, method: Method) -> Self {
+        self.method = method;
+        self
+    }
+}
+
+/// When a run may stop before the whole mesh is reached.
+///
+/// Both conditions leave every node they do not settle unreached (`inf`): a finite value
+/// after an early stop is always the value a full run gives.
+///
+/// ```
+/// use geotracks::{Stop, SurfacePoint};
+/// let stop = Stop::NONE
+///     .with_max_distance(2.5)
+///     .with_targets(vec![SurfacePoint::Vertex(7), "e:3:0.5".parse()?]);
+/// assert_eq!(stop.targets.len(), 2);
+/// # Ok::<(), geotracks::PointError>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct Stop {
+    /// Nodes farther than this stay unreached (`inf`); the propagation ends when nothing
+    /// closer is left. Default: `inf`.
+    pub max_distance: f64,
+    /// Stop as soon as the value at each of these points is final (the distance at a
+    /// point inside a face, or on an edge, depends on the nodes around it, so those are
+    /// waited for). Default: none, run to the end.
+    pub targets: Vec<SurfacePoint>,
+}
+
+impl Stop {
+    /// No early stop.
+    pub const NONE: Stop = Stop {
+        max_distance: f64::INFINITY,
+        targets: Vec::new(),
+    };
+
+    /// Stop at distance `max_distance`.
+    pub fn with_max_distance(self, max_distance: f64) -> Stop {
+        Stop {
+            max_distance,
+            ..self
+        }
+    }
+
+    /// Stop once `targets` are final.
+    pub fn with_targets(self, targets: Vec<SurfacePoint>) -> Stop {
+        Stop { targets, ..self }
+    }
+}
+
+impl Default for Stop {
+    fn default() -> Self {
+        Stop::NONE
+    }
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options::DEFAULT
+    }
+}

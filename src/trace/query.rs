@@ -1,0 +1,221 @@
+//! [`Query`]: the questions to a distance field that need its mesh and metric.
+
+use crate::field::FieldView;
+use crate::mesh::{TriMesh, NONE};
+use crate::steiner::SteinerLayout;
+use crate::surface::{Source, SurfacePoint};
+use crate::{Error, PointRole};
+use geotracks_metrics::Metric;
+use std::fmt;
+
+/// A finished run's field together with the mesh and metric it was computed with: the
+/// distance at any surface point, paths ([`Query::trace`], [`Query::path`]) and the
+/// nearest source of each node ([`Query::vertex_labels`]). Later isolines and regions
+/// go here too.
+///
+/// Made only by the solver that computed the field —
+/// [`Solver::query`](crate::Solver::query) for a [`GeodesicField`](crate::GeodesicField),
+/// [`Solver::query_workspace`](crate::Solver::query_workspace) for a
+/// [`Workspace`](crate::Workspace)'s last run — so the mesh, the metric and the Steiner
+/// layout are the ones the field was computed on, and none of them is passed again.
+///
+/// ```
+/// use geotracks::{mesh::TriMesh, Euclidean, Options, Solver, SurfacePoint};
+/// let mesh = TriMesh::new(
+///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+///     vec![[0, 1, 2], [0, 2, 3]],
+/// )?;
+/// let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT)?;
+/// let field = solver.solve(&[0])?;
+/// let query = solver.query(&field)?;
+/// let centre = SurfacePoint::Face { face: 0, bary: [1.0 / 3.0; 3] };
+/// let d = query.distance_at(centre)?;
+/// assert!((d - 5f64.sqrt() / 3.0).abs() < 1e-12); // straight from vertex 0
+/// let path = query.path(centre)?; // from the point to its source, straightened
+/// assert!((path.length - d).abs() < 1e-12);
+/// # Ok::<(), geotracks::Error>(())
+/// ```
+pub struct Query<'a, M> {
+    pub(super) mesh: &'a TriMesh,
+    pub(super) metric: &'a M,
+    pub(super) field: FieldView<'a>,
+}
+
+impl<M> Clone for Query<'_, M> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<M> Copy for Query<'_, M> {}
+
+impl<M> fmt::Debug for Query<'_, M> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Query")
+            .field("vertices", &self.field.layout.vertex_count())
+            .field("nodes", &self.field.distance.len())
+            .field("sources", &self.field.sources.len())
+            .finish_non_exhaustive()
+    }
+}
+
+/// Where the value at a surface point comes from: a node of one of its faces, or a
+/// source that shares a face with it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Origin {
+    /// The point is this node.
+    Node(u32),
+    /// A straight segment in `face` from this node.
+    NodeInFace(u32, u32),
+    /// A straight segment in `face` from this source.
+    SourceInFace(u32, u32),
+}
+
+impl<'a, M: Metric> Query<'a, M> {
+    /// A query on `field`, which was computed on `mesh` under `metric` (the solver
+    /// checks that).
+    pub(crate) fn new(mesh: &'a TriMesh, metric: &'a M, field: FieldView<'a>) -> Self {
+        Query {
+            mesh,
+            metric,
+            field,
+        }
+    }
+
+    /// The mesh the field was computed on.
+    pub fn mesh(&self) -> &'a TriMesh {
+        self.mesh
+    }
+
+    /// The metric the field was computed with.
+    pub fn metric(&self) -> &'a M {
+        self.metric
+    }
+
+    /// The Steiner layout the field was computed on.
+    pub fn layout(&self) -> &'a SteinerLayout {
+        self.field.layout
+    }
+
+    /// Distance at every vertex (`inf` where unreached).
+    pub fn vertex_distances(&self) -> &'a [f64] {
+        &self.field.distance[..self.field.layout.vertex_count() as usize]
+    }
+
+    /// Distance at every node (vertices, then Steiner points in [`SteinerLayout`] order).
+    pub fn node_distances(&self) -> &'a [f64] {
+        self.field.distance
+    }
+
+    /// The run's sources, validated (in canonical form).
+    pub fn sources(&self) -> &'a [Source] {
+        self.field.sources
+    }
+
+    /// The distance at any surface point, as the Steiner graph defines it: at a node,
+    /// its value; elsewhere, the least over the nodes on the boundary of the faces
+    /// holding the point of the node's value plus the metric's cost of the straight
+    /// segment to the point (and, from a source sharing one of those faces, the
+    /// source's start plus its segment). Not an interpolation of vertex values. `inf`
+    /// when no source reaches the point.
+    ///
+    /// # Complexity
+    /// O(k) metric evaluations per face around the point.
+    ///
+    /// # Errors
+    /// [`Error::InvalidPoint`] if `point` is not a point of the mesh.
+    pub fn distance_at(&self, point: SurfacePoint) -> Result<f64, Error> {
+        Ok(self.origin(point)?.0)
+    }
+
+    /// The value at `point` and where it comes from (`None` when unreached).
+    pub(super) fn origin(&self, point: SurfacePoint) -> Result<(f64, Option<Origin>), Error> {
+        let (mesh, metric, field) = (self.mesh, self.metric, &self.field);
+        let point = point.validated(mesh).map_err(|error| Error::InvalidPoint {
+            which: PointRole::Query,
+            error,
+        })?;
+        if let SurfacePoint::Vertex(v) = point {
+            let d = field.distance[v as usize];
+            return Ok((d, d.is_finite().then_some(Origin::Node(v))));
+        }
+        let mut best = (f64::INFINITY, None);
+        for &f in point.faces(mesh).iter() {
+            let x = point.in_face(mesh, f).expect("the point lies on its faces");
+            for (node, p) in field.layout.face_nodes(mesh, f) {
+                let g = field.distance[node as usize];
+                if g < best.0 {
+                    let d = g + metric.cost(f, &p, &x);
+                    if d < best.0 {
+                        best = (d, Some(Origin::NodeInFace(node, f)));
+                    }
+                }
+            }
+            for (i, source) in field.sources.iter().enumerate() {
+                if let Some(s) = source.point.in_face(mesh, f) {
+                    let d = source.start + metric.cost(f, &s, &x);
+                    if d < best.0 {
+                        best = (d, Some(Origin::SourceInFace(i as u32, f)));
+                    }
+                }
+            }
+        }
+        Ok(best)
+    }
+
+    /// The index of the nearest source of every vertex (the geodesic Voronoi diagram of
+    /// the sources, start values included), [`NONE`] where unreached.
+    ///
+    /// # Complexity
+    /// O(nodes): parents are followed to the source that started each chain, and every
+    /// node is labelled once.
+    pub fn vertex_labels(&self) -> Vec<u32> {
+        let vertices = self.field.layout.vertex_count();
+        let mut label = self.labels(vertices);
+        label.truncate(vertices as usize);
+        label
+    }
+
+    /// As [`Query::vertex_labels`], for every node (vertices, then Steiner points in
+    /// [`SteinerLayout`] order).
+    pub fn node_labels(&self) -> Vec<u32> {
+        self.labels(self.field.distance.len() as u32)
+    }
+
+    /// Labels of nodes `0..count` (and of the nodes their chains pass through).
+    fn labels(&self, count: u32) -> Vec<u32> {
+        let field = &self.field;
+        let n = field.distance.len();
+        let mut label = vec![NONE; n];
+        let mut known = vec![false; n];
+        let mut chain = Vec::new();
+        for start in 0..count {
+            let mut node = start;
+            // Walk up to a labelled node or a root; parents have lower values, so the
+            // walk ends (a step cap guards against a metric with zero costs).
+            let found = loop {
+                if known[node as usize] {
+                    break label[node as usize];
+                }
+                if field.distance[node as usize].is_infinite() {
+                    break NONE;
+                }
+                chain.push(node);
+                let p = field.parent[node as usize];
+                if p == NONE {
+                    break field.root_source(node).unwrap_or(NONE);
+                }
+                if chain.len() > n {
+                    break NONE;
+                }
+                node = p;
+            };
+            for &c in &chain {
+                label[c as usize] = found;
+                known[c as usize] = true;
+            }
+            chain.clear();
+        }
+        label
+    }
+}
