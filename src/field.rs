@@ -92,6 +92,8 @@ pub struct GeodesicField {
     parent_face: Vec<u32>,
     sources: Vec<Source>,
     roots: Vec<Root>,
+    /// Per Steiner node, the wave it carries (wavefront engine; empty otherwise).
+    waves: Vec<Wave>,
     stats: Stats,
 }
 
@@ -106,6 +108,8 @@ pub(crate) struct FieldView<'a> {
     pub sources: &'a [Source],
     /// Per node that a source reached directly, its source, sorted by node.
     pub roots: &'a [Root],
+    /// Per Steiner node, the wave it carries (empty unless the wavefront engine ran).
+    pub waves: &'a [Wave],
 }
 
 impl<'a> FieldView<'a> {
@@ -127,6 +131,7 @@ impl GeodesicField {
         parent_face: Vec<u32>,
         sources: Vec<Source>,
         roots: Vec<Root>,
+        waves: Vec<Wave>,
         stats: Stats,
     ) -> GeodesicField {
         debug_assert_eq!(distance.len(), layout.node_count());
@@ -138,6 +143,7 @@ impl GeodesicField {
             parent_face,
             sources,
             roots,
+            waves,
             stats,
         }
     }
@@ -156,6 +162,7 @@ impl GeodesicField {
             parent_face: &self.parent_face,
             sources: &self.sources,
             roots: &self.roots,
+            waves: &self.waves,
         }
     }
 
@@ -207,5 +214,36 @@ impl GeodesicField {
     /// Counters and timings of the run.
     pub fn stats(&self) -> &Stats {
         &self.stats
+    }
+}
+
+/// The wave a Steiner node carries, in the frame of its edge: `x` along the edge from
+/// its lower vertex, `y` across it towards the interior of the face the wave came from
+/// (the node's parent face; `NONE` for a source on the edge's own line, `y = 0`, valid
+/// in every face around it). Lengths are in the metric. 32 bytes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Wave {
+    /// The virtual source.
+    pub sx: f64,
+    pub sy: f64,
+    /// The path length up to the source.
+    pub sigma: f64,
+    /// The window, as fractions of the edge's length from its lower vertex.
+    pub w0: f32,
+    pub w1: f32,
+}
+
+impl Wave {
+    /// No wave (vertices, unreached nodes).
+    pub const NONE: Wave = Wave {
+        sx: 0.0,
+        sy: 0.0,
+        sigma: f64::INFINITY,
+        w0: 1.0,
+        w1: 0.0,
+    };
+
+    pub fn is_some(&self) -> bool {
+        self.w0 <= self.w1
     }
 }

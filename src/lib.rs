@@ -65,6 +65,7 @@
 
 mod error;
 pub mod field;
+mod flat;
 pub mod mesh;
 pub mod options;
 pub mod propagate;

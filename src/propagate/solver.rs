@@ -5,9 +5,11 @@ use super::budget;
 use super::frontier::{edge_steps, Frontier, Seed};
 use super::queue::{BucketQueue, HeapQueue};
 use super::tracks::{Track, TrackTables};
-use super::wave::{self, Wave};
+use super::wave;
 use super::{graph, tracks, Method, Options, Stop};
+use crate::field::Wave;
 use crate::field::{FieldView, GeodesicField, Root, SolverId, Stats};
+use crate::flat;
 use crate::mesh::{FaceFrame, TriMesh, NONE};
 use crate::steiner::SteinerLayout;
 use crate::surface::{PointError, Source, SurfacePoint};
@@ -107,6 +109,7 @@ impl Workspace {
             parent_face: &self.parent_face,
             sources: &self.sources,
             roots: &self.roots,
+            waves: &self.waves,
         }
     }
 
@@ -185,8 +188,11 @@ impl<'m, M: Metric> Solver<'m, M> {
         let (tables, bucket_width) = match options.method {
             Method::Tracks | Method::Wave => {
                 let width = bucket_width(&steps);
-                let tables =
+                let mut tables =
                     TrackTables::new(mesh, &layout, edge_steps.as_deref(), flat_frames.as_deref())?;
+                if options.method == Method::Wave {
+                    tables = tables.with_vertex_rows(mesh, &layout);
+                }
                 (Some(tables), width)
             }
             _ => (None, 1.0),
@@ -439,12 +445,14 @@ impl<'m, M: Metric> Solver<'m, M> {
                 })
             }
             Some(tables) => {
+                waves.clear();
                 buckets.reset(self.layout.node_count(), self.bucket_width);
                 search.run(buckets, seeds, |s| {
                     tracks::propagate(s, tables, tracks, seeds)
                 })
             }
             None => {
+                waves.clear();
                 heap.reset();
                 search.run(heap, seeds, graph::propagate)
             }
@@ -691,32 +699,17 @@ impl<'m, M: Metric> Solver<'m, M> {
             ws.parent_face,
             ws.sources,
             ws.roots,
+            ws.waves,
             stats,
         ))
     }
 }
 
-/// Every face's frame in the metric's flattening (`None` unless the metric gives every
-/// face's Gram matrix, positive-definite): with `G = RᵀR` (Cholesky, `R` upper
-/// triangular), the point `uv` maps to `R·uv`, so the frame keeps its shape: corner 0
-/// at the origin, corner 1 on the u axis, corner 2 above it.
+/// Every face's frame in the metric's flattening ([`flat::flat_frame`]), or `None`
+/// unless the metric gives every face's.
 fn flat_frames<M: Metric>(mesh: &TriMesh, metric: &M) -> Option<Vec<FaceFrame>> {
     (0..mesh.face_count() as u32)
-        .map(|f| {
-            let [g11, g12, g22] = metric.face_gram(f)?;
-            let r11 = g11.sqrt();
-            let r12 = g12 / r11;
-            let r22 = (g22 - r12 * r12).sqrt();
-            if !(r11 > 0.0 && r22 > 0.0 && r12.is_finite()) {
-                return None;
-            }
-            let frame = mesh.frame(f);
-            Some(FaceFrame {
-                l01: r11 * frame.l01,
-                x2: r11 * frame.x2 + r12 * frame.y2,
-                y2: r22 * frame.y2,
-            })
-        })
+        .map(|f| flat::flat_frame(metric, f, mesh.frame(f)))
         .collect()
 }
 

@@ -50,155 +50,11 @@
 
 use super::frontier::{Frontier, Queue, Seed};
 use super::tracks::{FaceRecord, TrackTables};
-use crate::mesh::{FaceFrame, TriMesh, NONE};
+use crate::field::Wave;
+use crate::flat::{in_window, project, same_source, uv, EdgeFrame, P, SAME_SOURCE, TIE, TOUCH};
+use crate::mesh::{TriMesh, NONE};
 use crate::surface::Source;
-use geotracks_metrics::{FacePoint, Metric};
-
-/// The wave a Steiner node carries, in the frame of its edge: `x` along the edge from
-/// its lower vertex, `y` across it towards the interior of the face the wave came from
-/// (`face`). Lengths are in the metric.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Wave {
-    /// The virtual source.
-    pub sx: f64,
-    pub sy: f64,
-    /// The path length up to the source.
-    pub sigma: f64,
-    /// The window, as fractions of the edge's length from its lower vertex.
-    pub w0: f32,
-    pub w1: f32,
-    /// The face the wave came through (mesh id; `NONE`: from a source on the edge's
-    /// own line, valid in every face around it).
-    pub face: u32,
-}
-
-impl Wave {
-    /// No wave (vertices, unreached nodes).
-    pub const NONE: Wave = Wave {
-        sx: 0.0,
-        sy: 0.0,
-        sigma: f64::INFINITY,
-        w0: 1.0,
-        w1: 0.0,
-        face: NONE,
-    };
-
-    fn is_some(&self) -> bool {
-        self.w0 <= self.w1
-    }
-}
-
-/// Slack on window tests, as a fraction of the edge. Window ends are rounded inwards to
-/// `f32`, and a line through a vertex (common on regular grids) crosses its edges at
-/// their very ends, so the slack must cover a few `f32` units. A line that passes a
-/// vertex on the wrong side by `δ` is shorter than the real path bending there by
-/// about `δ² / ℓ` only: with `δ = 1e-6` of an edge, 1e-12 relative.
-const WINDOW_SLACK: f64 = 1e-6;
-/// Two values this close (relative) are a tie.
-const TIE: f64 = 1e-12;
-/// Two windows of one wave are joined when they meet to this fraction of the edge:
-/// their ends are rounded inwards to `f32` (a few units in the last place apart where
-/// they meet), and a real gap between them (the shadow of a vertex) is far wider.
-const TOUCH: f32 = 1e-6;
-/// Two waves are the same when their sources and σ agree to this, relative to the
-/// edge's length and the source's distance.
-const SAME_SOURCE: f64 = 1e-9;
-
-/// A point of the plane.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct P(f64, f64);
-
-impl P {
-    #[inline(always)]
-    fn sub(self, o: P) -> P {
-        P(self.0 - o.0, self.1 - o.1)
-    }
-    #[inline(always)]
-    fn add(self, o: P) -> P {
-        P(self.0 + o.0, self.1 + o.1)
-    }
-    #[inline(always)]
-    fn scale(self, k: f64) -> P {
-        P(self.0 * k, self.1 * k)
-    }
-    #[inline(always)]
-    fn dot(self, o: P) -> f64 {
-        self.0 * o.0 + self.1 * o.1
-    }
-    #[inline(always)]
-    fn cross(self, o: P) -> f64 {
-        self.0 * o.1 - self.1 * o.0
-    }
-    #[inline(always)]
-    fn length(self) -> f64 {
-        FacePoint {
-            uv: [0.0, 0.0],
-            bary: [0.0; 3],
-        }
-        .distance(&FacePoint {
-            uv: [self.0, self.1],
-            bary: [0.0; 3],
-        })
-    }
-}
-
-fn uv(p: &FacePoint) -> P {
-    P(p.uv[0], p.uv[1])
-}
-
-/// An edge seen from one face (in the face's flattened frame): its lower vertex `lo`,
-/// unit direction `u` towards its higher vertex, length `len`, and unit normal `n`
-/// pointing into the face.
-#[derive(Clone, Copy, Debug)]
-struct EdgeFrame {
-    lo: P,
-    u: P,
-    n: P,
-    len: f64,
-}
-
-impl EdgeFrame {
-    /// Slot `s` of `frame`; `reversed` when the slot runs from the edge's higher vertex.
-    #[inline]
-    fn new(frame: &FaceFrame, s: usize, reversed: bool) -> EdgeFrame {
-        let c = frame.corners();
-        let (a, b) = (P(c[s][0], c[s][1]), P(c[(s + 1) % 3][0], c[(s + 1) % 3][1]));
-        let opposite = P(c[(s + 2) % 3][0], c[(s + 2) % 3][1]);
-        let (lo, hi) = if reversed { (b, a) } else { (a, b) };
-        let d = hi.sub(lo);
-        let len = d.length();
-        let u = d.scale(1.0 / len);
-        let mut n = P(-u.1, u.0);
-        if opposite.sub(lo).dot(n) < 0.0 {
-            n = n.scale(-1.0);
-        }
-        EdgeFrame { lo, u, n, len }
-    }
-
-    /// The face point of `p` in edge coordinates (`y` into the face).
-    #[inline]
-    fn edge_coords(&self, p: P) -> (f64, f64) {
-        let d = p.sub(self.lo);
-        (d.dot(self.u), d.dot(self.n))
-    }
-
-    /// The point at edge coordinates `(x, y)`, `y` into the face.
-    #[inline]
-    fn at_edge_coords(&self, x: f64, y: f64) -> P {
-        self.lo.add(self.u.scale(x)).add(self.n.scale(y))
-    }
-
-    /// Where the line from `s` through `t` crosses the edge's line, as a fraction of
-    /// the edge from its lower vertex (`NaN` when parallel).
-    #[inline]
-    fn crossing(&self, s: P, t: P) -> f64 {
-        let (sx, sy) = self.edge_coords(s);
-        let (tx, ty) = self.edge_coords(t);
-        // y goes from sy to ty; it is 0 at λ = sy / (sy − ty).
-        let lambda = sy / (sy - ty);
-        (sx + lambda * (tx - sx)) / self.len
-    }
-}
+use geotracks_metrics::Metric;
 
 /// Settles nodes until the run is over ([`Frontier::next`]). `waves` holds one
 /// [`Wave`] per Steiner node (reset by the caller); `seeds` are the sources' offers,
@@ -239,10 +95,12 @@ struct Waves<'r, 'a, M, Q> {
 }
 
 impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
+    #[inline(always)]
     fn wave(&self, node: u32) -> &Wave {
         &self.waves[(node - self.vertex_count) as usize]
     }
 
+    #[inline(always)]
     fn wave_mut(&mut self, node: u32) -> &mut Wave {
         &mut self.waves[(node - self.vertex_count) as usize]
     }
@@ -256,14 +114,16 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
                 continue;
             }
             // Only the seed that the node kept.
-            if self.search.distance[seed.node as usize] != seed.value {
+            if self.search.distance[seed.node as usize] != seed.value
+                || self.search.parent_face[seed.node as usize] != seed.face
+            {
                 continue;
             }
             let Some(point) = sources[seed.source as usize].point.in_face(mesh, seed.face) else {
                 continue;
             };
             let r = &self.tables.faces[self.tables.record_of(seed.face) as usize];
-            let Some(s) = (0..3).find(|&s| seed.node.wrapping_sub(r.lo[s]) < r.count(s)) else {
+            let Some(s) = slot_of(r, seed.node) else {
                 continue;
             };
             let frame = EdgeFrame::new(&r.frame, s, r.is_reversed(s));
@@ -274,35 +134,35 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
                 sigma: sources[seed.source as usize].start,
                 w0: 0.0,
                 w1: 1.0,
-                // A source on the edge's line is valid in every face around it.
-                face: if sy > 0.0 { seed.face } else { NONE },
             };
         }
     }
 
     fn settle_vertex(&mut self, v: u32, d: f64) {
         let tables = self.tables;
-        let mesh = self.search.mesh;
         let layout = self.search.layout;
-        for &e in mesh.vertex_edges(v) {
-            let nodes = layout.edge_nodes(e);
-            let ends = mesh.edge_vertices(e);
-            let step = tables.edges[layout.block_of_edge(e) as usize].step;
-            let next = match (nodes.is_empty(), v == ends[0]) {
-                (true, true) => ends[1],
-                (true, false) => ends[0],
-                (false, true) => nodes.start,
-                (false, false) => nodes.end - 1,
+        for &spoke in tables.spokes.row(v) {
+            let (b, high) = (spoke >> 1, spoke & 1 == 1);
+            let nodes = layout.block_nodes(b);
+            let step = tables.edges[b as usize].step;
+            let len = step * (nodes.len() + 1) as f64;
+            let next = match (nodes.is_empty(), high) {
+                (true, false) => tables.ends[b as usize][1],
+                (true, true) => tables.ends[b as usize][0],
+                (false, false) => nodes.start,
+                (false, true) => nodes.end - 1,
             };
-            self.along_edge(v, d, next, step, None);
+            let at = high as u32 as f64;
+            self.along_edge(v, d, next, step, None, (at, 0.0), len, NONE);
         }
         let parent_face = self.search.parent_face[v as usize];
-        for &f in mesh.vertex_faces(v) {
+        for &inc in tables.corners.row(v) {
+            let r = &tables.faces[inc.record() as usize];
+            let f = r.face;
             if f == parent_face {
                 continue;
             }
-            let r = &tables.faces[tables.record_of(f) as usize];
-            let c = (0..3).find(|&c| r.vertex[c] == v).unwrap_or(0);
+            let c = inc.side();
             let opposite = (c + 1) % 3;
             let slot = r.slot(opposite);
             if slot.count == 0 {
@@ -311,10 +171,11 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
             let pq = uv(&r.corner_point(c));
             for i in 0..slot.count {
                 let (t, pt) = slot.at(i);
-                let pt = uv(&pt);
                 self.search.tests += 1;
-                let value = d + pt.sub(pq).length();
-                self.offer_polyline(t, value, v, f, r, opposite, pq, d);
+                let value = d + uv(&pt).sub(pq).length();
+                if value < self.search.distance[t as usize] {
+                    self.offer_polyline(t, value, v, f, r, opposite, pq, d);
+                }
             }
         }
     }
@@ -326,104 +187,126 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
         let nodes = layout.block_nodes(block);
         let count = nodes.len() as u32;
         let index = q - nodes.start;
-        let mesh = self.search.mesh;
-        let ends = || mesh.edge_vertices(layout.edge_of_block(block));
-        let wave = *self.wave(q);
+        let parent_face = self.search.parent_face[q as usize];
+        let mut wave = *self.wave(q);
+        // The same wave may reach this node's edge through the parent face's two other
+        // edges as well: join what they see, once, now that the node goes on.
+        if wave.is_some() && (wave.w0 > 0.0 || wave.w1 < 1.0) && parent_face != NONE {
+            let r = &tables.faces[tables.record_of(parent_face) as usize];
+            if let Some(s) = slot_of(r, q) {
+                let tf = EdgeFrame::new(&r.frame, s, r.is_reversed(s));
+                self.join_edges(q, r, parent_face, s, &tf);
+                wave = *self.wave(q);
+            }
+        }
         // Along the edge: the next nodes, straight from the wave where they are in it.
+        let ends = || tables.ends[block as usize];
         let prev = if index == 0 { ends()[0] } else { q - 1 };
         let next = if index + 1 == count { ends()[1] } else { q + 1 };
         let spacing = 1.0 / (count + 1) as f64;
         let own = (index + 1) as f64 * spacing;
-        self.along_edge(q, d, prev, edge.step, Some((wave, own - spacing)));
-        self.along_edge(q, d, next, edge.step, Some((wave, own + spacing)));
+        let len = edge.step * (count + 1) as f64;
+        let carried = Some(&wave);
+        self.along_edge(
+            q,
+            d,
+            prev,
+            edge.step,
+            carried,
+            (own, own - spacing),
+            len,
+            parent_face,
+        );
+        self.along_edge(
+            q,
+            d,
+            next,
+            edge.step,
+            carried,
+            (own, own + spacing),
+            len,
+            parent_face,
+        );
 
-        let parent_face = self.search.parent_face[q as usize];
-        let iso = self.isometric[block as usize];
+        let has_wave = wave.is_some() && self.isometric[block as usize];
         for &inc in tables.edge_faces(edge) {
             let r = &tables.faces[inc.record() as usize];
             let f = r.face;
-            if f == parent_face || (wave.is_some() && f == wave.face && wave.face != NONE) {
+            // Never back into the face the value (and the wave) came through.
+            if f == parent_face {
                 continue;
             }
             let s = inc.side();
             let frame = EdgeFrame::new(&r.frame, s, r.is_reversed(s));
             let pq = frame.at_edge_coords(own * frame.len, 0.0);
-            // The wave unfolded into this face: behind the edge.
-            let source = (wave.is_some() && iso).then(|| frame.at_edge_coords(wave.sx, -wave.sy));
             // Targets: the points of the two other slots and the opposite corner.
+            let entry = Entry {
+                q,
+                d,
+                wave,
+                has_wave,
+                frame,
+                pq,
+                f,
+            };
             for step in 1..3 {
                 let ts = (s + step) % 3;
                 let slot = r.slot(ts);
                 for i in 0..slot.count {
                     let (t, pt) = slot.at(i);
-                    self.offer(q, d, &wave, source, &frame, pq, t, uv(&pt), r, ts, f);
+                    self.offer(&entry, t, uv(&pt), r, ts);
                 }
                 if step == 1 {
                     let c = (s + 2) % 3;
-                    let t = r.vertex[c];
-                    self.offer(
-                        q,
-                        d,
-                        &wave,
-                        source,
-                        &frame,
-                        pq,
-                        t,
-                        uv(&r.corner_point(c)),
-                        r,
-                        3,
-                        f,
-                    );
+                    self.offer(&entry, r.vertex[c], uv(&r.corner_point(c)), r, 3);
                 }
             }
         }
     }
 
-    /// `from` (at value `d`) offers `to`, its neighbour along an edge `step` away; with
-    /// `from`'s wave and `to`'s position on the edge (as a fraction) when `from` is a
-    /// Steiner point, which passes the wave on where `to` lies in its window.
-    fn along_edge(&mut self, from: u32, d: f64, to: u32, step: f64, wave: Option<(Wave, f64)>) {
+    /// `from` (value `d`, at fraction `at.0` of the edge) offers `to` (at `at.1`), its
+    /// neighbour along an edge of length `len`, `step` away. A Steiner point passes its
+    /// wave on (which came through `face`) where `to` lies in its window; otherwise
+    /// `to` gets a fresh wave from `from`, on the edge's own line.
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn along_edge(
+        &mut self,
+        from: u32,
+        d: f64,
+        to: u32,
+        step: f64,
+        wave: Option<&Wave>,
+        (from_at, at): (f64, f64),
+        len: f64,
+        face: u32,
+    ) {
+        self.search.tests += 1;
         let mut value = d + step;
         let mut carried = None;
-        if let Some((w, at)) = wave {
-            if w.is_some() && in_window(&w, at) {
-                // The edge's length: the spacing is `step`, `at` moves by one spacing.
-                let block = self.search.layout.block(from);
-                let count = self.search.layout.block_nodes(block).len() as f64;
-                let len = step * (count + 1.0);
+        if let Some(w) = wave {
+            if w.is_some() && in_window(w, at) {
                 let straight = w.sigma + P(w.sx - at * len, w.sy).length();
                 if straight < value {
                     value = straight;
-                    carried = Some(w);
+                    carried = Some(*w);
                 }
             }
         }
-        self.search.tests += 1;
         let previous = self.search.distance[to as usize];
-        let sigma = carried.map_or(d, |w| w.sigma);
-        if self.keeps_wave(to, value, sigma) {
+        if value >= previous || self.keeps_wave(to, value, carried.map_or(d, |w| w.sigma)) {
             return;
         }
-        self.search.relax(to, value, from, NONE);
+        self.search
+            .relax(to, value, from, if carried.is_some() { face } else { NONE });
         if to >= self.vertex_count && self.search.distance[to as usize] < previous {
-            *self.wave_mut(to) = match carried {
-                Some(w) => w,
-                None => {
-                    // A fresh wave from `from`, on the edge's own line.
-                    let block = self.search.layout.block(to);
-                    let count = self.search.layout.block_nodes(block).len() as f64;
-                    let len = self.tables.edges[block as usize].step * (count + 1.0);
-                    let from_at = self.position_on_edge(from, to) * len;
-                    Wave {
-                        sx: from_at,
-                        sy: 0.0,
-                        sigma: d,
-                        w0: 0.0,
-                        w1: 1.0,
-                        face: NONE,
-                    }
-                }
-            };
+            *self.wave_mut(to) = carried.unwrap_or(Wave {
+                sx: from_at * len,
+                sy: 0.0,
+                sigma: d,
+                w0: 0.0,
+                w1: 1.0,
+            });
         }
     }
 
@@ -442,61 +325,40 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
         value >= previous - TIE * previous.abs() && current.is_some() && current.sigma <= sigma
     }
 
-    /// Where node `node` (a neighbour of Steiner node `on` along its edge, or one of the
-    /// edge's vertices) lies along `on`'s edge, as a fraction from its lower vertex.
-    fn position_on_edge(&self, node: u32, on: u32) -> f64 {
-        let layout = self.search.layout;
-        let block = layout.block(on);
-        let nodes = layout.block_nodes(block);
-        let count = nodes.len() as f64;
-        if nodes.contains(&node) {
-            (node - nodes.start + 1) as f64 / (count + 1.0)
-        } else {
-            let lo = self.search.mesh.edge_vertices(layout.edge_of_block(block))[0];
-            if node == lo {
-                0.0
-            } else {
-                1.0
-            }
-        }
-    }
-
-    /// Steiner node `q` (value `d`, wave `wave`, unfolded here as `source`; its edge
-    /// `frame`, its point `pq`) offers target `t` at `pt` in the face of record `r`,
-    /// on slot `ts` (3: the opposite corner).
-    #[allow(clippy::too_many_arguments)]
+    /// What `entry`'s node offers target `t` at `pt` in the face of record `r`, on slot
+    /// `ts` (3: the opposite corner): the straight value from its wave where the line
+    /// crosses its window (a polyline through it is never shorter then), else the
+    /// polyline value.
     #[inline]
-    fn offer(
-        &mut self,
-        q: u32,
-        d: f64,
-        wave: &Wave,
-        source: Option<P>,
-        frame: &EdgeFrame,
-        pq: P,
-        t: u32,
-        pt: P,
-        r: &FaceRecord,
-        ts: usize,
-        f: u32,
-    ) {
+    fn offer(&mut self, entry: &Entry, t: u32, pt: P, r: &FaceRecord, ts: usize) {
         self.search.tests += 1;
-        let polyline = d + pt.sub(pq).length();
-        let Some(s) = source else {
-            self.offer_polyline(t, polyline, q, f, r, ts, pq, d);
-            return;
-        };
-        let x = frame.crossing(s, pt);
-        if in_window(wave, x) {
-            let straight = wave.sigma + pt.sub(s).length();
-            if straight <= polyline {
-                self.offer_straight(t, straight, q, f, r, ts, s, wave, frame);
+        let current = self.search.distance[t as usize];
+        let wave = &entry.wave;
+        if entry.has_wave {
+            // In the entering edge's frame: the source at (sx, −sy), behind the edge.
+            let (tx, ty) = entry.frame.edge_coords(pt);
+            let (dx, dy) = (tx - wave.sx, ty + wave.sy);
+            let x = (wave.sx + wave.sy / dy * dx) / entry.frame.len;
+            if in_window(wave, x) {
+                let straight = wave.sigma + P(dx, dy).length();
+                if straight <= current + TIE * current.abs() {
+                    self.offer_straight(t, straight, entry, r, ts);
+                }
                 return;
             }
-        } else if t >= self.vertex_count && ts < 3 {
-            self.merge(t, wave, s, frame, r, ts, f);
+            // Outside the window: the same wave may have reached `t` another way.
+            if t >= self.vertex_count
+                && ts < 3
+                && (self.wave(t).sigma - wave.sigma).abs()
+                    <= SAME_SOURCE * (entry.frame.len + wave.sigma.abs() + wave.sx.abs())
+            {
+                self.merge(t, entry, r, ts);
+            }
         }
-        self.offer_polyline(t, polyline, q, f, r, ts, pq, d);
+        let polyline = entry.d + pt.sub(entry.pq).length();
+        if polyline < current {
+            self.offer_polyline(t, polyline, entry.q, entry.f, r, ts, entry.pq, entry.d);
+        }
     }
 
     /// A polyline offer: bending at `from` (at `pf`, value `d`).
@@ -513,10 +375,10 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
         pf: P,
         d: f64,
     ) {
-        let previous = self.search.distance[t as usize];
-        if value >= previous || value.is_nan() || self.keeps_wave(t, value, d) {
+        if self.keeps_wave(t, value, d) {
             return;
         }
+        let previous = self.search.distance[t as usize];
         self.search.relax(t, value, from, f);
         if t >= self.vertex_count && self.search.distance[t as usize] < previous {
             let tf = EdgeFrame::new(&r.frame, ts, r.is_reversed(ts));
@@ -527,87 +389,60 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
                 sigma: d,
                 w0: 0.0,
                 w1: 1.0,
-                face: f,
             };
         }
     }
 
-    /// A straight offer from `wave`, whose source is `s` in this face, through the
-    /// window on the entering edge `frame`.
-    #[allow(clippy::too_many_arguments)]
+    /// A straight offer of `value` from `entry`'s wave, an improvement or a tie.
     #[inline]
-    fn offer_straight(
-        &mut self,
-        t: u32,
-        value: f64,
-        from: u32,
-        f: u32,
-        r: &FaceRecord,
-        ts: usize,
-        s: P,
-        wave: &Wave,
-        frame: &EdgeFrame,
-    ) {
+    fn offer_straight(&mut self, t: u32, value: f64, entry: &Entry, r: &FaceRecord, ts: usize) {
         let previous = self.search.distance[t as usize];
+        let wave = &entry.wave;
         let steiner = t >= self.vertex_count && ts < 3;
-        if steiner && value >= previous - TIE * previous.abs() {
-            // A tie (within rounding): the same wave through another entry joins its
-            // window; a wave that started earlier replaces the node's (a vertex on the
-            // line from a source gives the same value, but a new wave that bends
-            // there: the earlier one is the one to carry on).
-            if value > previous + TIE * previous.abs() {
-                return;
+        if !steiner {
+            if value < previous {
+                self.search.relax(t, value, entry.q, entry.f);
             }
+            return;
+        }
+        let tie = value >= previous - TIE * previous.abs();
+        if tie {
+            // The same wave through another entry joins its window; a wave that
+            // started earlier replaces the node's (a vertex on the line from a source
+            // gives the same value, but a new wave that bends there: the earlier one is
+            // the one to carry on).
             let current = *self.wave(t);
             if current.is_some() && wave.sigma >= current.sigma - TIE * previous.abs() {
-                self.merge(t, wave, s, frame, r, ts, f);
+                self.merge(t, entry, r, ts);
                 return;
             }
-            let tf = EdgeFrame::new(&r.frame, ts, r.is_reversed(ts));
-            let (w0, w1) = project(wave, s, frame, &tf);
-            let (sx, sy) = tf.edge_coords(s);
-            *self.wave_mut(t) = Wave {
-                sx,
-                sy: sy.max(0.0),
-                sigma: wave.sigma,
-                w0,
-                w1,
-                face: f,
-            };
-            self.join_edges(t, r, f, ts, &tf);
-            if value < previous {
-                self.search.relax(t, value, from, f);
-            } else {
-                self.search.requeue(t);
-            }
-            return;
         }
-        if value >= previous || value.is_nan() {
-            return;
+        let s = entry.frame.at_edge_coords(wave.sx, -wave.sy);
+        let tf = EdgeFrame::new(&r.frame, ts, r.is_reversed(ts));
+        let (w0, w1) = project(wave, s, &entry.frame, &tf);
+        let (sx, sy) = tf.edge_coords(s);
+        if value < previous {
+            self.search.relax(t, value, entry.q, entry.f);
+        } else {
+            let (parent, parent_face) = (&mut self.search.parent, &mut self.search.parent_face);
+            parent[t as usize] = entry.q;
+            parent_face[t as usize] = entry.f;
+            self.search.requeue(t);
         }
-        self.search.relax(t, value, from, f);
-        if t >= self.vertex_count && self.search.distance[t as usize] < previous {
-            let tf = EdgeFrame::new(&r.frame, ts, r.is_reversed(ts));
-            let (w0, w1) = project(wave, s, frame, &tf);
-            let (sx, sy) = tf.edge_coords(s);
-            *self.wave_mut(t) = Wave {
-                sx,
-                sy: sy.max(0.0),
-                sigma: wave.sigma,
-                w0,
-                w1,
-                face: f,
-            };
-            // The same wave may also enter this face through its third edge, and see
-            // the rest of `t`'s edge from there.
-            self.join_edges(t, r, f, ts, &tf);
-        }
+        *self.wave_mut(t) = Wave {
+            sx,
+            sy: sy.max(0.0),
+            sigma: wave.sigma,
+            w0,
+            w1,
+        };
     }
 
     /// Joins to `t`'s window (on slot `ts` of record `r`, seen as `tf`) the parts of its
     /// edge that the nodes of the face's two other slots see through their windows,
-    /// where they carry the same wave into this face. Called whenever `t`'s window
-    /// changes, so that joins do not depend on the order nodes settle in.
+    /// where they carry the same wave into this face. Called when `t` settles and
+    /// whenever a merge widens its window, so that joins do not depend on the order
+    /// nodes settle in.
     fn join_edges(&mut self, t: u32, r: &FaceRecord, f: u32, ts: usize, tf: &EdgeFrame) {
         let tw = *self.wave(t);
         if !tw.is_some() {
@@ -625,7 +460,7 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
                 let (o, _) = slot.at(i);
                 let ow = *self.wave(o);
                 if !ow.is_some()
-                    || ow.face == f
+                    || self.search.parent_face[o as usize] == f
                     || !self.isometric[self.search.layout.block(o) as usize]
                 {
                     continue;
@@ -646,31 +481,24 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
         wave.w1 = w1;
     }
 
-    /// Joins to target `t`'s window the part of its edge that `wave` (source `s` here)
-    /// reaches through the window on `frame`, when `t` carries the same wave through
-    /// this face and the two parts touch; a settled `t` is queued again so that it
-    /// offers through the wider window.
-    #[allow(clippy::too_many_arguments)]
-    fn merge(
-        &mut self,
-        t: u32,
-        wave: &Wave,
-        s: P,
-        frame: &EdgeFrame,
-        r: &FaceRecord,
-        ts: usize,
-        f: u32,
-    ) {
+    /// Joins to target `t`'s window the part of its edge that `entry`'s wave reaches
+    /// through its window, when `t` carries the same wave through this face and the two
+    /// parts touch; a settled `t` is queued again so that it offers through the wider
+    /// window.
+    fn merge(&mut self, t: u32, entry: &Entry, r: &FaceRecord, ts: usize) {
         let current = *self.wave(t);
-        if !current.is_some() || current.face != f {
+        let full = current.w0 <= 0.0 && current.w1 >= 1.0;
+        if full || !current.is_some() || self.search.parent_face[t as usize] != entry.f {
             return;
         }
+        let wave = &entry.wave;
+        let s = entry.frame.at_edge_coords(wave.sx, -wave.sy);
         let tf = EdgeFrame::new(&r.frame, ts, r.is_reversed(ts));
         let st = tf.at_edge_coords(current.sx, current.sy);
         if !same_source(st, current.sigma, s, wave.sigma, tf.len) {
             return;
         }
-        let (w0, w1) = project(wave, s, frame, &tf);
+        let (w0, w1) = project(wave, s, &entry.frame, &tf);
         if w0 > w1 {
             return;
         }
@@ -680,89 +508,30 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
             let wave = self.wave_mut(t);
             wave.w0 = n0;
             wave.w1 = n1;
-            self.join_edges(t, r, f, ts, &tf);
+            self.join_edges(t, r, entry.f, ts, &tf);
             self.search.requeue(t);
         }
     }
 }
 
-/// Whether two waves have the same source (points `a`, `b` of one face's plane, path
-/// lengths `sa`, `sb` up to them), to [`SAME_SOURCE`] of their scale.
-#[inline]
-fn same_source(a: P, sa: f64, b: P, sb: f64, len: f64) -> bool {
-    let scale = len + a.0.abs() + a.1.abs() + sa.abs();
-    (a.0 - b.0).abs() <= SAME_SOURCE * scale
-        && (a.1 - b.1).abs() <= SAME_SOURCE * scale
-        && (sa - sb).abs() <= SAME_SOURCE * scale
+/// A Steiner node entering a face: what every target's offer needs.
+struct Entry {
+    q: u32,
+    d: f64,
+    wave: Wave,
+    /// Whether the wave may cross into this face (it has one, and the edge's faces glue
+    /// isometrically).
+    has_wave: bool,
+    /// The node's edge, seen from the face entered.
+    frame: EdgeFrame,
+    /// The node's point in the face.
+    pq: P,
+    f: u32,
 }
 
-/// Whether fraction `x` of the edge lies in `wave`'s window (widened by the slack).
-#[inline(always)]
-fn in_window(wave: &Wave, x: f64) -> bool {
-    x >= wave.w0 as f64 - WINDOW_SLACK && x <= wave.w1 as f64 + WINDOW_SLACK
-}
-
-/// The window on the edge `to` of the lines from `s` through `wave`'s window on the
-/// edge `from` (both seen in one face, which `s` lies behind `from` of): fractions of
-/// `to`, rounded inwards to `f32`; empty (`w0 > w1`) when no such line reaches `to`.
-fn project(wave: &Wave, s: P, from: &EdgeFrame, to: &EdgeFrame) -> (f32, f32) {
-    const EMPTY: (f32, f32) = (1.0, 0.0);
-    if wave.sy == 0.0 {
-        // A source on the edge itself (a point of it, reached along it): it lies on
-        // the closure of every face around the edge, which it sees whole.
-        return (0.0, 1.0);
-    }
-    // Where the lines from s to the ends of `to` cross `from`'s line: the crossing is
-    // monotone along `to` (s is behind `from`, `to` in front of it), so the window's
-    // preimage is the interval between the points of `to` whose lines cross at its ends.
-    let (a, b) = (to.lo, to.lo.add(to.u.scale(to.len)));
-    let (xa, xb) = (from.crossing(s, a), from.crossing(s, b));
-    if xa.is_nan() || xb.is_nan() {
-        return EMPTY;
-    }
-    let (lo_x, hi_x) = (xa.min(xb), xa.max(xb));
-    let (w0, w1) = ((wave.w0 as f64).max(lo_x), (wave.w1 as f64).min(hi_x));
-    if w0 > w1 {
-        return EMPTY;
-    }
-    let increasing = xa <= xb;
-    // The fraction of `to` whose line from s crosses `from` at x.
-    let y = |x: f64| -> f64 {
-        if x <= lo_x {
-            return if increasing { 0.0 } else { 1.0 };
-        }
-        if x >= hi_x {
-            return if increasing { 1.0 } else { 0.0 };
-        }
-        let dir = from.lo.add(from.u.scale(x * from.len)).sub(s);
-        // s + μ·dir = to.lo + y·len·u; crossed with dir: (s − lo) × dir = y·len·(u × dir).
-        let denom = to.u.cross(dir) * to.len;
-        (s.sub(to.lo).cross(dir) / denom).clamp(0.0, 1.0)
-    };
-    let (ya, yb) = (y(w0), y(w1));
-    // Rounded outwards: a window end that is a unit in the last place of an `f32` too
-    // tight would, through a needle, grow into a gap where two windows should meet,
-    // and a line that passes a vertex by that much on the wrong side is shorter than
-    // the real path by a negligible amount (see WINDOW_SLACK).
-    (round_down(ya.min(yb)), round_up(ya.max(yb)))
-}
-
-fn round_up(x: f64) -> f32 {
-    let v = x as f32;
-    if (v as f64) < x {
-        v.next_up()
-    } else {
-        v
-    }
-}
-
-fn round_down(x: f64) -> f32 {
-    let v = x as f32;
-    if (v as f64) > x {
-        v.next_down()
-    } else {
-        v
-    }
+/// The slot of face record `r` that Steiner node `node` lies on.
+fn slot_of(r: &FaceRecord, node: u32) -> Option<usize> {
+    (0..3).find(|&s| node.wrapping_sub(r.lo[s]) < r.count(s))
 }
 
 /// Per edge (in the layout's block order): whether every face around it gives it the
@@ -790,55 +559,4 @@ pub(super) fn isometric_edges(
         }
     }
     iso
-}
-
-#[cfg(test)]
-mod tests {
-
-    use super::{project, EdgeFrame, Wave, P};
-
-    fn edge(lo: P, hi: P, inside: P) -> EdgeFrame {
-        let d = hi.sub(lo);
-        let len = d.length();
-        let u = d.scale(1.0 / len);
-        let mut n = P(-u.1, u.0);
-        if inside.sub(lo).dot(n) < 0.0 {
-            n = n.scale(-1.0);
-        }
-        EdgeFrame { lo, u, n, len }
-    }
-
-    #[test]
-    fn projection_of_a_full_window() {
-        let (a, b, c) = (P(0.0, 0.0), P(1.0, 0.0), P(0.5, 1.0));
-        let from = edge(a, b, c);
-        let to = edge(b, c, a);
-        let wave = Wave {
-            sx: 0.5,
-            sy: 1.0,
-            sigma: 0.0,
-            w0: 0.0,
-            w1: 1.0,
-            face: 0,
-        };
-        assert_eq!(project(&wave, P(0.5, -1.0), &from, &to), (0.0, 1.0));
-        // Half the window: the lines through [0.5, 1] reach all of `to`, [0, 0.5] none.
-        let half = Wave {
-            w0: 0.5,
-            w1: 1.0,
-            ..wave
-        };
-        assert_eq!(project(&half, P(0.5, -1.0), &from, &to), (0.0, 1.0));
-        let other = Wave {
-            w0: 0.0,
-            w1: 0.5,
-            ..wave
-        };
-        let (w0, w1) = project(&other, P(0.5, -1.0), &from, &to);
-        assert!(w1 - w0 < 1e-6, "{w0} {w1}");
-        // A source far to the left: lines through [0, 0.5] reach part of `to`.
-        let s = P(-3.0, -1.0);
-        let (w0, w1) = project(&wave, s, &from, &to);
-        assert!(w0 == 0.0 && w1 > 0.0 && w1 <= 1.0, "{w0} {w1}");
-    }
 }

@@ -10,6 +10,7 @@
 
 mod query;
 mod straighten;
+mod wave;
 
 use crate::mesh::{TriMesh, NONE};
 use crate::steiner::NodeKind;
@@ -118,7 +119,24 @@ impl<M: Metric> Query<'_, M> {
                 faces.push(f);
                 return Ok(finish(mesh, metric, points, faces, s));
             }
+            Origin::WaveInFace(q, f) => {
+                let x = points[0]
+                    .in_face(mesh, f)
+                    .expect("the point lies on its face");
+                let source = self
+                    .trace_wave(&x, f, q, &mut points, &mut faces)
+                    .ok_or(Error::ParentCycle { point })?;
+                return Ok(finish(mesh, metric, points, faces, source));
+            }
         };
+        if self.has_waves() {
+            // Along the waves' straight lines, not from node to node.
+            let source = self
+                .step_from(node)
+                .and_then(|step| self.follow(step, &mut points, &mut faces))
+                .ok_or(Error::ParentCycle { point })?;
+            return Ok(finish(mesh, metric, points, faces, source));
+        }
         // Parents have lower values, so the walk ends at a root; the cap guards against
         // a metric that returns zero costs between distinct points.
         for _ in 0..field.distance.len() {

@@ -69,6 +69,8 @@ pub(super) enum Origin {
     NodeInFace(u32, u32),
     /// A straight segment in `face` from this source.
     SourceInFace(u32, u32),
+    /// A straight line in `face` from this node's wave (wavefront engine).
+    WaveInFace(u32, u32),
 }
 
 impl<'a, M: Metric> Query<'a, M> {
@@ -112,12 +114,14 @@ impl<'a, M: Metric> Query<'a, M> {
         self.field.sources
     }
 
-    /// The distance at any surface point, as the Steiner graph defines it: at a node,
-    /// its value; elsewhere, the least over the nodes on the boundary of the faces
-    /// holding the point of the node's value plus the metric's cost of the straight
-    /// segment to the point (and, from a source sharing one of those faces, the
-    /// source's start plus its segment). Not an interpolation of vertex values. `inf`
-    /// when no source reaches the point.
+    /// The distance at any surface point, as the engine defines it: at a node, its
+    /// value; elsewhere, the least over the nodes on the boundary of the faces holding
+    /// the point of the node's value plus the metric's cost of the straight segment to
+    /// the point (and, from a source sharing one of those faces, the source's start
+    /// plus its segment); for a field of the wavefront engine also, from each node's
+    /// wave that crosses into the face, `σ` plus the straight line from its source where
+    /// it passes the node's window. Not an interpolation of vertex values. `inf` when no
+    /// source reaches the point.
     ///
     /// # Complexity
     /// O(k) metric evaluations per face around the point.
@@ -148,6 +152,13 @@ impl<'a, M: Metric> Query<'a, M> {
                     let d = g + metric.cost(f, &p, &x);
                     if d < best.0 {
                         best = (d, Some(Origin::NodeInFace(node, f)));
+                    }
+                }
+            }
+            if self.has_waves() {
+                if let Some((d, q)) = self.wave_value(f, &x) {
+                    if d < best.0 {
+                        best = (d, Some(Origin::WaveInFace(q, f)));
                     }
                 }
             }

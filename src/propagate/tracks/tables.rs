@@ -132,7 +132,7 @@ pub(in crate::propagate) struct Incidence(u32);
 impl Incidence {
     const NONE: Incidence = Incidence(NONE);
 
-    fn new(record: u32, side: usize) -> Incidence {
+    pub(in crate::propagate) fn new(record: u32, side: usize) -> Incidence {
         Incidence(record << 2 | side as u32)
     }
 
@@ -174,6 +174,14 @@ pub(in crate::propagate) struct TrackTables {
     /// come from the mesh through it and the layout's blocks.
     record_of: Vec<u32>,
     pub(in crate::propagate) instances: usize,
+    /// For the wavefront engine (see [`TrackTables::with_vertex_rows`]): per vertex,
+    /// the blocks of its edges (`block << 1 | 1` where it is the edge's higher end) and
+    /// its corners (record and corner), and per block the edge's two vertices. They
+    /// save the chains of lookups (edge → block → nodes, face → record) that settling a
+    /// vertex otherwise makes, each a likely cache miss on a large mesh.
+    pub(in crate::propagate) spokes: Csr<u32>,
+    pub(in crate::propagate) corners: Csr<Incidence>,
+    pub(in crate::propagate) ends: Vec<[u32; 2]>,
 }
 
 impl TrackTables {
@@ -278,7 +286,38 @@ impl TrackTables {
             overflow: Csr::from_pairs(rows, overflow.into_iter()),
             record_of,
             instances: total as usize,
+            spokes: Csr::from_pairs(0, std::iter::empty()),
+            corners: Csr::from_pairs(0, std::iter::empty()),
+            ends: Vec::new(),
         })
+    }
+
+    /// Adds the per-vertex rows and per-block ends the wavefront engine reads.
+    pub(in crate::propagate) fn with_vertex_rows(
+        mut self,
+        mesh: &TriMesh,
+        layout: &SteinerLayout,
+    ) -> TrackTables {
+        let vertices = mesh.vertex_count();
+        let edge_pairs = (0..mesh.edge_count() as u32).flat_map(|e| {
+            let b = layout.block_of_edge(e);
+            let [lo, hi] = mesh.edge_vertices(e);
+            [(lo, b << 1), (hi, b << 1 | 1)]
+        });
+        self.spokes = Csr::from_pairs(vertices, edge_pairs);
+        let record_of = &self.record_of;
+        let corner_pairs = (0..mesh.face_count() as u32).flat_map(move |f| {
+            let r = record_of[f as usize];
+            let t = mesh.face_vertices(f);
+            (0..3).map(move |c| (t[c], Incidence::new(r, c)))
+        });
+        self.corners = Csr::from_pairs(vertices, corner_pairs);
+        let mut ends = vec![[0u32; 2]; mesh.edge_count()];
+        for e in 0..mesh.edge_count() as u32 {
+            ends[layout.block_of_edge(e) as usize] = mesh.edge_vertices(e);
+        }
+        self.ends = ends;
+        self
     }
 
     /// The instance of `node` in face `face`, whose closure must hold the node.
