@@ -110,6 +110,8 @@ pub(crate) struct FieldView<'a> {
     pub roots: &'a [Root],
     /// Per Steiner node, the wave it carries (empty unless the wavefront engine ran).
     pub waves: &'a [Wave],
+    /// The engine that ran.
+    pub method: Method,
 }
 
 impl<'a> FieldView<'a> {
@@ -163,6 +165,7 @@ impl GeodesicField {
             sources: &self.sources,
             roots: &self.roots,
             waves: &self.waves,
+            method: self.stats.method,
         }
     }
 

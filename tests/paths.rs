@@ -2,10 +2,10 @@
 
 mod common;
 
-use common::{book, grid, random_book, random_mesh, sphere, Rng, GRAPH};
+use common::{book, grid, random_book, random_mesh, sphere, Rng, GRAPH, TRACKS};
 use geotracks::glam::DVec3;
 use geotracks::mesh::{io::read_mesh, TriMesh};
-use geotracks::{
+use geotracks::{Method, 
     Density, Error, Euclidean, GeodesicField, GeodesicPath, Metric, Options, PointError, PointRole,
     Query, Solver, Source, Stop, SurfacePoint, Tensor, ValueRole,
 };
@@ -61,11 +61,28 @@ fn check_path<M: Metric>(query: &Query<'_, M>, target: SurfacePoint, path: &Geod
     assert!(path.length <= path.traced_length * (1.0 + 1e-12));
     let d = query.distance_at(target).unwrap();
     let start = query.sources()[path.source as usize].start;
-    assert!(
-        (start + path.traced_length - d).abs() <= 1e-9 * d.max(1e-300),
-        "traced {} vs distance {d}",
-        path.traced_length
-    );
+    if query.method() == Method::Wave {
+        // A traced path follows the waves' straight lines: as long as the value it
+        // explains, or (where the wave that gave a vertex its value was since replaced
+        // by an equal one that does not reach it) longer, never shorter; straightening
+        // then takes it to the geodesic.
+        assert!(
+            start + path.traced_length >= d * (1.0 - 1e-9),
+            "traced {} below distance {d}",
+            path.traced_length
+        );
+        assert!(
+            start + path.length <= d * (1.0 + 1e-4),
+            "straightened {} vs distance {d}",
+            path.length
+        );
+    } else {
+        assert!(
+            (start + path.traced_length - d).abs() <= 1e-9 * d.max(1e-300),
+            "traced {} vs distance {d}",
+            path.traced_length
+        );
+    }
 }
 
 #[test]
@@ -119,6 +136,17 @@ fn paths_under_a_tensor_metric_and_on_non_manifold_meshes() {
         let query = solver.query(&field).unwrap();
         for _ in 0..10 {
             let target = random_face_point(&mesh, &mut rng);
+            if std::env::var("DBGT").is_ok() {
+                let path = query.path(target).unwrap();
+                let traced = query.trace(target).unwrap();
+                let d = query.distance_at(target).unwrap();
+                let g = Solver::new(&mesh, &metric, &GRAPH.with_k(12.0)).unwrap();
+                let gf = g.solve_from(&[source], &Stop::NONE).unwrap();
+                let gd = g.query(&gf).unwrap().distance_at(target).unwrap();
+                let gp = g.query(&gf).unwrap().path(target).unwrap();
+                eprintln!("seed {seed} d {d} traced {} straightened {} graph12 {gd} graph-path {}", traced.length, path.length, gp.length);
+                continue;
+            }
             match query.path(target) {
                 Ok(path) => check_path(&query, target, &path),
                 Err(Error::Unreachable { .. }) => {
@@ -133,7 +161,7 @@ fn paths_under_a_tensor_metric_and_on_non_manifold_meshes() {
 #[test]
 fn a_path_on_a_flat_grid_is_a_straight_line() {
     let mesh = grid(12, 1.0);
-    let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT.with_k(3.0)).unwrap();
+    let solver = Solver::new(&mesh, Euclidean, &TRACKS.with_k(3.0)).unwrap();
     let field = solver
         .solve_from(
             &[Source::new(
@@ -284,7 +312,7 @@ fn face_and_edge_sources_give_the_graphs_distances() {
             Source::new(random_face_point(&mesh, &mut rng)),
             Source::new(random_edge_point(&mesh, &mut rng)).with_start(0.3 * rng.next()),
         ];
-        let options = Options::DEFAULT.with_k(1.0 + (seed % 5) as f64);
+        let options = TRACKS.with_k(1.0 + (seed % 5) as f64);
         let [tracks, graph] = [options, GRAPH.with_k(options.steiner.k())].map(|o| {
             Solver::new(&mesh, Euclidean, &o)
                 .unwrap()
@@ -303,7 +331,10 @@ fn face_and_edge_sources_give_the_graphs_distances() {
 #[test]
 fn many_sources_with_start_values_are_the_minimum_and_label_vertices() {
     let mesh = spot();
-    let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
+    // The Steiner graph's distances from several sources are the least of each one's
+    // (the wavefront engine keeps one wave per node, so near where two sources' waves
+    // meet it is only close to that: tests/wave.rs).
+    let solver = Solver::new(&mesh, Euclidean, &TRACKS).unwrap();
     let sources = [
         Source::new(10),
         Source::new(SurfacePoint::Face {
@@ -494,9 +525,9 @@ fn bad_points_and_unreachable_targets_are_errors() {
 #[test]
 fn a_field_is_queried_only_through_its_own_solver() {
     let mesh = spot();
-    let euclidean = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
+    let euclidean = Solver::new(&mesh, Euclidean, &TRACKS).unwrap();
     let doubled = Density::constant(&mesh, 2.0).unwrap();
-    let dense = Solver::new(&mesh, &doubled, &Options::DEFAULT).unwrap();
+    let dense = Solver::new(&mesh, &doubled, &TRACKS).unwrap();
     let field = euclidean.solve(&[0]).unwrap();
     // Same mesh, same layout, another metric: refused.
     assert!(matches!(dense.query(&field), Err(Error::ForeignField)));

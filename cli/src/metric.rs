@@ -10,12 +10,16 @@ use std::path::PathBuf;
 /// Steiner points, engine and metric.
 #[derive(clap::Args)]
 pub struct MetricArgs {
-    /// Mean number of Steiner points per edge.
-    #[arg(long, default_value_t = 5.0)]
-    pub k: f64,
-    /// Propagation method: tracks (fast), graph (complete Steiner graph) or dijkstra
-    /// (mesh edges only).
-    #[arg(long, default_value = "tracks")]
+    /// Mean number of Steiner points per edge [default: 2, or 5 with --density or with
+    /// --method tracks or graph: the Steiner graph needs more points than the
+    /// wavefront engine for the same accuracy].
+    #[arg(long)]
+    pub k: Option<f64>,
+    /// Propagation method: wave (Steiner points that carry their wavefront: exact on
+    /// planes, the most accurate; with --density it runs tracks), tracks (the
+    /// track-pruned Steiner graph), graph (the complete Steiner graph, naive) or
+    /// dijkstra (mesh edges only).
+    #[arg(long, default_value = "wave")]
     pub method: Method,
     /// Per-vertex density file: one positive number per vertex.
     #[arg(long, conflicts_with = "tensor")]
@@ -26,9 +30,21 @@ pub struct MetricArgs {
 }
 
 impl MetricArgs {
+    /// The k to run with: as given, else 2 for the wavefront engine, 5 where the
+    /// Steiner graph runs (a density, or `--method tracks|graph`).
+    pub fn k(&self) -> f64 {
+        self.k.unwrap_or(
+            if self.density.is_some() || matches!(self.method, Method::Tracks | Method::Graph) {
+                5.0
+            } else {
+                2.0
+            },
+        )
+    }
+
     /// The run options.
     pub fn options(&self) -> Options {
-        Options::DEFAULT.with_k(self.k).with_method(self.method)
+        Options::DEFAULT.with_k(self.k()).with_method(self.method)
     }
 
     /// Reads the metric's file, if any.

@@ -46,6 +46,12 @@ pub(super) struct Frontier<'a, M, Q> {
     pub queue: Q,
     /// Values above this are not taken: their nodes stay unreached.
     pub max_distance: f64,
+    /// How far below a node's value an offer it makes can be (0 for the Steiner-graph
+    /// engines, whose offers add a cost ≥ 0; the longest edge for the wavefront engine,
+    /// whose straight offers come from a source behind the node: a node lies within an
+    /// edge of where the line crosses its edge). Finality and the maximum distance
+    /// are judged with this much margin, so that early stops keep exact values.
+    pub reach: f64,
     /// Nodes whose final values end the run once all are final (none: run to the end).
     pub targets: &'a [u32],
     /// `targets[..target_cursor]` are known final.
@@ -100,6 +106,7 @@ impl<'a, M: Metric> Frontier<'a, M, ()> {
             parent_face: self.parent_face,
             queue,
             max_distance: self.max_distance,
+            reach: self.reach,
             targets: self.targets,
             target_cursor: 0,
             pushes: 0,
@@ -114,9 +121,14 @@ impl<'a, M: Metric> Frontier<'a, M, ()> {
         let stopped_early = !search.targets.is_empty()
             && search.target_cursor == search.targets.len()
             && search.bad_cost.is_none();
-        if stopped_early {
+        let (reach, max) = (search.reach, search.max_distance);
+        if stopped_early || reach > 0.0 {
             for (node, d) in search.distance.iter_mut().enumerate() {
-                if d.is_finite() && !search.queue.is_final(*d) {
+                // Values beyond the maximum distance were only kept for the margin.
+                let beyond = d.is_finite() && *d > max;
+                let not_final =
+                    stopped_early && d.is_finite() && !search.queue.is_final(*d + reach);
+                if beyond || not_final {
                     *d = f64::INFINITY;
                     search.parent[node] = NONE;
                     search.parent_face[node] = NONE;
@@ -148,7 +160,7 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
         self.settles += 1;
         if !self.targets.is_empty() {
             while let Some(&t) = self.targets.get(self.target_cursor) {
-                if !self.queue.is_final(self.distance[t as usize]) {
+                if !self.queue.is_final(self.distance[t as usize] + self.reach) {
                     return Some((q, self.distance[q as usize]));
                 }
                 self.target_cursor += 1;
@@ -174,7 +186,7 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
     #[inline(always)]
     pub fn relax(&mut self, node: u32, value: f64, from: u32, face: u32) {
         let previous = self.distance[node as usize];
-        if value < previous && value <= self.max_distance {
+        if value < previous && value <= self.max_distance + self.reach {
             self.distance[node as usize] = value;
             self.parent[node as usize] = from;
             self.parent_face[node as usize] = face;

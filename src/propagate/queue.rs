@@ -278,6 +278,10 @@ impl BucketQueue {
 impl Queue for BucketQueue {
     #[inline(always)]
     fn push(&mut self, node: u32, value: f64, previous: f64) -> bool {
+        if value == previous && self.pending[node as usize] {
+            // Queued again at the value it waits with (a requeue): already there.
+            return false;
+        }
         let slot = self.slot(value);
         let was_far = self.pending[node as usize] && self.slot(previous) >= WINDOW;
         if slot >= WINDOW {

@@ -58,6 +58,8 @@ pub struct Solver<'m, M> {
     tables: Option<TrackTables>,
     /// Per edge block, for the wavefront engine: whether its faces glue isometrically.
     isometric: Vec<bool>,
+    /// How far below a node's value its offers can reach (see `Frontier::reach`).
+    reach: f64,
     bucket_width: f64,
     setup_seconds: f64,
 }
@@ -87,6 +89,8 @@ pub struct Workspace {
     /// The solver whose run the buffers hold; `None` before the first run and after a
     /// run that failed.
     solver: Option<SolverId>,
+    /// The engine of the last run.
+    method: Option<Method>,
 }
 
 impl Workspace {
@@ -110,6 +114,7 @@ impl Workspace {
             sources: &self.sources,
             roots: &self.roots,
             waves: &self.waves,
+            method: self.method.unwrap_or(Method::Wave),
         }
     }
 
@@ -149,6 +154,7 @@ impl<'m, M: Metric> Solver<'m, M> {
             (method, _) => method,
         };
         let options = &options.with_method(method);
+        let mut reach = 0.0;
         let layout = if options.method == Method::Dijkstra {
             SteinerLayout::vertices_only(mesh)
         } else {
@@ -168,6 +174,9 @@ impl<'m, M: Metric> Solver<'m, M> {
             let memory = options.memory_limit.or_else(budget::available_memory);
             budget::check(mesh, options.steiner, spacing, options.method, memory)?;
             let counts = options.steiner.counts_for(&lengths, min);
+            if options.method == Method::Wave {
+                reach = lengths.iter().fold(0.0f64, |m, &l| m.max(l));
+            }
             SteinerLayout::with_counts(mesh, options.steiner, counts)?
         };
         let (edge_steps, mut setup_tests) = match edge_steps(mesh, &metric, &layout) {
@@ -217,6 +226,7 @@ impl<'m, M: Metric> Solver<'m, M> {
             setup_tests,
             tables,
             isometric,
+            reach,
             bucket_width,
             setup_seconds: start.elapsed().as_secs_f64(),
         })
@@ -415,6 +425,7 @@ impl<'m, M: Metric> Solver<'m, M> {
             sources,
             roots,
             solver,
+            method: last_method,
             ..
         } = workspace;
         let search = Frontier {
@@ -427,6 +438,7 @@ impl<'m, M: Metric> Solver<'m, M> {
             parent_face,
             queue: (),
             max_distance: stop.max_distance,
+            reach: self.reach,
             targets,
             target_cursor: 0,
             pushes: 0,
@@ -481,6 +493,7 @@ impl<'m, M: Metric> Solver<'m, M> {
             source: s.source,
         }));
         *solver = Some(self.id);
+        *last_method = Some(self.method);
         Ok(Stats {
             vertices: mesh.vertex_count(),
             faces: mesh.face_count(),

@@ -206,7 +206,10 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
         let spacing = 1.0 / (count + 1) as f64;
         let own = (index + 1) as f64 * spacing;
         let len = edge.step * (count + 1) as f64;
-        let carried = Some(&wave);
+        let iso = self.isometric[block as usize];
+        // Along an edge whose faces give it different lengths the wave's frame is its
+        // face's alone: it is not carried (a fresh wave starts).
+        let carried = iso.then_some(&wave);
         self.along_edge(
             q,
             d,
@@ -228,7 +231,7 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
             parent_face,
         );
 
-        let has_wave = wave.is_some() && self.isometric[block as usize];
+        let has_wave = wave.is_some() && iso;
         for &inc in tables.edge_faces(edge) {
             let r = &tables.faces[inc.record() as usize];
             let f = r.face;
@@ -317,10 +320,13 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
     /// unit in the last place lower; taking it would bend every line beyond.
     #[inline]
     fn keeps_wave(&self, t: u32, value: f64, sigma: f64) -> bool {
-        if t < self.vertex_count {
-            return false;
-        }
         let previous = self.search.distance[t as usize];
+        if t < self.vertex_count {
+            // A vertex keeps its value against a tie: a node that got its value from
+            // the vertex, along its edge, may offer it back a unit in the last place
+            // lower, and taking it would make each the other's parent.
+            return value >= previous - TIE * previous.abs();
+        }
         let current = self.wave(t);
         value >= previous - TIE * previous.abs() && current.is_some() && current.sigma <= sigma
     }
@@ -341,17 +347,17 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
             let x = (wave.sx + wave.sy / dy * dx) / entry.frame.len;
             if in_window(wave, x) {
                 let straight = wave.sigma + P(dx, dy).length();
-                if straight <= current + TIE * current.abs() {
-                    self.offer_straight(t, straight, entry, r, ts);
+                if straight > current + TIE * current.abs()
+                    || self.offer_straight(t, straight, entry, r, ts)
+                {
+                    return;
                 }
-                return;
-            }
-            // Outside the window: the same wave may have reached `t` another way.
-            if t >= self.vertex_count
+            } else if t >= self.vertex_count
                 && ts < 3
                 && (self.wave(t).sigma - wave.sigma).abs()
                     <= SAME_SOURCE * (entry.frame.len + wave.sigma.abs() + wave.sx.abs())
             {
+                // Outside the window: the same wave may have reached `t` another way.
                 self.merge(t, entry, r, ts);
             }
         }
@@ -393,9 +399,18 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
         }
     }
 
-    /// A straight offer of `value` from `entry`'s wave, an improvement or a tie.
+    /// A straight offer of `value` from `entry`'s wave, an improvement or a tie;
+    /// `false` when the line does not reach the target's edge from inside the face
+    /// (within rounding, on a sliver): the offer is then not straight.
     #[inline]
-    fn offer_straight(&mut self, t: u32, value: f64, entry: &Entry, r: &FaceRecord, ts: usize) {
+    fn offer_straight(
+        &mut self,
+        t: u32,
+        value: f64,
+        entry: &Entry,
+        r: &FaceRecord,
+        ts: usize,
+    ) -> bool {
         let previous = self.search.distance[t as usize];
         let wave = &entry.wave;
         let steiner = t >= self.vertex_count && ts < 3;
@@ -403,7 +418,7 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
             if value < previous {
                 self.search.relax(t, value, entry.q, entry.f);
             }
-            return;
+            return true;
         }
         let tie = value >= previous - TIE * previous.abs();
         if tie {
@@ -414,13 +429,20 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
             let current = *self.wave(t);
             if current.is_some() && wave.sigma >= current.sigma - TIE * previous.abs() {
                 self.merge(t, entry, r, ts);
-                return;
+                return true;
             }
         }
         let s = entry.frame.at_edge_coords(wave.sx, -wave.sy);
         let tf = EdgeFrame::new(&r.frame, ts, r.is_reversed(ts));
-        let (w0, w1) = project(wave, s, &entry.frame, &tf);
         let (sx, sy) = tf.edge_coords(s);
+        // The source lies on the face's side of the target's edge: the line came
+        // through the face. A line accepted within the window's slack on a sliver can
+        // put it beyond; moving it onto the edge would be a shortcut, so the offer is
+        // refused (the polyline one stands).
+        if sy < -TIE * (tf.len + sx.abs()) {
+            return false;
+        }
+        let (w0, w1) = project(wave, s, &entry.frame, &tf);
         if value < previous {
             self.search.relax(t, value, entry.q, entry.f);
         } else {
@@ -436,6 +458,7 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
             w0,
             w1,
         };
+        true
     }
 
     /// Joins to `t`'s window (on slot `ts` of record `r`, seen as `tf`) the parts of its

@@ -4,7 +4,7 @@ use crate::field::FieldView;
 use crate::mesh::{TriMesh, NONE};
 use crate::steiner::SteinerLayout;
 use crate::surface::{Source, SurfacePoint};
-use crate::{Error, PointRole};
+use crate::{Error, Method, PointRole};
 use geotracks_metrics::Metric;
 use std::fmt;
 
@@ -92,6 +92,12 @@ impl<'a, M: Metric> Query<'a, M> {
     /// The metric the field was computed with.
     pub fn metric(&self) -> &'a M {
         self.metric
+    }
+
+    /// The engine that computed the field (for [`Method::Wave`] with a metric that is
+    /// not face-flat, the tracks engine that ran instead).
+    pub fn method(&self) -> Method {
+        self.field.method
     }
 
     /// The Steiner layout the field was computed on.

@@ -5,7 +5,10 @@ use geotracks::mesh::TriMesh;
 use geotracks::{Method, Options};
 
 /// The naive Steiner graph, the oracle.
-pub const GRAPH: Options = Options::DEFAULT.with_method(Method::Graph);
+pub const GRAPH: Options = Options::DEFAULT.with_method(Method::Graph).with_k(5.0);
+/// The track-pruned engine at its usual k (the library's default is the wavefront
+/// engine at k = 2).
+pub const TRACKS: Options = Options::DEFAULT.with_method(Method::Tracks).with_k(5.0);
 /// Dijkstra on mesh edges.
 pub const DIJKSTRA: Options = Options::DEFAULT.with_method(Method::Dijkstra);
 
