@@ -393,3 +393,369 @@ pub fn multiscale_mesh(seed: u64, n: usize) -> TriMesh {
     }
     TriMesh::new(positions, triangles).unwrap()
 }
+
+// ---------------------------------------------------------------------------------
+// Planar and developable meshes with known exact distances (tests/wave.rs).
+
+/// Asserts that every triangle of a planar mesh (given by 2D coordinates) is
+/// counter-clockwise with positive area: the triangulation is an embedding, so that
+/// distances on it are distances in the plane region it covers.
+pub fn assert_embedded(coords: &[[f64; 2]], triangles: &[[u32; 3]]) {
+    for t in triangles {
+        let [a, b, c] = t.map(|v| coords[v as usize]);
+        let cross = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+        assert!(
+            cross > 0.0,
+            "triangle {t:?} is not counter-clockwise: {cross}"
+        );
+    }
+}
+
+fn planar(coords: Vec<[f64; 2]>, triangles: Vec<[u32; 3]>) -> TriMesh {
+    assert_embedded(&coords, &triangles);
+    TriMesh::new(
+        coords.iter().map(|p| [p[0], p[1], 0.0]).collect(),
+        triangles,
+    )
+    .unwrap()
+}
+
+/// `0 = x₀ < x₁ < … < xₙ = 1`: each inner point `i / n` moved by up to `jitter / 2`
+/// of a spacing (`jitter` < 1), so intervals are `(1 − jitter) / n` long at least.
+pub fn jittered_partition(rng: &mut Rng, n: usize, jitter: f64) -> Vec<f64> {
+    assert!((0.0..1.0).contains(&jitter));
+    (0..=n)
+        .map(|i| match i {
+            0 => 0.0,
+            i if i == n => 1.0,
+            i => (i as f64 + jitter * (rng.next() - 0.5)) / n as f64,
+        })
+        .collect()
+}
+
+/// Sorted uniform random points of (0, 1) with 0 and 1 added: `n` intervals of random
+/// lengths, some far shorter than others (with many points, slivers of 1e-9 and less).
+pub fn random_partition(rng: &mut Rng, n: usize) -> Vec<f64> {
+    let mut cuts: Vec<f64> = (0..n - 1).map(|_| rng.next()).collect();
+    cuts.push(0.0);
+    cuts.push(1.0);
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup();
+    cuts
+}
+
+/// A flat grid (z = 0) with columns at `xs` and rows at `ys` (increasing), cells in
+/// `hole` (`[i0, j0, i1, j1]`, cells `i0..i1 × j0..j1`) left out, each other cell split
+/// along its rising diagonal where `rising(i, j)`, else along the other one. Vertex
+/// `(i, j)` has id `j * xs.len() + i` when there is no hole (unreferenced vertices are
+/// removed).
+pub fn xy_grid(
+    xs: &[f64],
+    ys: &[f64],
+    hole: Option<[usize; 4]>,
+    rising: impl Fn(usize, usize) -> bool,
+) -> TriMesh {
+    let mut coords = Vec::new();
+    for &y in ys {
+        for &x in xs {
+            coords.push([x, y]);
+        }
+    }
+    let id = |i: usize, j: usize| (j * xs.len() + i) as u32;
+    let mut triangles = Vec::new();
+    for j in 0..ys.len() - 1 {
+        for i in 0..xs.len() - 1 {
+            if let Some([i0, j0, i1, j1]) = hole {
+                if (i0..i1).contains(&i) && (j0..j1).contains(&j) {
+                    continue;
+                }
+            }
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            if rising(i, j) {
+                triangles.extend([[a, b, c], [a, c, d]]);
+            } else {
+                triangles.extend([[a, b, d], [b, c, d]]);
+            }
+        }
+    }
+    let (coords, triangles) = compact(coords, triangles);
+    planar(coords, triangles)
+}
+
+/// The unit square cut into needles: `n − 1` jittered points on each of its left and
+/// right sides (plus the corners), joined by a random zigzag. Triangles span the
+/// square's width (1) and are about `1 / n` high (down to `0.1 / n`): aspect ratios of
+/// `n` to `10 n`.
+pub fn needle_square(seed: u64, n: usize) -> TriMesh {
+    let mut rng = Rng(seed | 1);
+    let left = jittered_partition(&mut rng, n, 0.9);
+    let right = jittered_partition(&mut rng, n, 0.9);
+    let mut coords: Vec<[f64; 2]> = left.iter().map(|&y| [0.0, y]).collect();
+    let r0 = coords.len() as u32;
+    coords.extend(right.iter().map(|&y| [1.0, y]));
+    let (mut i, mut j) = (0usize, 0usize);
+    let mut triangles = Vec::new();
+    while i + 1 < left.len() || j + 1 < right.len() {
+        // Advance on the left or the right chain: any choice is a valid triangulation of
+        // the strip between two parallel lines.
+        let take_left = j + 1 == right.len() || (i + 1 < left.len() && rng.next() < 0.5);
+        let (l, r) = (i as u32, r0 + j as u32);
+        if take_left {
+            triangles.push([l, r, l + 1]);
+            i += 1;
+        } else {
+            triangles.push([l, r, r + 1]);
+            j += 1;
+        }
+    }
+    planar(coords, triangles)
+}
+
+/// The unit square as a fan of needles around the interior vertex `centre` (id 0):
+/// `n` points on each side of the square, each boundary segment a triangle with the
+/// centre. Returns the mesh (aspect ratios about `n`).
+pub fn square_fan(n: usize, centre: [f64; 2]) -> TriMesh {
+    let mut coords = vec![centre];
+    let corners = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    for s in 0..4 {
+        let (a, b): ([f64; 2], [f64; 2]) = (corners[s], corners[(s + 1) % 4]);
+        for i in 0..n {
+            let t = i as f64 / n as f64;
+            coords.push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]);
+        }
+    }
+    let m = 4 * n as u32;
+    let triangles = (0..m).map(|i| [0, 1 + i, 1 + (i + 1) % m]).collect();
+    planar(coords, triangles)
+}
+
+/// The unit square as a fan of needles from its corner (0, 0) (vertex 0) to `n` points
+/// on each of the two far sides: triangles √2 long and down to 1/n wide.
+pub fn corner_fan(n: usize) -> TriMesh {
+    let mut coords = vec![[0.0, 0.0]];
+    for i in 0..=n {
+        coords.push([1.0, i as f64 / n as f64]);
+    }
+    for i in (0..n).rev() {
+        coords.push([i as f64 / n as f64, 1.0]);
+    }
+    let m = coords.len() as u32;
+    let triangles = (1..m - 1).map(|i| [0, i, i + 1]).collect();
+    planar(coords, triangles)
+}
+
+/// A jittered `n × n` grid on the unit square (z = 0), each cell split along a random
+/// diagonal, with up to `holes` rectangular holes (whole cells removed, at least one
+/// cell from the boundary and from each other). Interior vertices move by up to
+/// `jitter` (< 0.25) cells in x and y (hole outlines then are non-convex); boundary
+/// vertices move along the boundary only and the corners stay, so the outer boundary is
+/// the square. Unreferenced vertices are removed.
+pub fn holey_grid(seed: u64, n: usize, jitter: f64, holes: usize) -> TriMesh {
+    assert!(jitter < 0.25, "a larger jitter may fold triangles");
+    let mut rng = Rng(seed | 1);
+    let mut removed = vec![false; n * n];
+    let mut placed: Vec<[usize; 4]> = Vec::new();
+    for _ in 0..holes * 20 {
+        if placed.len() == holes || n < 3 {
+            break;
+        }
+        let (w, h) = (1 + rng.below((n / 3).max(1)), 1 + rng.below((n / 3).max(1)));
+        if w + 2 > n || h + 2 > n {
+            continue;
+        }
+        let (i0, j0) = (1 + rng.below(n - 1 - w), 1 + rng.below(n - 1 - h));
+        let hole = [i0, j0, i0 + w, j0 + h];
+        // At least one cell of mesh between two holes.
+        let apart =
+            |o: &[usize; 4]| hole[0] > o[2] || o[0] > hole[2] || hole[1] > o[3] || o[1] > hole[3];
+        if placed.iter().all(apart) {
+            placed.push(hole);
+            for j in j0..j0 + h {
+                for i in i0..i0 + w {
+                    removed[j * n + i] = true;
+                }
+            }
+        }
+    }
+    let mut coords = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (bi, bj) = (i == 0 || i == n, j == 0 || j == n);
+            let mut dx = jitter * (2.0 * rng.next() - 1.0);
+            let mut dy = jitter * (2.0 * rng.next() - 1.0);
+            if bi {
+                dx = 0.0;
+            }
+            if bj {
+                dy = 0.0;
+            }
+            if bi && bj {
+                (dx, dy) = (0.0, 0.0);
+            }
+            coords.push([(i as f64 + dx) / n as f64, (j as f64 + dy) / n as f64]);
+        }
+    }
+    let id = |i: usize, j: usize| (j * (n + 1) + i) as u32;
+    let mut triangles = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            if removed[j * n + i] {
+                continue;
+            }
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            if rng.next() < 0.5 {
+                triangles.extend([[a, b, c], [a, c, d]]);
+            } else {
+                triangles.extend([[a, b, d], [b, c, d]]);
+            }
+        }
+    }
+    let (coords, triangles) = compact(coords, triangles);
+    planar(coords, triangles)
+}
+
+/// Drops the vertices no triangle uses, renumbering the rest in order.
+fn compact<P: Copy>(coords: Vec<P>, triangles: Vec<[u32; 3]>) -> (Vec<P>, Vec<[u32; 3]>) {
+    let mut new_id = vec![u32::MAX; coords.len()];
+    for t in &triangles {
+        for &v in t {
+            new_id[v as usize] = 0;
+        }
+    }
+    let mut kept = Vec::new();
+    for (v, id) in new_id.iter_mut().enumerate() {
+        if *id == 0 {
+            *id = kept.len() as u32;
+            kept.push(coords[v]);
+        }
+    }
+    let triangles = triangles
+        .iter()
+        .map(|t| t.map(|v| new_id[v as usize]))
+        .collect();
+    (kept, triangles)
+}
+
+/// A section of a cylinder of radius `radius` over the angles `[0, angle]` and heights
+/// `[0, height]`: `cols` columns and `rows` rows at jittered angles and heights, each
+/// quad (a planar rectangle) split along a random diagonal. Returns the mesh and its
+/// exact unrolling (x: the arc length along the polygon's chords, y: the height), a
+/// rectangle.
+pub fn cylinder_strip(
+    seed: u64,
+    cols: usize,
+    rows: usize,
+    radius: f64,
+    angle: f64,
+    height: f64,
+) -> (TriMesh, Vec<[f64; 2]>) {
+    let mut rng = Rng(seed | 1);
+    let thetas: Vec<f64> = jittered_partition(&mut rng, cols, 0.8)
+        .iter()
+        .map(|t| t * angle)
+        .collect();
+    let zs: Vec<f64> = jittered_partition(&mut rng, rows, 0.8)
+        .iter()
+        .map(|z| z * height)
+        .collect();
+    let mut unrolled_x = vec![0.0];
+    for w in thetas.windows(2) {
+        let chord = 2.0 * radius * ((w[1] - w[0]) / 2.0).sin();
+        unrolled_x.push(unrolled_x.last().unwrap() + chord);
+    }
+    strip(&mut rng, thetas.len(), zs.len(), |i, j| {
+        (
+            [radius * thetas[i].cos(), radius * thetas[i].sin(), zs[j]],
+            [unrolled_x[i], zs[j]],
+        )
+    })
+}
+
+/// A section of a cone (apex at the origin, axis z, half-angle `half_angle`) between
+/// the distances `r0` and `r1` from the apex, over the azimuths `[0, azimuth]`: `cols`
+/// generators and `rows` rings at jittered azimuths and distances, each quad
+/// (planar: it lies in the plane of two generators) split along a random diagonal.
+/// Returns the mesh and its exact unrolling: generator `i` at the angle that adds up the
+/// angles between consecutive generators. The unrolled strip is an annulus sector whose
+/// inner boundary is reflex: lines may leave it there.
+pub fn cone_strip(
+    seed: u64,
+    cols: usize,
+    rows: usize,
+    half_angle: f64,
+    azimuth: f64,
+    r0: f64,
+    r1: f64,
+) -> (TriMesh, Vec<[f64; 2]>) {
+    let mut rng = Rng(seed | 1);
+    let phis: Vec<f64> = jittered_partition(&mut rng, cols, 0.8)
+        .iter()
+        .map(|t| t * azimuth)
+        .collect();
+    let rs: Vec<f64> = jittered_partition(&mut rng, rows, 0.8)
+        .iter()
+        .map(|r| r0 + r * (r1 - r0))
+        .collect();
+    let generator = |phi: f64| {
+        [
+            half_angle.sin() * phi.cos(),
+            half_angle.sin() * phi.sin(),
+            half_angle.cos(),
+        ]
+    };
+    let mut unrolled_angle = vec![0.0];
+    for w in phis.windows(2) {
+        let (a, b) = (generator(w[0]), generator(w[1]));
+        // The angle between two unit vectors, accurately for small angles.
+        let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+        let chord = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        unrolled_angle.push(unrolled_angle.last().unwrap() + 2.0 * (chord / 2.0).asin());
+    }
+    assert!(*unrolled_angle.last().unwrap() < std::f64::consts::PI * 1.9);
+    strip(&mut rng, phis.len(), rs.len(), |i, j| {
+        let g = generator(phis[i]);
+        let r = rs[j];
+        let a = unrolled_angle[i];
+        ([r * g[0], r * g[1], r * g[2]], [r * a.cos(), r * a.sin()])
+    })
+}
+
+/// A `cols × rows` vertex strip whose vertex `(i, j)` is at `place(i, j)` = (3D, 2D
+/// unrolled); quads split along random diagonals, triangles counter-clockwise in 2D.
+fn strip(
+    rng: &mut Rng,
+    cols: usize,
+    rows: usize,
+    place: impl Fn(usize, usize) -> ([f64; 3], [f64; 2]),
+) -> (TriMesh, Vec<[f64; 2]>) {
+    let mut positions = Vec::new();
+    let mut unrolled = Vec::new();
+    for j in 0..rows {
+        for i in 0..cols {
+            let (p, u) = place(i, j);
+            positions.push(p);
+            unrolled.push(u);
+        }
+    }
+    let id = |i: usize, j: usize| (j * cols + i) as u32;
+    let mut triangles = Vec::new();
+    for j in 0..rows - 1 {
+        for i in 0..cols - 1 {
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            if rng.next() < 0.5 {
+                triangles.extend([[a, b, c], [a, c, d]]);
+            } else {
+                triangles.extend([[a, b, d], [b, c, d]]);
+            }
+        }
+    }
+    // Orient counter-clockwise in the unrolled plane.
+    for t in &mut triangles {
+        let [a, b, c] = t.map(|v| unrolled[v as usize]);
+        if (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]) < 0.0 {
+            t.swap(1, 2);
+        }
+    }
+    assert_embedded(&unrolled, &triangles);
+    (TriMesh::new(positions, triangles).unwrap(), unrolled)
+}
