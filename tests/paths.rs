@@ -5,9 +5,9 @@ mod common;
 use common::{book, grid, random_book, random_mesh, sphere, Rng, GRAPH, TRACKS};
 use geotracks::glam::DVec3;
 use geotracks::mesh::{io::read_mesh, TriMesh};
-use geotracks::{Method, 
-    Density, Error, Euclidean, GeodesicField, GeodesicPath, Metric, Options, PointError, PointRole,
-    Query, Solver, Source, Stop, SurfacePoint, Tensor, ValueRole,
+use geotracks::{
+    Density, Error, Euclidean, GeodesicField, GeodesicPath, Method, Metric, Options, PointError,
+    PointRole, Query, Solver, Source, Stop, SurfacePoint, Tensor, ValueRole,
 };
 
 fn spot() -> TriMesh {
@@ -136,17 +136,6 @@ fn paths_under_a_tensor_metric_and_on_non_manifold_meshes() {
         let query = solver.query(&field).unwrap();
         for _ in 0..10 {
             let target = random_face_point(&mesh, &mut rng);
-            if std::env::var("DBGT").is_ok() {
-                let path = query.path(target).unwrap();
-                let traced = query.trace(target).unwrap();
-                let d = query.distance_at(target).unwrap();
-                let g = Solver::new(&mesh, &metric, &GRAPH.with_k(12.0)).unwrap();
-                let gf = g.solve_from(&[source], &Stop::NONE).unwrap();
-                let gd = g.query(&gf).unwrap().distance_at(target).unwrap();
-                let gp = g.query(&gf).unwrap().path(target).unwrap();
-                eprintln!("seed {seed} d {d} traced {} straightened {} graph12 {gd} graph-path {}", traced.length, path.length, gp.length);
-                continue;
-            }
             match query.path(target) {
                 Ok(path) => check_path(&query, target, &path),
                 Err(Error::Unreachable { .. }) => {

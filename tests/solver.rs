@@ -84,8 +84,19 @@ fn parallel_rows_equal_single_runs() {
             assert_eq!(rows[i][j], field.distance(t));
         }
     }
-    // Symmetric: d(a, b) = d(b, a).
-    assert!((full[0][2929] - full[5][0]).abs() <= 1e-9 * full[0][2929]);
+    // The Steiner graph is symmetric: d(a, b) = d(b, a). (The wavefront engine's
+    // values are each a real path's length, within its error of the geodesic, so
+    // both directions agree only to about that.)
+    let (ab, ba) = (full[0][2929], full[5][0]);
+    assert!((ab - ba).abs() <= 1e-2 * ab, "{ab} {ba}");
+    let tracks = Solver::new(
+        &mesh,
+        Euclidean,
+        &Options::DEFAULT.with_method(geotracks::Method::Tracks),
+    )
+    .unwrap();
+    let rows = tracks.distance_rows(&[0, 2929], None).unwrap();
+    assert!((rows[0][2929] - rows[1][0]).abs() <= 1e-9 * rows[0][2929]);
     let e = solver.distance_rows(&[0], Some(&[3000])).unwrap_err();
     assert!(
         matches!(e, Error::TargetOutOfRange { vertex: 3000, .. }),

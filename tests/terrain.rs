@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{random_mesh, Rng, DIJKSTRA, GRAPH};
+use common::{random_mesh, Rng, DIJKSTRA, GRAPH, TRACKS};
 use geotracks::glam::DVec3;
 use geotracks::mesh::TriMesh;
 use geotracks::terrain::{
@@ -461,7 +461,7 @@ fn on_a_flat_grid_every_cost_is_euclidean() {
     let mesh = &terrain.mesh;
     let (from, to): ([f64; 2], [f64; 2]) = ([1.3, 0.7], [8.6, 9.1]);
     let straight = (to[0] - from[0]).hypot(to[1] - from[1]);
-    let options = Options::DEFAULT;
+    let options = TRACKS;
     let euclid = distance_field(mesh, &Euclidean, &[0], &options).unwrap();
     let mut worst: f64 = 0.0;
     for cost in ["none", "slope:5", "slope:5,max:10", "uphill:7"] {
@@ -519,7 +519,7 @@ fn tilted_plane_slope_density_and_uphill_match_the_analytic_costs() {
     ] {
         let (from, to) = ends(dir);
         for k in [2.0, 5.0] {
-            let options = Options::DEFAULT.with_k(k);
+            let options = TRACKS.with_k(k);
             let s = route(&terrain, &density, &options, from, to).unwrap();
             let u = route(&terrain, &tensor, &options, from, to).unwrap();
             let (es, eu) = (
@@ -618,7 +618,7 @@ fn snell_law_at_a_density_interface() {
             .map(|p| if p.x < -1e-9 { rho1 } else { rho2 })
             .collect();
         let density = Density::new(mesh, rho).unwrap();
-        let path = route(&terrain, &density, &Options::DEFAULT, from, to).unwrap();
+        let path = route(&terrain, &density, &TRACKS, from, to).unwrap();
         let points = path.positions(mesh);
         // The route's direction on each side, from 3 to 10 cells away from the ramp:
         // from the first to the last of its points there.
@@ -701,7 +701,7 @@ fn a_wall_with_one_gap_routes_through_the_gap() {
     // Around the gap's west side: to its corner (30, 20), along the wall's edge to
     // (30, 21), then straight to the target.
     let exact = 25.0 + 1.0 + (20f64 * 20.0 + 14.0 * 14.0).sqrt();
-    for options in [Options::DEFAULT, GRAPH, DIJKSTRA] {
+    for options in [TRACKS, GRAPH, DIJKSTRA] {
         let path = route(&terrain, &walls, &options, from, to).unwrap();
         let points = path.positions(&terrain.mesh);
         let through = points
@@ -740,7 +740,7 @@ fn a_wall_with_one_gap_routes_through_the_gap() {
 fn a_closed_wall_makes_the_target_unreachable() {
     let (terrain, blocked) = walled(None);
     for inner_density in [false, true] {
-        for options in [Options::DEFAULT, GRAPH, DIJKSTRA] {
+        for options in [TRACKS, GRAPH, DIJKSTRA] {
             let result = if inner_density {
                 let d = Density::constant(&terrain.mesh, 2.0).unwrap();
                 route(
@@ -770,7 +770,7 @@ fn a_closed_wall_makes_the_target_unreachable() {
     let mesh = &terrain.mesh;
     let row: Vec<bool> = mesh.positions().iter().map(|p| p.y == 20.0).collect();
     let walls = Impassable::from_vertices(mesh, Euclidean, &row).unwrap();
-    let field = distance_field(mesh, &walls, &[0], &Options::DEFAULT).unwrap();
+    let field = distance_field(mesh, &walls, &[0], &TRACKS).unwrap();
     for (v, p) in mesh.positions().iter().enumerate() {
         let d = field.distance(v as u32);
         assert!(!d.is_nan());
@@ -781,7 +781,7 @@ fn a_closed_wall_makes_the_target_unreachable() {
 /// Largest relative difference between the tracks engine and the graph, and whether
 /// both reach the same nodes.
 fn tracks_vs_graph<M: Metric>(mesh: &TriMesh, metric: &M, sources: &[u32], k: f64) -> f64 {
-    let options = Options::DEFAULT.with_k(k);
+    let options = TRACKS.with_k(k);
     let graph = distance_field(mesh, metric, sources, &options.with_method(Method::Graph)).unwrap();
     let tracks = distance_field(mesh, metric, sources, &options).unwrap();
     let mut max: f64 = 0.0;
@@ -830,7 +830,7 @@ proptest! {
         let walls = Impassable::new(mesh, Euclidean, blocked).unwrap();
         let from = [0.5 + 10.0 * rng.next(), 0.5 + 10.0 * rng.next()];
         let to = [0.5 + 10.0 * rng.next(), 0.5 + 10.0 * rng.next()];
-        match route(&terrain, &walls, &Options::DEFAULT.with_k(3.0), from, to) {
+        match route(&terrain, &walls, &TRACKS.with_k(3.0), from, to) {
             Ok(path) => {
                 prop_assert!(path.length.is_finite() && path.length <= path.traced_length * (1.0 + 1e-12));
                 let points = path.positions(mesh);

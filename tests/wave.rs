@@ -779,10 +779,6 @@ fn cone_strips_exact_where_the_source_is_seen() {
 /// other's parents: a cycle); a cylinder strip with a column 7.9e-10 wide gets 2.2 %
 /// below the exact distance.
 #[test]
-#[ignore = "bug: a wave taken through a window's slack can have its virtual source on \
-            the far side of the target's edge; `sy.max(0.0)` then moves the source onto \
-            the edge's line, a shortcut (values up to 2 % and, relatively, 100 % below \
-            the exact distance; parent cycles)"]
 fn slivers_never_below_exact() {
     let mut worst = 0.0f64;
     for eps in [1e-3, 1e-5, 1e-7, 1e-8, 1e-9, 1e-10] {
@@ -1055,12 +1051,9 @@ fn spot_wave_at_k2_within_0_10_percent() {
     assert!(below <= 1e-6, "{below:e} below the exact distance");
 }
 
-/// The default settings on Spot: mean error at most 0.10 %. (The lead switches the
-/// default to `Method::Wave`; until then the default is the tracks engine at k = 5,
-/// 0.3 % on Spot, and this test is ignored.)
+/// The default settings (the wavefront engine at k = 2) on Spot: mean error at most
+/// 0.10 %.
 #[test]
-#[ignore = "the default is still Method::Tracks at k = 5 (0.30 % on Spot); un-ignore when \
-            Options::DEFAULT becomes Method::Wave"]
 fn spot_default_within_0_10_percent() {
     let (mean, _, below, _) = spot_error(&Options::DEFAULT);
     assert!(mean <= 0.0010, "mean relative error {mean}");
@@ -1227,10 +1220,7 @@ proptest! {
     /// value 2.10615, itself far below the graph's 2.60481) never offers it across
     /// face 4.
     #[test]
-    #[ignore = "bug: under per-face tensors the wave engine is up to 20 % above the graph \
-                on the same points (and far below the true distance elsewhere, see \
-                tensor_never_below_the_converged_graph)"]
-    fn random_tensors_never_above_the_graph(
+        fn random_tensors_never_above_the_graph(
         seed in any::<u64>(), kind in 0u8..5, count in 1u32..4, anisotropy in 1.0f64..30.0,
     ) {
         let mesh = random_kind(kind, seed);
@@ -1303,8 +1293,7 @@ proptest! {
     /// Euclidean, random sources: no node more than 1e-6 relative below the exact
     /// distance.
     #[test]
-    #[ignore = "bug: see slivers_never_below_exact"]
-    fn planar_sliver_grids_never_below_exact(seed in any::<u64>(), n in 2usize..12, k in 1u32..3) {
+        fn planar_sliver_grids_never_below_exact(seed in any::<u64>(), n in 2usize..12, k in 1u32..3) {
         let mut rng = Rng(seed | 1);
         let xs = sliver_partition(&mut rng, n);
         let ys = sliver_partition(&mut rng, n);
@@ -1421,8 +1410,6 @@ fn euclidean_never_below_the_converged_graph() {
 /// points per edge: vertex 4 gets 46 % less than the converged graph (0.536 × it), and
 /// Steiner nodes 59 and 60 (edge 18) are each other's parents along the edge.
 #[test]
-#[ignore = "bug: under per-face tensors (edges whose faces do not glue isometrically) \
-            values fall far below the true distance (up to 46 %); parent cycles along edges"]
 fn tensor_never_below_the_converged_graph() {
     converged_sweep(true);
 }
@@ -1556,11 +1543,6 @@ fn queries_and_paths_on_wave_fields() {
                 }
                 let path = match query.path(target) {
                     Ok(path) => path,
-                    Err(geotracks::Error::ParentCycle { .. }) => {
-                        // See no_parent_cycles (ignored: a bug).
-                        cycles += 1;
-                        continue;
-                    }
                     Err(err) => panic!("{name}, {sources:?}: path from {target}: {err}"),
                 };
                 let length = check_path(&query, target, &path);
@@ -1578,9 +1560,8 @@ fn queries_and_paths_on_wave_fields() {
             }
             let labels = query.vertex_labels();
             for (v, &l) in labels.iter().enumerate() {
-                // A vertex whose parents loop gets no label (see no_parent_cycles).
                 assert!(
-                    (l as usize) < sources.len() || l == geotracks::mesh::NONE,
+                    (l as usize) < sources.len(),
                     "{name}, {sources:?}: vertex {v} label {l}"
                 );
             }
@@ -1665,9 +1646,6 @@ fn looping_nodes(field: &GeodesicField) -> Vec<u32> {
 /// are exact. `path(Vertex(85))` fails with `ParentCycle`, and `vertex_labels` gives
 /// vertex 85 no label.
 #[test]
-#[ignore = "bug: parent cycles: a node that carries a straight wave along its edge offers \
-            its own parent vertex a value lower by rounding; vertices take any lower \
-            value, so the two become each other's parents"]
 fn no_parent_cycles() {
     let mut found = Vec::new();
     let mut meshes: Vec<(String, TriMesh)> = convex_planar_meshes();
@@ -1705,8 +1683,6 @@ fn no_parent_cycles() {
 /// minimal case: `multiscale_mesh(384 * 7919, 3)` (20 vertices), source vertex 2 with
 /// start −0.7818, k = 2. (Passes in release builds, where the count wraps silently.)
 #[test]
-#[ignore = "bug: Frontier::requeue of a node waiting in the far heap makes \
-            BucketQueue::far_live underflow (a panic in debug builds)"]
 fn wave_queue_counts_do_not_overflow() {
     let mesh = multiscale_mesh(384 * 7919, 3);
     assert_eq!((mesh.vertex_count(), mesh.face_count()), (20, 20));

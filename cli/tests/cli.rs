@@ -66,7 +66,7 @@ fn writes_txt_csv_ply_and_stats() {
     ] {
         assert!(json.get(key).is_some(), "stats lack {key}: {json}");
     }
-    assert_eq!(json["method"], "tracks");
+    assert_eq!(json["method"], "wave");
     assert_eq!(json["vertices"], 4);
 
     let csv = dir.path().join("d.csv");

@@ -379,8 +379,8 @@ fn check_line_edges(line_edges: &[[u32; 2]], vertex_count: usize) -> Result<(), 
 }
 
 /// The largest coordinate magnitude a mesh may have: differences of coordinates then
-/// stay finite, and every length is computed without overflow or underflow (see
-/// [`length`]), so any mesh within it, at any scale, gets accurate frames.
+/// stay finite, and every length is computed without overflow or underflow (in
+/// units of each face's size), so any mesh within it, at any scale, gets accurate frames.
 pub const MAX_COORDINATE: f64 = 1e300;
 
 /// The length of `v`, accurate at any scale: computed in units of its largest

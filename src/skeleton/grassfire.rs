@@ -2,7 +2,7 @@
 
 use super::boundary::BoundaryArcs;
 use crate::mesh::{TriMesh, NONE};
-use crate::options::{Options, Stop};
+use crate::options::{Method, Options, Stop};
 use crate::propagate::Solver;
 use crate::surface::Source;
 use crate::trace::Query;
@@ -45,11 +45,21 @@ impl<'m, M: Metric> Grassfire<'m, M> {
     /// Every node on a boundary edge is a source at 0; components without a boundary
     /// stay unreached (`inf`).
     ///
+    /// The ridges are found where the Steiner graph's fronts meet, and every node's
+    /// origin follows the graph's parents, so the fire burns with the track-pruned
+    /// Steiner graph: `Method::Wave` in `options` runs [`Method::Tracks`] here (the
+    /// wavefront engine's nodes keep one wave each, and their parents do not follow
+    /// the fronts the ridge test reads).
+    ///
     /// # Errors
     /// [`Error::NoBoundary`] if no edge has exactly one face; as [`Solver::new`] and
     /// [`Solver::solve_from`] otherwise.
     pub fn burn(mesh: &'m TriMesh, metric: M, options: &Options) -> Result<Self, Error> {
-        let solver = Solver::new(mesh, metric, options)?;
+        let options = match options.method {
+            Method::Wave => options.with_method(Method::Tracks),
+            _ => *options,
+        };
+        let solver = Solver::new(mesh, metric, &options)?;
         let layout = solver.layout();
         let boundary = BoundaryArcs::new(mesh, layout, solver.metric());
         if boundary.nodes().is_empty() {

@@ -46,18 +46,22 @@ impl<M: Metric> Query<'_, M> {
 
     /// Whether the wave of a node on `edge`, which came through face `from`, may cross
     /// into face `into` unbent: the two faces give the edge the same length.
+    /// (A wave from a point of the edge itself, `from` = `NONE`, is measured along the
+    /// edge: it crosses into a face only where all faces around the edge agree.)
     fn glues(&self, edge: u32, from: u32, into: u32) -> bool {
-        if from == NONE {
-            return true;
-        }
         let len = |f: u32| -> Option<f64> {
             let frame = self.flat(f)?;
             let s = self.mesh.edge_slot(f, edge)?;
             Some(self.edge_frame(&frame, f, s).len)
         };
-        match (len(from), len(into)) {
-            (Some(a), Some(b)) => (a - b).abs() <= 1e-9 * a,
-            _ => false,
+        let Some(b) = len(into) else {
+            return false;
+        };
+        let same = |f: u32| len(f).is_some_and(|a| (a - b).abs() <= 1e-9 * a);
+        if from == NONE {
+            self.mesh.edge_faces(edge).iter().all(|&f| same(f))
+        } else {
+            same(from)
         }
     }
 
@@ -214,7 +218,11 @@ impl<M: Metric> Query<'_, M> {
         // gives its value (waves are unchanged since, but a parent's may have been
         // replaced by a tie, so all are asked), or bending at its parent.
         let d = field.distance[n as usize];
-        for &f in self.mesh.vertex_faces(n) {
+        let vertex_faces = match layout.kind(n) {
+            NodeKind::Vertex(v) => self.mesh.vertex_faces(v),
+            NodeKind::Steiner { .. } => &[],
+        };
+        for &f in vertex_faces {
             let x = layout.point_in_face(self.mesh, n, f);
             if let Some((value, q)) = self.wave_value(f, &x) {
                 // (Not a wave that starts at the vertex itself.)
