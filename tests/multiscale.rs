@@ -54,6 +54,46 @@ fn check<M: Metric>(
 ) -> Result<(), TestCaseError> {
     let graph = run(mesh, metric, k, Method::Graph, sources, stop);
     let tracks = run(mesh, metric, k, Method::Tracks, sources, stop);
+    // The wavefront engine on the same meshes: bounded work too, every node the graph
+    // reaches reached, and (for the face-flat metrics) never above the graph on the
+    // same points by more than rounding. Its layout differs (points spaced by the
+    // metric, at least one per edge), so vertices are compared.
+    let wave = run(mesh, metric, k, Method::Wave, sources, stop);
+    prop_assert!(
+        wave.settles <= 6 * wave.node_count + 64,
+        "wave: {} settles for {} nodes",
+        wave.settles,
+        wave.node_count
+    );
+    prop_assert!(
+        wave.pushes <= PUSHES_PER_NODE * wave.node_count + 64,
+        "wave: {} pushes",
+        wave.pushes
+    );
+    let vertices = mesh.positions().len();
+    for v in 0..vertices {
+        let (w, g) = (wave.nodes[v], graph.nodes[v]);
+        // The same vertices reached without a stop (with one, either may leave a
+        // vertex near the maximum unreached that the other, more accurate there, keeps:
+        // the wavefront engine puts points on every edge, the graph not always).
+        if stop.max_distance.is_infinite() {
+            prop_assert!(
+                w.is_infinite() == g.is_infinite(),
+                "vertex {}: wave {}, graph {}",
+                v,
+                w,
+                g
+            );
+        }
+        if w.is_finite() {
+            prop_assert!(
+                w <= stop.max_distance,
+                "vertex {}: {} beyond the stop",
+                v,
+                w
+            );
+        }
+    }
     for (name, r) in [("graph", &graph), ("tracks", &tracks)] {
         prop_assert!(
             r.settles <= 3 * r.node_count + 64,
