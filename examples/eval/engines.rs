@@ -748,6 +748,7 @@ fn print_tables(args: &Args, c: &Context, cases: &[Case], rows: &[Row]) {
          {} at the start, {} at the end.\n",
         c.date, c.machine, c.commit, c.command, c.seconds, c.load_start, c.load_end
     );
+    summary(args, cases, rows);
     for (aniso, title) in [
         (
             false,
@@ -813,6 +814,42 @@ fn print_tables(args: &Args, c: &Context, cases: &[Case], rows: &[Row]) {
         println!();
     }
     notes(cases, rows);
+}
+
+/// One line per case: mean / max error of each configuration of `--methods`.
+fn summary(args: &Args, cases: &[Case], rows: &[Row]) {
+    println!("### Summary: mean / max relative error\n");
+    let mut header = String::from("| mesh | metric | faces | srcs |");
+    let mut rule = String::from("|---|---|---:|---:|");
+    for c in &args.methods {
+        header += &match c.method {
+            Method::Dijkstra => " dijkstra |".to_string(),
+            m => format!(" {m} k={} |", c.k),
+        };
+        rule += "---:|";
+    }
+    println!("{header}\n{rule}");
+    for (i, case) in cases.iter().enumerate() {
+        let mut line = format!(
+            "| {} | {} | {} | {} |",
+            case.mesh,
+            if case.tensor.is_some() {
+                "tensor"
+            } else {
+                "Euclidean"
+            },
+            case.faces,
+            case.references.len()
+        );
+        for c in &args.methods {
+            line += &match rows.iter().find(|r| r.case == i && r.config == *c) {
+                Some(r) => format!(" {} / {} |", pct(r.m.mean), pct(r.m.max)),
+                None => " failed |".to_string(),
+            };
+        }
+        println!("{line}");
+    }
+    println!();
 }
 
 /// What a reader should not miss: the wave engine worse than the graph at the same k,

@@ -50,8 +50,8 @@ pub struct Plot {
     pub series: Vec<Series>,
 }
 
-const W: usize = 1280;
-const H: usize = 800;
+const W: usize = 1300;
+const H: usize = 850;
 /// The plot area.
 const LEFT: f64 = 110.0;
 const RIGHT: f64 = 930.0;
@@ -154,8 +154,11 @@ impl Plot {
         }
         for s in &self.series {
             for p in &s.points {
+                // Tags of filled markers above right, of hollow ones below right, so
+                // that two curves through nearby points keep their tags apart.
+                let dy = if s.filled { -18.0 } else { 4.0 };
                 if !p.2.is_empty() {
-                    c.text(px(p.0) + 9.0, py(p.1) - 18.0, &p.2, s.colour);
+                    c.text(px(p.0) + 9.0, py(p.1) + dy, &p.2, s.colour);
                 }
             }
         }
