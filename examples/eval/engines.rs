@@ -709,6 +709,15 @@ pub fn pct(x: f64) -> String {
     format!("{p:.digits$} %")
 }
 
+/// "source" or "sources" after a count.
+fn plural(n: usize) -> &'static str {
+    if n == 1 {
+        "source"
+    } else {
+        "sources"
+    }
+}
+
 /// How far below exact the lowest value is (a fraction), or "none" if none is.
 fn below(x: f64) -> String {
     if x > 0.0 {
@@ -1001,10 +1010,11 @@ fn print_peers(peers: &Peers, c: &Context, cases: &[Case], rows: &[Row]) {
     for i in measured {
         let case = &cases[i];
         println!(
-            "#### {} ({} faces, {} sources)\n",
+            "#### {} ({} faces, {} {})\n",
             case.mesh,
             case.faces,
-            case.references.len()
+            case.references.len(),
+            plural(case.references.len())
         );
         println!("| tool | figures | solve s | peak RSS MB | mean err | max err | load |");
         println!("|---|---|---:|---:|---:|---:|---:|");
@@ -1044,10 +1054,11 @@ fn print_peers(peers: &Peers, c: &Context, cases: &[Case], rows: &[Row]) {
 
 fn print_plot_data(case: &Case, rows: &[Row], i: usize) {
     println!(
-        "### Plot data: {} ({} faces, {} sources)\n",
+        "### Plot data: {} ({} faces, {} {})\n",
         case.mesh,
         case.faces,
-        case.references.len()
+        case.references.len(),
+        plural(case.references.len())
     );
     println!("| method | k | mean err | max err | propagate s | tests / node | ns / node | peak RSS MB |");
     println!("|---|---:|---:|---:|---:|---:|---:|---:|");
@@ -1169,11 +1180,11 @@ fn plot(
         series.push(vtp);
     }
     let title = format!(
-        "{}: mean relative error vs propagate time, {} faces, {} source{}, one thread",
+        "{}: mean relative error vs propagate time, {} faces, {} {}, one thread",
         case.mesh,
         case.faces,
         case.references.len(),
-        if case.references.len() == 1 { "" } else { "s" }
+        plural(case.references.len())
     );
     let caption = vec![
         format!(
