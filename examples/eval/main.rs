@@ -1,5 +1,6 @@
 //! Accuracy against exact geodesics: Dijkstra on edges and the Steiner graph at
-//! k = 3, 5, 8 on every mesh of a data directory that has exact references.
+//! k = 3, 5, 8 on every mesh of a data directory that has exact references (default), or
+//! every engine with its time, work and memory (`--engines`).
 //!
 //! ```text
 //! cargo run --release --example eval -- ../shared/data [--max-faces N] [--k 3,5,8]
@@ -22,22 +23,73 @@
 //! cargo run --release --example eval -- ../shared/data --paths 100 [--max-faces N] [--k 5]
 //! ```
 //!
+//! With `--engines` it measures each engine against every exact reference, with its time,
+//! work and memory (the wave engine's tables in the README's Accuracy section):
+//!
+//! ```text
+//! cargo run --release --example eval -- ../shared/data --engines --plot bunny_loop1:doc/wave_error_vs_time.png
+//! ```
+//!
+//! Options: `--methods LIST`, `--meshes a,b`, `--max-faces N`, `--reps N`,
+//! `--reps-below FACES`, `--no-aniso`, `--plot MESH:FILE.png`, `--plot-methods LIST`.
+//!
+//! - `--methods`: `method:k` items (`wave`, `tracks`, `graph`) and `dijkstra`; default
+//!   wave at k = 1, 2, 3, 5, tracks at k = 5 (the Steiner graph's distances, faster than
+//!   `graph:5`), dijkstra. There is no `wave:0`: the wave engine puts at least one point
+//!   on every edge (a wave crosses an edge only through its points); vertices only is
+//!   `dijkstra`.
+//! - Cases: every mesh of the manifest with references, Euclidean, from each reference's
+//!   source; then each `reference/aniso/<mesh>.aniso.src<v>.f64` under the tensor of its
+//!   `.tensor` file (`xx xy xz yy yz zz` per face of the mesh file, as the CLI's
+//!   `--tensor` reads it). `--meshes` and `--max-faces` (default: no limit) filter both.
+//! - Each (case, method) runs in a child process (this program with the hidden flag
+//!   `--one`), so its peak RSS (`VmHWM`) is its own: mesh, solver, workspace and one
+//!   reference at a time. The child builds one solver and runs each source `--reps`
+//!   times (default 3; once on meshes of `--reps-below` faces or more, default: no such
+//!   limit) and keeps the best propagate time.
+//! - Prints Markdown: a caption line (date, machine, commit, command, total time, load
+//!   average at the start and the end); per case and method the mean error (mean over
+//!   the references of each one's mean of |d − d*| / d* over vertices with d* > 0), the
+//!   max error, the most below exact (max of (d* − d) / d*: a shortcut off the surface
+//!   would show), propagate seconds (`Stats::propagate_seconds`, best repetition per
+//!   source, mean over the sources), setup seconds, nodes (vertices + Steiner points),
+//!   distance tests, settles and propagate ns per node, peak RSS; checks (the wave engine
+//!   worse than the graph at the same k, a value more than 1e-6 below exact, an engine that
+//!   fell back to another); and for the meshes `DATA_DIR/peers.md` covers, our rows beside
+//!   the peers' own figures copied from it (another machine: labelled so).
+//! - `--plot MESH:FILE.png` also runs `--plot-methods` on that mesh (default wave k = 1 to
+//!   5, tracks k = 1, 2, 3, 5, 8, dijkstra), prints their table and draws mean error
+//!   against propagate time, log-log, one curve per method, with the peers' points from
+//!   `peers.md` hollow (needs the default `png` feature).
+//!
 //! The directory holds `manifest.json` (a list of meshes with `name`, `file`, `faces`
 //! and `references`), the meshes, and `reference/<mesh>.src<v>.f64` files (exact
-//! distances from vertex `v`, little-endian f64 per vertex). Prints a Markdown table:
-//! mean and max relative error over the references of each mesh (|d − d*| / d* over
-//! vertices with d* > 0), and the distance tests of one run.
+//! distances from vertex `v`, little-endian f64 per vertex). The default mode prints a
+//! Markdown table: mean and max relative error over the references of each mesh
+//! (|d − d*| / d* over vertices with d* > 0).
 
 use geotracks::mesh::{io::read_mesh, TriMesh};
 use geotracks::{distance_field, Euclidean, Method, Options, Solver, SurfacePoint};
 use std::path::PathBuf;
 use std::time::Instant;
 
+mod engines;
+#[cfg(feature = "png")]
+mod plot;
+#[path = "../shared_data/mod.rs"]
 mod shared_data;
 use shared_data::{manifest, read_reference, relative_error, source_of, MeshEntry};
 
 fn main() {
-    if let Err(e) = run() {
+    let argv: Vec<String> = std::env::args().collect();
+    let result = if argv.get(1).map(String::as_str) == Some("--one") {
+        engines::child(&argv[2..])
+    } else if argv.iter().any(|a| a == "--engines") {
+        engines::main(&argv)
+    } else {
+        run()
+    };
+    if let Err(e) = result {
         eprintln!("error: {e}");
         std::process::exit(1);
     }
