@@ -28,9 +28,13 @@
 //! through a window is a path that exists: the window of a node that inherited a wave
 //! is the set of points of its edge that lines from `S` reach through its parent's
 //! window and across the face between them. So the engine can only overestimate
-//! (where a wave was lost), never take a shortcut off the surface. Windows are closed
-//! intervals widened by `1e-9` of the edge's length against rounding, which bounds any
-//! shortcut by that much.
+//! (where a wave was lost), never take a shortcut off the surface. Windows are tested
+//! with a slack of `1e-6` of the edge's length (their ends are stored as `f32`, and a
+//! line through a vertex crosses its edges at their very ends): a line that passes a
+//! vertex by that much on the wrong side is shorter than the real path by about
+//! `δ² / ℓ`, 1e-12 relative (measured on the shared meshes: at most 4.7e-10 below the
+//! exact references). A straight offer whose source would land beyond the target's
+//! edge (a sliver) is refused rather than clamped.
 //!
 //! # Where windows meet
 //! A node keeps one wave: the one that gave its best value. A face entered by a wave
@@ -46,7 +50,9 @@
 //! # Cost
 //! Every entry tests every target of the face (no track pruning: with the few points
 //! per edge this engine needs, a face has a handful of targets). Values, parents and
-//! the bucket queue are the other engines'; each Steiner node adds a 40-byte wave.
+//! the bucket queue are the other engines'; each Steiner node adds a 32-byte wave. A
+//! straight offer can lie below the offering node's value (its source is behind it), by
+//! at most an edge's length: the solver's `reach` widens finality by that much.
 
 use super::frontier::{Frontier, Queue, Seed};
 use super::tracks::{FaceRecord, TrackTables};
