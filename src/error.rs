@@ -147,6 +147,17 @@ pub enum Error {
         /// The metric's name.
         metric: String,
     },
+    /// A source's start value is so large that distances from it could leave the f64
+    /// range (a start plus the mesh's total cost must stay below about 1.8e308).
+    #[error("the start value of source {index} is {start:e}: with the mesh's costs (up to {cost_total:e} in all) distances could overflow; start values must stay below about 1.8e308 minus that")]
+    StartTooLarge {
+        /// The source's index in the sources given.
+        index: usize,
+        /// The start value given.
+        start: f64,
+        /// The sum of the mesh's finite edge costs under the metric.
+        cost_total: f64,
+    },
     /// A grassfire needs a boundary to start from, and the surface has none.
     #[error("the surface has no boundary (no edge with exactly one face): a grassfire has nowhere to start")]
     NoBoundary,

@@ -94,6 +94,10 @@ pub struct GeodesicField {
     roots: Vec<Root>,
     /// Per Steiner node, the wave it carries (wavefront engine; empty otherwise).
     waves: Vec<Wave>,
+    /// The run's [`Stop::max_distance`](crate::Stop::max_distance).
+    max_distance: f64,
+    /// See [`FieldView::horizon`].
+    horizon: f64,
     stats: Stats,
 }
 
@@ -112,6 +116,12 @@ pub(crate) struct FieldView<'a> {
     pub waves: &'a [Wave],
     /// The engine that ran.
     pub method: Method,
+    /// The run's [`Stop::max_distance`](crate::Stop::max_distance): a point farther is
+    /// unreached, as a node is.
+    pub max_distance: f64,
+    /// Every node whose value in a full run is below this has that value here; every
+    /// node the stop left unreached would have at least this. `inf` after a full run.
+    pub horizon: f64,
 }
 
 impl<'a> FieldView<'a> {
@@ -134,6 +144,8 @@ impl GeodesicField {
         sources: Vec<Source>,
         roots: Vec<Root>,
         waves: Vec<Wave>,
+        max_distance: f64,
+        horizon: f64,
         stats: Stats,
     ) -> GeodesicField {
         debug_assert_eq!(distance.len(), layout.node_count());
@@ -146,6 +158,8 @@ impl GeodesicField {
             sources,
             roots,
             waves,
+            max_distance,
+            horizon,
             stats,
         }
     }
@@ -166,6 +180,8 @@ impl GeodesicField {
             roots: &self.roots,
             waves: &self.waves,
             method: self.stats.method,
+            max_distance: self.max_distance,
+            horizon: self.horizon,
         }
     }
 

@@ -119,7 +119,11 @@ impl Options {
 /// When a run may stop before the whole mesh is reached.
 ///
 /// Both conditions leave every node they do not settle unreached (`inf`): a finite value
-/// after an early stop is always the value a full run gives.
+/// after an early stop is always the value a full run gives, at a node and at any other
+/// surface point ([`Query::distance_at`](crate::Query::distance_at)). A point beyond the
+/// maximum is unreached, and so is one that a node the stop left unreached might have
+/// given a smaller value (a point within about an edge of the maximum, or of where a
+/// stop at the targets left off).
 ///
 /// ```
 /// use geotracks::{Stop, SurfacePoint};

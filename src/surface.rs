@@ -407,7 +407,10 @@ impl From<u32> for SurfacePoint {
 pub struct Source {
     /// Where.
     pub point: SurfacePoint,
-    /// The distance at `point` itself (finite).
+    /// The distance at `point` itself. Any finite value, negative ones too (values
+    /// then grow from it along every path). A run refuses a NaN or infinite start
+    /// ([`Error::InvalidValue`](crate::Error::InvalidValue)) and one so large that a
+    /// distance could overflow ([`Error::StartTooLarge`](crate::Error::StartTooLarge)).
     pub start: f64,
 }
 
@@ -420,7 +423,23 @@ impl Source {
         }
     }
 
-    /// The same source starting from `start`.
+    /// The same source starting from `start` (see [`Source::start`] for what a run
+    /// accepts).
+    ///
+    /// ```
+    /// use geotracks::{mesh::TriMesh, Euclidean, Options, Solver, Source, Stop};
+    /// let mesh = TriMesh::new(
+    ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+    ///     vec![[0, 1, 2]],
+    /// )?;
+    /// let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT)?;
+    /// let sources = [Source::new(0).with_start(-0.5), Source::new(1).with_start(0.25)];
+    /// let field = solver.solve_from(&sources, &Stop::NONE)?;
+    /// assert_eq!(field.distance(0), -0.5);
+    /// assert_eq!(field.distance(1), 0.25); // 0.25 < -0.5 + 1
+    /// assert!((field.distance(2) - 0.5).abs() < 1e-12);
+    /// # Ok::<(), geotracks::Error>(())
+    /// ```
     pub fn with_start(self, start: f64) -> Source {
         Source { start, ..self }
     }

@@ -468,6 +468,36 @@ fn bad_points_and_unreachable_targets_are_errors() {
             ..
         }
     ));
+    // A start so large that distances could overflow (a start plus the mesh's costs
+    // beyond the f64 range), on a second source: refused. A huge negative start, or a
+    // start that rounding keeps finite, is a start like any other.
+    let huge = TriMesh::new(
+        vec![[0.0, 0.0, 0.0], [1e300, 0.0, 0.0], [0.0, 1e300, 0.0]],
+        vec![[0, 1, 2]],
+    )
+    .unwrap();
+    let huge_solver = Solver::new(&huge, Euclidean, &Options::DEFAULT).unwrap();
+    let mut huge_ws = huge_solver.workspace();
+    let sources = [Source::new(0), Source::new(1).with_start(f64::MAX)];
+    match huge_solver.run_from(&mut huge_ws, &sources, &Stop::NONE) {
+        Err(Error::StartTooLarge {
+            index: 1,
+            cost_total,
+            ..
+        }) => assert!(cost_total > 1e300 && cost_total.is_finite()),
+        other => panic!("{other:?}"),
+    }
+    for start in [-f64::MAX, 1e307] {
+        let sources = [Source::new(0).with_start(start)];
+        huge_solver
+            .run_from(&mut huge_ws, &sources, &Stop::NONE)
+            .unwrap();
+        assert_eq!(huge_ws.vertex_distances()[0], start);
+        assert!(huge_ws.vertex_distances().iter().all(|d| d.is_finite()));
+    }
+    let top = [Source::new(0).with_start(f64::MAX)];
+    solver.run_from(&mut ws, &top, &Stop::NONE).unwrap();
+    assert!(ws.vertex_distances().iter().all(|&d| d == f64::MAX));
     let stop = Stop::NONE.with_targets(vec![SurfacePoint::Edge { edge: 0, t: 2.0 }]);
     let err = solver
         .run_from(&mut ws, &[Source::new(0)], &stop)

@@ -279,7 +279,7 @@ fn medial_axes_give_connected_skeletons_on_their_surface() {
 /// not have: ignored by `cargo test` (which says so), run by `.ci/run` with
 /// `--ignored` where ../shared/data is beside the clone; without it, a failure.
 #[test]
-#[ignore = "needs ../shared/data beside the clone; .ci/run runs it with --ignored"]
+#[ignore = "needs ../shared/data beside the clone; .ci/run runs it with --ignored shared"]
 fn shared_medial_axes_give_connected_skeletons_on_their_surface() {
     let shared = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/ma");
     let entries =

@@ -143,7 +143,7 @@ fn tracks_work_grows_about_linearly_in_k_on_spot() {
 /// ../shared/data is beside the clone. Without the data it fails rather than pass
 /// having checked nothing.
 #[test]
-#[ignore = "needs ../shared/data beside the clone; .ci/run runs it with --ignored"]
+#[ignore = "needs ../shared/data beside the clone; .ci/run runs it with --ignored shared"]
 fn tracks_work_grows_about_linearly_in_k_on_the_shared_bunny() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/meshes/bunny.obj");
     assert!(path.exists(), "{} not found", path.display());

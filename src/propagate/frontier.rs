@@ -15,6 +15,9 @@ pub(super) trait Queue {
     /// Whether a node holding `value` now keeps it: nothing queued, or queued later,
     /// can improve on it. Asked between a pop and the settling of the popped node.
     fn is_final(&self, value: f64) -> bool;
+    /// The least value still queued, or a lower bound on it: settling what is queued
+    /// offers nothing below it, less the engine's reach.
+    fn level(&self) -> f64;
 }
 
 impl<Q: Queue> Queue for &mut Q {
@@ -29,6 +32,10 @@ impl<Q: Queue> Queue for &mut Q {
     #[inline]
     fn is_final(&self, value: f64) -> bool {
         (**self).is_final(value)
+    }
+    #[inline]
+    fn level(&self) -> f64 {
+        (**self).level()
     }
 }
 
@@ -84,6 +91,10 @@ pub(super) struct Outcome {
     pub bad_cost: Option<(u32, f64)>,
     /// The targets were all final before the queue ran out.
     pub stopped_early: bool,
+    /// Every node whose value in a full run is below this has it in this run; every
+    /// node left unreached would have at least this (the stop's maximum distance, or
+    /// less after a stop at the targets).
+    pub horizon: f64,
 }
 
 impl<'a, M: Metric> Frontier<'a, M, ()> {
@@ -122,6 +133,14 @@ impl<'a, M: Metric> Frontier<'a, M, ()> {
             && search.target_cursor == search.targets.len()
             && search.bad_cost.is_none();
         let (reach, max) = (search.reach, search.max_distance);
+        // After a stop at the targets, what is still queued (at `level` or later) offers
+        // nothing below `level - reach`, and a node is kept only if its value is below
+        // that too.
+        let horizon = if stopped_early {
+            max.min(search.queue.level() - reach)
+        } else {
+            max
+        };
         if stopped_early || reach > 0.0 {
             for (node, d) in search.distance.iter_mut().enumerate() {
                 // Values beyond the maximum distance were only kept for the margin.
@@ -141,6 +160,7 @@ impl<'a, M: Metric> Frontier<'a, M, ()> {
             tests: search.tests,
             bad_cost: search.bad_cost,
             stopped_early,
+            horizon,
         }
     }
 }

@@ -60,6 +60,10 @@ impl Queue for HeapQueue {
     fn is_final(&self, value: f64) -> bool {
         value <= self.floor
     }
+
+    fn level(&self) -> f64 {
+        self.floor
+    }
 }
 
 /// Buckets `width` wide over a window of [`WINDOW`] buckets, a binary heap beyond it,
@@ -367,7 +371,11 @@ impl Queue for BucketQueue {
     fn is_final(&self, value: f64) -> bool {
         // Everything still queued lies in the current bucket or later, and improvements
         // never go below the bucket they come from.
-        value < self.base + self.current as f64 * self.width
+        value < self.level()
+    }
+
+    fn level(&self) -> f64 {
+        self.base + self.current as f64 * self.width
     }
 }
 #[cfg(test)]

@@ -61,6 +61,8 @@ pub struct Solver<'m, M> {
     /// How far below a node's value its offers can reach (see `Frontier::reach`).
     reach: f64,
     bucket_width: f64,
+    /// The sum of the edges' finite costs: no run's value exceeds a start plus this.
+    cost_total: f64,
     setup_seconds: f64,
 }
 
@@ -91,6 +93,10 @@ pub struct Workspace {
     solver: Option<SolverId>,
     /// The engine of the last run.
     method: Option<Method>,
+    /// The last run's [`Stop::max_distance`]: points farther are unreached.
+    max_distance: f64,
+    /// The last run's horizon (see [`FieldView::horizon`]).
+    horizon: f64,
 }
 
 impl Workspace {
@@ -115,6 +121,8 @@ impl Workspace {
             roots: &self.roots,
             waves: &self.waves,
             method: self.method.unwrap_or(Method::Wave),
+            max_distance: self.max_distance,
+            horizon: self.horizon,
         }
     }
 
@@ -192,7 +200,7 @@ impl<'m, M: Metric> Solver<'m, M> {
                 std::borrow::Cow::Owned(first_face_steps(mesh, &metric, &layout))
             }
         };
-        check_cost_range(&metric, &layout, &steps)?;
+        let cost_total = check_cost_range(&metric, &layout, &steps)?;
         // Only the tracks engine uses a bucket queue (the baselines keep a heap).
         let (tables, bucket_width) = match options.method {
             Method::Tracks | Method::Wave => {
@@ -228,6 +236,7 @@ impl<'m, M: Metric> Solver<'m, M> {
             isometric,
             reach,
             bucket_width,
+            cost_total,
             setup_seconds: start.elapsed().as_secs_f64(),
         })
     }
@@ -382,6 +391,7 @@ impl<'m, M: Metric> Solver<'m, M> {
             });
         }
         self.validate_sources(&mut workspace.sources)?;
+        workspace.max_distance = stop.max_distance;
         workspace.targets.clear();
         for (i, target) in stop.targets.iter().enumerate() {
             let point = target
@@ -426,6 +436,7 @@ impl<'m, M: Metric> Solver<'m, M> {
             roots,
             solver,
             method: last_method,
+            horizon,
             ..
         } = workspace;
         let search = Frontier {
@@ -492,6 +503,16 @@ impl<'m, M: Metric> Solver<'m, M> {
             node: s.node,
             source: s.source,
         }));
+        *horizon = outcome.horizon;
+        if self.method == Method::Wave && outcome.horizon < f64::INFINITY {
+            // The waves of nodes the stop left unreached are not the run's.
+            let steiner = &distance[self.layout.vertex_count() as usize..];
+            for (wave, d) in waves.iter_mut().zip(steiner) {
+                if d.is_infinite() {
+                    *wave = Wave::NONE;
+                }
+            }
+        }
         *solver = Some(self.id);
         *last_method = Some(self.method);
         Ok(Stats {
@@ -530,6 +551,15 @@ impl<'m, M: Metric> Solver<'m, M> {
                 return Err(Error::InvalidValue {
                     which: ValueRole::Start { source: i },
                     value: source.start,
+                });
+            }
+            // Values only grow from a start, by at most the mesh's total cost: a start
+            // so large that they could overflow would leave nodes silently unreached.
+            if !(source.start + self.cost_total).is_finite() {
+                return Err(Error::StartTooLarge {
+                    index: i,
+                    start: source.start,
+                    cost_total: self.cost_total,
                 });
             }
         }
@@ -713,6 +743,8 @@ impl<'m, M: Metric> Solver<'m, M> {
             ws.sources,
             ws.roots,
             ws.waves,
+            stop.max_distance,
+            ws.horizon,
             stats,
         ))
     }
@@ -761,12 +793,12 @@ fn first_face_steps<M: Metric>(mesh: &TriMesh, metric: &M, layout: &SteinerLayou
 
 /// Refuses a metric whose costs leave the f64 range on this mesh: every distance a run
 /// can give is at most the sum of the edges' finite costs (a path along edges), so
-/// that sum must be finite. (`+inf` edges are walls, allowed.)
+/// that sum must be finite. (`+inf` edges are walls, allowed.) Returns the sum.
 fn check_cost_range<M: Metric>(
     metric: &M,
     layout: &SteinerLayout,
     steps: &[f64],
-) -> Result<(), Error> {
+) -> Result<f64, Error> {
     let total: f64 = steps
         .iter()
         .enumerate()
@@ -774,7 +806,7 @@ fn check_cost_range<M: Metric>(
         .map(|(e, s)| s * (layout.count(e as u32) + 1) as f64)
         .sum();
     if total.is_finite() {
-        return Ok(());
+        return Ok(total);
     }
     Err(Error::CostOverflow {
         metric: metric.name().to_string(),

@@ -127,7 +127,8 @@ impl<'a, M: Metric> Query<'a, M> {
     /// plus its segment); for a field of the wavefront engine also, from each node's
     /// wave that crosses into the face, `σ` plus the straight line from its source where
     /// it passes the node's window. Not an interpolation of vertex values. `inf` when no
-    /// source reaches the point.
+    /// source reaches the point, or when its value would exceed the run's
+    /// [`Stop::max_distance`](crate::Stop::max_distance).
     ///
     /// # Complexity
     /// O(k) metric evaluations per face around the point.
@@ -150,10 +151,16 @@ impl<'a, M: Metric> Query<'a, M> {
             return Ok((d, d.is_finite().then_some(Origin::Node(v))));
         }
         let mut best = (f64::INFINITY, None);
+        // The least value a node the stop left unreached could give the point (through
+        // its wave, which may reach the point with less than the node's value).
+        let mut unsettled = f64::INFINITY;
         for &f in point.faces(mesh).iter() {
             let x = point.in_face(mesh, f).expect("the point lies on its faces");
             for (node, p) in field.layout.face_nodes(mesh, f) {
                 let g = field.distance[node as usize];
+                if g == f64::INFINITY && field.horizon < f64::INFINITY {
+                    unsettled = unsettled.min(field.horizon - metric.cost(f, &p, &x));
+                }
                 if g < best.0 {
                     let d = g + metric.cost(f, &p, &x);
                     if d < best.0 {
@@ -176,6 +183,13 @@ impl<'a, M: Metric> Query<'a, M> {
                     }
                 }
             }
+        }
+        // A point beyond the stop's maximum is unreached, as a node there is: the
+        // nodes around it may lie within the maximum while the point does not. So is a
+        // point that a node the stop left unreached might give less: a finite value
+        // after an early stop is always the value a full run gives.
+        if best.0 > field.max_distance || best.0 > unsettled {
+            best = (f64::INFINITY, None);
         }
         Ok(best)
     }

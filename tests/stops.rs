@@ -1,0 +1,178 @@
+//! The stop rules at every surface point, not only at nodes: after a run stopped at a
+//! maximum distance or at its targets, the distance at any point is either `inf` or
+//! the value a full run gives there, and never beyond the maximum; the targets' values
+//! are final; and a point well inside the maximum is reached.
+
+mod common;
+
+use common::{random_mesh, sphere, Rng};
+use geotracks::mesh::TriMesh;
+use geotracks::{Euclidean, Method, Options, Solver, Source, Stop, SurfacePoint};
+use proptest::prelude::*;
+
+fn random_point(mesh: &TriMesh, rng: &mut Rng) -> SurfacePoint {
+    match rng.below(4) {
+        0 => SurfacePoint::Vertex(rng.below(mesh.vertex_count()) as u32),
+        1 => SurfacePoint::Edge {
+            edge: rng.below(mesh.edge_count()) as u32,
+            t: rng.next(),
+        },
+        _ => {
+            let (a, b) = (rng.next(), rng.next());
+            let (a, b) = if a + b > 1.0 {
+                (1.0 - a, 1.0 - b)
+            } else {
+                (a, b)
+            };
+            SurfacePoint::Face {
+                face: rng.below(mesh.face_count()) as u32,
+                bary: [a, b, 1.0 - a - b],
+            }
+        }
+    }
+}
+
+/// Runs `sources` on `mesh` with a full run and with `stop`, and checks `queries`.
+fn check(
+    mesh: &TriMesh,
+    method: Method,
+    k: f64,
+    sources: &[Source],
+    stop: &Stop,
+    queries: &[SurfacePoint],
+) -> Result<(), TestCaseError> {
+    let options = Options::DEFAULT.with_method(method).with_k(k);
+    let solver = Solver::new(mesh, Euclidean, &options).unwrap();
+    let full = solver.solve_from(sources, &Stop::NONE).unwrap();
+    let stopped = solver.solve_from(sources, stop).unwrap();
+    let (full, stopped) = (
+        solver.query(&full).unwrap(),
+        solver.query(&stopped).unwrap(),
+    );
+    let longest = (0..mesh.edge_count() as u32)
+        .map(|e| mesh.edge_length(e))
+        .fold(0.0, f64::max);
+    for &point in queries.iter().chain(&stop.targets) {
+        let (a, b) = (
+            stopped.distance_at(point).unwrap(),
+            full.distance_at(point).unwrap(),
+        );
+        if a.is_finite() {
+            prop_assert_eq!(a, b, "{:?} at {}: stopped {}, full {}", method, point, a, b);
+            prop_assert!(
+                a <= stop.max_distance,
+                "{:?} at {}: {} beyond",
+                method,
+                point,
+                a
+            );
+        } else if stop.targets.is_empty() {
+            // Only the points within about an edge of the maximum may be left out.
+            prop_assert!(
+                b > stop.max_distance - 2.0 * longest,
+                "{:?} at {}: unreached, full {} (max {})",
+                method,
+                point,
+                b,
+                stop.max_distance
+            );
+        }
+    }
+    for &target in &stop.targets {
+        let (a, b) = (
+            stopped.distance_at(target).unwrap(),
+            full.distance_at(target).unwrap(),
+        );
+        // (A target whose faces reach beyond the maximum may need nodes beyond it.)
+        if b <= stop.max_distance - 2.0 * longest {
+            prop_assert_eq!(a, b, "{:?}: target {} not final", method, target);
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
+
+    #[test]
+    fn stopped_runs_agree_with_full_runs_at_every_point(
+        seed in any::<u64>(),
+        shape in 0u8..2,
+        k in 1u32..5,
+        stop in 0u8..3,
+    ) {
+        let mut rng = Rng(seed | 1);
+        let mesh = match shape {
+            0 => sphere(2, 0.1, seed),
+            _ => match random_mesh(seed, 6) {
+                Ok(mesh) => mesh,
+                Err(_) => return Ok(()),
+            },
+        };
+        let sources: Vec<Source> = (0..1 + rng.below(2))
+            .map(|_| Source::new(random_point(&mesh, &mut rng)).with_start(rng.next() - 0.5))
+            .collect();
+        let queries: Vec<SurfacePoint> = (0..60).map(|_| random_point(&mesh, &mut rng)).collect();
+        let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
+        let far = solver
+            .solve_from(&sources, &Stop::NONE)
+            .unwrap()
+            .node_distances()
+            .iter()
+            .copied()
+            .filter(|d| d.is_finite())
+            .fold(0.0, f64::max);
+        let stop = match stop {
+            0 => Stop::NONE.with_max_distance(rng.next() * far),
+            1 => Stop::NONE.with_targets((0..1 + rng.below(3)).map(|_| random_point(&mesh, &mut rng)).collect()),
+            _ => Stop::NONE
+                .with_max_distance((0.5 + rng.next()) * far)
+                .with_targets(vec![random_point(&mesh, &mut rng)]),
+        };
+        for method in [Method::Wave, Method::Tracks, Method::Graph] {
+            check(&mesh, method, k as f64, &sources, &stop, &queries)?;
+        }
+    }
+}
+
+/// The case the hardening issue reported: with a maximum distance, a point of a face
+/// that the maximum cuts, next to its vertex beyond the maximum, was given the value
+/// through a node within it: a value beyond the maximum.
+#[test]
+fn a_point_beyond_the_maximum_is_unreached() {
+    let mesh = common::grid(4, 4.0);
+    for method in [Method::Wave, Method::Tracks, Method::Graph] {
+        let options = Options::DEFAULT.with_method(method).with_k(1.0);
+        let solver = Solver::new(&mesh, Euclidean, &options).unwrap();
+        let full = solver.solve(&[0]).unwrap();
+        let query = solver.query(&full).unwrap();
+        let max = 2.5;
+        let bounded = solver
+            .solve_from(&[Source::new(0)], &Stop::NONE.with_max_distance(max))
+            .unwrap();
+        let bounded_query = solver.query(&bounded).unwrap();
+        let mut cut_faces = 0;
+        for (face, triangle) in mesh.triangles().iter().enumerate() {
+            let values = triangle.map(|v| full.distance(v));
+            let Some(far) = (0..3).find(|&i| values[i] > max) else {
+                continue;
+            };
+            if values.iter().all(|&d| d > max) {
+                continue;
+            }
+            cut_faces += 1;
+            let mut bary = [0.01; 3];
+            bary[far] = 0.98;
+            let point = SurfacePoint::Face {
+                face: face as u32,
+                bary,
+            };
+            let value = query.distance_at(point).unwrap();
+            let bounded_value = bounded_query.distance_at(point).unwrap();
+            assert!(value > max, "{method:?}: {value} at {point}");
+            assert_eq!(bounded_value, f64::INFINITY, "{method:?} at {point}");
+            assert!(bounded_query.trace(point).is_err());
+        }
+        assert!(cut_faces > 0);
+    }
+}
