@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{book, grid, random_book, random_mesh, sphere, Rng, GRAPH, TRACKS};
+use common::{book, grid, random_book, random_face_point, random_mesh, sphere, Rng, GRAPH, TRACKS};
 use geotracks::glam::DVec3;
 use geotracks::mesh::{io::read_mesh, TriMesh};
 use geotracks::{
@@ -12,21 +12,6 @@ use geotracks::{
 
 fn spot() -> TriMesh {
     read_mesh(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/spot.obj")).unwrap()
-}
-
-/// A random point inside a random face.
-fn random_face_point(mesh: &TriMesh, rng: &mut Rng) -> SurfacePoint {
-    let face = rng.below(mesh.face_count()) as u32;
-    let (a, b) = (rng.next(), rng.next());
-    let (a, b) = if a + b > 1.0 {
-        (1.0 - a, 1.0 - b)
-    } else {
-        (a, b)
-    };
-    SurfacePoint::Face {
-        face,
-        bary: [1.0 - a - b, a, b],
-    }
 }
 
 fn random_edge_point(mesh: &TriMesh, rng: &mut Rng) -> SurfacePoint {

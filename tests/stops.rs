@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{random_mesh, sphere, Rng};
+use common::{random_face_point, random_mesh, sphere, Rng};
 use geotracks::mesh::TriMesh;
 use geotracks::{Euclidean, Method, Options, Solver, Source, Stop, SurfacePoint};
 use proptest::prelude::*;
@@ -17,18 +17,7 @@ fn random_point(mesh: &TriMesh, rng: &mut Rng) -> SurfacePoint {
             edge: rng.below(mesh.edge_count()) as u32,
             t: rng.next(),
         },
-        _ => {
-            let (a, b) = (rng.next(), rng.next());
-            let (a, b) = if a + b > 1.0 {
-                (1.0 - a, 1.0 - b)
-            } else {
-                (a, b)
-            };
-            SurfacePoint::Face {
-                face: rng.below(mesh.face_count()) as u32,
-                bary: [a, b, 1.0 - a - b],
-            }
-        }
+        _ => random_face_point(mesh, rng),
     }
 }
 

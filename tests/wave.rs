@@ -15,7 +15,8 @@ mod common;
 
 use common::{
     cone_strip, corner_fan, cylinder_strip, grid, holey_grid, multiscale_mesh, needle_square,
-    random_book, random_mesh, read_reference, rectangle, relative_error, sphere, square_fan, Rng,
+    random_book, random_face_point, random_mesh, read_reference, rectangle, relative_error, sphere,
+    square_fan, Rng,
 };
 use geotracks::glam::{DVec2, DVec3};
 use geotracks::mesh::{io::read_mesh, TriMesh};
@@ -334,19 +335,6 @@ fn wave_deviation(mesh: &TriMesh, region: &Region, k: f64, sources: &[Source]) -
     let field = solver.solve_from(sources, &Stop::NONE).unwrap();
     assert_eq!(field.stats().method, Method::Wave);
     deviation(mesh, region, &field, sources)
-}
-
-fn random_face_point(mesh: &TriMesh, rng: &mut Rng) -> SurfacePoint {
-    let (a, b) = (rng.next(), rng.next());
-    let (a, b) = if a + b > 1.0 {
-        (1.0 - a, 1.0 - b)
-    } else {
-        (a, b)
-    };
-    SurfacePoint::Face {
-        face: rng.below(mesh.face_count()) as u32,
-        bary: [1.0 - a - b, a, b],
-    }
 }
 
 fn random_edge_point(mesh: &TriMesh, rng: &mut Rng) -> SurfacePoint {

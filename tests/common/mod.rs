@@ -108,6 +108,23 @@ impl Rng {
     }
 }
 
+/// A uniformly random point inside a random face of `mesh`.
+pub fn random_face_point(
+    mesh: &geotracks::mesh::TriMesh,
+    rng: &mut Rng,
+) -> geotracks::SurfacePoint {
+    let (a, b) = (rng.next(), rng.next());
+    let (a, b) = if a + b > 1.0 {
+        (1.0 - a, 1.0 - b)
+    } else {
+        (a, b)
+    };
+    geotracks::SurfacePoint::Face {
+        face: rng.below(mesh.face_count()) as u32,
+        bary: [1.0 - a - b, a, b],
+    }
+}
+
 /// A jittered grid with holes, extra "fin" faces on existing edges (non-manifold),
 /// degenerate faces (repeated vertex, collinear), an unreferenced vertex, and sometimes
 /// a second disconnected component.
