@@ -44,25 +44,22 @@ impl<M: Metric> Query<'_, M> {
         EdgeFrame::new(frame, slot, self.mesh.slot_is_reversed(f, slot))
     }
 
-    /// Whether the wave of a node on `edge`, which came through face `from`, may cross
-    /// into face `into` unbent: the two faces give the edge the same length.
-    /// (A wave from a point of the edge itself, `from` = `NONE`, is measured along the
-    /// edge: it crosses into a face only where all faces around the edge agree.)
-    fn glues(&self, edge: u32, from: u32, into: u32) -> bool {
+    /// Whether waves cross `edge` unbent: every face around it gives it the same
+    /// flattened length (as the engine's `isometric_edges` decides; a wave never
+    /// crosses any other edge).
+    fn glues(&self, edge: u32) -> bool {
         let len = |f: u32| -> Option<f64> {
             let frame = self.flat(f)?;
             let s = self.mesh.edge_slot(f, edge)?;
             Some(self.edge_frame(&frame, f, s).len)
         };
-        let Some(b) = len(into) else {
+        let faces = self.mesh.edge_faces(edge);
+        let Some(b) = faces.first().and_then(|&f| len(f)) else {
             return false;
         };
-        let same = |f: u32| len(f).is_some_and(|a| (a - b).abs() <= 1e-9 * a);
-        if from == NONE {
-            self.mesh.edge_faces(edge).iter().all(|&f| same(f))
-        } else {
-            same(from)
-        }
+        faces
+            .iter()
+            .all(|&f| len(f).is_some_and(|a| (a - b).abs() <= 1e-9 * b))
     }
 
     /// Node `q`'s wave unfolded into face `f` (flattened frame `frame`, `q` on `slot`):
@@ -73,7 +70,7 @@ impl<M: Metric> Query<'_, M> {
         let NodeKind::Steiner { edge, .. } = self.field.layout.kind(q) else {
             return None;
         };
-        if from == f || !self.glues(edge, from, f) {
+        if from == f || !self.glues(edge) {
             return None;
         }
         let ef = self.edge_frame(frame, f, slot);
