@@ -32,11 +32,10 @@ use geotracks::{
     mesh::io::read_mesh, Euclidean, Method, Options, Solver, Source, Stop, SurfacePoint,
 };
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
 use std::time::Instant;
 
 mod shared_data;
-use shared_data::{manifest, read_reference, relative_error, source_of};
+use shared_data::{manifest, peak_rss_kb, read_reference, relative_error, run_child, source_of};
 
 const DEFAULT_MESHES: &str = "alligator,bunny,horse,bunny_loop1,bunny_loop2";
 const USAGE: &str = "usage: bench DATA_DIR [--meshes a,b,c] [--k 3,5,8] \
@@ -165,7 +164,7 @@ fn parent(argv: &[String]) -> Result<(), String> {
             e.name
         );
         let t = Instant::now();
-        match run_child(&exe, e, m, k, reps) {
+        match measure_in_child(&exe, e, m, k, reps) {
             Ok(fields) => {
                 eprintln!("{:.1} s", t.elapsed().as_secs_f64());
                 rows.push(Row {
@@ -235,27 +234,22 @@ fn entry(data: &Path, name: &str) -> Result<Entry, String> {
     })
 }
 
-fn run_child(exe: &Path, e: &Entry, m: Method, k: f64, reps: u32) -> Result<[f64; FIELDS], String> {
-    let out = Command::new(exe)
-        .arg("--one")
-        .args([&e.file, &e.reference])
-        .args([
-            e.source.to_string(),
-            m.to_string(),
-            k.to_string(),
-            reps.to_string(),
-        ])
-        .stderr(Stdio::inherit())
-        .output()
-        .map_err(|err| format!("cannot start {}: {err}", exe.display()))?;
-    if !out.status.success() {
-        return Err(format!("child exited with {}", out.status));
-    }
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let line = stdout
-        .lines()
-        .find_map(|l| l.strip_prefix("BENCH\t"))
-        .ok_or("child printed no result line")?;
+fn measure_in_child(
+    exe: &Path,
+    e: &Entry,
+    m: Method,
+    k: f64,
+    reps: u32,
+) -> Result<[f64; FIELDS], String> {
+    let args = [
+        e.file.display().to_string(),
+        e.reference.display().to_string(),
+        e.source.to_string(),
+        m.to_string(),
+        k.to_string(),
+        reps.to_string(),
+    ];
+    let line = run_child(exe, &args, "BENCH\t")?;
     let fields: Vec<f64> = list(&line.replace('\t', ","), "field", |s| s.parse().ok())?;
     let n = fields.len();
     fields
@@ -318,17 +312,6 @@ fn child(args: &[String]) -> Result<(), String> {
     let line: Vec<String> = f.iter().map(|x| x.to_string()).collect();
     println!("BENCH\t{}", line.join("\t"));
     Ok(())
-}
-
-/// This process's peak resident set (`VmHWM`), in kB.
-fn peak_rss_kb() -> Result<f64, String> {
-    let status = std::fs::read_to_string("/proc/self/status")
-        .map_err(|e| format!("/proc/self/status: {e}"))?;
-    status
-        .lines()
-        .find_map(|l| l.strip_prefix("VmHWM:"))
-        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
-        .ok_or_else(|| "no VmHWM in /proc/self/status".into())
 }
 
 fn secs(x: f64) -> String {

@@ -3,12 +3,12 @@
 //! `peers.md` beside ours, and optionally a plot. What it prints is described in the
 //! doc comment of `main.rs`.
 
-use super::shared_data::{manifest, read_reference, source_of};
+use super::shared_data::{manifest, peak_rss_kb, read_reference, run_child, source_of};
 use geotracks::mesh::{io::read_mesh, TriMesh};
 use geotracks::{Euclidean, Method, Metric, Options, Solver, Stats, Tensor};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::process::Command;
 use std::time::Instant;
 
 const USAGE: &str =
@@ -144,11 +144,8 @@ impl Measured {
     }
 
     fn from_line(line: &str) -> Result<Measured, String> {
-        let map: BTreeMap<&str, &str> = line
-            .split('\t')
-            .skip(1)
-            .filter_map(|f| f.split_once('='))
-            .collect();
+        let map: BTreeMap<&str, &str> =
+            line.split('\t').filter_map(|f| f.split_once('=')).collect();
         let num = |key: &str| -> Result<f64, String> {
             map.get(key)
                 .and_then(|v| v.parse().ok())
@@ -467,7 +464,7 @@ pub fn main(argv: &[String]) -> Result<(), String> {
             case.references.len()
         );
         let t = Instant::now();
-        match run_child(&exe, case, config, reps) {
+        match measure_in_child(&exe, case, config, reps) {
             Ok(m) => {
                 eprintln!("{:.1} s", t.elapsed().as_secs_f64());
                 rows.push(Row {
@@ -505,32 +502,24 @@ pub fn main(argv: &[String]) -> Result<(), String> {
     Ok(())
 }
 
-fn run_child(exe: &Path, case: &Case, config: Config, reps: u32) -> Result<Measured, String> {
+fn measure_in_child(
+    exe: &Path,
+    case: &Case,
+    config: Config,
+    reps: u32,
+) -> Result<Measured, String> {
     let metric = match &case.tensor {
         Some(t) => format!("tensor={}", t.display()),
         None => "euclidean".into(),
     };
-    let out = Command::new(exe)
-        .arg("--one")
-        .arg(&case.file)
-        .args([metric, config.spec(), reps.to_string()])
-        .args(
-            case.references
-                .iter()
-                .map(|(s, p)| format!("{s}={}", p.display())),
-        )
-        .stderr(Stdio::inherit())
-        .output()
-        .map_err(|e| format!("cannot start {}: {e}", exe.display()))?;
-    if !out.status.success() {
-        return Err(format!("child exited with {}", out.status));
-    }
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let line = stdout
-        .lines()
-        .find(|l| l.starts_with("EVAL\t"))
-        .ok_or("the child printed no result line")?;
-    Measured::from_line(line)
+    let mut args = vec![case.file.display().to_string(), metric];
+    args.extend([config.spec(), reps.to_string()]);
+    args.extend(
+        case.references
+            .iter()
+            .map(|(s, p)| format!("{s}={}", p.display())),
+    );
+    Measured::from_line(&run_child(exe, &args, "EVAL\t")?)
 }
 
 /// The child: `--one MESH METRIC CONFIG REPS SOURCE=REFERENCE...`, where METRIC is
@@ -680,17 +669,6 @@ fn measure<M: Metric>(
         m.below = m.below.max(below);
     }
     Ok(m)
-}
-
-/// This process's peak resident set (`VmHWM`), in kB.
-fn peak_rss_kb() -> Result<f64, String> {
-    let status = std::fs::read_to_string("/proc/self/status")
-        .map_err(|e| format!("/proc/self/status: {e}"))?;
-    status
-        .lines()
-        .find_map(|l| l.strip_prefix("VmHWM:"))
-        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
-        .ok_or_else(|| "no VmHWM in /proc/self/status".into())
 }
 
 /// A relative error (a fraction) in %, to 3 significant digits.

@@ -1,8 +1,10 @@
 //! Reading the shared data directory (`manifest.json`, exact references) and comparing
-//! against it; used by the `eval` and `bench` examples and by the tests.
+//! against it, and measuring a configuration in a child process; used by the `eval`
+//! and `bench` examples and by the tests.
 #![allow(dead_code)] // each user takes what it needs
 
 use std::path::Path;
+use std::process::{Command, Stdio};
 
 /// One mesh of `data/manifest.json`.
 pub struct MeshEntry {
@@ -80,4 +82,35 @@ pub fn relative_error(d: &[f64], exact: &[f64]) -> (f64, f64) {
         }
     }
     (sum / n.max(1) as f64, max)
+}
+
+/// Runs `exe --one ARGS...` (the example itself, measuring one configuration, so that
+/// its peak memory is its own) and returns what follows `tag` on the line of its
+/// output that starts with it.
+pub fn run_child(exe: &Path, args: &[String], tag: &str) -> Result<String, String> {
+    let out = Command::new(exe)
+        .arg("--one")
+        .args(args)
+        .stderr(Stdio::inherit())
+        .output()
+        .map_err(|e| format!("cannot start {}: {e}", exe.display()))?;
+    if !out.status.success() {
+        return Err(format!("child exited with {}", out.status));
+    }
+    String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .find_map(|l| l.strip_prefix(tag))
+        .map(str::to_string)
+        .ok_or_else(|| "the child printed no result line".into())
+}
+
+/// This process's peak resident set (`VmHWM`), in kB.
+pub fn peak_rss_kb() -> Result<f64, String> {
+    let status = std::fs::read_to_string("/proc/self/status")
+        .map_err(|e| format!("/proc/self/status: {e}"))?;
+    status
+        .lines()
+        .find_map(|l| l.strip_prefix("VmHWM:"))
+        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
+        .ok_or_else(|| "no VmHWM in /proc/self/status".into())
 }
