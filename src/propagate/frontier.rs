@@ -141,7 +141,9 @@ impl<'a, M: Metric> Frontier<'a, M, ()> {
         } else {
             max
         };
-        if stopped_early || reach > 0.0 {
+        // (With a margin, values up to `max + reach` were taken: only a finite maximum
+        // leaves some to forget.)
+        if stopped_early || (reach > 0.0 && max < f64::INFINITY) {
             for (node, d) in search.distance.iter_mut().enumerate() {
                 // Values beyond the maximum distance were only kept for the margin.
                 let beyond = d.is_finite() && *d > max;
