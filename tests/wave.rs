@@ -1681,3 +1681,66 @@ fn wave_queue_counts_do_not_overflow() {
         .unwrap();
     assert_eq!(field.stats().method, Method::Wave);
 }
+
+/// A traced path (before straightening) is as long as the value it explains, also where
+/// a value came from a bend at the end of a window (a hinge, `src/propagate/wave.rs`):
+/// the trace bends there and follows the window's wave on, and where a line through a
+/// window's end passes the vertex that ends it, goes on from that vertex. Around holes
+/// (the shadows of their corners end windows inside edges) and on Spot, from every
+/// vertex: a traced path is a real path (never below the exact distance), and it differs
+/// from its value on at most 1 in 12 of the vertices (longer where a tie replaced the
+/// wave that gave the value, documented; shorter where the vertex it passes has a better
+/// value than the wave there). Measured: none around holes at k = 2, 6 % (k = 1) and
+/// 2.3 % (k = 2) on Spot; without the trace's hinges about half of Spot's paths were
+/// longer.
+#[test]
+fn traced_paths_are_as_long_as_their_values() {
+    let mut cases: Vec<(String, TriMesh, Vec<f64>)> = holey_meshes()
+        .into_iter()
+        .map(|(name, mesh)| {
+            let region = Region::flat(&mesh);
+            let origin = region.point(&mesh, SurfacePoint::Vertex(0));
+            let exact = region.exact(&[(origin, 0.0)]);
+            let e = (0..mesh.vertex_count() as u32)
+                .map(|v| exact.at(region.point(&mesh, SurfacePoint::Vertex(v))).0)
+                .collect();
+            (name, mesh, e)
+        })
+        .collect();
+    let reference = read_reference(std::path::Path::new(&format!("{DATA}/spot.src0.f64"))).unwrap();
+    cases.push(("spot".to_string(), spot(), reference));
+    for (name, mesh, exact) in &cases {
+        for k in [1.0, 2.0] {
+            let solver = Solver::new(mesh, Euclidean, &wave(k)).unwrap();
+            let field = solver.solve(&[0]).unwrap();
+            let query = solver.query(&field).unwrap();
+            let (mut longer, mut shorter, mut worst) = (0usize, 0usize, 0.0f64);
+            let count = mesh.vertex_count() as u32;
+            for v in 1..count {
+                let d = field.distance(v);
+                let traced = query.trace(SurfacePoint::Vertex(v)).unwrap().traced_length;
+                let e = exact[v as usize];
+                assert!(
+                    traced >= e * (1.0 - 1e-9),
+                    "{name}, k = {k}: vertex {v}: traced {traced} < exact {e}"
+                );
+                let excess = (traced - d) / d;
+                if excess > 1e-9 {
+                    longer += 1;
+                } else if excess < -1e-9 {
+                    shorter += 1;
+                }
+                worst = worst.max(excess.abs());
+            }
+            println!(
+                "{name}, k = {k}: of {count} traced paths {longer} longer and {shorter} \
+                 shorter than their value (worst {worst:e} relative)"
+            );
+            assert!(
+                (longer + shorter) * 12 <= count as usize,
+                "{name}, k = {k}: {longer} + {shorter} of {count} traced paths differ from \
+                 their value"
+            );
+        }
+    }
+}

@@ -10,11 +10,14 @@
 //! edge), `σ` (the path length up to `S`), and a *window*: the part of the node's edge
 //! through which every straight line from `S` is a real path on the surface. When the
 //! node enters a face across its edge, a target `t` of the face gets
-//! `σ + |S t|` if the straight line from `S` to `t` crosses the edge inside the window,
-//! and the polyline value `d(q) + |q t|` (bending at the node) otherwise. A target that
-//! takes the straight value inherits `S` and `σ`, with the window projected from `S`
-//! onto its own edge; one that takes the polyline value gets a fresh wave: a source at
-//! the node, `σ = d(q)`, the whole edge as window.
+//! `σ + |S t|` if the straight line from `S` to `t` crosses the edge inside the window.
+//! Otherwise the shortest way through the window bends at the window's end on the
+//! line's side (a *hinge*, see `Hinges`): `σ + |S w| + |w t|`; where that end is a
+//! vertex of the edge, the vertex offers that bend itself, and a node whose wave has no
+//! hinge there offers the polyline value `d(q) + |q t|` (bending at the node). A target
+//! that takes the straight value inherits `S` and `σ`, with the window projected from
+//! `S` onto its own edge; one that takes a bent value gets a fresh wave: a source at the
+//! bend (`w` or the node), `σ` the value there, the whole edge as window.
 //!
 //! Vertices do not carry waves: a geodesic bends at a saddle vertex and never passes
 //! through a convex one, so a vertex always starts a fresh wave (a point source). Waves
@@ -23,8 +26,10 @@
 //!
 //! # Why values are never below the true distance
 //! Every value is the length of a real path: a polyline value is a node's value plus a
-//! straight segment inside one face; a straight value is `σ` plus a straight line from
-//! `S` that crosses the entering node's window, and by induction every line from `S`
+//! straight segment inside one face; a hinge's is a line from `S` to the end of the
+//! window (which the window holds) plus a segment inside one face; a straight value is
+//! `σ` plus a straight line from `S` that crosses the entering node's window, and by
+//! induction every line from `S`
 //! through a window is a path that exists: the window of a node that inherited a wave
 //! is the set of points of its edge that lines from `S` reach through its parent's
 //! window and across the face between them. So the engine can only overestimate
@@ -49,10 +54,13 @@
 //!
 //! # Cost
 //! Every entry tests every target of the face (no track pruning: with the few points
-//! per edge this engine needs, a face has a handful of targets). Values, parents and
-//! the bucket queue are the other engines'; each Steiner node adds a 32-byte wave. A
-//! straight offer can lie below the offering node's value (its source is behind it), by
-//! at most an edge's length: the solver's `reach` widens finality by that much.
+//! per edge this engine needs, a face has a handful of targets). Each test first takes
+//! the unconstrained straight value, a lower bound on every offer the entry can make
+//! (a bent way is longer); most tests end there, before the window is looked at.
+//! Values, parents and the bucket queue are the other engines'; each Steiner node adds a
+//! 32-byte wave. A straight or hinge offer can lie below the offering node's value (its
+//! source, or its bend, is nearer the source than the node), by at most an edge's
+//! length: the solver's `reach` widens finality by that much.
 
 use super::frontier::{Frontier, Queue, Seed};
 use super::tracks::{FaceRecord, TrackTables};
@@ -249,6 +257,11 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
             let frame = EdgeFrame::new(&r.frame, s, r.is_reversed(s));
             let pq = frame.at_edge_coords(own * frame.len, 0.0);
             // Targets: the points of the two other slots and the opposite corner.
+            let hinges = if has_wave {
+                Hinges::new(&wave, &frame)
+            } else {
+                Hinges::NONE
+            };
             let entry = Entry {
                 q,
                 d,
@@ -257,6 +270,10 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
                 frame,
                 pq,
                 f,
+                hinges,
+                same_wave_slack: 4.0
+                    * SAME_SOURCE
+                    * (frame.len + wave.sigma.abs() + wave.sx.abs() + wave.sy.abs()),
             };
             for step in 1..3 {
                 let ts = (s + step) % 3;
@@ -293,26 +310,41 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
         self.search.tests += 1;
         let mut value = d + step;
         let mut carried = None;
-        if let Some(w) = wave {
-            if w.is_some() && in_window(w, at) {
+        // Where a fresh wave starts (fraction of the edge) and its path length there.
+        let mut bend = (from_at, d);
+        if let Some(w) = wave.filter(|w| w.is_some()) {
+            if in_window(w, at) {
                 let straight = w.sigma + P(w.sx - at * len, w.sy).length();
                 if straight < value {
                     value = straight;
                     carried = Some(*w);
                 }
+            } else {
+                // Beyond the window's end (inside the edge): bend there rather than at
+                // `from` (see `Hinges`).
+                let end = if at < w.w0 as f64 { w.w0 } else { w.w1 };
+                if end > 0.0 && end < 1.0 {
+                    let x = end as f64;
+                    let sigma = w.sigma + P(w.sx - x * len, w.sy).length();
+                    let hinge = sigma + (at - x).abs() * len;
+                    if hinge < value {
+                        value = hinge;
+                        bend = (x, sigma);
+                    }
+                }
             }
         }
         let previous = self.search.distance[to as usize];
-        if value >= previous || self.keeps_wave(to, value, carried.map_or(d, |w| w.sigma)) {
+        if value >= previous || self.keeps_wave(to, value, carried.map_or(bend.1, |w| w.sigma)) {
             return;
         }
         self.search
             .relax(to, value, from, if carried.is_some() { face } else { NONE });
         if to >= self.vertex_count && self.search.distance[to as usize] < previous {
             *self.wave_mut(to) = carried.unwrap_or(Wave {
-                sx: from_at * len,
+                sx: bend.0 * len,
                 sy: 0.0,
-                sigma: d,
+                sigma: bend.1,
                 w0: 0.0,
                 w1: 1.0,
             });
@@ -350,21 +382,40 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
             // In the entering edge's frame: the source at (sx, −sy), behind the edge.
             let (tx, ty) = entry.frame.edge_coords(pt);
             let (dx, dy) = (tx - wave.sx, ty + wave.sy);
+            let straight = wave.sigma + P(dx, dy).length();
+            // Every offer of this entry is at least the straight line's (a hinge or a
+            // bend at the node is a longer way from the source), and `t` carries the
+            // same wave (to merge windows with) only with that value: beyond it, the
+            // offer is over before the window is looked at. Most offers end here.
+            if straight > current + entry.same_wave_slack + TIE * current.abs() {
+                return;
+            }
             let x = (wave.sx + wave.sy / dy * dx) / entry.frame.len;
             if in_window(wave, x) {
-                let straight = wave.sigma + P(dx, dy).length();
                 if straight > current + TIE * current.abs()
                     || self.offer_straight(t, straight, entry, r, ts)
                 {
                     return;
                 }
-            } else if t >= self.vertex_count
-                && ts < 3
-                && (self.wave(t).sigma - wave.sigma).abs()
-                    <= SAME_SOURCE * (entry.frame.len + wave.sigma.abs() + wave.sx.abs())
-            {
-                // Outside the window: the same wave may have reached `t` another way.
-                self.merge(t, entry, r, ts);
+            } else {
+                if t >= self.vertex_count
+                    && ts < 3
+                    && (self.wave(t).sigma - wave.sigma).abs()
+                        <= SAME_SOURCE * (entry.frame.len + wave.sigma.abs() + wave.sx.abs())
+                {
+                    // Outside the window: the same wave may have reached `t` another way.
+                    self.merge(t, entry, r, ts);
+                }
+                // Outside the window, the shortest path through it bends at the
+                // window's end on that side (see `Hinges`): never longer than bending
+                // at the node, which lies inside it.
+                if let Some((ph, sigma)) = entry.hinges.towards(x) {
+                    let value = sigma + pt.sub(ph).length();
+                    if value < self.search.distance[t as usize] {
+                        self.offer_polyline(t, value, entry.q, entry.f, r, ts, ph, sigma);
+                    }
+                    return;
+                }
             }
         }
         let polyline = entry.d + pt.sub(entry.pq).length();
@@ -556,6 +607,72 @@ struct Entry {
     /// The node's point in the face.
     pq: P,
     f: u32,
+    /// Where lines that miss the window bend.
+    hinges: Hinges,
+    /// How far a target that carries the same wave (its source and `σ` equal to
+    /// [`SAME_SOURCE`]) can lie above this wave's straight value to it.
+    same_wave_slack: f64,
+}
+
+/// The ends of a wave's window that lie inside its edge, with the length of the path up
+/// to each: `σ + |S w|`. A target whose line from `S` crosses the edge's line outside
+/// the window is reached, through the window, at best by the path that bends at the
+/// window's end on that side: the length `|S w| + |w t|` is convex in `w` along the
+/// edge and least where the line crosses, so over the window it is least at the end
+/// nearest the crossing. That path is real (a line through the window, then a segment
+/// in the face), so the value it gives is never below the true distance, and it is
+/// never longer than the path that bends at the node (which lies in its own window).
+/// An end at a vertex gets no hinge: the vertex itself offers that bend, from a value
+/// at most this one.
+#[derive(Clone, Copy)]
+struct Hinges {
+    /// Fraction of the edge, point in the entered face, path length; `NAN` fraction:
+    /// no hinge on that side.
+    lo: (f64, P, f64),
+    hi: (f64, P, f64),
+}
+
+impl Hinges {
+    const NONE: Hinges = Hinges {
+        lo: (f64::NAN, P(0.0, 0.0), 0.0),
+        hi: (f64::NAN, P(0.0, 0.0), 0.0),
+    };
+
+    #[inline]
+    fn new(wave: &Wave, frame: &EdgeFrame) -> Hinges {
+        let at = |w: f32| -> (f64, P, f64) {
+            let x = w as f64 * frame.len;
+            let sigma = wave.sigma + P(x - wave.sx, wave.sy).length();
+            (w as f64, frame.at_edge_coords(x, 0.0), sigma)
+        };
+        Hinges {
+            lo: if wave.w0 > 0.0 {
+                at(wave.w0)
+            } else {
+                Hinges::NONE.lo
+            },
+            hi: if wave.w1 < 1.0 {
+                at(wave.w1)
+            } else {
+                Hinges::NONE.hi
+            },
+        }
+    }
+
+    /// The hinge for a line that crosses the edge's line at fraction `x`, outside the
+    /// window: its point and path length.
+    #[inline]
+    fn towards(&self, x: f64) -> Option<(P, f64)> {
+        // `x` is NaN for a line parallel to the edge: no hinge.
+        let (w, p, sigma) = if x < self.lo.0 {
+            self.lo
+        } else if x > self.hi.0 {
+            self.hi
+        } else {
+            return None;
+        };
+        (!w.is_nan()).then_some((p, sigma))
+    }
 }
 
 /// The slot of face record `r` that Steiner node `node` lies on.
@@ -588,4 +705,74 @@ pub(super) fn isometric_edges(
         }
     }
     iso
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Hinges, Wave};
+    use crate::flat::{EdgeFrame, P};
+    use crate::mesh::FaceFrame;
+
+    /// The edge from (0, 0) to (2, 0) of the face with corner (0.5, 1.5), seen from it; a
+    /// wave from S = (0.8, −1) (in the edge's frame: x = 0.8, y = 1 behind the edge) with
+    /// the window [0.25, 0.75] of the edge.
+    fn setup(w0: f32, w1: f32) -> (Wave, EdgeFrame) {
+        let face = FaceFrame {
+            l01: 2.0,
+            x2: 0.5,
+            y2: 1.5,
+        };
+        let frame = EdgeFrame::new(&face, 0, false);
+        let wave = Wave {
+            sx: 0.8,
+            sy: 1.0,
+            sigma: 0.3,
+            w0,
+            w1,
+        };
+        (wave, frame)
+    }
+
+    #[test]
+    fn a_line_that_misses_the_window_bends_at_its_nearest_end() {
+        let (wave, frame) = setup(0.25, 0.75);
+        let hinges = Hinges::new(&wave, &frame);
+        let source = P(0.8, -1.0);
+        // Inside the window: no hinge; outside on either side: that side's end.
+        assert!(hinges.towards(0.5).is_none());
+        let (lo, lo_sigma) = hinges.towards(0.1).unwrap();
+        assert_eq!(lo, P(0.5, 0.0));
+        assert!((lo_sigma - (0.3 + lo.sub(source).length())).abs() < 1e-15);
+        assert_eq!(hinges.towards(0.9).unwrap().0, P(1.5, 0.0));
+        assert!(hinges.towards(f64::NAN).is_none());
+        // The bend at the end is the shortest path through the window to a target whose
+        // line crosses outside it: shorter than through any other point of the window
+        // (the node's among them), never shorter than the straight line.
+        let target = P(1.8, 0.15);
+        let x = frame.crossing(source, target);
+        assert!(x > 0.75, "{x}");
+        let (h, sigma) = hinges.towards(x).unwrap();
+        let hinge = sigma + target.sub(h).length();
+        for i in 0..=100 {
+            let w = P(0.5 + i as f64 / 100.0, 0.0);
+            let through = 0.3 + w.sub(source).length() + target.sub(w).length();
+            assert!(
+                hinge <= through + 1e-15,
+                "{hinge} > {through} through {w:?}"
+            );
+        }
+        assert!(hinge > 0.3 + target.sub(source).length());
+    }
+
+    #[test]
+    fn window_ends_at_vertices_are_no_hinges() {
+        // A window that reaches a vertex: the vertex offers that bend itself.
+        let (wave, frame) = setup(0.0, 1.0);
+        let hinges = Hinges::new(&wave, &frame);
+        assert!(hinges.towards(-0.5).is_none() && hinges.towards(1.5).is_none());
+        let (wave, frame) = setup(0.0, 0.5);
+        let hinges = Hinges::new(&wave, &frame);
+        assert!(hinges.towards(-0.5).is_none());
+        assert_eq!(hinges.towards(0.9).unwrap().0, P(1.0, 0.0));
+    }
 }

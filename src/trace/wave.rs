@@ -1,7 +1,8 @@
 //! Queries on a field of the wavefront engine: the distance at any point from the waves
 //! of the nodes around it, and paths that follow the waves back along their straight
-//! lines (through each window, across each face) instead of from node to node, so that
-//! a traced path is as long as the distance it explains.
+//! lines (through each window, across each face, bending where the engine did: at a
+//! window's end, a hinge) instead of from node to node, so that a traced path is as
+//! long as the distance it explains.
 
 use super::Query;
 use crate::field::Wave;
@@ -90,10 +91,18 @@ impl<M: Metric> Query<'_, M> {
                     continue;
                 };
                 let wave = self.wave(q).expect("unfolded has one");
-                if !in_window(wave, ef.crossing(s, px)) {
-                    continue;
-                }
-                let value = wave.sigma + px.sub(s).length();
+                let x = ef.crossing(s, px);
+                let value = if in_window(wave, x) {
+                    wave.sigma + px.sub(s).length()
+                } else {
+                    // Bending at the window's end on the line's side, where that end
+                    // lies inside the edge, as the engine does (its `Hinges`).
+                    let Some(w) = hinge_end(wave, x) else {
+                        continue;
+                    };
+                    let h = ef.at_edge_coords(w * ef.len, 0.0);
+                    wave.sigma + h.sub(s).length() + px.sub(h).length()
+                };
                 if best.is_none_or(|(b, _)| value < b) {
                     best = Some((value, q));
                 }
@@ -133,7 +142,13 @@ impl<M: Metric> Query<'_, M> {
         let slot = self.mesh.edge_slot(f, edge)?;
         let (s, ef) = self.unfolded(q, f, &frame, slot)?;
         let px = uv(&frame.point(x.bary));
-        let at = ef.crossing(s, px).clamp(0.0, 1.0);
+        // Where the line crosses the window, or the window's end it bends at.
+        let wave = self.wave(q)?;
+        let crossing = ef.crossing(s, px);
+        let at = match hinge_end(wave, crossing) {
+            Some(w) if !in_window(wave, crossing) => w,
+            _ => crossing.clamp(0.0, 1.0),
+        };
         points.push(SurfacePoint::Edge { edge, t: at });
         faces.push(f);
         Some(at)
@@ -261,8 +276,15 @@ impl<M: Metric> Query<'_, M> {
         let h = field.parent_face[q as usize];
         if h == NONE {
             // A wave from a point of the edge itself (reached along it): its source is
-            // the parent, on this edge.
+            // the parent, on this edge, or the end of the parent's window where the
+            // path bent (a hinge), from where it follows the parent's wave.
             let p = field.parent[q as usize];
+            if let Some(len) = self.edge_len(edge) {
+                let a = wave.sx / len;
+                if let Some(step) = self.bend_on(p, edge, a, points, faces) {
+                    return Some(step);
+                }
+            }
             return Some(Step::Node { p, face: NONE });
         }
         let frame = self.flat(h)?;
@@ -299,14 +321,51 @@ impl<M: Metric> Query<'_, M> {
                     return Some(Step::Wave { q: q2, at: at2 });
                 }
             }
-            // No node carries it on (should not happen): bend at the parent.
+            // No node carries it on. A line through the end of a window passes (to the
+            // window's slack) through the vertex that ends it, as a hinge's line does:
+            // the path goes on from that vertex, whose value is at most the wave's
+            // there. Elsewhere (should not happen) it bends at the parent.
+            let near = 1e-5 * eh.len.max(of.len);
+            let ends = self.mesh.edge_vertices(e2);
+            let end = if x * of.len <= near {
+                Some(ends[0])
+            } else if (1.0 - x) * of.len <= near {
+                Some(ends[1])
+            } else {
+                None
+            };
+            if let Some(v) = end {
+                let corner = (0..3).find(|&c| self.mesh.face_vertices(h)[c] == v)?;
+                let pv = P(frame.corners()[corner][0], frame.corners()[corner][1]);
+                let wave_there = wave.sigma + pv.sub(s).length();
+                let dv = field.distance[v as usize];
+                // (Not from the vertex itself: a line that starts there goes no
+                // nearer the source through it.)
+                if dv <= wave_there + 1e-12 * wave_there.abs() && pv.sub(c).length() > near {
+                    points.push(SurfacePoint::Vertex(v));
+                    faces.push(h);
+                    return self.step_from(v);
+                }
+            }
             break;
         }
-        // The wave starts in h: at the parent (a fresh wave there) or at a source.
+        // The wave starts in h: at the parent (a fresh wave there), at the end of the
+        // parent's window where the path bent (a hinge), or at a source.
         let p = field.parent[q as usize];
         if p == NONE {
             let source = field.root_source(q)?;
             return Some(Step::Source { source, face: h });
+        }
+        if let NodeKind::Steiner { edge: pe, .. } = layout.kind(p) {
+            if let Some(ps) = self.mesh.edge_slot(h, pe) {
+                let ep = self.edge_frame(&frame, h, ps);
+                let (ax, ay) = ep.edge_coords(s);
+                if ay.abs() <= 1e-9 * ep.len {
+                    if let Some(step) = self.bend_on(p, pe, ax / ep.len, points, faces) {
+                        return Some(step);
+                    }
+                }
+            }
         }
         let last = *points.last()?;
         points.push(layout.surface_point(p));
@@ -317,10 +376,61 @@ impl<M: Metric> Query<'_, M> {
         self.step_from(p)
     }
 
+    /// The path bends at fraction `a` of `edge`, on the wave of its parent `p` (a
+    /// Steiner node of that edge): pushes the bend and returns the step along `p`'s
+    /// wave from there; `None` when `p` carries no wave or the bend is `p` itself (the
+    /// caller's usual step).
+    fn bend_on(
+        &self,
+        p: u32,
+        edge: u32,
+        a: f64,
+        points: &mut Vec<SurfacePoint>,
+        faces: &mut Vec<u32>,
+    ) -> Option<Step> {
+        let NodeKind::Steiner { edge: pe, index } = self.field.layout.kind(p) else {
+            return None;
+        };
+        self.wave(p)?;
+        if pe != edge || (a - self.field.layout.param(pe, index)).abs() <= 1e-12 {
+            return None;
+        }
+        let at = a.clamp(0.0, 1.0);
+        let here = SurfacePoint::Edge { edge, t: at };
+        let last = *points.last()?;
+        points.push(here);
+        faces.push(self.face_between(last, here)?);
+        Some(Step::Wave { q: p, at })
+    }
+
+    /// `edge`'s length in the metric's flattening (the same in every face around it
+    /// where waves cross it).
+    fn edge_len(&self, edge: u32) -> Option<f64> {
+        let f = *self.mesh.edge_faces(edge).first()?;
+        let frame = self.flat(f)?;
+        let s = self.mesh.edge_slot(f, edge)?;
+        Some(self.edge_frame(&frame, f, s).len)
+    }
+
     /// A face whose closure holds both points.
     fn face_between(&self, a: SurfacePoint, b: SurfacePoint) -> Option<u32> {
         let fa = a.faces(self.mesh);
         let fb = b.faces(self.mesh);
         fa.iter().copied().find(|f| fb.contains(f))
     }
+}
+
+/// The end of `wave`'s window (a fraction of its edge) at which a line crossing the
+/// edge's line at `x`, outside the window, bends: the end on that side, where it lies
+/// inside the edge (an end at a vertex bends at the vertex, a node of its own). The
+/// engine's `Hinges` make the same choice.
+fn hinge_end(wave: &Wave, x: f64) -> Option<f64> {
+    let w = if x < wave.w0 as f64 {
+        wave.w0
+    } else if x > wave.w1 as f64 {
+        wave.w1
+    } else {
+        return None;
+    };
+    (w > 0.0 && w < 1.0).then_some(w as f64)
 }
