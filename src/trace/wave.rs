@@ -276,15 +276,8 @@ impl<M: Metric> Query<'_, M> {
         let h = field.parent_face[q as usize];
         if h == NONE {
             // A wave from a point of the edge itself (reached along it): its source is
-            // the parent, on this edge, or the end of the parent's window where the
-            // path bent (a hinge), from where it follows the parent's wave.
+            // the parent, on this edge.
             let p = field.parent[q as usize];
-            if let Some(len) = self.edge_len(edge) {
-                let a = wave.sx / len;
-                if let Some(step) = self.bend_on(p, edge, a, points, faces) {
-                    return Some(step);
-                }
-            }
             return Some(Step::Node { p, face: NONE });
         }
         let frame = self.flat(h)?;
@@ -349,23 +342,11 @@ impl<M: Metric> Query<'_, M> {
             }
             break;
         }
-        // The wave starts in h: at the parent (a fresh wave there), at the end of the
-        // parent's window where the path bent (a hinge), or at a source.
+        // The wave starts in h: at the parent (a fresh wave there) or at a source.
         let p = field.parent[q as usize];
         if p == NONE {
             let source = field.root_source(q)?;
             return Some(Step::Source { source, face: h });
-        }
-        if let NodeKind::Steiner { edge: pe, .. } = layout.kind(p) {
-            if let Some(ps) = self.mesh.edge_slot(h, pe) {
-                let ep = self.edge_frame(&frame, h, ps);
-                let (ax, ay) = ep.edge_coords(s);
-                if ay.abs() <= 1e-9 * ep.len {
-                    if let Some(step) = self.bend_on(p, pe, ax / ep.len, points, faces) {
-                        return Some(step);
-                    }
-                }
-            }
         }
         let last = *points.last()?;
         points.push(layout.surface_point(p));
@@ -374,42 +355,6 @@ impl<M: Metric> Query<'_, M> {
                 .unwrap_or(h),
         );
         self.step_from(p)
-    }
-
-    /// The path bends at fraction `a` of `edge`, on the wave of its parent `p` (a
-    /// Steiner node of that edge): pushes the bend and returns the step along `p`'s
-    /// wave from there; `None` when `p` carries no wave or the bend is `p` itself (the
-    /// caller's usual step).
-    fn bend_on(
-        &self,
-        p: u32,
-        edge: u32,
-        a: f64,
-        points: &mut Vec<SurfacePoint>,
-        faces: &mut Vec<u32>,
-    ) -> Option<Step> {
-        let NodeKind::Steiner { edge: pe, index } = self.field.layout.kind(p) else {
-            return None;
-        };
-        self.wave(p)?;
-        if pe != edge || (a - self.field.layout.param(pe, index)).abs() <= 1e-12 {
-            return None;
-        }
-        let at = a.clamp(0.0, 1.0);
-        let here = SurfacePoint::Edge { edge, t: at };
-        let last = *points.last()?;
-        points.push(here);
-        faces.push(self.face_between(last, here)?);
-        Some(Step::Wave { q: p, at })
-    }
-
-    /// `edge`'s length in the metric's flattening (the same in every face around it
-    /// where waves cross it).
-    fn edge_len(&self, edge: u32) -> Option<f64> {
-        let f = *self.mesh.edge_faces(edge).first()?;
-        let frame = self.flat(f)?;
-        let s = self.mesh.edge_slot(f, edge)?;
-        Some(self.edge_frame(&frame, f, s).len)
     }
 
     /// A face whose closure holds both points.
