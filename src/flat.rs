@@ -135,6 +135,23 @@ pub(crate) fn in_window(wave: &Wave, x: f64) -> bool {
     x >= wave.w0 as f64 - WINDOW_SLACK && x <= wave.w1 as f64 + WINDOW_SLACK
 }
 
+/// The end of `wave`'s window (a fraction of its edge) at which a line that crosses the
+/// edge's line at fraction `x`, outside the window, bends on its way through it: the
+/// end on that side, where that end lies inside the edge. An end at a vertex is none:
+/// the vertex is a node of its own and offers that bend itself. `None` also inside the
+/// window and for a `NaN` crossing (a line along the edge).
+#[inline]
+pub(crate) fn hinge_end(wave: &Wave, x: f64) -> Option<f64> {
+    let w = if x < wave.w0 as f64 {
+        wave.w0
+    } else if x > wave.w1 as f64 {
+        wave.w1
+    } else {
+        return None;
+    };
+    (w > 0.0 && w < 1.0).then_some(w as f64)
+}
+
 /// The window on the edge `to` of the lines from `s` through `wave`'s window on the
 /// edge `from` (both seen in one face, which `s` lies behind `from` of): fractions of
 /// `to`, rounded inwards to `f32`; empty (`w0 > w1`) when no such line reaches `to`.

@@ -64,7 +64,9 @@
 use super::frontier::{Frontier, Queue, Seed};
 use super::tracks::{FaceRecord, TrackTables};
 use crate::field::Wave;
-use crate::flat::{in_window, project, same_source, uv, EdgeFrame, P, SAME_SOURCE, TIE, TOUCH};
+use crate::flat::{
+    hinge_end, in_window, project, same_source, uv, EdgeFrame, P, SAME_SOURCE, TIE, TOUCH,
+};
 use crate::mesh::{TriMesh, NONE};
 use crate::surface::Source;
 use geotracks_metrics::Metric;
@@ -256,11 +258,6 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
             let frame = EdgeFrame::new(&r.frame, s, r.is_reversed(s));
             let pq = frame.at_edge_coords(own * frame.len, 0.0);
             // Targets: the points of the two other slots and the opposite corner.
-            let hinges = if has_wave {
-                Hinges::new(&wave, &frame)
-            } else {
-                Hinges::NONE
-            };
             let entry = Entry {
                 q,
                 d,
@@ -269,7 +266,6 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
                 frame,
                 pq,
                 f,
-                hinges,
                 same_wave_slack: 4.0
                     * SAME_SOURCE
                     * (frame.len + wave.sigma.abs() + wave.sx.abs() + wave.sy.abs()),
@@ -319,9 +315,7 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
             } else if to < self.vertex_count {
                 // A vertex beyond the window's end (inside the edge): the bend there,
                 // as in `offer` (see `Hinges`).
-                let end = if at < w.w0 as f64 { w.w0 } else { w.w1 };
-                if end > 0.0 && end < 1.0 {
-                    let x = end as f64;
+                if let Some(x) = hinge_end(w, at) {
                     let hinge = w.sigma + P(w.sx - x * len, w.sy).length() + (at - x).abs() * len;
                     value = value.min(hinge);
                 }
@@ -407,7 +401,7 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
                 // later with a value between the two and serves the nodes beyond better
                 // (measured: lower means, but higher maxima under tensors).
                 if t < self.vertex_count {
-                    if let Some((ph, sigma)) = entry.hinges.towards(x) {
+                    if let Some((ph, sigma)) = hinge(wave, &entry.frame, x) {
                         let value = sigma + pt.sub(ph).length();
                         if value < current {
                             self.offer_polyline(t, value, entry.q, entry.f, r, ts, ph, sigma);
@@ -609,72 +603,26 @@ struct Entry {
     /// The node's point in the face.
     pq: P,
     f: u32,
-    /// Where lines that miss the window bend.
-    hinges: Hinges,
     /// How far a target that carries the same wave (its source and `σ` equal to
     /// [`SAME_SOURCE`]) can lie above this wave's straight value to it.
     same_wave_slack: f64,
 }
 
-/// The ends of a wave's window that lie inside its edge, with the length of the path up
-/// to each: `σ + |S w|`. A target whose line from `S` crosses the edge's line outside
-/// the window is reached, through the window, at best by the path that bends at the
-/// window's end on that side: the length `|S w| + |w t|` is convex in `w` along the
-/// edge and least where the line crosses, so over the window it is least at the end
-/// nearest the crossing. That path is real (a line through the window, then a segment
-/// in the face), so the value it gives is never below the true distance, and it is
-/// never longer than the path that bends at the node (which lies in its own window).
-/// An end at a vertex gets no hinge: the vertex itself offers that bend, from a value
-/// at most this one.
-#[derive(Clone, Copy)]
-struct Hinges {
-    /// Fraction of the edge, point in the entered face, path length; `NAN` fraction:
-    /// no hinge on that side.
-    lo: (f64, P, f64),
-    hi: (f64, P, f64),
-}
-
-impl Hinges {
-    const NONE: Hinges = Hinges {
-        lo: (f64::NAN, P(0.0, 0.0), 0.0),
-        hi: (f64::NAN, P(0.0, 0.0), 0.0),
-    };
-
-    #[inline]
-    fn new(wave: &Wave, frame: &EdgeFrame) -> Hinges {
-        let at = |w: f32| -> (f64, P, f64) {
-            let x = w as f64 * frame.len;
-            let sigma = wave.sigma + P(x - wave.sx, wave.sy).length();
-            (w as f64, frame.at_edge_coords(x, 0.0), sigma)
-        };
-        Hinges {
-            lo: if wave.w0 > 0.0 {
-                at(wave.w0)
-            } else {
-                Hinges::NONE.lo
-            },
-            hi: if wave.w1 < 1.0 {
-                at(wave.w1)
-            } else {
-                Hinges::NONE.hi
-            },
-        }
-    }
-
-    /// The hinge for a line that crosses the edge's line at fraction `x`, outside the
-    /// window: its point and path length.
-    #[inline]
-    fn towards(&self, x: f64) -> Option<(P, f64)> {
-        // `x` is NaN for a line parallel to the edge: no hinge.
-        let (w, p, sigma) = if x < self.lo.0 {
-            self.lo
-        } else if x > self.hi.0 {
-            self.hi
-        } else {
-            return None;
-        };
-        (!w.is_nan()).then_some((p, sigma))
-    }
+/// Where a line from `wave`'s source that crosses its edge's line at fraction `x`,
+/// outside the window, reaches the target through the window at best: bending at the
+/// window's end on that side (the *hinge*), whose point in `frame` and path length
+/// `σ + |S w|` are returned. The length `|S w| + |w t|` is convex in `w` along the edge
+/// and least where the line crosses, so over the window it is least at the end nearest
+/// the crossing. That path is real (a line through the window, then a segment in the
+/// face), so the value it gives is never below the true distance, and it is never
+/// longer than the path that bends at the node (which lies in its own window). An end
+/// at a vertex is no hinge ([`hinge_end`]): the vertex itself offers that bend, from a
+/// value at most this one.
+#[inline]
+fn hinge(wave: &Wave, frame: &EdgeFrame, x: f64) -> Option<(P, f64)> {
+    let w = hinge_end(wave, x)? * frame.len;
+    let sigma = wave.sigma + P(w - wave.sx, wave.sy).length();
+    Some((frame.at_edge_coords(w, 0.0), sigma))
 }
 
 /// The slot of face record `r` that Steiner node `node` lies on.
@@ -711,13 +659,13 @@ pub(super) fn isometric_edges(
 
 #[cfg(test)]
 mod tests {
-    use super::{Hinges, Wave};
+    use super::{hinge, Wave};
     use crate::flat::{EdgeFrame, P};
     use crate::mesh::FaceFrame;
 
     /// The edge from (0, 0) to (2, 0) of the face with corner (0.5, 1.5), seen from it; a
     /// wave from S = (0.8, −1) (in the edge's frame: x = 0.8, y = 1 behind the edge) with
-    /// the window [0.25, 0.75] of the edge.
+    /// the window [w0, w1] of the edge.
     fn setup(w0: f32, w1: f32) -> (Wave, EdgeFrame) {
         let face = FaceFrame {
             l01: 2.0,
@@ -738,43 +686,37 @@ mod tests {
     #[test]
     fn a_line_that_misses_the_window_bends_at_its_nearest_end() {
         let (wave, frame) = setup(0.25, 0.75);
-        let hinges = Hinges::new(&wave, &frame);
         let source = P(0.8, -1.0);
         // Inside the window: no hinge; outside on either side: that side's end.
-        assert!(hinges.towards(0.5).is_none());
-        let (lo, lo_sigma) = hinges.towards(0.1).unwrap();
+        assert!(hinge(&wave, &frame, 0.5).is_none());
+        let (lo, lo_sigma) = hinge(&wave, &frame, 0.1).unwrap();
         assert_eq!(lo, P(0.5, 0.0));
         assert!((lo_sigma - (0.3 + lo.sub(source).length())).abs() < 1e-15);
-        assert_eq!(hinges.towards(0.9).unwrap().0, P(1.5, 0.0));
-        assert!(hinges.towards(f64::NAN).is_none());
+        assert_eq!(hinge(&wave, &frame, 0.9).unwrap().0, P(1.5, 0.0));
+        assert!(hinge(&wave, &frame, f64::NAN).is_none());
         // The bend at the end is the shortest path through the window to a target whose
         // line crosses outside it: shorter than through any other point of the window
         // (the node's among them), never shorter than the straight line.
         let target = P(1.8, 0.15);
         let x = frame.crossing(source, target);
         assert!(x > 0.75, "{x}");
-        let (h, sigma) = hinges.towards(x).unwrap();
-        let hinge = sigma + target.sub(h).length();
+        let (h, sigma) = hinge(&wave, &frame, x).unwrap();
+        let bent = sigma + target.sub(h).length();
         for i in 0..=100 {
             let w = P(0.5 + i as f64 / 100.0, 0.0);
             let through = 0.3 + w.sub(source).length() + target.sub(w).length();
-            assert!(
-                hinge <= through + 1e-15,
-                "{hinge} > {through} through {w:?}"
-            );
+            assert!(bent <= through + 1e-15, "{bent} > {through} through {w:?}");
         }
-        assert!(hinge > 0.3 + target.sub(source).length());
+        assert!(bent > 0.3 + target.sub(source).length());
     }
 
     #[test]
     fn window_ends_at_vertices_are_no_hinges() {
         // A window that reaches a vertex: the vertex offers that bend itself.
         let (wave, frame) = setup(0.0, 1.0);
-        let hinges = Hinges::new(&wave, &frame);
-        assert!(hinges.towards(-0.5).is_none() && hinges.towards(1.5).is_none());
+        assert!(hinge(&wave, &frame, -0.5).is_none() && hinge(&wave, &frame, 1.5).is_none());
         let (wave, frame) = setup(0.0, 0.5);
-        let hinges = Hinges::new(&wave, &frame);
-        assert!(hinges.towards(-0.5).is_none());
-        assert_eq!(hinges.towards(0.9).unwrap().0, P(1.0, 0.0));
+        assert!(hinge(&wave, &frame, -0.5).is_none());
+        assert_eq!(hinge(&wave, &frame, 0.9).unwrap().0, P(1.0, 0.0));
     }
 }

@@ -6,7 +6,7 @@
 
 use super::Query;
 use crate::field::Wave;
-use crate::flat::{flat_frame, in_window, same_source, uv, EdgeFrame, P};
+use crate::flat::{flat_frame, hinge_end, in_window, same_source, uv, EdgeFrame, P};
 use crate::mesh::{FaceFrame, NONE};
 use crate::steiner::NodeKind;
 use crate::surface::SurfacePoint;
@@ -363,19 +363,4 @@ impl<M: Metric> Query<'_, M> {
         let fb = b.faces(self.mesh);
         fa.iter().copied().find(|f| fb.contains(f))
     }
-}
-
-/// The end of `wave`'s window (a fraction of its edge) at which a line crossing the
-/// edge's line at `x`, outside the window, bends: the end on that side, where it lies
-/// inside the edge (an end at a vertex bends at the vertex, a node of its own). The
-/// engine's `Hinges` make the same choice.
-fn hinge_end(wave: &Wave, x: f64) -> Option<f64> {
-    let w = if x < wave.w0 as f64 {
-        wave.w0
-    } else if x > wave.w1 as f64 {
-        wave.w1
-    } else {
-        return None;
-    };
-    (w > 0.0 && w < 1.0).then_some(w as f64)
 }
