@@ -348,6 +348,12 @@ impl<M: Metric> Query<'_, M> {
             let source = field.root_source(q)?;
             return Some(Step::Source { source, face: h });
         }
+        // A wave that starts at a source on h's closure (a source vertex or edge point,
+        // whose wave a node of another edge passed on, with a tie) goes straight there,
+        // not round by the parent.
+        if let Some(source) = self.source_at(h, &frame, s, wave.sigma) {
+            return Some(Step::Source { source, face: h });
+        }
         let last = *points.last()?;
         points.push(layout.surface_point(p));
         faces.push(
@@ -355,6 +361,23 @@ impl<M: Metric> Query<'_, M> {
                 .unwrap_or(h),
         );
         self.step_from(p)
+    }
+
+    /// The source that lies at `s` (a point of face `h`, flattened `frame`) with start
+    /// `sigma`, both to [`SAME_SOURCE`](crate::flat::SAME_SOURCE) of their scale.
+    fn source_at(&self, h: u32, frame: &FaceFrame, s: P, sigma: f64) -> Option<u32> {
+        let scale = frame.l01 + s.0.abs() + s.1.abs() + sigma.abs();
+        let near = crate::flat::SAME_SOURCE * scale;
+        self.field
+            .sources
+            .iter()
+            .enumerate()
+            .find_map(|(i, source)| {
+                let x = source.point.in_face(self.mesh, h)?;
+                let at = uv(&frame.point(x.bary));
+                let close = at.sub(s).length() <= near && (source.start - sigma).abs() <= near;
+                close.then_some(i as u32)
+            })
     }
 
     /// A face whose closure holds both points.
