@@ -75,8 +75,12 @@ pub fn run(args: &PathArgs) -> CliResult {
         format!("source: {source} ({})", args.sources[source]),
         format!("points: {}", path.points.len()),
         format!(
-            "traced length: {} (the Steiner graph's distance, before straightening)",
-            Value(path.traced_length)
+            "traced length: {} ({}, before straightening)",
+            Value(path.traced_length),
+            match field.stats().method {
+                geotracks::Method::Wave => "along the waves that gave the value",
+                _ => "the Steiner graph's distance",
+            }
         ),
     ];
     if args.output.as_os_str() == "-" {
