@@ -119,14 +119,20 @@ impl EdgeFrame {
     }
 }
 
+/// How far apart two waves' sources (and `σ`s) may lie and still be the same wave, for
+/// a wave with source `a` and `σ = sa` seen from an edge of length `len`.
+#[inline]
+pub(crate) fn same_source_slack(a: P, sa: f64, len: f64) -> f64 {
+    SAME_SOURCE * (len + a.0.abs() + a.1.abs() + sa.abs())
+}
+
 /// Whether two waves have the same source (points `a`, `b` of one face's plane, path
-/// lengths `sa`, `sb` up to them), to [`SAME_SOURCE`] of their scale.
+/// lengths `sa`, `sb` up to them), to [`SAME_SOURCE`] of their scale
+/// ([`same_source_slack`]).
 #[inline]
 pub(crate) fn same_source(a: P, sa: f64, b: P, sb: f64, len: f64) -> bool {
-    let scale = len + a.0.abs() + a.1.abs() + sa.abs();
-    (a.0 - b.0).abs() <= SAME_SOURCE * scale
-        && (a.1 - b.1).abs() <= SAME_SOURCE * scale
-        && (sa - sb).abs() <= SAME_SOURCE * scale
+    let slack = same_source_slack(a, sa, len);
+    (a.0 - b.0).abs() <= slack && (a.1 - b.1).abs() <= slack && (sa - sb).abs() <= slack
 }
 
 /// Whether fraction `x` of the edge lies in `wave`'s window (widened by the slack).
@@ -150,6 +156,30 @@ pub(crate) fn hinge_end(wave: &Wave, x: f64) -> Option<f64> {
         return None;
     };
     (w > 0.0 && w < 1.0).then_some(w as f64)
+}
+
+/// The length of the path up to the point at fraction `w` of `wave`'s edge (of length
+/// `len`) straight from the wave's source: `σ + |S w|`.
+#[inline]
+pub(crate) fn wave_value_on_edge(wave: &Wave, len: f64, w: f64) -> f64 {
+    wave.sigma + P(w * len - wave.sx, wave.sy).length()
+}
+
+/// Where a line from `wave`'s source that crosses its edge's line at fraction `x`,
+/// outside the window, reaches its target through the window at best: bending at the
+/// window's end on that side (the *hinge*, [`hinge_end`]), whose point in `frame` (the
+/// edge seen from the face entered) and path length `σ + |S w|` are returned. The
+/// length `|S w| + |w t|` is convex in `w` along the edge and least where the line
+/// crosses, so over the window it is least at the end nearest the crossing. That path
+/// is real (a line through the window, then a segment in the face), so the value it
+/// gives is never below the true distance, and it is never longer than the path that
+/// bends at the node (which lies in its own window). The engine offers hinges to
+/// vertices; queries and traces on its fields take them the same way.
+#[inline]
+pub(crate) fn hinge(wave: &Wave, frame: &EdgeFrame, x: f64) -> Option<(P, f64)> {
+    let w = hinge_end(wave, x)?;
+    let sigma = wave_value_on_edge(wave, frame.len, w);
+    Some((frame.at_edge_coords(w * frame.len, 0.0), sigma))
 }
 
 /// The window on the edge `to` of the lines from `s` through `wave`'s window on the

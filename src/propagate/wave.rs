@@ -13,7 +13,7 @@
 //! `σ + |S t|` if the straight line from `S` to `t` crosses the edge inside the window,
 //! and the polyline value `d(q) + |q t|` (bending at the node) otherwise; a vertex
 //! target gets, instead of the polyline, the shortest way through the window: bending at
-//! the window's end on the line's side (a *hinge*, see `Hinges`), `σ + |S w| + |w t|`.
+//! the window's end on the line's side (a *hinge*, see `flat::hinge`), `σ + |S w| + |w t|`.
 //! A target that takes the straight value inherits `S` and `σ`, with the window
 //! projected from `S` onto its own edge; one that takes the polyline value gets a fresh
 //! wave: a source at the node, `σ = d(q)`, the whole edge as window.
@@ -65,7 +65,8 @@ use super::frontier::{Frontier, Queue, Seed};
 use super::tracks::{FaceRecord, TrackTables};
 use crate::field::Wave;
 use crate::flat::{
-    hinge_end, in_window, project, same_source, uv, EdgeFrame, P, SAME_SOURCE, TIE, TOUCH,
+    hinge, hinge_end, in_window, project, same_source, same_source_slack, uv, wave_value_on_edge,
+    EdgeFrame, P, SAME_SOURCE, TIE, TOUCH,
 };
 use crate::mesh::{TriMesh, NONE};
 use crate::surface::Source;
@@ -314,10 +315,9 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
                 }
             } else if to < self.vertex_count {
                 // A vertex beyond the window's end (inside the edge): the bend there,
-                // as in `offer` (see `Hinges`).
+                // as in `offer` (see `flat::hinge`).
                 if let Some(x) = hinge_end(w, at) {
-                    let hinge = w.sigma + P(w.sx - x * len, w.sy).length() + (at - x).abs() * len;
-                    value = value.min(hinge);
+                    value = value.min(wave_value_on_edge(w, len, x) + (at - x).abs() * len);
                 }
             }
         }
@@ -394,7 +394,7 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
                     self.merge(t, entry, r, ts);
                 }
                 // Outside the window, the shortest path through it bends at the
-                // window's end on that side (see `Hinges`): never longer than bending
+                // window's end on that side (see `flat::hinge`): never longer than bending
                 // at the node, which lies inside it. Only for a vertex, which carries
                 // no wave: a Steiner node that took the hinge's value would carry the
                 // hinge's fresh wave, which can then keep out a straight wave that comes
@@ -525,7 +525,7 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
         let (mut w0, mut w1) = (tw.w0, tw.w1);
         // The same wave has the same σ: a node whose σ differs (most) is passed over
         // before anything is computed for it (`same_source` checks σ to this too).
-        let sigma_slack = SAME_SOURCE * (tf.len + st.0.abs() + st.1.abs() + tw.sigma.abs());
+        let sigma_slack = same_source_slack(st, tw.sigma, tf.len);
         for other in [(ts + 1) % 3, (ts + 2) % 3] {
             let count = r.count(other);
             let lo = r.lo[other];
@@ -608,23 +608,6 @@ struct Entry {
     same_wave_slack: f64,
 }
 
-/// Where a line from `wave`'s source that crosses its edge's line at fraction `x`,
-/// outside the window, reaches the target through the window at best: bending at the
-/// window's end on that side (the *hinge*), whose point in `frame` and path length
-/// `σ + |S w|` are returned. The length `|S w| + |w t|` is convex in `w` along the edge
-/// and least where the line crosses, so over the window it is least at the end nearest
-/// the crossing. That path is real (a line through the window, then a segment in the
-/// face), so the value it gives is never below the true distance, and it is never
-/// longer than the path that bends at the node (which lies in its own window). An end
-/// at a vertex is no hinge ([`hinge_end`]): the vertex itself offers that bend, from a
-/// value at most this one.
-#[inline]
-fn hinge(wave: &Wave, frame: &EdgeFrame, x: f64) -> Option<(P, f64)> {
-    let w = hinge_end(wave, x)? * frame.len;
-    let sigma = wave.sigma + P(w - wave.sx, wave.sy).length();
-    Some((frame.at_edge_coords(w, 0.0), sigma))
-}
-
 /// The slot of face record `r` that Steiner node `node` lies on.
 fn slot_of(r: &FaceRecord, node: u32) -> Option<usize> {
     (0..3).find(|&s| node.wrapping_sub(r.lo[s]) < r.count(s))
@@ -659,8 +642,8 @@ pub(super) fn isometric_edges(
 
 #[cfg(test)]
 mod tests {
-    use super::{hinge, Wave};
-    use crate::flat::{EdgeFrame, P};
+    use crate::field::Wave;
+    use crate::flat::{hinge, EdgeFrame, P};
     use crate::mesh::FaceFrame;
 
     /// The edge from (0, 0) to (2, 0) of the face with corner (0.5, 1.5), seen from it; a

@@ -6,7 +6,7 @@
 
 use super::Query;
 use crate::field::Wave;
-use crate::flat::{flat_frame, hinge_end, in_window, same_source, uv, EdgeFrame, P};
+use crate::flat::{flat_frame, hinge, hinge_end, in_window, same_source, uv, EdgeFrame, P};
 use crate::mesh::{FaceFrame, NONE};
 use crate::steiner::NodeKind;
 use crate::surface::SurfacePoint;
@@ -96,12 +96,11 @@ impl<M: Metric> Query<'_, M> {
                     wave.sigma + px.sub(s).length()
                 } else {
                     // Bending at the window's end on the line's side, where that end
-                    // lies inside the edge, as the engine does (its `Hinges`).
-                    let Some(w) = hinge_end(wave, x) else {
+                    // lies inside the edge, as the engine does for vertices.
+                    let Some((h, sigma)) = hinge(wave, &ef, x) else {
                         continue;
                     };
-                    let h = ef.at_edge_coords(w * ef.len, 0.0);
-                    wave.sigma + h.sub(s).length() + px.sub(h).length()
+                    sigma + px.sub(h).length()
                 };
                 if best.is_none_or(|(b, _)| value < b) {
                     best = Some((value, q));
@@ -314,27 +313,17 @@ impl<M: Metric> Query<'_, M> {
                     return Some(Step::Wave { q: q2, at: at2 });
                 }
             }
-            // No node carries it on. A line through the end of a window passes (to the
-            // window's slack) through the vertex that ends it, as a hinge's line does:
-            // the path goes on from that vertex, whose value is at most the wave's
-            // there. Elsewhere (should not happen) it bends at the parent.
+            // No node carries it on: the line may pass the vertex that ends a window.
+            // Elsewhere (should not happen) it bends at the parent, below.
             let near = 1e-5 * eh.len.max(of.len);
-            let ends = self.mesh.edge_vertices(e2);
-            let end = if x * of.len <= near {
-                Some(ends[0])
-            } else if (1.0 - x) * of.len <= near {
-                Some(ends[1])
-            } else {
-                None
-            };
-            if let Some(v) = end {
-                let corner = (0..3).find(|&c| self.mesh.face_vertices(h)[c] == v)?;
-                let pv = P(frame.corners()[corner][0], frame.corners()[corner][1]);
+            if let Some((v, pv)) = self.window_end_vertex(h, &frame, e2, x * of.len, of.len, near) {
                 let wave_there = wave.sigma + pv.sub(s).length();
-                let dv = field.distance[v as usize];
-                // (Not from the vertex itself: a line that starts there goes no
-                // nearer the source through it.)
-                if dv <= wave_there + 1e-12 * wave_there.abs() && pv.sub(c).length() > near {
+                // Going on from `v` explains no more than the wave does there; not from
+                // the vertex itself (a line that starts there goes no nearer the source
+                // through it).
+                if field.distance[v as usize] <= wave_there + 1e-12 * wave_there.abs()
+                    && pv.sub(c).length() > near
+                {
                     points.push(SurfacePoint::Vertex(v));
                     faces.push(h);
                     return self.step_from(v);
@@ -363,6 +352,32 @@ impl<M: Metric> Query<'_, M> {
         self.step_from(p)
     }
 
+    /// The end of edge `e2` of face `h` (length `len` in its flattened `frame`) that a
+    /// crossing `at` along it (from its lower vertex) lies within `near` of, and the
+    /// vertex's point in `frame`. A line through the end of a window passes (to the
+    /// window's slack) through the vertex that ends it, as a hinge's line does.
+    fn window_end_vertex(
+        &self,
+        h: u32,
+        frame: &FaceFrame,
+        e2: u32,
+        at: f64,
+        len: f64,
+        near: f64,
+    ) -> Option<(u32, P)> {
+        let [lo, hi] = self.mesh.edge_vertices(e2);
+        let v = if at <= near {
+            lo
+        } else if len - at <= near {
+            hi
+        } else {
+            return None;
+        };
+        let corner = self.mesh.face_vertices(h).iter().position(|&u| u == v)?;
+        let [x, y] = frame.corners()[corner];
+        Some((v, P(x, y)))
+    }
+
     /// The source that lies at `s` (a point of face `h`, flattened `frame`) with start
     /// `sigma`, both to [`SAME_SOURCE`](crate::flat::SAME_SOURCE) of their scale.
     fn source_at(&self, h: u32, frame: &FaceFrame, s: P, sigma: f64) -> Option<u32> {
@@ -372,11 +387,11 @@ impl<M: Metric> Query<'_, M> {
             .sources
             .iter()
             .enumerate()
+            .filter(|(_, source)| (source.start - sigma).abs() <= near)
             .find_map(|(i, source)| {
                 let x = source.point.in_face(self.mesh, h)?;
                 let at = uv(&frame.point(x.bary));
-                let close = at.sub(s).length() <= near && (source.start - sigma).abs() <= near;
-                close.then_some(i as u32)
+                (at.sub(s).length() <= near).then_some(i as u32)
             })
     }
 
