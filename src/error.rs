@@ -37,6 +37,11 @@ pub enum ValueRole {
         /// The source's index.
         source: usize,
     },
+    /// An isoline level, by its index in the levels given.
+    IsolineLevel {
+        /// The level's index.
+        index: usize,
+    },
 }
 
 impl fmt::Display for ValueRole {
@@ -44,6 +49,7 @@ impl fmt::Display for ValueRole {
         match self {
             ValueRole::MaxDistance => f.write_str("the maximum distance"),
             ValueRole::Start { source } => write!(f, "the start value of source {source}"),
+            ValueRole::IsolineLevel { index } => write!(f, "isoline level {index}"),
         }
     }
 }
@@ -95,6 +101,16 @@ pub enum Error {
         which: ValueRole,
         /// The value given.
         value: f64,
+    },
+    /// An isoline option is out of range ([`IsolineOptions`](crate::trace::IsolineOptions)).
+    #[error("isoline option {option} is {value}; it must be {expected}")]
+    InvalidIsolineOption {
+        /// The option's name.
+        option: &'static str,
+        /// The value given.
+        value: f64,
+        /// What it must be.
+        expected: &'static str,
     },
     /// No source reaches the point a path was asked for: it lies on another component,
     /// beyond the maximum distance, or past an early stop (a run that stopped at other

@@ -7,6 +7,7 @@
 
 mod distance;
 mod inputs;
+mod isolines;
 mod matrix;
 mod metric;
 mod output;
@@ -61,6 +62,10 @@ enum Command {
     /// (columns), computed on all cores.
     #[command(after_help = with_examples("", MATRIX_EXAMPLES))]
     Matrix(matrix::MatrixArgs),
+    /// Draw the isolines of a distance field (points on their level, bending where the
+    /// field's regions meet) as polylines: .obj, .csv or .geojson.
+    #[command(after_help = with_examples(points::SP_HELP, ISOLINES_EXAMPLES))]
+    Isolines(isolines::IsolinesArgs),
     /// Burn a medial axis (.ma) from its boundary and write the skeleton of its ridges,
     /// joined with its free edges, as OBJ polylines.
     #[command(after_help = with_examples("", SKELETON_EXAMPLES))]
@@ -111,6 +116,10 @@ const PATH_EXAMPLES: &str = "  geotracks path mesh.obj --source 0 --target 100 -
 const MATRIX_EXAMPLES: &str = "  geotracks matrix mesh.obj --sources sources.txt -o all.csv
   geotracks matrix mesh.obj --sources sources.txt --targets targets.txt -o pairs.csv";
 
+const ISOLINES_EXAMPLES: &str = "  geotracks isolines mesh.obj --source 0 -o iso.obj
+  geotracks isolines mesh.obj --source 0 --at 0.5,1,1.5 -o iso.geojson
+  geotracks isolines mesh.obj --source f:12:0.2,0.3,0.5 --levels 20 --tensor m.txt -o iso.csv";
+
 const SKELETON_EXAMPLES: &str =
     "  geotracks skeleton cow.ma --prune 3% -o cow_skeleton.obj --field cow_fire.ply
   geotracks skeleton axis.ma --speed radius --prune 0.05 -o skeleton.obj";
@@ -132,6 +141,7 @@ fn main() -> ExitCode {
         Command::Distance(args) => distance::run(&args),
         Command::Path(args) => path::run(&args),
         Command::Matrix(args) => matrix::run(&args),
+        Command::Isolines(args) => isolines::run(&args),
         Command::Skeleton(args) => skeleton::run(&args),
         Command::Terrain(args) => terrain::run(&args),
         Command::Info { mesh, weld } => info(&mesh, weld),

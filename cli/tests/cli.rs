@@ -1410,3 +1410,83 @@ fn a_binary_density_file_is_named_as_not_text() {
         "density.txt:3: not a text file of numbers: byte 0xff at offset 4",
     );
 }
+
+#[test]
+fn isolines_write_obj_csv_and_geojson_on_their_levels() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = grid_obj(dir.path(), 4);
+    let mesh = mesh.to_str().unwrap();
+    // Source at the origin of the flat 4 × 4 grid: quarter circles of radius 1 and 2.
+    let csv = dir.path().join("iso.csv");
+    let out = geotracks_ok(&[
+        "isolines",
+        mesh,
+        "--source",
+        "0",
+        "--at",
+        "1,2",
+        "-o",
+        csv.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("isolines: 2 (0 closed)"), "{stdout}");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut rows = 0;
+    for row in text.lines().skip(1) {
+        let cells: Vec<&str> = row.split(',').collect();
+        let level: f64 = cells[0].parse().unwrap();
+        let (x, y): (f64, f64) = (cells[3].parse().unwrap(), cells[4].parse().unwrap());
+        assert!(((x * x + y * y).sqrt() - level).abs() < 1e-9, "{row}");
+        rows += 1;
+    }
+    assert!(rows > 8, "{text}");
+    let obj = dir.path().join("iso.obj");
+    geotracks_ok(&[
+        "isolines",
+        mesh,
+        "--source",
+        "0",
+        "--levels",
+        "3",
+        "-o",
+        obj.to_str().unwrap(),
+    ]);
+    let text = std::fs::read_to_string(&obj).unwrap();
+    assert_eq!(
+        text.lines().filter(|l| l.starts_with("l ")).count(),
+        3,
+        "{text}"
+    );
+    let geojson = dir.path().join("iso.geojson");
+    geotracks_ok(&[
+        "isolines",
+        mesh,
+        "--source",
+        "0",
+        "--at",
+        "1",
+        "-o",
+        geojson.to_str().unwrap(),
+    ]);
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&geojson).unwrap()).unwrap();
+    let features = json["features"].as_array().unwrap();
+    assert_eq!(features.len(), 1);
+    assert_eq!(features[0]["properties"]["level"], 1.0);
+    // A bad level fails before anything is written.
+    let bad = dir.path().join("bad.csv");
+    assert_fails(
+        &[
+            "isolines",
+            mesh,
+            "--source",
+            "0",
+            "--at",
+            "1,NaN",
+            "-o",
+            bad.to_str().unwrap(),
+        ],
+        &bad,
+        "--at NaN",
+    );
+}

@@ -8,6 +8,7 @@
 //! each edge crossing along its edge, and lets the path leave a vertex where it can cut
 //! the corner, never making it longer.
 
+mod isolines;
 mod query;
 mod straighten;
 mod wave;
@@ -19,6 +20,7 @@ use crate::Error;
 use geotracks_metrics::Metric;
 use glam::DVec3;
 
+pub use isolines::{spread_levels, Isoline, IsolineOptions};
 use query::Origin;
 pub use query::Query;
 pub use straighten::straighten;

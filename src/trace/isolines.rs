@@ -1,0 +1,705 @@
+//! Isolines of a distance field: polylines of surface points at given levels.
+//!
+//! # How they are drawn
+//! Each face is cut into `n²` sub-triangles by a barycentric grid (`n` =
+//! [`IsolineOptions::subdivisions`]); the field is evaluated at the grid points with
+//! [`Query::distance_at`], the engine's own value at any point (from the waves where
+//! the wavefront engine ran), not an interpolation of vertex values. In every
+//! sub-triangle that a level crosses, the crossings on its two sides are solved on the
+//! field itself (a root of `distance_at − level` along the side), so **every point of an
+//! isoline lies at its level**, to 1e-12 of the level (of the mean edge length near
+//! level 0) where the field is continuous. A segment
+//! whose middle is off the level by more than the tolerance (a circle arc's sagitta, or a
+//! ridge where two regions of the field meet and the isoline bends) gets a point on the
+//! level across its middle, recursively: isolines bend at ridges instead of cutting the
+//! corner as linear interpolation of vertex values does.
+//!
+//! Grid points and crossings on a mesh edge are the same points from every face around
+//! it (the edge's own parameter, evaluated on the edge, where the value is the least
+//! over its faces), so isolines continue across edges, non-manifold ones included:
+//! where `m` faces share an edge, `m` polylines meet at the same point of it.
+//!
+//! # Cost
+//! `(n + 1)(n + 2) / 2` evaluations per face, each O(k) metric costs, plus a few dozen
+//! per crossing; faces are processed in parallel (rayon).
+
+use super::Query;
+use crate::error::ValueRole;
+use crate::mesh::TriMesh;
+use crate::surface::SurfacePoint;
+use crate::Error;
+use geotracks_metrics::Metric;
+use rayon::prelude::*;
+use std::collections::HashMap;
+
+/// One isoline: a polyline of surface points at one level of a field.
+///
+/// Consecutive points lie on a common face (the segment between them is inside it).
+/// A closed isoline's last point is its first. An open one ends on the mesh's boundary,
+/// at the edge of the reached region (a stop's maximum distance, an unreached
+/// component), or where it meets other isolines of its level on a non-manifold edge.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct Isoline {
+    /// The level.
+    pub level: f64,
+    /// The points, in order along the line.
+    pub points: Vec<SurfacePoint>,
+    /// Whether the line closes on itself.
+    pub closed: bool,
+}
+
+/// How finely isolines are drawn ([`Query::isolines`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct IsolineOptions {
+    /// Each face is cut into `subdivisions²` sub-triangles (at least 1): a level set
+    /// smaller than a sub-triangle (a small loop around a local maximum) can be missed.
+    pub subdivisions: u32,
+    /// How far the middle of a segment may lie from the level, as a fraction of the
+    /// segment's length, before the segment gets a point on the level across it. (The
+    /// points themselves are solved to 1e-12 of the level, whatever this is.)
+    pub tolerance: f64,
+    /// How many times a segment may be split in two (at most `2^max_splits` pieces).
+    pub max_splits: u32,
+}
+
+impl IsolineOptions {
+    /// Four subdivisions per edge, tolerance 1e-3, up to 5 splits.
+    pub const DEFAULT: IsolineOptions = IsolineOptions {
+        subdivisions: 4,
+        tolerance: 1e-3,
+        max_splits: 5,
+    };
+
+    /// These options with `subdivisions` per edge.
+    pub const fn with_subdivisions(mut self, subdivisions: u32) -> Self {
+        self.subdivisions = subdivisions;
+        self
+    }
+}
+
+impl Default for IsolineOptions {
+    fn default() -> Self {
+        IsolineOptions::DEFAULT
+    }
+}
+
+/// `count` levels spread evenly over `(0, max)`, excluding both ends: the level at 0
+/// is the sources themselves and the one at the maximum a point.
+pub fn spread_levels(max: f64, count: usize) -> Vec<f64> {
+    (1..=count)
+        .map(|i| max * i as f64 / (count + 1) as f64)
+        .collect()
+}
+
+/// What identifies a point across faces: grid points and crossings on mesh edges are
+/// named by the edge, so every face around it finds the same one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+enum Key {
+    Vertex(u32),
+    /// Grid point `m` (of `n + 1`, from the lower vertex) of an edge.
+    EdgeGrid(u32, u32),
+    /// Grid point `(i, j)` inside a face.
+    FaceGrid(u32, u32, u32),
+    /// The crossing on the edge's piece `m` (between grid points `m` and `m + 1`).
+    EdgeCross(u32, u32),
+    /// The crossing on a side between two grid points of a face (by their indices in
+    /// its grid) that is not on a mesh edge: only that face holds it.
+    FaceCross(u32, u32, u32),
+}
+
+/// One sub-triangle's piece of an isoline: its two ends (keyed) and the points that
+/// split it, in order from the first end.
+struct Segment {
+    level: usize,
+    a: (Key, SurfacePoint),
+    b: (Key, SurfacePoint),
+    inner: Vec<SurfacePoint>,
+}
+
+impl<M: Metric + Sync> Query<'_, M> {
+    /// The isolines of the field at `levels` (any finite values; a level no point
+    /// reaches gives none), each as polylines of surface points; see the module docs
+    /// for how they are drawn and what they guarantee.
+    ///
+    /// ```
+    /// use geotracks::mesh::TriMesh;
+    /// use geotracks::trace::IsolineOptions;
+    /// use geotracks::{Euclidean, Options, Solver};
+    ///
+    /// // A unit square of two triangles, source at corner 0.
+    /// let mesh = TriMesh::new(
+    ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+    ///     vec![[0, 1, 2], [0, 2, 3]],
+    /// )?;
+    /// let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT)?;
+    /// let field = solver.solve(&[0])?;
+    /// let query = solver.query(&field)?;
+    /// let lines = query.isolines(&[0.5], &IsolineOptions::DEFAULT)?;
+    /// // One quarter circle of radius 0.5 from edge to edge, every point on it.
+    /// assert_eq!(lines.len(), 1);
+    /// assert!(!lines[0].closed);
+    /// for p in &lines[0].points {
+    ///     assert!((p.position(&mesh).length() - 0.5).abs() < 1e-9);
+    /// }
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::InvalidValue`] for a level that is not finite,
+    /// [`Error::InvalidIsolineOption`] for options out of range.
+    pub fn isolines(
+        &self,
+        levels: &[f64],
+        options: &IsolineOptions,
+    ) -> Result<Vec<Isoline>, Error> {
+        check_options(levels, options)?;
+        let mesh = self.mesh();
+        let scale = mesh.mean_edge_length();
+        let segments: Vec<Segment> = (0..mesh.face_count() as u32)
+            .into_par_iter()
+            .flat_map_iter(|f| FaceGrid::new(self, f, options, scale).segments(levels))
+            .collect();
+        Ok(link(levels, segments))
+    }
+}
+
+fn check_options(levels: &[f64], options: &IsolineOptions) -> Result<(), Error> {
+    if let Some((index, &value)) = levels.iter().enumerate().find(|(_, l)| !l.is_finite()) {
+        return Err(Error::InvalidValue {
+            which: ValueRole::IsolineLevel { index },
+            value,
+        });
+    }
+    if options.subdivisions == 0 || options.subdivisions > MAX_SUBDIVISIONS {
+        return Err(Error::InvalidIsolineOption {
+            option: "subdivisions",
+            value: options.subdivisions as f64,
+            expected: "between 1 and 1024",
+        });
+    }
+    if !(options.tolerance > 0.0 && options.tolerance < 1.0) {
+        return Err(Error::InvalidIsolineOption {
+            option: "tolerance",
+            value: options.tolerance,
+            expected: "above 0 and below 1",
+        });
+    }
+    if options.max_splits > MAX_SPLITS {
+        return Err(Error::InvalidIsolineOption {
+            option: "max_splits",
+            value: options.max_splits as f64,
+            expected: "at most 20",
+        });
+    }
+    Ok(())
+}
+
+/// Grid indices are packed in 16 bits, and a face's grid is `(n + 1)(n + 2) / 2` points.
+const MAX_SUBDIVISIONS: u32 = 1024;
+/// Points are solved to this fraction of their level.
+const POINT_TOLERANCE: f64 = 1e-12;
+/// A segment splits into at most `2^MAX_SPLITS` pieces.
+const MAX_SPLITS: u32 = 20;
+
+/// One face's grid: its points (keys, surface points, values), indexed `(i, j)` with
+/// `i + j ≤ n`, barycentric `((n − i − j), i, j) / n`.
+struct FaceGrid<'q, 'a, M> {
+    query: &'q Query<'a, M>,
+    face: u32,
+    n: u32,
+    keys: Vec<Key>,
+    points: Vec<SurfacePoint>,
+    values: Vec<f64>,
+    options: &'q IsolineOptions,
+    /// Absolute tolerance floor (near level 0).
+    scale: f64,
+}
+
+impl<'q, 'a, M: Metric> FaceGrid<'q, 'a, M> {
+    fn new(query: &'q Query<'a, M>, face: u32, options: &'q IsolineOptions, scale: f64) -> Self {
+        let n = options.subdivisions;
+        let mesh = query.mesh();
+        let count = ((n + 1) * (n + 2) / 2) as usize;
+        let (mut keys, mut points) = (Vec::with_capacity(count), Vec::with_capacity(count));
+        for j in 0..=n {
+            for i in 0..=n - j {
+                let (key, point) = grid_point(mesh, face, n, i, j);
+                keys.push(key);
+                points.push(point);
+            }
+        }
+        let values = points.iter().map(|&p| value(query, p)).collect();
+        FaceGrid {
+            query,
+            face,
+            n,
+            keys,
+            points,
+            values,
+            options,
+            scale,
+        }
+    }
+
+    fn index(&self, i: u32, j: u32) -> usize {
+        // Rows of j: row j holds n + 1 − j points.
+        let n = self.n as usize;
+        let (i, j) = (i as usize, j as usize);
+        j * (n + 1) - j * (j.saturating_sub(1)) / 2 + i
+    }
+
+    fn segments(&self, levels: &[f64]) -> Vec<Segment> {
+        let n = self.n;
+        let mut out = Vec::new();
+        let mut triangles = Vec::with_capacity((n * n) as usize);
+        for j in 0..n {
+            for i in 0..n - j {
+                // Upward sub-triangle, and the downward one beside it.
+                let a = self.index(i, j);
+                let b = self.index(i + 1, j);
+                let c = self.index(i, j + 1);
+                triangles.push([a, b, c]);
+                if i + j + 1 < n {
+                    let d = self.index(i + 1, j + 1);
+                    triangles.push([b, d, c]);
+                }
+            }
+        }
+        let (lo, hi) = self
+            .values
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+                (lo.min(v), hi.max(v))
+            });
+        for (li, &level) in levels.iter().enumerate() {
+            // A level outside the face's grid values crosses none of its sub-triangles.
+            if !(level >= lo && level < hi) {
+                continue;
+            }
+            for t in &triangles {
+                self.march(li, level, *t, &mut out);
+            }
+        }
+        out
+    }
+
+    /// The piece of the isoline at `level` in sub-triangle `t` (grid indices), if the
+    /// level crosses it: a grid point is *below* when its value is below the level.
+    fn march(&self, li: usize, level: f64, t: [usize; 3], out: &mut Vec<Segment>) {
+        let below = t.map(|g| self.values[g] < level);
+        if below[0] == below[1] && below[1] == below[2] {
+            return;
+        }
+        // The sides joining a below point to one that is not.
+        let mut ends = Vec::with_capacity(2);
+        for s in 0..3 {
+            let (g, h) = (t[s], t[(s + 1) % 3]);
+            if below[s] != below[(s + 1) % 3] {
+                ends.push(self.crossing(level, g, h));
+            }
+        }
+        let (a, b) = (ends[0], ends[1]);
+        if a.0 == b.0 {
+            return;
+        }
+        let mut inner = Vec::new();
+        self.split(level, a.1, b.1, self.options.max_splits, &mut inner);
+        out.push(Segment {
+            level: li,
+            a,
+            b,
+            inner,
+        });
+    }
+
+    /// Where the field crosses `level` on the side between grid points `g` and `h`
+    /// (one below, one not): solved the same way from every face that holds the side,
+    /// from its lower key to its higher one.
+    fn crossing(&self, level: f64, g: usize, h: usize) -> (Key, SurfacePoint) {
+        let (g, h) = if self.keys[g] <= self.keys[h] {
+            (g, h)
+        } else {
+            (h, g)
+        };
+        let (kg, kh) = (self.keys[g], self.keys[h]);
+        let key = match side_on_edge(self.query.mesh(), self.n, kg, kh) {
+            Some((edge, m)) => Key::EdgeCross(edge, m),
+            None => Key::FaceCross(self.face, g.min(h) as u32, g.max(h) as u32),
+        };
+        let (pg, ph) = (self.points[g], self.points[h]);
+        let (vg, vh) = (self.values[g], self.values[h]);
+        let mesh = self.query.mesh();
+        let along = |s: f64| lerp_point(mesh, self.face, pg, ph, s);
+        // The grid point is on the level itself: the crossing is that point, whichever
+        // side it is met from.
+        if vg == level {
+            return (kg, pg);
+        }
+        if vh == level {
+            return (kh, ph);
+        }
+        let s = solve(
+            |s| value(self.query, along(s)) - level,
+            vg - level,
+            vh - level,
+            self.tol(level),
+        );
+        (key, along(s))
+    }
+
+    /// How close to the level a point is solved.
+    fn tol(&self, level: f64) -> f64 {
+        POINT_TOLERANCE * level.abs().max(self.scale)
+    }
+
+    /// Splits the segment `a`–`b` (inside the face) while its middle is off the level:
+    /// the point on the level across the middle, found along the perpendicular to the
+    /// segment (in the face's plane), goes between them.
+    fn split(
+        &self,
+        level: f64,
+        a: SurfacePoint,
+        b: SurfacePoint,
+        depth: u32,
+        out: &mut Vec<SurfacePoint>,
+    ) {
+        if depth == 0 {
+            return;
+        }
+        let mesh = self.query.mesh();
+        let (Some(ba), Some(bb)) = (a.bary_in(mesh, self.face), b.bary_in(mesh, self.face)) else {
+            return;
+        };
+        let mid = [0, 1, 2].map(|k| 0.5 * (ba[k] + bb[k]));
+        let face_point = |bary: [f64; 3]| SurfacePoint::Face {
+            face: self.face,
+            bary,
+        };
+        let off = value(self.query, face_point(mid)) - level;
+        let (pa, pb) = (a.position(mesh), b.position(mesh));
+        let length = (pb - pa).length();
+        if off.abs() <= self.options.tolerance * length || off.is_nan() || length == 0.0 {
+            return;
+        }
+        // The perpendicular in barycentric terms: the face's normal crossed with the
+        // segment gives a direction in the plane; its barycentric change solves the
+        // 3-D offset on the face's two edge vectors.
+        let [v0, v1, v2] = mesh.face_vertices(self.face).map(|v| mesh.position(v));
+        let (e1, e2) = (v1 - v0, v2 - v0);
+        let normal = e1.cross(e2);
+        let dir = normal.cross(pb - pa).normalize() * length;
+        let Some((d1, d2)) = solve_2x2(e1, e2, dir) else {
+            return;
+        };
+        let delta = [-d1 - d2, d1, d2];
+        // How far along ±delta the face allows (barycentrics stay ≥ 0).
+        let reach = |sign: f64| {
+            (0..3).fold(1.0f64, |r, k| {
+                let step = sign * delta[k];
+                if step < 0.0 {
+                    r.min(mid[k] / -step)
+                } else {
+                    r
+                }
+            })
+        };
+        let (lo, hi) = (-reach(-1.0), reach(1.0));
+        let at = |s: f64| {
+            let mut bary = [0, 1, 2].map(|k| (mid[k] + s * delta[k]).max(0.0));
+            let sum = bary[0] + bary[1] + bary[2];
+            bary.iter_mut().for_each(|x| *x /= sum);
+            face_point(bary)
+        };
+        let (flo, fhi) = (
+            value(self.query, at(lo)) - level,
+            value(self.query, at(hi)) - level,
+        );
+        // The level must be met between the two reaches, and on the same side of the
+        // middle's value: otherwise the middle is kept off the level (within a ridge
+        // sharper than the search, a rare case) rather than guessed.
+        let (s0, f0, s1, f1) = if (off > 0.0) == (flo < 0.0) {
+            (lo, flo, 0.0, off)
+        } else if (off > 0.0) == (fhi < 0.0) {
+            (0.0, off, hi, fhi)
+        } else {
+            return;
+        };
+        let s = solve(
+            |s| value(self.query, at(s0 + s * (s1 - s0))) - level,
+            f0,
+            f1,
+            self.tol(level),
+        );
+        let m = at(s0 + s * (s1 - s0));
+        self.split(level, a, m, depth - 1, out);
+        out.push(m);
+        self.split(level, m, b, depth - 1, out);
+    }
+}
+
+/// The field's value at `point`, `inf` where unreached (points are built on the mesh,
+/// so they are valid).
+fn value<M: Metric>(query: &Query<'_, M>, point: SurfacePoint) -> f64 {
+    query.distance_at(point).unwrap_or(f64::INFINITY)
+}
+
+/// A root of `f` on [0, 1] given its values at the ends (of opposite signs, the second
+/// possibly infinite), by the Illinois variant of regula falsi with bisection where an
+/// end is infinite; stops when `|f| ≤ tol` or the bracket stops shrinking.
+fn solve(f: impl Fn(f64) -> f64, mut fa: f64, mut fb: f64, tol: f64) -> f64 {
+    let (mut a, mut b) = (0.0f64, 1.0f64);
+    let mut side = 0i8;
+    for _ in 0..100 {
+        let s = if fa.is_finite() && fb.is_finite() {
+            let s = (a * fb - b * fa) / (fb - fa);
+            if s > a && s < b {
+                s
+            } else {
+                0.5 * (a + b)
+            }
+        } else {
+            0.5 * (a + b)
+        };
+        if s <= a || s >= b {
+            return s;
+        }
+        let fs = f(s);
+        if fs.abs() <= tol {
+            return s;
+        }
+        if (fs < 0.0) == (fa < 0.0) {
+            a = s;
+            fa = fs;
+            if side == -1 {
+                fb *= 0.5;
+            }
+            side = -1;
+        } else {
+            b = s;
+            fb = fs;
+            if side == 1 {
+                fa *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    0.5 * (a + b)
+}
+
+/// `(x, y)` with `x·e1 + y·e2 = d` in the least-squares sense (d lies in their plane).
+fn solve_2x2(e1: glam::DVec3, e2: glam::DVec3, d: glam::DVec3) -> Option<(f64, f64)> {
+    let (a, b, c) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+    let (p, q) = (e1.dot(d), e2.dot(d));
+    let det = a * c - b * b;
+    if det.abs() <= 1e-300 {
+        return None;
+    }
+    Some(((p * c - q * b) / det, (a * q - b * p) / det))
+}
+
+/// The grid point `(i, j)` of face `f`: its key and its surface point (a vertex, an
+/// edge point by the edge's own parameter, or a face point).
+fn grid_point(mesh: &TriMesh, f: u32, n: u32, i: u32, j: u32) -> (Key, SurfacePoint) {
+    let corners = mesh.face_vertices(f);
+    let k = n - i - j;
+    if i == 0 && j == 0 {
+        return (Key::Vertex(corners[0]), SurfacePoint::Vertex(corners[0]));
+    }
+    if i == n {
+        return (Key::Vertex(corners[1]), SurfacePoint::Vertex(corners[1]));
+    }
+    if j == n {
+        return (Key::Vertex(corners[2]), SurfacePoint::Vertex(corners[2]));
+    }
+    // On slot s (from corner s to corner s + 1), `at` steps of n from corner s.
+    let on_slot = if j == 0 {
+        Some((0, i))
+    } else if k == 0 {
+        Some((1, j))
+    } else if i == 0 {
+        Some((2, n - j))
+    } else {
+        None
+    };
+    match on_slot {
+        Some((s, at)) => {
+            let edge = mesh.face_edges(f)[s];
+            let m = if mesh.slot_is_reversed(f, s) {
+                n - at
+            } else {
+                at
+            };
+            (
+                Key::EdgeGrid(edge, m),
+                SurfacePoint::Edge {
+                    edge,
+                    t: m as f64 / n as f64,
+                },
+            )
+        }
+        None => {
+            let nf = n as f64;
+            (
+                Key::FaceGrid(f, i, j),
+                SurfacePoint::Face {
+                    face: f,
+                    bary: [k as f64 / nf, i as f64 / nf, j as f64 / nf],
+                },
+            )
+        }
+    }
+}
+
+/// If the side between grid keys `a < b` lies on a mesh edge: the edge and the piece's
+/// index along it (from the lower vertex).
+fn side_on_edge(mesh: &TriMesh, n: u32, a: Key, b: Key) -> Option<(u32, u32)> {
+    let place = |k: Key| -> Option<(Option<u32>, Option<u32>, u32)> {
+        // (edge, vertex, position along the edge in grid steps where known)
+        match k {
+            Key::EdgeGrid(e, m) => Some((Some(e), None, m)),
+            Key::Vertex(v) => Some((None, Some(v), 0)),
+            _ => None,
+        }
+    };
+    let (pa, pb) = (place(a)?, place(b)?);
+    match (pa, pb) {
+        ((Some(e), _, m), (Some(e2), _, m2)) if e == e2 => Some((e, m.min(m2))),
+        ((Some(e), _, m), (None, Some(v), _)) | ((None, Some(v), _), (Some(e), _, m)) => {
+            let [lo, hi] = mesh.edge_vertices(e);
+            if v == lo && m == 1 {
+                Some((e, 0))
+            } else if v == hi && m + 1 == n {
+                Some((e, n - 1))
+            } else {
+                None
+            }
+        }
+        ((None, Some(u), _), (None, Some(v), _)) if n == 1 => {
+            // A side from corner to corner: the edge itself (n = 1).
+            let edges = mesh.vertex_edges(u);
+            edges
+                .iter()
+                .copied()
+                .find(|&e| mesh.edge_vertices(e).contains(&v))
+                .map(|e| (e, 0))
+        }
+        _ => None,
+    }
+}
+
+/// The point at fraction `s` from `a` to `b`, both on face `f`'s closure: on their
+/// common edge when they share one (so that every face finds the same point), else a
+/// face point.
+fn lerp_point(mesh: &TriMesh, f: u32, a: SurfacePoint, b: SurfacePoint, s: f64) -> SurfacePoint {
+    let edge_t = |p: SurfacePoint, e: u32| -> Option<f64> {
+        match p {
+            SurfacePoint::Edge { edge, t } if edge == e => Some(t),
+            SurfacePoint::Vertex(v) => {
+                let [lo, hi] = mesh.edge_vertices(e);
+                (v == lo).then_some(0.0).or((v == hi).then_some(1.0))
+            }
+            _ => None,
+        }
+    };
+    let common = match (a, b) {
+        (SurfacePoint::Edge { edge, .. }, _) | (_, SurfacePoint::Edge { edge, .. }) => Some(edge),
+        (SurfacePoint::Vertex(u), SurfacePoint::Vertex(v)) => mesh
+            .vertex_edges(u)
+            .iter()
+            .copied()
+            .find(|&e| mesh.edge_vertices(e).contains(&v)),
+        _ => None,
+    };
+    if let Some(e) = common {
+        if let (Some(ta), Some(tb)) = (edge_t(a, e), edge_t(b, e)) {
+            return SurfacePoint::Edge {
+                edge: e,
+                t: ta + s * (tb - ta),
+            };
+        }
+    }
+    let ba = a.bary_in(mesh, f).expect("grid point on its face");
+    let bb = b.bary_in(mesh, f).expect("grid point on its face");
+    SurfacePoint::Face {
+        face: f,
+        bary: [0, 1, 2].map(|k| ba[k] + s * (bb[k] - ba[k])),
+    }
+}
+
+/// Joins the sub-triangles' segments into polylines, per level: through every point
+/// shared by exactly two segments; a point with one segment ends a line (the boundary,
+/// or the edge of the reached region), one with three or more (a non-manifold edge)
+/// ends each line that meets there.
+fn link(levels: &[f64], segments: Vec<Segment>) -> Vec<Isoline> {
+    let mut ids: HashMap<(usize, Key), usize> = HashMap::new();
+    let mut points: Vec<SurfacePoint> = Vec::new();
+    let mut id = |level: usize, (key, p): (Key, SurfacePoint)| -> usize {
+        *ids.entry((level, key)).or_insert_with(|| {
+            points.push(p);
+            points.len() - 1
+        })
+    };
+    let ends: Vec<(usize, usize)> = segments
+        .iter()
+        .map(|s| (id(s.level, s.a), id(s.level, s.b)))
+        .collect();
+    let mut incident: Vec<Vec<usize>> = vec![Vec::new(); points.len()];
+    for (si, &(a, b)) in ends.iter().enumerate() {
+        incident[a].push(si);
+        incident[b].push(si);
+    }
+    let mut used = vec![false; segments.len()];
+    let mut lines = Vec::new();
+    // Walks from point `start` along segment `si` until a point that is not shared by
+    // exactly two segments, or back to the start.
+    let walk = |start: usize, mut si: usize, used: &mut Vec<bool>| -> Isoline {
+        let mut line = vec![points[start]];
+        let mut at = start;
+        loop {
+            used[si] = true;
+            let s = &segments[si];
+            let (a, b) = ends[si];
+            let next = if a == at { b } else { a };
+            if a == at {
+                line.extend_from_slice(&s.inner);
+            } else {
+                line.extend(s.inner.iter().rev());
+            }
+            line.push(points[next]);
+            at = next;
+            if at == start || incident[at].len() != 2 {
+                break;
+            }
+            match incident[at].iter().copied().find(|&o| !used[o]) {
+                Some(o) => si = o,
+                None => break,
+            }
+        }
+        Isoline {
+            level: levels[segments[si].level],
+            closed: at == start,
+            points: line,
+        }
+    };
+    // Open lines first, from their ends; what is left are loops.
+    for (p, around) in incident.iter().enumerate() {
+        if around.len() == 2 {
+            continue;
+        }
+        for &si in around {
+            if !used[si] {
+                lines.push(walk(p, si, &mut used));
+            }
+        }
+    }
+    for si in 0..segments.len() {
+        if !used[si] {
+            let start = ends[si].0;
+            lines.push(walk(start, si, &mut used));
+        }
+    }
+    lines.sort_by(|a, b| a.level.total_cmp(&b.level));
+    lines
+}

@@ -1,0 +1,244 @@
+//! Isolines (`Query::isolines`): every point on its level (exactly, on planes, where a
+//! linear interpolation of vertex values is not), closed where the level set is,
+//! continuous across edges and non-manifold spines, lines of one field never crossing.
+
+mod common;
+
+use geotracks::mesh::TriMesh;
+use geotracks::trace::{spread_levels, Isoline, IsolineOptions};
+use geotracks::{Error, Euclidean, Options, Solver, Source, SurfacePoint};
+use glam::DVec3;
+
+fn isolines(mesh: &TriMesh, sources: &[Source], levels: &[f64]) -> Vec<Isoline> {
+    let solver = Solver::new(mesh, Euclidean, &Options::DEFAULT).unwrap();
+    let field = solver.solve_from(sources, &geotracks::Stop::NONE).unwrap();
+    solver
+        .query(&field)
+        .unwrap()
+        .isolines(levels, &IsolineOptions::DEFAULT)
+        .unwrap()
+}
+
+/// The largest relative distance from its level of a point, on a plane where the exact
+/// distance to `source` is the straight one.
+fn worst_on_plane(mesh: &TriMesh, source: DVec3, lines: &[Isoline]) -> f64 {
+    let mut worst = 0.0f64;
+    for line in lines {
+        for p in &line.points {
+            let d = (p.position(mesh) - source).length();
+            worst = worst.max((d - line.level).abs() / line.level);
+        }
+    }
+    worst
+}
+
+/// The largest relative distance from its level of a point of the isolines that a
+/// linear interpolation of exact vertex values draws (crossings on mesh edges).
+fn worst_linear_on_plane(mesh: &TriMesh, source: DVec3, levels: &[f64]) -> f64 {
+    let exact = |v: u32| (mesh.position(v) - source).length();
+    let mut worst = 0.0f64;
+    for e in 0..mesh.edge_count() as u32 {
+        let [a, b] = mesh.edge_vertices(e);
+        let (da, db) = (exact(a), exact(b));
+        for &level in levels {
+            if (da < level) != (db < level) {
+                let t = (level - da) / (db - da);
+                let p = mesh.position(a).lerp(mesh.position(b), t);
+                worst = worst.max(((p - source).length() - level).abs() / level);
+            }
+        }
+    }
+    worst
+}
+
+#[test]
+fn points_lie_on_their_level_on_a_plane_unlike_a_linear_interpolation() {
+    let mesh = common::grid(12, 1.0);
+    let sources = [
+        (SurfacePoint::Vertex(0), DVec3::ZERO),
+        (
+            SurfacePoint::Face {
+                face: 77,
+                bary: [0.2, 0.5, 0.3],
+            },
+            DVec3::ZERO,
+        ),
+    ];
+    for (point, _) in sources {
+        let at = point.position(&mesh);
+        let levels = spread_levels(1.2, 8);
+        let lines = isolines(&mesh, &[Source::new(point)], &levels);
+        assert!(!lines.is_empty());
+        let ours = worst_on_plane(&mesh, at, &lines);
+        let linear = worst_linear_on_plane(&mesh, at, &levels);
+        eprintln!("{point}: ours {ours:e}, linear {linear:e}");
+        assert!(ours <= 1e-9, "{point}: a point {ours:e} off its level");
+        // Measured: ours 9.6e-13 and 9.9e-13; linear 2.3 % from the corner, 4.8 % from
+        // inside a face.
+        assert!(linear > 1e-2, "{point}: linear interpolation {linear:e}");
+        // Segments follow the arcs: the middle of every segment is near the circle.
+        for line in &lines {
+            for w in line.points.windows(2) {
+                let mid = 0.5 * (w[0].position(&mesh) + w[1].position(&mesh));
+                let off = ((mid - at).length() - line.level).abs();
+                let length = (w[1].position(&mesh) - w[0].position(&mesh)).length();
+                assert!(off <= 1e-3 * length + 1e-12, "{off} over {length}");
+            }
+        }
+    }
+}
+
+#[test]
+fn a_level_around_an_inner_source_is_one_closed_line() {
+    let mesh = common::grid(10, 1.0);
+    // Vertex (5, 5), the middle.
+    let centre = 5 * 11 + 5;
+    let lines = isolines(&mesh, &[Source::new(centre)], &[0.23]);
+    assert_eq!(lines.len(), 1);
+    assert!(lines[0].closed);
+    assert_eq!(lines[0].points.first(), lines[0].points.last());
+    let at = mesh.position(centre);
+    assert!(worst_on_plane(&mesh, at, &lines) <= 1e-9);
+    // A level past the square's corners reaches no point: no line.
+    assert!(isolines(&mesh, &[Source::new(centre)], &[0.8]).is_empty());
+}
+
+#[test]
+fn isolines_cross_a_non_manifold_spine_into_every_page() {
+    let (mesh, id) = common::book(3, 1.0, 1.0, 6);
+    // A source on page 0, off the spine: its circles reach the spine and go on into
+    // pages 1 and 2.
+    let source = id(0, 3, 3);
+    let lines = isolines(&mesh, &[Source::new(source)], &[0.7]);
+    // Each page holds an arc; the three meet on the spine at one shared point each end?
+    // The spine (the z axis, x = y = 0) is crossed where the circle of radius 0.7 around
+    // (0.5, 0, 0.5) on page 0 meets it: z = 0.5 ± sqrt(0.49 − 0.25).
+    let on_spine: Vec<DVec3> = lines
+        .iter()
+        .flat_map(|l| [l.points[0], *l.points.last().unwrap()])
+        .map(|p| p.position(&mesh))
+        .filter(|p| p.x.abs() < 1e-12 && p.y.abs() < 1e-12)
+        .collect();
+    let h = (0.49f64 - 0.25).sqrt();
+    for z in [0.5 - h, 0.5 + h] {
+        let meeting = on_spine.iter().filter(|p| (p.z - z).abs() < 1e-9).count();
+        assert_eq!(
+            meeting, 3,
+            "lines meeting on the spine at z = {z}: {on_spine:?}"
+        );
+    }
+    // Beyond the spine, every point is at 0.7 along the path through the spine.
+    for line in &lines {
+        for p in &line.points {
+            let x = p.position(&mesh);
+            let d = if (x - mesh.position(id(0, 6, 0))).length() < 2.0 && on_page0(x) {
+                (x - mesh.position(source)).length()
+            } else {
+                // Unfolded: across the spine, the page is page 0's mirror.
+                let r = (x.x * x.x + x.y * x.y).sqrt();
+                ((r + 0.5).powi(2) + (x.z - 0.5).powi(2)).sqrt()
+            };
+            assert!((d - 0.7).abs() < 1e-9, "{x:?}: {d}");
+        }
+    }
+}
+
+/// A segment of an isoline in a face: its level and its ends' barycentric (b1, b2).
+type Piece = (f64, [f64; 2], [f64; 2]);
+
+fn on_page0(x: DVec3) -> bool {
+    // Page 0 is the half plane y = 0, x ≥ 0 (see common::book).
+    x.y.abs() < 1e-12 && x.x >= 0.0
+}
+
+#[test]
+fn isolines_of_one_field_never_cross_and_lie_on_their_faces() {
+    let mesh = geotracks::mesh::io::read_mesh("tests/data/spot.obj").unwrap();
+    let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
+    let field = solver.solve(&[0]).unwrap();
+    let query = solver.query(&field).unwrap();
+    let max = field.vertex_distances().iter().copied().fold(0.0, f64::max);
+    let levels = spread_levels(max, 60);
+    let lines = query.isolines(&levels, &IsolineOptions::DEFAULT).unwrap();
+    // Points at their level where the engine's field is continuous. It is not quite: a
+    // point inside a face takes its value from that face's nodes and waves, a point on
+    // an edge from all its faces, and the two can differ by the engine's error; a point
+    // solved at such a jump is off by the jump. Measured (60 levels): 10,277 of 403,210
+    // points off by more than 1e-9, the worst by 1.87 %.
+    let (mut off, mut worst, mut count) = (0usize, 0.0f64, 0usize);
+    for line in &lines {
+        for &p in &line.points {
+            let d = query.distance_at(p).unwrap();
+            let rel = (d - line.level).abs() / line.level;
+            count += 1;
+            worst = worst.max(rel);
+            if rel > 1e-9 {
+                off += 1;
+            }
+        }
+    }
+    eprintln!("{off} of {count} points off their level by more than 1e-9; worst {worst:e}");
+    assert!(
+        off * 20 <= count && worst < 5e-2,
+        "{off} of {count} off, worst {worst:e}"
+    );
+    // Segments per face, in barycentric coordinates; those of different levels must not
+    // cross.
+    let mut per_face: std::collections::HashMap<u32, Vec<Piece>> = Default::default();
+    for line in &lines {
+        for w in line.points.windows(2) {
+            let common = w[0]
+                .faces(&mesh)
+                .iter()
+                .copied()
+                .find(|&f| w[1].bary_in(&mesh, f).is_some());
+            let f = common.unwrap_or_else(|| panic!("{} and {} share no face", w[0], w[1]));
+            let (a, b) = (
+                w[0].bary_in(&mesh, f).unwrap(),
+                w[1].bary_in(&mesh, f).unwrap(),
+            );
+            per_face
+                .entry(f)
+                .or_default()
+                .push((line.level, [a[1], a[2]], [b[1], b[2]]));
+        }
+    }
+    let orient = |a: [f64; 2], b: [f64; 2], c: [f64; 2]| {
+        (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+    };
+    let mut pairs = 0;
+    for segments in per_face.values() {
+        for (i, s) in segments.iter().enumerate() {
+            for t in &segments[i + 1..] {
+                if s.0 == t.0 {
+                    continue;
+                }
+                pairs += 1;
+                let crosses = orient(s.1, s.2, t.1) * orient(s.1, s.2, t.2) < -1e-24
+                    && orient(t.1, t.2, s.1) * orient(t.1, t.2, s.2) < -1e-24;
+                assert!(!crosses, "levels {} and {} cross in a face", s.0, t.0);
+            }
+        }
+    }
+    assert!(
+        pairs > 0,
+        "no face holds two levels: the check checked nothing"
+    );
+}
+
+#[test]
+fn bad_levels_and_options_are_refused() {
+    let mesh = common::grid(2, 1.0);
+    let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
+    let field = solver.solve(&[0]).unwrap();
+    let query = solver.query(&field).unwrap();
+    let err = query
+        .isolines(&[0.5, f64::NAN], &IsolineOptions::DEFAULT)
+        .unwrap_err();
+    assert!(matches!(err, Error::InvalidValue { .. }));
+    assert!(err.to_string().contains("isoline level 1"), "{err}");
+    let err = query
+        .isolines(&[0.5], &IsolineOptions::DEFAULT.with_subdivisions(0))
+        .unwrap_err();
+    assert!(err.to_string().contains("subdivisions"), "{err}");
+}
