@@ -66,7 +66,7 @@ use super::tracks::{FaceRecord, TrackTables};
 use crate::field::Wave;
 use crate::flat::{
     hinge, hinge_end, in_window, project, same_source, same_source_slack, uv, wave_value_on_edge,
-    EdgeFrame, P, SAME_SOURCE, TIE, TOUCH,
+    EdgeFrame, P, TIE, TOUCH,
 };
 use crate::mesh::{TriMesh, NONE};
 use crate::surface::Source;
@@ -267,9 +267,7 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
                 frame,
                 pq,
                 f,
-                same_wave_slack: 4.0
-                    * SAME_SOURCE
-                    * (frame.len + wave.sigma.abs() + wave.sx.abs() + wave.sy.abs()),
+                same_source_slack: same_source_slack(P(wave.sx, wave.sy), wave.sigma, frame.len),
             };
             for step in 1..3 {
                 let ts = (s + step) % 3;
@@ -374,7 +372,7 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
             // bend at the node is a longer way from the source), and `t` carries the
             // same wave (to merge windows with) only with that value: beyond it, the
             // offer is over before the window is looked at. Most offers end here.
-            if straight > current + entry.same_wave_slack + TIE * current.abs() {
+            if straight > current + 4.0 * entry.same_source_slack + TIE * current.abs() {
                 return;
             }
             let x = (wave.sx + wave.sy / dy * dx) / entry.frame.len;
@@ -387,8 +385,7 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
             } else {
                 if t >= self.vertex_count
                     && ts < 3
-                    && (self.wave(t).sigma - wave.sigma).abs()
-                        <= SAME_SOURCE * (entry.frame.len + wave.sigma.abs() + wave.sx.abs())
+                    && (self.wave(t).sigma - wave.sigma).abs() <= entry.same_source_slack
                 {
                     // Outside the window: the same wave may have reached `t` another way.
                     self.merge(t, entry, r, ts);
@@ -603,9 +600,10 @@ struct Entry {
     /// The node's point in the face.
     pq: P,
     f: u32,
-    /// How far a target that carries the same wave (its source and `σ` equal to
-    /// [`SAME_SOURCE`]) can lie above this wave's straight value to it.
-    same_wave_slack: f64,
+    /// How far apart the sources and `σ`s of two waves that are this one may lie
+    /// ([`same_source_slack`] in the entering edge's frame); a target that carries the
+    /// same wave lies at most four times this above its straight value.
+    same_source_slack: f64,
 }
 
 /// The slot of face record `r` that Steiner node `node` lies on.

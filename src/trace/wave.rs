@@ -6,7 +6,9 @@
 
 use super::Query;
 use crate::field::Wave;
-use crate::flat::{flat_frame, hinge, hinge_end, in_window, same_source, uv, EdgeFrame, P};
+use crate::flat::{
+    flat_frame, hinge, hinge_end, in_window, same_source, same_source_slack, uv, EdgeFrame, P,
+};
 use crate::mesh::{FaceFrame, NONE};
 use crate::steiner::NodeKind;
 use crate::surface::SurfacePoint;
@@ -381,8 +383,7 @@ impl<M: Metric> Query<'_, M> {
     /// The source that lies at `s` (a point of face `h`, flattened `frame`) with start
     /// `sigma`, both to [`SAME_SOURCE`](crate::flat::SAME_SOURCE) of their scale.
     fn source_at(&self, h: u32, frame: &FaceFrame, s: P, sigma: f64) -> Option<u32> {
-        let scale = frame.l01 + s.0.abs() + s.1.abs() + sigma.abs();
-        let near = crate::flat::SAME_SOURCE * scale;
+        let near = same_source_slack(s, sigma, frame.l01);
         self.field
             .sources
             .iter()
