@@ -110,9 +110,9 @@ fn isolines_cross_a_non_manifold_spine_into_every_page() {
     // pages 1 and 2.
     let source = id(0, 3, 3);
     let lines = isolines(&mesh, &[Source::new(source)], &[0.7]);
-    // Each page holds an arc; the three meet on the spine at one shared point each end?
-    // The spine (the z axis, x = y = 0) is crossed where the circle of radius 0.7 around
-    // (0.5, 0, 0.5) on page 0 meets it: z = 0.5 ± sqrt(0.49 − 0.25).
+    // Each page holds an arc, and the three arcs meet at each of the two points where
+    // the circle of radius 0.7 around (0.5, 0, 0.5) on page 0 crosses the spine (the z
+    // axis, x = y = 0): z = 0.5 ± sqrt(0.49 − 0.25).
     let on_spine: Vec<DVec3> = lines
         .iter()
         .flat_map(|l| [l.points[0], *l.points.last().unwrap()])
@@ -131,7 +131,7 @@ fn isolines_cross_a_non_manifold_spine_into_every_page() {
     for line in &lines {
         for p in &line.points {
             let x = p.position(&mesh);
-            let d = if (x - mesh.position(id(0, 6, 0))).length() < 2.0 && on_page0(x) {
+            let d = if on_page0(x) {
                 (x - mesh.position(source)).length()
             } else {
                 // Unfolded: across the spine, the page is page 0's mirror.

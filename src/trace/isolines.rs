@@ -118,7 +118,7 @@ struct Segment {
     inner: Vec<SurfacePoint>,
 }
 
-impl<M: Metric + Sync> Query<'_, M> {
+impl<M: Metric> Query<'_, M> {
     /// The isolines of the field at `levels` (any finite values; a level no point
     /// reaches gives none), each as polylines of surface points; see the module docs
     /// for how they are drawn and what they guarantee.
@@ -196,7 +196,8 @@ fn check_options(levels: &[f64], options: &IsolineOptions) -> Result<(), Error> 
     Ok(())
 }
 
-/// Grid indices are packed in 16 bits, and a face's grid is `(n + 1)(n + 2) / 2` points.
+/// A face's grid is `(n + 1)(n + 2) / 2` points, each evaluated: beyond this a run
+/// would take hours on any mesh, so it is refused as a mistake.
 const MAX_SUBDIVISIONS: u32 = 1024;
 /// Points are solved to this fraction of their level.
 const POINT_TOLERANCE: f64 = 1e-12;
@@ -292,15 +293,13 @@ impl<'q, 'a, M: Metric> FaceGrid<'q, 'a, M> {
         if below[0] == below[1] && below[1] == below[2] {
             return;
         }
-        // The sides joining a below point to one that is not.
-        let mut ends = Vec::with_capacity(2);
-        for s in 0..3 {
-            let (g, h) = (t[s], t[(s + 1) % 3]);
-            if below[s] != below[(s + 1) % 3] {
-                ends.push(self.crossing(level, g, h));
-            }
-        }
-        let (a, b) = (ends[0], ends[1]);
+        // The two sides joining a below point to one that is not.
+        let mut sides = (0..3)
+            .filter(|&s| below[s] != below[(s + 1) % 3])
+            .map(|s| self.crossing(level, t[s], t[(s + 1) % 3]));
+        let (Some(a), Some(b)) = (sides.next(), sides.next()) else {
+            return;
+        };
         if a.0 == b.0 {
             return;
         }
@@ -324,13 +323,16 @@ impl<'q, 'a, M: Metric> FaceGrid<'q, 'a, M> {
             (h, g)
         };
         let (kg, kh) = (self.keys[g], self.keys[h]);
-        let key = match side_on_edge(self.query.mesh(), self.n, kg, kh) {
-            Some((edge, m)) => Key::EdgeCross(edge, m),
+        let (pg, ph) = (self.points[g], self.points[h]);
+        let mesh = self.query.mesh();
+        let key = match shared_edge(mesh, pg, ph) {
+            // The piece of the edge between its grid points m and m + 1.
+            Some((edge, tg, th)) => {
+                Key::EdgeCross(edge, (tg.min(th) * self.n as f64).round() as u32)
+            }
             None => Key::FaceCross(self.face, g.min(h) as u32, g.max(h) as u32),
         };
-        let (pg, ph) = (self.points[g], self.points[h]);
         let (vg, vh) = (self.values[g], self.values[h]);
-        let mesh = self.query.mesh();
         let along = |s: f64| lerp_point(mesh, self.face, pg, ph, s);
         // The grid point is on the level itself: the crossing is that point, whichever
         // side it is met from.
@@ -552,48 +554,10 @@ fn grid_point(mesh: &TriMesh, f: u32, n: u32, i: u32, j: u32) -> (Key, SurfacePo
     }
 }
 
-/// If the side between grid keys `a < b` lies on a mesh edge: the edge and the piece's
-/// index along it (from the lower vertex).
-fn side_on_edge(mesh: &TriMesh, n: u32, a: Key, b: Key) -> Option<(u32, u32)> {
-    let place = |k: Key| -> Option<(Option<u32>, Option<u32>, u32)> {
-        // (edge, vertex, position along the edge in grid steps where known)
-        match k {
-            Key::EdgeGrid(e, m) => Some((Some(e), None, m)),
-            Key::Vertex(v) => Some((None, Some(v), 0)),
-            _ => None,
-        }
-    };
-    let (pa, pb) = (place(a)?, place(b)?);
-    match (pa, pb) {
-        ((Some(e), _, m), (Some(e2), _, m2)) if e == e2 => Some((e, m.min(m2))),
-        ((Some(e), _, m), (None, Some(v), _)) | ((None, Some(v), _), (Some(e), _, m)) => {
-            let [lo, hi] = mesh.edge_vertices(e);
-            if v == lo && m == 1 {
-                Some((e, 0))
-            } else if v == hi && m + 1 == n {
-                Some((e, n - 1))
-            } else {
-                None
-            }
-        }
-        ((None, Some(u), _), (None, Some(v), _)) if n == 1 => {
-            // A side from corner to corner: the edge itself (n = 1).
-            let edges = mesh.vertex_edges(u);
-            edges
-                .iter()
-                .copied()
-                .find(|&e| mesh.edge_vertices(e).contains(&v))
-                .map(|e| (e, 0))
-        }
-        _ => None,
-    }
-}
-
-/// The point at fraction `s` from `a` to `b`, both on face `f`'s closure: on their
-/// common edge when they share one (so that every face finds the same point), else a
-/// face point.
-fn lerp_point(mesh: &TriMesh, f: u32, a: SurfacePoint, b: SurfacePoint, s: f64) -> SurfacePoint {
-    let edge_t = |p: SurfacePoint, e: u32| -> Option<f64> {
+/// The mesh edge that points `a` and `b` both lie on (vertices or points of it), with
+/// their parameters along it (from its lower vertex).
+fn shared_edge(mesh: &TriMesh, a: SurfacePoint, b: SurfacePoint) -> Option<(u32, f64, f64)> {
+    let at = |p: SurfacePoint, e: u32| -> Option<f64> {
         match p {
             SurfacePoint::Edge { edge, t } if edge == e => Some(t),
             SurfacePoint::Vertex(v) => {
@@ -603,22 +567,27 @@ fn lerp_point(mesh: &TriMesh, f: u32, a: SurfacePoint, b: SurfacePoint, s: f64) 
             _ => None,
         }
     };
-    let common = match (a, b) {
-        (SurfacePoint::Edge { edge, .. }, _) | (_, SurfacePoint::Edge { edge, .. }) => Some(edge),
+    let edge = match (a, b) {
+        (SurfacePoint::Edge { edge, .. }, _) | (_, SurfacePoint::Edge { edge, .. }) => edge,
         (SurfacePoint::Vertex(u), SurfacePoint::Vertex(v)) => mesh
             .vertex_edges(u)
             .iter()
             .copied()
-            .find(|&e| mesh.edge_vertices(e).contains(&v)),
-        _ => None,
+            .find(|&e| mesh.edge_vertices(e).contains(&v))?,
+        _ => return None,
     };
-    if let Some(e) = common {
-        if let (Some(ta), Some(tb)) = (edge_t(a, e), edge_t(b, e)) {
-            return SurfacePoint::Edge {
-                edge: e,
-                t: ta + s * (tb - ta),
-            };
-        }
+    Some((edge, at(a, edge)?, at(b, edge)?))
+}
+
+/// The point at fraction `s` from `a` to `b`, both on face `f`'s closure: on their
+/// shared edge when they have one (so that every face finds the same point), else a
+/// face point.
+fn lerp_point(mesh: &TriMesh, f: u32, a: SurfacePoint, b: SurfacePoint, s: f64) -> SurfacePoint {
+    if let Some((edge, ta, tb)) = shared_edge(mesh, a, b) {
+        return SurfacePoint::Edge {
+            edge,
+            t: ta + s * (tb - ta),
+        };
     }
     let ba = a.bary_in(mesh, f).expect("grid point on its face");
     let bb = b.bary_in(mesh, f).expect("grid point on its face");
