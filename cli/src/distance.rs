@@ -72,12 +72,7 @@ pub fn run(args: &DistanceArgs) -> CliResult {
     if max_distance.is_nan() || max_distance < 0.0 {
         return Err(format!("--max-distance {max_distance}: it must be a number >= 0").into());
     }
-    let inputs = [
-        Some(&args.mesh),
-        args.metric.density.as_ref(),
-        args.metric.tensor.as_ref(),
-    ];
-    let mut outputs = Outputs::new(inputs.into_iter().flatten().map(PathBuf::as_path));
+    let mut outputs = Outputs::new(std::iter::once(args.mesh.as_path()).chain(args.metric.files()));
     for path in [
         Some(&args.output),
         args.voronoi.as_ref(),

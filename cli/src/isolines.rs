@@ -75,12 +75,7 @@ pub fn run(args: &IsolinesArgs) -> CliResult {
         return Err("--levels 0: ask for at least one level".into());
     }
     let options = IsolineOptions::DEFAULT.with_subdivisions(args.subdivisions);
-    let inputs = [
-        Some(&args.mesh),
-        args.metric.density.as_ref(),
-        args.metric.tensor.as_ref(),
-    ];
-    let mut outputs = Outputs::new(inputs.into_iter().flatten().map(PathBuf::as_path));
+    let mut outputs = Outputs::new(std::iter::once(args.mesh.as_path()).chain(args.metric.files()));
     outputs.declare(&args.output)?;
     let spinner = ui::Spinner::start("reading the mesh, propagating and drawing isolines");
     let mesh = load_mesh(&args.mesh, args.weld)?;

@@ -31,14 +31,14 @@ pub struct MatrixArgs {
 
 pub fn run(args: &MatrixArgs) -> CliResult {
     crate::text_output_format(&args.output, &[("csv", ())], ())?;
-    let inputs = [
-        Some(&args.mesh),
-        Some(&args.sources),
-        args.targets.as_ref(),
-        args.metric.density.as_ref(),
-        args.metric.tensor.as_ref(),
-    ];
-    let mut outputs = Outputs::new(inputs.into_iter().flatten().map(PathBuf::as_path));
+    let inputs = [Some(&args.mesh), Some(&args.sources), args.targets.as_ref()];
+    let mut outputs = Outputs::new(
+        inputs
+            .into_iter()
+            .flatten()
+            .map(PathBuf::as_path)
+            .chain(args.metric.files()),
+    );
     outputs.declare(&args.output)?;
     let spinner = ui::Spinner::start("reading the mesh and computing the rows");
     let mesh = load_mesh(&args.mesh, args.weld)?;

@@ -47,6 +47,15 @@ impl MetricArgs {
         Options::DEFAULT.with_k(self.k()).with_method(self.method)
     }
 
+    /// The files the metric reads (none, or its density or tensor file): inputs that no
+    /// output may overwrite.
+    pub fn files(&self) -> impl Iterator<Item = &std::path::Path> {
+        [&self.density, &self.tensor]
+            .into_iter()
+            .flatten()
+            .map(PathBuf::as_path)
+    }
+
     /// Reads the metric's file, if any.
     pub fn metric(&self, mesh: &TriMesh) -> CliResult<MeshMetric> {
         Ok(match (&self.density, &self.tensor) {

@@ -50,12 +50,7 @@ fn output_format(path: &Path) -> CliResult<OutputFormat> {
 pub fn run(args: &PathArgs) -> CliResult {
     // Check everything that can be checked before the computation.
     let format = output_format(&args.output)?;
-    let inputs = [
-        Some(&args.mesh),
-        args.metric.density.as_ref(),
-        args.metric.tensor.as_ref(),
-    ];
-    let mut outputs = Outputs::new(inputs.into_iter().flatten().map(PathBuf::as_path));
+    let mut outputs = Outputs::new(std::iter::once(args.mesh.as_path()).chain(args.metric.files()));
     outputs.declare(&args.output)?;
     let spinner = ui::Spinner::start("reading the mesh, propagating and tracing");
     let mesh = load_mesh(&args.mesh, args.weld)?;
