@@ -23,6 +23,7 @@
 //! `(n + 1)(n + 2) / 2` evaluations per face, each O(k) metric costs, plus a few dozen
 //! per crossing; faces are processed in parallel (rayon).
 
+use super::query::FaceFields;
 use super::Query;
 use crate::error::ValueRole;
 use crate::mesh::TriMesh;
@@ -30,6 +31,7 @@ use crate::surface::SurfacePoint;
 use crate::Error;
 use geotracks_metrics::Metric;
 use rayon::prelude::*;
+use std::cell::RefCell;
 use std::collections::HashMap;
 
 /// One isoline: a polyline of surface points at one level of a field.
@@ -208,6 +210,9 @@ const MAX_SPLITS: u32 = 20;
 /// `i + j ≤ n`, barycentric `((n − i − j), i, j) / n`.
 struct FaceGrid<'q, 'a, M> {
     query: &'q Query<'a, M>,
+    /// The candidates of the face and its neighbours (edge points are evaluated on
+    /// every face around them).
+    cache: RefCell<FaceFields>,
     face: u32,
     n: u32,
     keys: Vec<Key>,
@@ -231,9 +236,11 @@ impl<'q, 'a, M: Metric> FaceGrid<'q, 'a, M> {
                 points.push(point);
             }
         }
-        let values = points.iter().map(|&p| value(query, p)).collect();
+        let cache = RefCell::new(FaceFields::default());
+        let values = points.iter().map(|&p| value(query, &cache, p)).collect();
         FaceGrid {
             query,
+            cache,
             face,
             n,
             keys,
@@ -343,7 +350,7 @@ impl<'q, 'a, M: Metric> FaceGrid<'q, 'a, M> {
             return (kh, ph);
         }
         let s = solve(
-            |s| value(self.query, along(s)) - level,
+            |s| value(self.query, &self.cache, along(s)) - level,
             vg - level,
             vh - level,
             self.tol(level),
@@ -379,7 +386,7 @@ impl<'q, 'a, M: Metric> FaceGrid<'q, 'a, M> {
             face: self.face,
             bary,
         };
-        let off = value(self.query, face_point(mid)) - level;
+        let off = value(self.query, &self.cache, face_point(mid)) - level;
         let (pa, pb) = (a.position(mesh), b.position(mesh));
         let length = (pb - pa).length();
         if off.abs() <= self.options.tolerance * length || off.is_nan() || length == 0.0 {
@@ -415,8 +422,8 @@ impl<'q, 'a, M: Metric> FaceGrid<'q, 'a, M> {
             face_point(bary)
         };
         let (flo, fhi) = (
-            value(self.query, at(lo)) - level,
-            value(self.query, at(hi)) - level,
+            value(self.query, &self.cache, at(lo)) - level,
+            value(self.query, &self.cache, at(hi)) - level,
         );
         // The level must be met between the two reaches, and on the same side of the
         // middle's value: otherwise the middle is kept off the level (within a ridge
@@ -429,7 +436,7 @@ impl<'q, 'a, M: Metric> FaceGrid<'q, 'a, M> {
             return;
         };
         let s = solve(
-            |s| value(self.query, at(s0 + s * (s1 - s0))) - level,
+            |s| value(self.query, &self.cache, at(s0 + s * (s1 - s0))) - level,
             f0,
             f1,
             self.tol(level),
@@ -443,8 +450,10 @@ impl<'q, 'a, M: Metric> FaceGrid<'q, 'a, M> {
 
 /// The field's value at `point`, `inf` where unreached (points are built on the mesh,
 /// so they are valid).
-fn value<M: Metric>(query: &Query<'_, M>, point: SurfacePoint) -> f64 {
-    query.distance_at(point).unwrap_or(f64::INFINITY)
+fn value<M: Metric>(query: &Query<'_, M>, cache: &RefCell<FaceFields>, point: SurfacePoint) -> f64 {
+    query
+        .origin_cached(point, &mut cache.borrow_mut())
+        .map_or(f64::INFINITY, |(d, _)| d)
 }
 
 /// A root of `f` on [0, 1] given its values at the ends (of opposite signs, the second

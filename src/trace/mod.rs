@@ -8,8 +8,10 @@
 //! each edge crossing along its edge, and lets the path leave a vertex where it can cut
 //! the corner, never making it longer.
 
+mod face_field;
 mod isolines;
 mod query;
+mod regions;
 mod straighten;
 mod wave;
 
@@ -20,9 +22,11 @@ use crate::Error;
 use geotracks_metrics::Metric;
 use glam::DVec3;
 
+pub use face_field::ValueSource;
 pub use isolines::{spread_levels, Isoline, IsolineOptions};
 use query::Origin;
 pub use query::Query;
+pub use regions::{Gradient, Region, DEFAULT_REGION_SUBDIVISIONS};
 pub use straighten::straighten;
 
 /// A path on the surface, from a query point to a source.

@@ -1,5 +1,7 @@
 //! [`Query`]: the questions to a distance field that need its mesh and metric.
 
+use super::face_field::FaceField;
+use super::ValueSource;
 use crate::field::FieldView;
 use crate::mesh::{TriMesh, NONE};
 use crate::steiner::SteinerLayout;
@@ -56,6 +58,31 @@ impl<M> fmt::Debug for Query<'_, M> {
             .field("nodes", &self.field.distance.len())
             .field("sources", &self.field.sources.len())
             .finish_non_exhaustive()
+    }
+}
+
+/// The candidates of the last few faces queried (see [`Query::origin_cached`]).
+#[derive(Default)]
+pub(super) struct FaceFields {
+    fields: Vec<FaceField>,
+}
+
+impl FaceFields {
+    /// A face and its neighbours across three edges, with room to spare.
+    const CAPACITY: usize = 16;
+
+    /// Face `f`'s candidates, built if not cached (dropping the oldest when full).
+    pub(super) fn get<M: Metric>(&mut self, query: &Query<'_, M>, f: u32) -> &FaceField {
+        match self.fields.iter().position(|c| c.face == f) {
+            Some(i) => &self.fields[i],
+            None => {
+                if self.fields.len() == Self::CAPACITY {
+                    self.fields.remove(0);
+                }
+                self.fields.push(query.face_field(f));
+                self.fields.last().expect("just pushed")
+            }
+        }
     }
 }
 
@@ -141,6 +168,16 @@ impl<'a, M: Metric> Query<'a, M> {
 
     /// The value at `point` and where it comes from (`None` when unreached).
     pub(super) fn origin(&self, point: SurfacePoint) -> Result<(f64, Option<Origin>), Error> {
+        self.origin_cached(point, &mut FaceFields::default())
+    }
+
+    /// As [`Query::origin`], reading the faces' candidates from `cache` (and adding
+    /// those it lacks): for many queries in a few faces, each face's are built once.
+    pub(super) fn origin_cached(
+        &self,
+        point: SurfacePoint,
+        cache: &mut FaceFields,
+    ) -> Result<(f64, Option<Origin>), Error> {
         let (mesh, metric, field) = (self.mesh, self.metric, &self.field);
         let point = point.validated(mesh).map_err(|error| Error::InvalidPoint {
             which: PointRole::Query,
@@ -156,31 +193,18 @@ impl<'a, M: Metric> Query<'a, M> {
         let mut unsettled = f64::INFINITY;
         for &f in point.faces(mesh).iter() {
             let x = point.in_face(mesh, f).expect("the point lies on its faces");
-            for (node, p) in field.layout.face_nodes(mesh, f) {
-                let g = field.distance[node as usize];
-                if g == f64::INFINITY && field.horizon < f64::INFINITY {
-                    unsettled = unsettled.min(field.horizon - metric.cost(f, &p, &x));
-                }
-                if g < best.0 {
-                    let d = g + metric.cost(f, &p, &x);
-                    if d < best.0 {
-                        best = (d, Some(Origin::NodeInFace(node, f)));
-                    }
-                }
+            let face = cache.get(self, f);
+            if field.horizon < f64::INFINITY {
+                unsettled = unsettled.min(face.unsettled(metric, field.horizon, &x));
             }
-            if self.has_waves() {
-                if let Some((d, q)) = self.wave_value(f, &x) {
-                    if d < best.0 {
-                        best = (d, Some(Origin::WaveInFace(q, f)));
-                    }
-                }
-            }
-            for (i, source) in field.sources.iter().enumerate() {
-                if let Some(s) = source.point.in_face(mesh, f) {
-                    let d = source.start + metric.cost(f, &s, &x);
-                    if d < best.0 {
-                        best = (d, Some(Origin::SourceInFace(i as u32, f)));
-                    }
+            if let Some((d, c)) = face.best(metric, &x, |_| false) {
+                if d < best.0 {
+                    let origin = match face.candidates[c].source {
+                        ValueSource::Node(n) => Origin::NodeInFace(n, f),
+                        ValueSource::Source(s) => Origin::SourceInFace(s, f),
+                        ValueSource::Wave(q) | ValueSource::WaveBend(q) => Origin::WaveInFace(q, f),
+                    };
+                    best = (d, Some(origin));
                 }
             }
         }

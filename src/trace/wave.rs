@@ -4,10 +4,11 @@
 //! window's end, a hinge) instead of from node to node, so that a traced path is as
 //! long as the distance it explains.
 
+use super::face_field::{Candidate, ValueSource};
 use super::Query;
 use crate::field::Wave;
 use crate::flat::{
-    flat_frame, hinge, hinge_end, in_window, same_source, same_source_slack, uv, EdgeFrame, P,
+    flat_frame, hinge_end, in_window, same_source, same_source_slack, uv, EdgeFrame, P,
 };
 use crate::mesh::{FaceFrame, NONE};
 use crate::steiner::NodeKind;
@@ -31,7 +32,7 @@ impl<M: Metric> Query<'_, M> {
         !self.field.waves.is_empty()
     }
 
-    fn wave(&self, node: u32) -> Option<&Wave> {
+    pub(super) fn wave(&self, node: u32) -> Option<&Wave> {
         let v = self.field.layout.vertex_count();
         let w = self.field.waves.get(node.checked_sub(v)? as usize)?;
         w.is_some().then_some(w)
@@ -67,7 +68,13 @@ impl<M: Metric> Query<'_, M> {
 
     /// Node `q`'s wave unfolded into face `f` (flattened frame `frame`, `q` on `slot`):
     /// the source, or `None` when it does not cross into `f`.
-    fn unfolded(&self, q: u32, f: u32, frame: &FaceFrame, slot: usize) -> Option<(P, EdgeFrame)> {
+    pub(super) fn unfolded(
+        &self,
+        q: u32,
+        f: u32,
+        frame: &FaceFrame,
+        slot: usize,
+    ) -> Option<(P, EdgeFrame)> {
         let wave = self.wave(q)?;
         let from = self.field.parent_face[q as usize];
         let NodeKind::Steiner { edge, .. } = self.field.layout.kind(q) else {
@@ -81,35 +88,17 @@ impl<M: Metric> Query<'_, M> {
     }
 
     /// The best value at point `x` of face `f` from the waves of the Steiner nodes on
-    /// `f`'s boundary that cross into it, and the node.
+    /// `f`'s boundary that cross into it (straight or bending at a window's end), and
+    /// the node.
     pub(super) fn wave_value(&self, f: u32, x: &FacePoint) -> Option<(f64, u32)> {
-        let frame = self.flat(f)?;
-        let px = uv(&frame.point(x.bary));
-        let layout = self.field.layout;
-        let mut best: Option<(f64, u32)> = None;
-        for (slot, &edge) in self.mesh.face_edges(f).iter().enumerate() {
-            for q in layout.edge_nodes(edge) {
-                let Some((s, ef)) = self.unfolded(q, f, &frame, slot) else {
-                    continue;
-                };
-                let wave = self.wave(q).expect("unfolded has one");
-                let x = ef.crossing(s, px);
-                let value = if in_window(wave, x) {
-                    wave.sigma + px.sub(s).length()
-                } else {
-                    // Bending at the window's end on the line's side, where that end
-                    // lies inside the edge, as the engine does for vertices.
-                    let Some((h, sigma)) = hinge(wave, &ef, x) else {
-                        continue;
-                    };
-                    sigma + px.sub(h).length()
-                };
-                if best.is_none_or(|(b, _)| value < b) {
-                    best = Some((value, q));
-                }
-            }
+        let face = self.face_field(f);
+        let is_wave =
+            |c: &Candidate| matches!(c.source, ValueSource::Wave(_) | ValueSource::WaveBend(_));
+        let (value, c) = face.best(self.metric, x, |c| !is_wave(c))?;
+        match face.candidates[c].source {
+            ValueSource::Wave(q) | ValueSource::WaveBend(q) => Some((value, q)),
+            _ => None,
         }
-        best
     }
 
     /// Appends to `points` and `faces` the path from point `x` of face `f` back along

@@ -1,0 +1,355 @@
+//! Gradients and regions (`Query::gradient_at`, `Query::regions`): exact on planes
+//! (Euclidean and a constant tensor), the paper's prism (Fig. 9: a backtracking
+//! direction on the top face, where vertex values are all but equal), regions that
+//! tile their face and agree with `distance_at`.
+
+mod common;
+
+use geotracks::mesh::TriMesh;
+use geotracks::trace::DEFAULT_REGION_SUBDIVISIONS;
+use geotracks::{Error, Euclidean, Metric, Options, Solver, Source, SurfacePoint, Tensor};
+use glam::DVec3;
+
+fn bary_points(count: usize, seed: u64) -> Vec<[f64; 3]> {
+    let mut state = seed;
+    let mut next = move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    (0..count)
+        .map(|_| {
+            let (a, b) = (next(), next());
+            let (a, b) = if a + b > 1.0 {
+                (1.0 - a, 1.0 - b)
+            } else {
+                (a, b)
+            };
+            [1.0 - a - b, a, b]
+        })
+        .collect()
+}
+
+#[test]
+fn gradients_on_a_plane_point_straight_away_from_the_source() {
+    let mesh = common::grid(8, 1.0);
+    let source = SurfacePoint::Face {
+        face: 37,
+        bary: [0.2, 0.3, 0.5],
+    };
+    let at = source.position(&mesh);
+    let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
+    let field = solver
+        .solve_from(&[Source::new(source)], &geotracks::Stop::NONE)
+        .unwrap();
+    let query = solver.query(&field).unwrap();
+    let mut worst = 0.0f64;
+    for f in 0..mesh.face_count() as u32 {
+        for bary in bary_points(5, f as u64) {
+            let point = SurfacePoint::Face { face: f, bary };
+            let g = query.gradient_at(point).unwrap().expect("reached");
+            let away = (point.position(&mesh) - at).normalize();
+            worst = worst
+                .max((g.direction - away).length())
+                .max((g.vector - away).length());
+        }
+    }
+    println!("plane, worst gradient error {worst:.1e}");
+    assert!(worst < 1e-9, "{worst}");
+    // At the source itself there is no gradient; at a vertex there is one.
+    assert!(query.gradient_at(source).unwrap().is_none());
+    let v = query.gradient_at(SurfacePoint::Vertex(0)).unwrap().unwrap();
+    assert!((v.direction - (mesh.position(0) - at).normalize()).length() < 1e-9);
+}
+
+#[test]
+fn under_a_constant_tensor_the_gradient_is_the_metric_one() {
+    // d(x) = sqrt((x − s)ᵀ M (x − s)) on the plane z = 0: ∇d = M (x − s) / d, and the
+    // geodesic runs straight, along x − s.
+    let mesh = common::grid(6, 1.0);
+    let world = [4.0, 1.0, 0.0, 2.0, 0.0, 1.0];
+    let metric = Tensor::uniform_world(&mesh, world).unwrap();
+    let solver = Solver::new(&mesh, metric, &Options::DEFAULT).unwrap();
+    let field = solver.solve(&[0]).unwrap();
+    let query = solver.query(&field).unwrap();
+    let m = |v: DVec3| DVec3::new(4.0 * v.x + v.y, v.x + 2.0 * v.y, v.z);
+    let mut worst = 0.0f64;
+    for f in 0..mesh.face_count() as u32 {
+        for bary in bary_points(4, 100 + f as u64) {
+            let point = SurfacePoint::Face { face: f, bary };
+            let x = point.position(&mesh) - mesh.position(0);
+            let d = x.dot(m(x)).sqrt();
+            let g = query.gradient_at(point).unwrap().expect("reached");
+            worst = worst
+                .max((g.distance - d).abs())
+                .max((g.vector - m(x) / d).length())
+                .max((g.direction - x.normalize()).length());
+        }
+    }
+    println!("tensor plane, worst error {worst:.1e}");
+    assert!(worst < 1e-9, "{worst}");
+}
+
+#[test]
+fn under_a_density_the_gradient_is_the_derivative_of_the_distance() {
+    // A density that does not flatten faces: the gradient is the segment cost's
+    // derivative (numerical), checked against distance_at moved along two directions.
+    let mesh = common::grid(6, 1.0);
+    let density: Vec<f64> = mesh
+        .positions()
+        .iter()
+        .map(|p| 1.0 + 0.5 * p.x + 0.25 * p.y * p.y)
+        .collect();
+    let metric = geotracks::Density::new(&mesh, density).unwrap();
+    let solver = Solver::new(&mesh, metric, &Options::DEFAULT).unwrap();
+    let field = solver.solve(&[0]).unwrap();
+    let query = solver.query(&field).unwrap();
+    let mut worst = 0.0f64;
+    for f in (0..mesh.face_count() as u32).step_by(5) {
+        for bary in bary_points(3, 300 + f as u64) {
+            let point = SurfacePoint::Face { face: f, bary };
+            let g = query.gradient_at(point).unwrap().expect("reached");
+            let d = query.distance_at(point).unwrap();
+            // Small moves along the face's two sides, inside the face.
+            for (k, sign) in [(1usize, 1.0), (2, 1.0)] {
+                let h = 1e-7;
+                let mut moved = bary;
+                let s = if moved[0] >= h { sign } else { -sign };
+                moved[k] += s * h;
+                moved[0] -= s * h;
+                let q = SurfacePoint::Face {
+                    face: f,
+                    bary: moved,
+                };
+                let dq = query.distance_at(q).unwrap();
+                let v = q.position(&mesh) - point.position(&mesh);
+                // Where another candidate takes over in between, skip.
+                let q_source = query.gradient_at(q).unwrap().unwrap().source;
+                if q_source == g.source {
+                    worst = worst.max(((dq - d) - g.vector.dot(v)).abs() / v.length());
+                }
+            }
+        }
+    }
+    println!("density: worst directional-derivative error {worst:.1e}");
+    assert!(worst < 1e-4, "{worst}");
+}
+
+/// A regular triangular prism (side 1, height `h`): bottom face 0, top face 1, each
+/// side a rectangle of two triangles.
+fn prism(h: f64) -> TriMesh {
+    let s3 = 3f64.sqrt();
+    let base = [[0.0, 0.0], [1.0, 0.0], [0.5, s3 / 2.0]];
+    let mut positions = Vec::new();
+    for z in [0.0, h] {
+        for [x, y] in base {
+            positions.push([x, y, z]);
+        }
+    }
+    let mut faces = vec![[0, 2, 1], [3, 4, 5]];
+    for a in 0..3u32 {
+        let b = (a + 1) % 3;
+        faces.push([a, b, b + 3]);
+        faces.push([a, b + 3, a + 3]);
+    }
+    TriMesh::new(positions, faces).unwrap()
+}
+
+/// The exact geodesic from the bottom face's centroid to point `x` of the top face of
+/// `prism(h)`: over each side, the straight line in the unfolding of bottom, side and
+/// top (it must cross both of the side's horizontal edges inside them); the distance
+/// the unit direction (world, in the top face) in which the geodesic arrives, and how
+/// much longer the next route is. Paths over two sides are longer on this prism: the
+/// test checks that too, by asking the engine's value to match.
+fn prism_exact(mesh: &TriMesh, h: f64, x: DVec3) -> (f64, DVec3, f64) {
+    let r = 1.0 / (2.0 * 3f64.sqrt()); // the centroid's distance to each side
+    let mut routes = Vec::new();
+    for a in 0..3u32 {
+        let b = (a + 1) % 3;
+        let (pa, pb) = (mesh.position(a + 3), mesh.position(b + 3));
+        let e = (pb - pa).normalize();
+        let centre = DVec3::new(0.5, 3f64.sqrt() / 6.0, h);
+        let mut n_in = (centre - pa) - e * (centre - pa).dot(e);
+        n_in = n_in.normalize();
+        let (u, t) = ((x - pa).dot(e), (x - pa).dot(n_in));
+        // Unfolded: the source at (0.5, −r), the point at (u, h + t).
+        let (du, dv) = (u - 0.5, h + t + r);
+        let d = (du * du + dv * dv).sqrt();
+        // Crossings of v = 0 and v = h must lie on [0, 1].
+        let cross = |v: f64| 0.5 + du * (v + r) / dv;
+        if (0.0..=1.0).contains(&cross(0.0)) && (0.0..=1.0).contains(&cross(h)) {
+            // On the top face, +v is into the face (n_in) and +u along e.
+            routes.push((d, (e * du + n_in * dv).normalize()));
+        }
+    }
+    routes.sort_by(|p, q| p.0.total_cmp(&q.0));
+    let (d, arrive) = routes[0];
+    let gap = routes.get(1).map_or(f64::INFINITY, |r| r.0 - d);
+    (d, arrive, gap)
+}
+
+#[test]
+fn on_the_prism_the_gradient_backtracks_along_the_true_geodesic() {
+    let h = 0.6;
+    let mesh = prism(h);
+    let source = SurfacePoint::Face {
+        face: 0,
+        bary: [1.0 / 3.0; 3],
+    };
+    let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
+    let field = solver
+        .solve_from(&[Source::new(source)], &geotracks::Stop::NONE)
+        .unwrap();
+    let query = solver.query(&field).unwrap();
+    // The top's corners are all but equally far: interpolated vertex values give no
+    // direction there (the paper's point).
+    let top: Vec<f64> = (3..6).map(|v| query.vertex_distances()[v]).collect();
+    let spread = top.iter().fold(0.0f64, |m, &d| m.max((d - top[0]).abs()));
+    assert!(spread < 1e-9, "{top:?}");
+    let (mut worst_angle, mut worst_value, mut near_ridge) = (0.0f64, 0.0f64, 0);
+    for bary in bary_points(400, 7) {
+        let point = SurfacePoint::Face { face: 1, bary };
+        let x = point.position(&mesh);
+        let (d, arrive, gap) = prism_exact(&mesh, h, x);
+        let g = query.gradient_at(point).unwrap().expect("reached");
+        worst_value = worst_value.max((g.distance - d).abs() / d);
+        if gap < 1e-9 {
+            continue; // on the ridge itself, either side is right
+        }
+        if gap < 0.02 {
+            near_ridge += 1;
+        }
+        let angle = g.direction.dot(arrive).clamp(-1.0, 1.0).acos();
+        worst_angle = worst_angle.max(angle);
+    }
+    println!(
+        "prism: worst value error {worst_value:.1e}, worst angle {worst_angle:.1e} rad ({near_ridge} points within 0.02 of the ridge)"
+    );
+    assert!(near_ridge > 10);
+    assert!(worst_value < 1e-9, "{worst_value}");
+    assert!(worst_angle < 1e-6, "{worst_angle}");
+}
+
+#[test]
+fn the_prism_top_splits_into_three_regions_along_the_ridge() {
+    let h = 0.6;
+    let mesh = prism(h);
+    let source = SurfacePoint::Face {
+        face: 0,
+        bary: [1.0 / 3.0; 3],
+    };
+    let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
+    let field = solver
+        .solve_from(&[Source::new(source)], &geotracks::Stop::NONE)
+        .unwrap();
+    let query = solver.query(&field).unwrap();
+    let regions = query.regions(1, DEFAULT_REGION_SUBDIVISIONS).unwrap();
+    let area: f64 = regions.iter().map(|r| r.area).sum();
+    let face_area = 3f64.sqrt() / 4.0;
+    assert!((area - face_area).abs() < 1e-12, "{area} vs {face_area}");
+    // By symmetry, the three largest regions (one per side) hold equal shares: each
+    // a third of the face, up to the chords of the grid.
+    let mut areas: Vec<f64> = regions.iter().map(|r| r.area).collect();
+    areas.sort_by(|a, b| b.total_cmp(a));
+    println!("prism top: {} regions, areas {areas:?}", regions.len());
+    for a in &areas[..3] {
+        assert!((a - face_area / 3.0).abs() < 0.02 * face_area, "{areas:?}");
+    }
+    // The ridge meets at the centre: each big region's polygon comes within a grid
+    // step of it.
+    let centre = DVec3::new(0.5, 3f64.sqrt() / 6.0, h);
+    for r in regions.iter().filter(|r| r.area > 0.2 * face_area) {
+        let nearest = r
+            .polygon
+            .iter()
+            .map(|p| (p.position(&mesh) - centre).length())
+            .fold(f64::INFINITY, f64::min);
+        assert!(
+            nearest < 1.0 / DEFAULT_REGION_SUBDIVISIONS as f64,
+            "{nearest}"
+        );
+    }
+}
+
+#[test]
+fn regions_tile_their_face_and_give_its_values() {
+    let mesh = common::sphere(3, 0.2, 5);
+    for metric_is_tensor in [false, true] {
+        let (areas, worst, direction) = if metric_is_tensor {
+            let m = Tensor::uniform_world(&mesh, [1.0, 0.3, 0.0, 2.0, 0.1, 1.5]).unwrap();
+            check_regions(&mesh, m)
+        } else {
+            check_regions(&mesh, Euclidean)
+        };
+        println!(
+            "sphere, tensor {metric_is_tensor}: worst relative gaps: area {areas:.1e}, value {worst:.1e}, direction {direction:.1e}"
+        );
+        assert!(areas < 1e-9, "{areas}");
+        assert!(worst < 1e-9, "{worst}");
+        // Candidates that tie carry the same line, unfolded along different chains of
+        // faces: their directions agree to their rounding.
+        assert!(direction < 1e-6, "{direction}");
+    }
+}
+
+/// Over every face: the regions' areas add up to the face's, their points lie on it,
+/// and at each region's inner point its formula gives `distance_at` and its gradient
+/// `gradient_at`'s direction. Returns the worst gaps (area and value relative).
+fn check_regions<M: Metric + Clone>(mesh: &TriMesh, metric: M) -> (f64, f64, f64) {
+    let solver = Solver::new(mesh, metric, &Options::DEFAULT).unwrap();
+    let field = solver.solve(&[0]).unwrap();
+    let query = solver.query(&field).unwrap();
+    let (mut worst_area, mut worst_value, mut worst_direction) = (0.0f64, 0.0f64, 0.0f64);
+    for f in 0..mesh.face_count() as u32 {
+        let regions = query.regions(f, 8).unwrap();
+        let area: f64 = regions.iter().map(|r| r.area).sum();
+        let [a, b, c] = mesh.face_vertices(f).map(|v| mesh.position(v));
+        let face_area = 0.5 * (b - a).cross(c - a).length();
+        worst_area = worst_area.max((area - face_area).abs() / face_area);
+        for r in &regions {
+            assert!(r.area > 0.0, "face {f}: {r:?}");
+            for p in &r.polygon {
+                assert!(p.faces(mesh).contains(&f), "{p:?} not on face {f}");
+            }
+            // The region's own formula at its inner point is the field's value there.
+            let (Some(inside), Some(g)) = (r.inside, r.gradient) else {
+                continue;
+            };
+            assert_eq!(g.source, r.source);
+            let d = query.distance_at(inside).unwrap();
+            worst_value = worst_value.max((d - g.distance).abs() / d);
+            // gradient_at may name another candidate with the same line (a node and
+            // the waves from it tie), but not another direction.
+            let at = query.gradient_at(inside).unwrap().unwrap();
+            worst_direction = worst_direction.max((at.direction - g.direction).length());
+        }
+    }
+    (worst_area, worst_value, worst_direction)
+}
+
+#[test]
+fn bad_faces_and_options_are_refused() {
+    let mesh = common::grid(2, 1.0);
+    let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
+    let field = solver.solve(&[0]).unwrap();
+    let query = solver.query(&field).unwrap();
+    let faces = mesh.face_count() as u32;
+    assert!(matches!(
+        query.regions(faces, 8),
+        Err(Error::InvalidPoint { .. })
+    ));
+    for bad in [0, 1025] {
+        assert!(matches!(
+            query.regions(0, bad),
+            Err(Error::InvalidRegionOption {
+                option: "subdivisions",
+                ..
+            })
+        ));
+    }
+    assert!(matches!(
+        query.gradient_at(SurfacePoint::Vertex(1000)),
+        Err(Error::InvalidPoint { .. })
+    ));
+}
