@@ -242,3 +242,34 @@ fn bad_levels_and_options_are_refused() {
         .unwrap_err();
     assert!(err.to_string().contains("subdivisions"), "{err}");
 }
+
+#[test]
+fn a_level_through_vertices_has_no_lost_points() {
+    // On a unit grid (a flat terrain's) from a vertex, the circle of radius 2 passes
+    // through four vertices: segments of a rounding's length there once split into
+    // NaN points.
+    use geotracks::terrain::{ElevationGrid, GridGeometry};
+    let geometry = GridGeometry {
+        ncols: 21,
+        nrows: 21,
+        lower_left: [0.5, 0.5],
+        spacing: [1.0, 1.0],
+    };
+    let terrain = ElevationGrid::from_fn(geometry, |_, _| Some(5.0))
+        .unwrap()
+        .to_mesh()
+        .unwrap();
+    let SurfacePoint::Vertex(centre) = terrain.locate(10.5, 10.5).unwrap() else {
+        panic!("a sample is a vertex");
+    };
+    let mesh = terrain.mesh;
+    let levels = [2.0, 5.0, 8.0];
+    let lines = isolines(&mesh, &[Source::new(SurfacePoint::Vertex(centre))], &levels);
+    assert_eq!(lines.len(), 3);
+    for p in lines.iter().flat_map(|l| &l.points) {
+        assert!(p.position(&mesh).is_finite(), "{p:?}");
+    }
+    let worst = worst_on_plane(&mesh, mesh.position(centre), &lines);
+    assert!(worst < 1e-9, "{worst}");
+    assert!(lines.iter().all(|l| l.closed));
+}

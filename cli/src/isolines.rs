@@ -6,7 +6,7 @@ use crate::output::Outputs;
 use crate::{points, ui, CliResult, Value};
 use geotracks::mesh::TriMesh;
 use geotracks::trace::{spread_levels, Isoline, IsolineOptions};
-use geotracks::{Solver, Stop, SurfacePoint};
+use geotracks::{Query, Solver, Stop, SurfacePoint};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -25,7 +25,8 @@ pub struct IsolinesArgs {
     sources: Vec<SurfacePoint>,
     #[command(flatten)]
     metric: MetricArgs,
-    /// N levels spread evenly between 0 and the largest distance (both excluded).
+    /// N levels spread evenly between 0 and the largest distance reached (both
+    /// excluded).
     #[arg(long, value_name = "N", default_value_t = 10, conflicts_with = "at")]
     levels: usize,
     /// The levels, listed: D1,D2,... (distances, in the metric's units).
@@ -48,7 +49,7 @@ pub struct IsolinesArgs {
 }
 
 #[derive(Clone, Copy)]
-enum OutputFormat {
+pub enum OutputFormat {
     Obj,
     Csv,
     GeoJson,
@@ -68,12 +69,7 @@ fn output_format(path: &Path) -> CliResult<OutputFormat> {
 
 pub fn run(args: &IsolinesArgs) -> CliResult {
     let format = output_format(&args.output)?;
-    if let Some(bad) = args.at.iter().find(|d| !d.is_finite()) {
-        return Err(format!("--at {bad}: levels must be finite numbers").into());
-    }
-    if args.at.is_empty() && args.levels == 0 {
-        return Err("--levels 0: ask for at least one level".into());
-    }
+    check_levels(args.levels, &args.at, ("--levels", "--at"))?;
     let options = IsolineOptions::DEFAULT.with_subdivisions(args.subdivisions);
     let mut outputs = Outputs::new(std::iter::once(args.mesh.as_path()).chain(args.metric.files()));
     outputs.declare(&args.output)?;
@@ -82,18 +78,9 @@ pub fn run(args: &IsolinesArgs) -> CliResult {
     let sources = points::sources(&mesh, &args.sources)?;
     let solver = Solver::new(&mesh, args.metric.metric(&mesh)?, &args.metric.options())?;
     let field = solver.solve_from(&sources, &Stop::NONE)?;
-    let levels = if args.at.is_empty() {
-        let max = field
-            .vertex_distances()
-            .iter()
-            .copied()
-            .filter(|d| d.is_finite())
-            .fold(0.0, f64::max);
-        spread_levels(max, args.levels)
-    } else {
-        args.at.clone()
-    };
-    let lines = solver.query(&field)?.isolines(&levels, &options)?;
+    let query = solver.query(&field)?;
+    let levels = levels_of(&query, args.levels, &args.at);
+    let lines = query.isolines(&levels, &options)?;
     drop(spinner);
     write_isolines(&mut outputs, &args.output, format, &mesh, &lines)?;
     outputs.commit()?;
@@ -130,7 +117,27 @@ fn csv_point(point: &SurfacePoint) -> String {
     }
 }
 
-fn write_isolines(
+/// Checks a count of levels and a list of them (named `flags` on the command line).
+pub fn check_levels(count: usize, at: &[f64], flags: (&str, &str)) -> CliResult {
+    if let Some(bad) = at.iter().find(|d| !d.is_finite()) {
+        return Err(format!("{} {bad}: levels must be finite numbers", flags.1).into());
+    }
+    if at.is_empty() && count == 0 {
+        return Err(format!("{} 0: ask for at least one level", flags.0).into());
+    }
+    Ok(())
+}
+
+/// The levels `at`, or else `count` levels spread over the field's range.
+pub fn levels_of<M: geotracks::Metric>(query: &Query<'_, M>, count: usize, at: &[f64]) -> Vec<f64> {
+    if at.is_empty() {
+        spread_levels(query.max_reached_distance(), count)
+    } else {
+        at.to_vec()
+    }
+}
+
+pub fn write_isolines(
     outputs: &mut Outputs,
     file: &Path,
     format: OutputFormat,

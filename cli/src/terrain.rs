@@ -1,8 +1,10 @@
 //! `geotracks terrain`: the cheapest route between two map points of an elevation grid.
 
+use crate::isolines;
 use crate::output::Outputs;
 use crate::{ui, CliResult, Value};
 use geotracks::terrain::{self, map, Route, TerrainCost};
+use geotracks::trace::IsolineOptions;
 use geotracks::{Error, Options, Solver};
 use std::path::{Path, PathBuf};
 
@@ -36,6 +38,21 @@ pub struct TerrainArgs {
     /// Also draw a map: hillshade, cost contours from the start, the route (.png).
     #[arg(long, value_name = "MAP.png")]
     png: Option<PathBuf>,
+    /// Also write the cost contours from the start as GeoJSON: a LineString per contour
+    /// ([x, y, z] points on the terrain, each exactly at its cost), with its cost.
+    #[arg(long, value_name = "CONTOURS.geojson")]
+    contours: Option<PathBuf>,
+    /// N contours spread evenly between 0 and the largest cost reached (both excluded).
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 10,
+        conflicts_with = "contour_at"
+    )]
+    contour_levels: usize,
+    /// The contours' costs, listed: C1,C2,...
+    #[arg(long, value_name = "C1,C2,...", value_delimiter = ',')]
+    contour_at: Vec<f64>,
 }
 
 fn parse_xy(text: &str) -> Result<[f64; 2], String> {
@@ -70,12 +87,21 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     if let Some(png) = &args.png {
         crate::output_format(png, &[("png", ())])?;
     }
+    if let Some(contours) = &args.contours {
+        crate::output_format(contours, &[("geojson", ()), ("json", ())])?;
+        isolines::check_levels(
+            args.contour_levels,
+            &args.contour_at,
+            ("--contour-levels", "--contour-at"),
+        )?;
+    }
     if !(args.k.is_finite() && args.k > 0.0) {
         return Err(Error::InvalidK { k: args.k }.into());
     }
     let mut outputs = Outputs::new([args.dem.as_path()]);
     outputs.declare(&args.output)?;
     outputs.declare_some(args.png.as_ref())?;
+    outputs.declare_some(args.contours.as_ref())?;
     let spinner = ui::Spinner::start("reading the grid and routing");
     let (grid, terrain) = terrain::read_terrain(&args.dem)?;
     let locate = |arg: &str, [x, y]: [f64; 2]| {
@@ -87,14 +113,27 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     let to = locate("to", args.to)?;
     let metric = args.cost.metric(&terrain.mesh)?;
     let solver = Solver::new(&terrain.mesh, metric, &Options::DEFAULT.with_k(args.k))?;
-    // The map's contours need the whole field; a route alone stops at its end.
-    let route = match terrain::route(&solver, from, to, args.png.is_some()) {
+    // Contours need the whole field; a route alone stops at its end.
+    let routed = if args.contours.is_some() {
+        terrain::route_and_field(&solver, from, to).map(|(r, f)| (r, Some(f)))
+    } else {
+        terrain::route(&solver, from, to, args.png.is_some()).map(|r| (r, None))
+    };
+    let (route, field) = match routed {
         Err(Error::Unreachable { .. }) => {
             return Err("no route: --to cannot be reached from --from (impassable \
                         faces or NODATA separate them)"
                 .into())
         }
         other => other?,
+    };
+    let contours = match &field {
+        Some(field) => {
+            let query = solver.query(field)?;
+            let levels = isolines::levels_of(&query, args.contour_levels, &args.contour_at);
+            Some(query.isolines(&levels, &IsolineOptions::DEFAULT)?)
+        }
+        None => None,
     };
     let picture = args.png.as_ref().map(|_| {
         let xy: Vec<[f64; 2]> = route.points.iter().map(|p| [p.x, p.y]).collect();
@@ -116,11 +155,20 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     if let (Some(path), Some(picture)) = (&args.png, &picture) {
         outputs.write(path, |w| picture.write_png_to(w))?;
     }
+    if let (Some(path), Some(lines)) = (&args.contours, &contours) {
+        isolines::write_isolines(
+            &mut outputs,
+            path,
+            isolines::OutputFormat::GeoJson,
+            &terrain.mesh,
+            lines,
+        )?;
+    }
     outputs.commit()?;
 
     let [x0, y0] = args.from;
     let [x1, y1] = args.to;
-    let summary = [
+    let mut summary = vec![
         format!("from: {x0},{y0} ({from})"),
         format!("to: {x1},{y1} ({to})"),
         format!("cost model: {}", args.cost),
@@ -131,6 +179,13 @@ pub fn run(args: &TerrainArgs) -> CliResult {
             Value(route.traced_cost)
         ),
     ];
+    if let (Some(path), Some(lines)) = (&args.contours, &contours) {
+        summary.push(format!(
+            "contours: {} lines, in {}",
+            lines.len(),
+            path.display()
+        ));
+    }
     if args.output.as_os_str() == "-" {
         // Standard output holds the route: the summary and the cost go to stderr.
         for line in summary {

@@ -386,3 +386,83 @@ fn cli_reads_a_geotiff() {
     let cost = last_value(&result);
     assert!(relative(cost, expected) < 1e-6, "{cost} vs {expected}");
 }
+
+#[test]
+fn contours_lie_at_their_cost_on_a_flat_grid_and_bad_levels_leave_no_file() {
+    let dir = tempfile::tempdir().unwrap();
+    // Flat: the cost from the start is the map distance, so each contour is a circle.
+    let mut text = String::from(
+        "ncols 21\nnrows 21\nxllcorner 0\nyllcorner 0\ncellsize 1\nnodata_value -9999\n",
+    );
+    for _ in 0..21 {
+        text.push_str(&vec!["5"; 21].join(" "));
+        text.push('\n');
+    }
+    let dem = write(dir.path(), "flat.asc", &text);
+    let dem = dem.to_str().unwrap();
+    let route = dir.path().join("route.geojson");
+    let contours = dir.path().join("contours.geojson");
+    geotracks_ok(&[
+        "terrain",
+        dem,
+        "--from",
+        "10.5,10.5",
+        "--to",
+        "18.5,3.5",
+        "-o",
+        route.to_str().unwrap(),
+        "--contours",
+        contours.to_str().unwrap(),
+        "--contour-at",
+        "2,5.5,8",
+    ]);
+    let value: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&contours).unwrap()).unwrap();
+    let features = value["features"].as_array().unwrap();
+    let mut levels = Vec::new();
+    for feature in features {
+        let level = feature["properties"]["level"].as_f64().unwrap();
+        levels.push(level);
+        for p in feature["geometry"]["coordinates"].as_array().unwrap() {
+            let p: Vec<f64> = p
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|v| v.as_f64().unwrap())
+                .collect();
+            let r = (p[0] - 10.5).hypot(p[1] - 10.5);
+            assert!(
+                (r - level).abs() < 1e-9 * level,
+                "{p:?} at {r}, level {level}"
+            );
+            assert!((p[2] - 5.0).abs() < 1e-12);
+        }
+    }
+    // Inside the grid every circle closes: one line per level.
+    levels.sort_by(f64::total_cmp);
+    assert_eq!(levels, [2.0, 5.5, 8.0]);
+    assert!(features.iter().all(|f| f["properties"]["closed"] == true));
+
+    for (args, message) in [
+        (vec!["--contour-at", "1,nan"], "levels must be finite"),
+        (vec!["--contour-levels", "0"], "at least one level"),
+    ] {
+        let fresh = dir.path().join("fresh.geojson");
+        let c = dir.path().join("c.geojson");
+        let mut all = vec![
+            "terrain",
+            dem,
+            "--from",
+            "10.5,10.5",
+            "--to",
+            "18.5,3.5",
+            "-o",
+            fresh.to_str().unwrap(),
+            "--contours",
+            c.to_str().unwrap(),
+        ];
+        all.extend(args);
+        assert_fails(&all, &fresh, message);
+        assert!(!c.exists());
+    }
+}

@@ -23,6 +23,15 @@
 //! cargo run --release --example eval -- ../shared/data --paths 100 [--max-faces N] [--k 5]
 //! ```
 //!
+//! With `--isolines N` it measures isolines (N levels per source): how far their points
+//! lie from their level, ours against a linear interpolation of the exact vertex values,
+//! each point's distance estimated by a straightened path at k = 8 (see
+//! `isolines.rs`; the README's Isolines table):
+//!
+//! ```text
+//! cargo run --release --example eval -- ../shared/data --isolines 10 [--max-faces N]
+//! ```
+//!
 //! With `--engines` it measures each engine against every exact reference, with its time,
 //! work and memory (the wave engine's tables in the README's Accuracy section):
 //!
@@ -74,6 +83,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 mod engines;
+mod isolines;
 #[cfg(feature = "png")]
 mod plot;
 #[path = "../shared_data/mod.rs"]
@@ -101,6 +111,7 @@ struct Args {
     ks: Vec<f64>,
     equality: bool,
     paths: Option<usize>,
+    isolines: Option<usize>,
     meshes: Option<Vec<String>>,
 }
 
@@ -111,6 +122,7 @@ fn parse_args() -> Result<Args, String> {
     let mut ks = None;
     let mut equality = false;
     let mut paths = None;
+    let mut isolines = None;
     let mut meshes = None;
     while let Some(a) = it.next() {
         match a.as_str() {
@@ -147,13 +159,20 @@ fn parse_args() -> Result<Args, String> {
                         .ok_or("--paths takes a number of paths per source")?,
                 )
             }
+            "--isolines" => {
+                isolines = Some(
+                    it.next()
+                        .and_then(|v| v.parse().ok())
+                        .ok_or("--isolines takes a number of levels per source")?,
+                )
+            }
             _ if data.is_none() => data = Some(PathBuf::from(a)),
             other => return Err(format!("unexpected argument '{other}'")),
         }
     }
     Ok(Args {
         data: data.ok_or(
-            "usage: eval DATA_DIR [--equality | --paths N] [--meshes a,b] [--max-faces N] [--k 3,5,8]",
+            "usage: eval DATA_DIR [--equality | --paths N | --isolines N] [--meshes a,b] [--max-faces N] [--k 3,5,8]",
         )?,
         max_faces: max_faces.unwrap_or(if equality { 100_000 } else { 400_000 }),
         ks: ks.unwrap_or(if equality {
@@ -165,6 +184,7 @@ fn parse_args() -> Result<Args, String> {
         }),
         equality,
         paths,
+        isolines,
         meshes,
     })
 }
@@ -187,6 +207,9 @@ fn run() -> Result<(), String> {
     }
     if let Some(count) = args.paths {
         return paths(&args, &meshes, count);
+    }
+    if let Some(levels) = args.isolines {
+        return isolines::isolines(&args, &meshes, levels);
     }
 
     let mut header = String::from("| mesh | faces | Dijkstra mean / max |");

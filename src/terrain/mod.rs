@@ -48,7 +48,7 @@ pub use cost::{
 pub use error::TerrainError;
 pub use geotiff::{read_geotiff, read_geotiff_bytes};
 pub use grid::{ElevationGrid, GridGeometry, TerrainMesh};
-pub use route::{route, Route};
+pub use route::{route, route_and_field, Route};
 
 use std::path::Path;
 

@@ -1,7 +1,7 @@
 //! [`route`]: the cheapest route between two points of a terrain, start first, with its
 //! cumulative cost and lengths.
 
-use crate::field::Stats;
+use crate::field::{GeodesicField, Stats};
 use crate::options::Stop;
 use crate::propagate::Solver;
 use crate::surface::{Source, SurfacePoint};
@@ -87,8 +87,35 @@ pub fn route<M: Metric>(
         Stop::NONE.with_targets(vec![to])
     };
     let field = solver.solve_from(&[Source::new(from)], &stop)?;
+    route_in(solver, &field, to, whole_field)
+}
+
+/// As [`route`] over the whole surface, also handing back the field (the cost from
+/// `from` everywhere): for queries on it, such as cost contours with
+/// [`Query::isolines`](crate::Query::isolines).
+///
+/// # Errors
+/// As [`route`].
+pub fn route_and_field<M: Metric>(
+    solver: &Solver<'_, M>,
+    from: SurfacePoint,
+    to: SurfacePoint,
+) -> Result<(Route, GeodesicField), Error> {
+    let field = solver.solve_from(&[Source::new(from)], &Stop::NONE)?;
+    let route = route_in(solver, &field, to, true)?;
+    Ok((route, field))
+}
+
+/// The route to `to` in `field` (a run from the start), with the vertex costs if
+/// `keep_costs`.
+fn route_in<M: Metric>(
+    solver: &Solver<'_, M>,
+    field: &GeodesicField,
+    to: SurfacePoint,
+    keep_costs: bool,
+) -> Result<Route, Error> {
     let start = Instant::now();
-    let path = solver.query(&field)?.path(to)?;
+    let path = solver.query(field)?.path(to)?;
     let (mesh, metric) = (solver.mesh(), solver.metric());
     let mut points = path.positions(mesh);
     points.reverse();
@@ -106,7 +133,7 @@ pub fn route<M: Metric>(
         surface_points,
         cumulative_cost,
         traced_cost: path.traced_length,
-        vertex_costs: whole_field.then(|| field.vertex_distances().to_vec()),
+        vertex_costs: keep_costs.then(|| field.vertex_distances().to_vec()),
         stats: field.stats().clone(),
         path_seconds: start.elapsed().as_secs_f64(),
     })

@@ -389,7 +389,10 @@ impl<'q, 'a, M: Metric> FaceGrid<'q, 'a, M> {
         let off = value(self.query, &self.cache, face_point(mid)) - level;
         let (pa, pb) = (a.position(mesh), b.position(mesh));
         let length = (pb - pa).length();
-        if off.abs() <= self.options.tolerance * length || off.is_nan() || length == 0.0 {
+        // A segment of a rounding's length (both ends at one vertex, where a level
+        // passes through it) has nothing to follow, and no perpendicular to search.
+        let tiny = 1e-9 * mesh.frame(self.face).diameter();
+        if off.abs() <= self.options.tolerance * length || off.is_nan() || length <= tiny {
             return;
         }
         // The perpendicular in barycentric terms: the face's normal crossed with the
@@ -442,6 +445,9 @@ impl<'q, 'a, M: Metric> FaceGrid<'q, 'a, M> {
             self.tol(level),
         );
         let m = at(s0 + s * (s1 - s0));
+        if !m.bary_in(mesh, self.face).is_some_and(|b| b.iter().all(|x| x.is_finite())) {
+            return;
+        }
         self.split(level, a, m, depth - 1, out);
         out.push(m);
         self.split(level, m, b, depth - 1, out);

@@ -142,6 +142,18 @@ impl<'a, M: Metric> Query<'a, M> {
         self.field.distance
     }
 
+    /// The largest finite distance over the nodes (vertices and Steiner points): the
+    /// top of the field's range, to spread isoline levels over
+    /// ([`spread_levels`](crate::trace::spread_levels)); 0 when nothing is reached.
+    pub fn max_reached_distance(&self) -> f64 {
+        self.field
+            .distance
+            .iter()
+            .copied()
+            .filter(|d| d.is_finite())
+            .fold(0.0, f64::max)
+    }
+
     /// The run's sources, validated (in canonical form).
     pub fn sources(&self) -> &'a [Source] {
         self.field.sources
