@@ -400,8 +400,23 @@ impl<'m, M: Metric> Solver<'m, M> {
                     which: PointRole::Target(i),
                     error,
                 })?;
-            match point {
-                SurfacePoint::Vertex(v) => workspace.targets.push(v),
+            match (point, self.method) {
+                (SurfacePoint::Vertex(v), Method::Tracks | Method::Graph | Method::Dijkstra) => {
+                    workspace.targets.push(v)
+                }
+                (_, Method::Wave) => {
+                    // A query on a wave field reads the point's faces and those across
+                    // their edges (see `trace::face_field`): all their nodes must be
+                    // final for its value to be the full run's.
+                    for &f in point.faces(mesh).iter() {
+                        for e in mesh.face_edges(f) {
+                            for &g in mesh.edge_faces(e) {
+                                let nodes = self.layout.face_nodes(mesh, g).map(|(node, _)| node);
+                                workspace.targets.extend(nodes);
+                            }
+                        }
+                    }
+                }
                 _ => {
                     for &f in point.faces(mesh).iter() {
                         let nodes = self.layout.face_nodes(mesh, f).map(|(node, _)| node);

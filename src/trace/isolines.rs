@@ -161,7 +161,14 @@ impl<M: Metric> Query<'_, M> {
         let scale = mesh.mean_edge_length();
         let segments: Vec<Segment> = (0..mesh.face_count() as u32)
             .into_par_iter()
-            .flat_map_iter(|f| FaceGrid::new(self, f, options, scale).segments(levels))
+            // One cache of candidates per worker's run of faces: neighbouring faces
+            // (mostly near in id) share their candidates instead of building them
+            // again.
+            .map_init(
+                || RefCell::new(FaceFields::default()),
+                |cache, f| FaceGrid::new(self, f, options, scale, cache).segments(levels),
+            )
+            .flatten_iter()
             .collect();
         Ok(link(levels, segments))
     }
@@ -212,7 +219,7 @@ struct FaceGrid<'q, 'a, M> {
     query: &'q Query<'a, M>,
     /// The candidates of the face and its neighbours (edge points are evaluated on
     /// every face around them).
-    cache: RefCell<FaceFields>,
+    cache: &'q RefCell<FaceFields>,
     face: u32,
     n: u32,
     keys: Vec<Key>,
@@ -224,7 +231,13 @@ struct FaceGrid<'q, 'a, M> {
 }
 
 impl<'q, 'a, M: Metric> FaceGrid<'q, 'a, M> {
-    fn new(query: &'q Query<'a, M>, face: u32, options: &'q IsolineOptions, scale: f64) -> Self {
+    fn new(
+        query: &'q Query<'a, M>,
+        face: u32,
+        options: &'q IsolineOptions,
+        scale: f64,
+        cache: &'q RefCell<FaceFields>,
+    ) -> Self {
         let n = options.subdivisions;
         let mesh = query.mesh();
         let count = ((n + 1) * (n + 2) / 2) as usize;
@@ -236,8 +249,7 @@ impl<'q, 'a, M: Metric> FaceGrid<'q, 'a, M> {
                 points.push(point);
             }
         }
-        let cache = RefCell::new(FaceFields::default());
-        let values = points.iter().map(|&p| value(query, &cache, p)).collect();
+        let values = points.iter().map(|&p| value(query, cache, p)).collect();
         FaceGrid {
             query,
             cache,
@@ -350,7 +362,7 @@ impl<'q, 'a, M: Metric> FaceGrid<'q, 'a, M> {
             return (kh, ph);
         }
         let s = solve(
-            |s| value(self.query, &self.cache, along(s)) - level,
+            |s| value(self.query, self.cache, along(s)) - level,
             vg - level,
             vh - level,
             self.tol(level),
@@ -386,7 +398,7 @@ impl<'q, 'a, M: Metric> FaceGrid<'q, 'a, M> {
             face: self.face,
             bary,
         };
-        let off = value(self.query, &self.cache, face_point(mid)) - level;
+        let off = value(self.query, self.cache, face_point(mid)) - level;
         let (pa, pb) = (a.position(mesh), b.position(mesh));
         let length = (pb - pa).length();
         // A segment of a rounding's length (both ends at one vertex, where a level
@@ -425,8 +437,8 @@ impl<'q, 'a, M: Metric> FaceGrid<'q, 'a, M> {
             face_point(bary)
         };
         let (flo, fhi) = (
-            value(self.query, &self.cache, at(lo)) - level,
-            value(self.query, &self.cache, at(hi)) - level,
+            value(self.query, self.cache, at(lo)) - level,
+            value(self.query, self.cache, at(hi)) - level,
         );
         // The level must be met between the two reaches, and on the same side of the
         // middle's value: otherwise the middle is kept off the level (within a ridge
@@ -439,13 +451,16 @@ impl<'q, 'a, M: Metric> FaceGrid<'q, 'a, M> {
             return;
         };
         let s = solve(
-            |s| value(self.query, &self.cache, at(s0 + s * (s1 - s0))) - level,
+            |s| value(self.query, self.cache, at(s0 + s * (s1 - s0))) - level,
             f0,
             f1,
             self.tol(level),
         );
         let m = at(s0 + s * (s1 - s0));
-        if !m.bary_in(mesh, self.face).is_some_and(|b| b.iter().all(|x| x.is_finite())) {
+        if !m
+            .bary_in(mesh, self.face)
+            .is_some_and(|b| b.iter().all(|x| x.is_finite()))
+        {
             return;
         }
         self.split(level, a, m, depth - 1, out);

@@ -113,26 +113,42 @@ impl<M: Metric> Query<'_, M> {
         };
         let mut points = vec![point.validated(mesh).expect("checked by origin")];
         let mut faces = Vec::new();
-        let mut node = match origin {
-            Origin::Node(v) => v,
-            Origin::NodeInFace(n, f) => {
-                points.push(field.layout.surface_point(n));
-                faces.push(f);
-                n
-            }
-            Origin::SourceInFace(s, f) => {
-                points.push(field.sources[s as usize].point);
-                faces.push(f);
-                return Ok(finish(mesh, metric, points, faces, s));
-            }
-            Origin::WaveInFace(q, f) => {
-                let x = points[0]
-                    .in_face(mesh, f)
-                    .expect("the point lies on its face");
-                let source = self
-                    .trace_wave(&x, f, q, &mut points, &mut faces)
-                    .ok_or(Error::ParentCycle { point })?;
-                return Ok(finish(mesh, metric, points, faces, source));
+        let mut origin = origin;
+        let mut node = loop {
+            match origin {
+                Origin::Node(v) => break v,
+                Origin::NodeInFace(n, f) => {
+                    points.push(field.layout.surface_point(n));
+                    faces.push(f);
+                    break n;
+                }
+                Origin::SourceInFace(s, f) => {
+                    points.push(field.sources[s as usize].point);
+                    faces.push(f);
+                    return Ok(finish(mesh, metric, points, faces, s));
+                }
+                Origin::WaveInFace(q, f) => {
+                    let x = points
+                        .last()
+                        .and_then(|p| p.in_face(mesh, f))
+                        .expect("the point lies on its face");
+                    let source = self
+                        .trace_wave(&x, f, q, &mut points, &mut faces)
+                        .ok_or(Error::ParentCycle { point })?;
+                    return Ok(finish(mesh, metric, points, faces, source));
+                }
+                Origin::Across {
+                    edge,
+                    t,
+                    face,
+                    source,
+                    then,
+                } => {
+                    // Through the shared edge, then as the neighbour's candidate.
+                    points.push(SurfacePoint::Edge { edge, t });
+                    faces.push(face);
+                    origin = Origin::from_source(source, then);
+                }
             }
         };
         if self.has_waves() {

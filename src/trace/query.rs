@@ -65,11 +65,14 @@ impl<M> fmt::Debug for Query<'_, M> {
 #[derive(Default)]
 pub(super) struct FaceFields {
     fields: Vec<FaceField>,
+    /// Faces' own candidates, which their neighbours' fields unfold.
+    own: Vec<FaceField>,
 }
 
 impl FaceFields {
-    /// A face and its neighbours across three edges, with room to spare.
-    const CAPACITY: usize = 16;
+    /// A worker's recent faces and their neighbours (measured on bunny_loop1: 16 or
+    /// 96 are slower).
+    const CAPACITY: usize = 48;
 
     /// Face `f`'s candidates, built if not cached (dropping the oldest when full).
     pub(super) fn get<M: Metric>(&mut self, query: &Query<'_, M>, f: u32) -> &FaceField {
@@ -79,7 +82,8 @@ impl FaceFields {
                 if self.fields.len() == Self::CAPACITY {
                     self.fields.remove(0);
                 }
-                self.fields.push(query.face_field(f));
+                let field = query.face_field_using(f, &mut self.own);
+                self.fields.push(field);
                 self.fields.last().expect("just pushed")
             }
         }
@@ -98,6 +102,26 @@ pub(super) enum Origin {
     SourceInFace(u32, u32),
     /// A straight line in `face` from this node's wave (wavefront engine).
     WaveInFace(u32, u32),
+    /// A straight line in `face` to the point `t` of `edge`, and on from there as
+    /// `source` gives it in face `then` across the edge.
+    Across {
+        edge: u32,
+        t: f64,
+        face: u32,
+        source: ValueSource,
+        then: u32,
+    },
+}
+
+impl Origin {
+    /// Where a face's own candidate `source` gives the value in face `f`.
+    pub(super) fn from_source(source: ValueSource, f: u32) -> Origin {
+        match source {
+            ValueSource::Node(n) => Origin::NodeInFace(n, f),
+            ValueSource::Source(s) => Origin::SourceInFace(s, f),
+            ValueSource::Wave(q) | ValueSource::WaveBend(q) => Origin::WaveInFace(q, f),
+        }
+    }
 }
 
 impl<'a, M: Metric> Query<'a, M> {
@@ -159,18 +183,23 @@ impl<'a, M: Metric> Query<'a, M> {
         self.field.sources
     }
 
-    /// The distance at any surface point, as the engine defines it: at a node, its
-    /// value; elsewhere, the least over the nodes on the boundary of the faces holding
-    /// the point of the node's value plus the metric's cost of the straight segment to
-    /// the point (and, from a source sharing one of those faces, the source's start
-    /// plus its segment); for a field of the wavefront engine also, from each node's
-    /// wave that crosses into the face, `σ` plus the straight line from its source where
-    /// it passes the node's window. Not an interpolation of vertex values. `inf` when no
-    /// source reaches the point, or when its value would exceed the run's
-    /// [`Stop::max_distance`](crate::Stop::max_distance).
+    /// The distance at any surface point, as the engine defines it: at a vertex, its
+    /// value; elsewhere, the least over the *candidates* of the faces holding the point
+    /// ([`ValueSource`](crate::trace::ValueSource)): each node on a face's boundary,
+    /// its value plus the metric's cost of the straight segment to the point; each
+    /// source sharing the face, its start plus its segment; for a field of the
+    /// wavefront engine also each node's wave that crosses into the face, `σ` plus the
+    /// straight line from its source where it passes the node's window (or bends at the
+    /// window's end), and the candidates of the faces across the face's edges, unfolded
+    /// onto it, whose lines cross the shared edge (so that the field is continuous
+    /// across edges but where a neighbour's neighbour gives less, by the engine's
+    /// error). Each candidate is a real path's length. Not an interpolation of vertex
+    /// values. `inf` when no source reaches the point, or when its value would exceed
+    /// the run's [`Stop::max_distance`](crate::Stop::max_distance).
     ///
     /// # Complexity
-    /// O(k) metric evaluations per face around the point.
+    /// O(k) metric evaluations per face around the point (for the wavefront engine,
+    /// and its neighbours).
     ///
     /// # Errors
     /// [`Error::InvalidPoint`] if `point` is not a point of the mesh.
@@ -195,6 +224,8 @@ impl<'a, M: Metric> Query<'a, M> {
             which: PointRole::Query,
             error,
         })?;
+        // A vertex is its own node: its value is the run's (a neighbour's line may pass
+        // it a little shorter; the field is continuous elsewhere).
         if let SurfacePoint::Vertex(v) = point {
             let d = field.distance[v as usize];
             return Ok((d, d.is_finite().then_some(Origin::Node(v))));
@@ -211,10 +242,16 @@ impl<'a, M: Metric> Query<'a, M> {
             }
             if let Some((d, c)) = face.best(metric, &x, |_| false) {
                 if d < best.0 {
-                    let origin = match face.candidates[c].source {
-                        ValueSource::Node(n) => Origin::NodeInFace(n, f),
-                        ValueSource::Source(s) => Origin::SourceInFace(s, f),
-                        ValueSource::Wave(q) | ValueSource::WaveBend(q) => Origin::WaveInFace(q, f),
+                    let candidate = &face.candidates[c];
+                    let origin = match candidate.across {
+                        None => Origin::from_source(candidate.source, f),
+                        Some((edge, g)) => Origin::Across {
+                            edge,
+                            t: face.crossing(candidate, &x).expect("an unfolded candidate"),
+                            face: f,
+                            source: candidate.source,
+                            then: g,
+                        },
                     };
                     best = (d, Some(origin));
                 }

@@ -52,6 +52,9 @@ pub struct Gradient {
     pub face: u32,
     /// The candidate that gives the distance there.
     pub source: ValueSource,
+    /// For a candidate of the face across an edge (wavefront engine; see
+    /// [`Query::distance_at`]), that edge: its lines cross it.
+    pub across: Option<u32>,
 }
 
 /// One region of a face: where one candidate gives the distance ([`Query::regions`]).
@@ -62,6 +65,8 @@ pub struct Region {
     pub face: u32,
     /// What gives the distance in the region.
     pub source: ValueSource,
+    /// For a candidate of the face across an edge, that edge (see [`Gradient::across`]).
+    pub across: Option<u32>,
     /// Where its straight lines come from, in world coordinates: the node, the source,
     /// or a wave's virtual source unfolded into the face's plane (then usually outside
     /// the face). The distance at a point `x` of the region is
@@ -171,6 +176,7 @@ impl<M: Metric> Query<'_, M> {
             direction,
             face: f,
             source: candidate.source,
+            across: candidate.across.map(|(e, _)| e),
         }))
     }
 
@@ -244,6 +250,7 @@ impl<M: Metric> Query<'_, M> {
                         direction,
                         face,
                         source: candidate.source,
+                        across: candidate.across.map(|(e, _)| e),
                     }
                 });
                 let to_points =
@@ -251,6 +258,7 @@ impl<M: Metric> Query<'_, M> {
                 out.push(Region {
                     face,
                     source: candidate.source,
+                    across: candidate.across.map(|(e, _)| e),
                     virtual_source: field.site_position(mesh, &candidate),
                     offset: candidate.sigma,
                     polygon: to_points(&polygon),

@@ -39,19 +39,19 @@ impl<M: Metric> Query<'_, M> {
     }
 
     /// Face `f`'s frame in the metric's flattening.
-    fn flat(&self, f: u32) -> Option<FaceFrame> {
+    pub(super) fn flat(&self, f: u32) -> Option<FaceFrame> {
         flat_frame(self.metric, f, self.mesh.frame(f))
     }
 
     /// Edge `slot` of face `f` seen from `f` (flattened), and the edge's id.
-    fn edge_frame(&self, frame: &FaceFrame, f: u32, slot: usize) -> EdgeFrame {
+    pub(super) fn edge_frame(&self, frame: &FaceFrame, f: u32, slot: usize) -> EdgeFrame {
         EdgeFrame::new(frame, slot, self.mesh.slot_is_reversed(f, slot))
     }
 
     /// Whether waves cross `edge` unbent: every face around it gives it the same
     /// flattened length (as the engine's `isometric_edges` decides; a wave never
     /// crosses any other edge).
-    fn glues(&self, edge: u32) -> bool {
+    pub(super) fn glues(&self, edge: u32) -> bool {
         let len = |f: u32| -> Option<f64> {
             let frame = self.flat(f)?;
             let s = self.mesh.edge_slot(f, edge)?;
@@ -88,13 +88,13 @@ impl<M: Metric> Query<'_, M> {
     }
 
     /// The best value at point `x` of face `f` from the waves of the Steiner nodes on
-    /// `f`'s boundary that cross into it (straight or bending at a window's end), and
-    /// the node.
+    /// `f`'s boundary that cross into it (straight or bending at a window's end; not
+    /// the neighbours' waves), and the node.
     pub(super) fn wave_value(&self, f: u32, x: &FacePoint) -> Option<(f64, u32)> {
         let face = self.face_field(f);
         let is_wave =
             |c: &Candidate| matches!(c.source, ValueSource::Wave(_) | ValueSource::WaveBend(_));
-        let (value, c) = face.best(self.metric, x, |c| !is_wave(c))?;
+        let (value, c) = face.best(self.metric, x, |c| !is_wave(c) || c.across.is_some())?;
         match face.candidates[c].source {
             ValueSource::Wave(q) | ValueSource::WaveBend(q) => Some((value, q)),
             _ => None,
