@@ -22,6 +22,7 @@
 
 use super::face_field::{flat_to_bary, Candidate, FaceField, Site, ValueSource};
 use super::Query;
+use crate::flat::same_source;
 use crate::mesh::TriMesh;
 use crate::surface::SurfacePoint;
 use crate::{Error, PointRole};
@@ -57,7 +58,9 @@ pub struct Gradient {
     pub across: Option<u32>,
 }
 
-/// One region of a face: where one candidate gives the distance ([`Query::regions`]).
+/// One region of a face: where one candidate gives the distance ([`Query::regions`]),
+/// or several with the same formula (the waves of neighbouring nodes that carry one
+/// virtual source: the region is named after the first).
 #[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct Region {
@@ -346,6 +349,10 @@ struct LabelGrid<'f, 'q, 'a, M> {
     n: usize,
     bary: Vec<[f64; 3]>,
     label: Vec<Option<usize>>,
+    /// Per candidate, the first candidate with the same formula (site and σ): the
+    /// waves of neighbouring nodes on an edge often carry one virtual source, and
+    /// where they take over from each other the field does not change.
+    same: Vec<usize>,
 }
 
 impl<'f, 'q, 'a, M: Metric> LabelGrid<'f, 'q, 'a, M> {
@@ -358,12 +365,32 @@ impl<'f, 'q, 'a, M: Metric> LabelGrid<'f, 'q, 'a, M> {
                 bary.push([1.0 - bi - bj, bi, bj]);
             }
         }
+        let scale = query.mesh.frame(field.face).diameter();
+        let site = |c: &Candidate| match c.site {
+            Site::Flat(s) | Site::Windowed { at: s, .. } => Some(s),
+            Site::Metric(_) => None,
+        };
+        let same = (0..field.candidates.len())
+            .map(|i| {
+                let ci = &field.candidates[i];
+                (0..i)
+                    .find(|&j| {
+                        let cj = &field.candidates[j];
+                        match (site(ci), site(cj)) {
+                            (Some(a), Some(b)) => same_source(a, ci.sigma, b, cj.sigma, scale),
+                            _ => false,
+                        }
+                    })
+                    .unwrap_or(i)
+            })
+            .collect();
         let mut grid = LabelGrid {
             query,
             field,
             n,
             bary,
             label: Vec::new(),
+            same,
         };
         grid.label = grid.bary.iter().map(|&b| grid.label_at(b)).collect();
         grid
@@ -377,6 +404,7 @@ impl<'f, 'q, 'a, M: Metric> LabelGrid<'f, 'q, 'a, M> {
     fn label_at(&self, bary: [f64; 3]) -> Option<usize> {
         let x = self.query.mesh.frame(self.field.face).point(bary);
         let (value, c) = self.field.best(self.query.metric, &x, |_| false)?;
+        let c = self.same[c];
         let horizon = self.query.field.horizon;
         let unreached = value > self.query.field.max_distance
             || (horizon < f64::INFINITY
