@@ -232,6 +232,79 @@ fn on_the_prism_the_gradient_backtracks_along_the_true_geodesic() {
 }
 
 #[test]
+fn isolines_on_the_prism_top_follow_the_ridge() {
+    // Levels that cross the top face: every point at its exact distance (to 1e-9),
+    // including where a line turns on the ridge between two sides' geodesics; lines
+    // continue from the sides onto the top.
+    use geotracks::trace::IsolineOptions;
+    let h = 0.6;
+    let mesh = prism(h);
+    let source = SurfacePoint::Face {
+        face: 0,
+        bary: [1.0 / 3.0; 3],
+    };
+    let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
+    let field = solver
+        .solve_from(&[Source::new(source)], &geotracks::Stop::NONE)
+        .unwrap();
+    let query = solver.query(&field).unwrap();
+    let top_corner = query.vertex_distances()[3];
+    let top_centre = prism_exact(&mesh, h, DVec3::new(0.5, 3f64.sqrt() / 6.0, h)).0;
+    // Between the corners' distance and the centre's: closed loops round the top (the
+    // last a small one round the centre, the field's maximum, which 4 or 8
+    // subdivisions miss: no grid point lies inside it).
+    let levels: Vec<f64> = (1..=3)
+        .map(|i| top_corner + (top_centre - top_corner) * i as f64 / 5.0)
+        .collect();
+    let options = IsolineOptions::DEFAULT.with_subdivisions(16);
+    let lines = query.isolines(&levels, &options).unwrap();
+    assert_eq!(lines.len(), levels.len());
+    let (mut on_top, mut worst, mut bends) = (0, 0.0f64, 0);
+    for line in &lines {
+        assert!(line.closed, "level {} is not closed", line.level);
+        let mut sharpest = 0.0f64;
+        for w in line.points.windows(3) {
+            let x = w[1].position(&mesh);
+            if (x.z - h).abs() > 1e-12 {
+                continue;
+            }
+            on_top += 1;
+            let (d, _, gap) = prism_exact(&mesh, h, x);
+            worst = worst.max((d - line.level).abs() / line.level);
+            // Where the line turns sharply, it is on the ridge (two sides' geodesics
+            // equally long), not cutting across it.
+            let (a, c) = (w[0].position(&mesh), w[2].position(&mesh));
+            if (x - a).length().min((c - x).length()) < 1e-4 {
+                continue; // too short a segment to tell a direction
+            }
+            let turn = (x - a)
+                .normalize()
+                .dot((c - x).normalize())
+                .clamp(-1.0, 1.0)
+                .acos();
+            sharpest = sharpest.max(turn);
+            if turn > 0.2 {
+                bends += 1;
+                assert!(
+                    gap < 1e-6 * d,
+                    "a turn of {turn} rad off the ridge ({gap}) at {:?}",
+                    w[1]
+                );
+            }
+        }
+        println!(
+            "  level {:.4}: sharpest turn on the top {sharpest:.2} rad",
+            line.level
+        );
+    }
+    println!("prism top: {on_top} isoline points, worst {worst:.1e} off their exact level, {bends} sharp turns, all on the ridge");
+    assert!(on_top > 50);
+    assert!(worst < 1e-9, "{worst}");
+    // Three ridge crossings per loop round the top.
+    assert!(bends >= 3 * levels.len(), "{bends}");
+}
+
+#[test]
 fn the_prism_top_splits_into_three_regions_along_the_ridge() {
     let h = 0.6;
     let mesh = prism(h);

@@ -419,8 +419,10 @@ impl<'q, 'a, M: Metric> FaceGrid<'q, 'a, M> {
         };
         let delta = [-d1 - d2, d1, d2];
         // How far along ±delta the face allows (barycentrics stay ≥ 0).
+        // (Up to the face's side: the level may lie several segment lengths away, where
+        // a line turns sharply on a ridge.)
         let reach = |sign: f64| {
-            (0..3).fold(1.0f64, |r, k| {
+            (0..3).fold(f64::INFINITY, |r, k| {
                 let step = sign * delta[k];
                 if step < 0.0 {
                     r.min(mid[k] / -step)
@@ -429,25 +431,40 @@ impl<'q, 'a, M: Metric> FaceGrid<'q, 'a, M> {
                 }
             })
         };
-        let (lo, hi) = (-reach(-1.0), reach(1.0));
         let at = |s: f64| {
             let mut bary = [0, 1, 2].map(|k| (mid[k] + s * delta[k]).max(0.0));
             let sum = bary[0] + bary[1] + bary[2];
             bary.iter_mut().for_each(|x| *x /= sum);
             face_point(bary)
         };
-        let (flo, fhi) = (
-            value(self.query, self.cache, at(lo)) - level,
-            value(self.query, self.cache, at(hi)) - level,
-        );
-        // The level must be met between the two reaches, and on the same side of the
-        // middle's value: otherwise the middle is kept off the level (within a ridge
-        // sharper than the search, a rare case) rather than guessed.
-        let (s0, f0, s1, f1) = if (off > 0.0) == (flo < 0.0) {
-            (lo, flo, 0.0, off)
-        } else if (off > 0.0) == (fhi < 0.0) {
-            (0.0, off, hi, fhi)
-        } else {
+        // The nearest point on the level along the perpendicular: stepping out from the
+        // middle (an eighth of the segment, doubling, up to the face's side), the first
+        // step whose value lies across the level from the middle's brackets it. (One
+        // bracket over the whole reach fails where the level is met twice along it, as
+        // on a ridge line that rises to a peak and falls again.)
+        let bracket = |sign: f64, limit: f64| -> Option<(f64, f64, f64, f64)> {
+            let reach = reach(sign).min(limit);
+            let (mut s0, mut f0) = (0.0, off);
+            let mut step = 0.125f64;
+            loop {
+                let s1 = step.min(reach);
+                let f1 = value(self.query, self.cache, at(sign * s1)) - level;
+                if (off > 0.0) == (f1 < 0.0) {
+                    return Some((sign * s0, f0, sign * s1, f1));
+                }
+                if s1 >= reach || !f1.is_finite() {
+                    return None;
+                }
+                (s0, f0) = (s1, f1);
+                step *= 2.0;
+            }
+        };
+        // The other way only as far as the first found: the nearer is wanted. With
+        // neither, the middle is kept off the level (within a ridge sharper than the
+        // search, a rare case) rather than guessed.
+        let ahead = bracket(1.0, f64::INFINITY);
+        let behind = bracket(-1.0, ahead.map_or(f64::INFINITY, |p| p.2.abs()));
+        let Some((s0, f0, s1, f1)) = behind.or(ahead) else {
             return;
         };
         let s = solve(
