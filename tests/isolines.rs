@@ -159,8 +159,8 @@ fn isolines_of_one_field_never_cross_and_lie_on_their_faces() {
     // face sees its own candidates and its neighbours' across its edges, a point on an
     // edge what every face around it sees, and the two can differ where a neighbour's
     // neighbour gives less (by the engine's error); a point solved at such a jump is
-    // off by the jump. Measured (60 levels): 8,307 of 378,841 points off by more than
-    // 1e-9, the worst by 0.79 % (before faces saw across their edges: 10,277 of
+    // off by the jump. Measured (60 levels): 8,382 of 379,163 points off by more than
+    // 1e-9, the worst by 0.82 % (before faces saw across their edges: 10,277 of
     // 403,210, 1.87 %).
     eprintln!("spot: {off} of {count} points off their level by more than 1e-9; worst {worst:e}");
     assert!(
