@@ -69,6 +69,7 @@ mod flat;
 pub mod mesh;
 pub mod options;
 pub mod propagate;
+pub mod render;
 pub mod skeleton;
 pub mod steiner;
 pub mod surface;

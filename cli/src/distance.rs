@@ -3,8 +3,10 @@
 use crate::inputs::load_mesh;
 use crate::metric::MetricArgs;
 use crate::output::Outputs;
+use crate::picture::{self, PictureArgs};
 use crate::{points, ui, CliResult, Short, Value};
 use geotracks::mesh::{io, TriMesh, NONE};
+use geotracks::render::PictureOptions;
 use geotracks::{Euclidean, GeodesicField, Metric, Options, Solver, Source, Stop, SurfacePoint};
 use std::path::{Path, PathBuf};
 
@@ -37,6 +39,8 @@ pub struct DistanceArgs {
     /// Also write the run's statistics as JSON.
     #[arg(long)]
     stats: Option<PathBuf>,
+    #[command(flatten)]
+    picture: PictureArgs,
 }
 
 /// The formats `-o` accepts.
@@ -80,6 +84,7 @@ pub fn run(args: &DistanceArgs) -> CliResult {
     ] {
         outputs.declare_some(path)?;
     }
+    args.picture.declare(&mut outputs)?;
     let spinner = ui::Spinner::start("reading the mesh and propagating");
     let mesh = load_mesh(&args.mesh, args.weld)?;
     let sources = points::sources(&mesh, &args.sources)?;
@@ -99,6 +104,8 @@ pub fn run(args: &DistanceArgs) -> CliResult {
     if let Some(stats) = &args.stats {
         write_stats(&mut outputs, stats, &field)?;
     }
+    args.picture
+        .draw(&mut outputs, &solver.query(&field)?, &sources, None)?;
     outputs.commit()?;
     crate::report_run(&args.mesh, field.stats(), &args.output);
     Ok(())
@@ -206,12 +213,29 @@ pub fn demo(output: &Path) -> CliResult {
     }
     let mut outputs = Outputs::new([]);
     outputs.declare(output)?;
+    // The picture beside the field (none when the field goes to standard output).
+    let png = (output.as_os_str() != "-").then(|| output.with_extension("png"));
+    if let Some(png) = &png {
+        outputs.declare(png)?;
+    }
     let mesh = io::read_obj_bytes(SPOT_OBJ)?;
     let source = 0;
     let options = Options::DEFAULT;
     let solver = Solver::new(&mesh, Euclidean, &options)?;
     let field = compute(&solver, &[Source::new(source)], &Stop::NONE)?;
     write_field(&mut outputs, output, format, &mesh, &field)?;
+    if let Some(png) = &png {
+        let query = solver.query(&field)?;
+        let options = PictureOptions::DEFAULT;
+        picture::draw(
+            &mut outputs,
+            png,
+            &query,
+            &[Source::new(source)],
+            None,
+            &options,
+        )?;
+    }
     outputs.commit()?;
     let s = field.stats();
     let far = field
@@ -233,7 +257,10 @@ pub fn demo(output: &Path) -> CliResult {
             s.setup_seconds + s.propagate_seconds,
             Short(far)
         ),
-        format!("wrote {}", crate::shown(output)),
+        match &png {
+            Some(png) => format!("wrote {} and {}", crate::shown(output), png.display()),
+            None => format!("wrote {}", crate::shown(output)),
+        },
     ];
     for line in lines {
         // Standard output holds the data when it is the output.

@@ -3,6 +3,7 @@
 use crate::inputs::load_mesh;
 use crate::metric::MetricArgs;
 use crate::output::Outputs;
+use crate::picture::PictureArgs;
 use crate::{points, ui, CliResult, Value};
 use geotracks::mesh::TriMesh;
 use geotracks::trace::{spread_levels, Isoline, IsolineOptions};
@@ -46,6 +47,8 @@ pub struct IsolinesArgs {
     /// with its level; coordinates x, y, z).
     #[arg(short, long)]
     output: PathBuf,
+    #[command(flatten)]
+    picture: PictureArgs,
 }
 
 #[derive(Clone, Copy)]
@@ -73,6 +76,7 @@ pub fn run(args: &IsolinesArgs) -> CliResult {
     let options = IsolineOptions::DEFAULT.with_subdivisions(args.subdivisions);
     let mut outputs = Outputs::new(std::iter::once(args.mesh.as_path()).chain(args.metric.files()));
     outputs.declare(&args.output)?;
+    args.picture.declare(&mut outputs)?;
     let spinner = ui::Spinner::start("reading the mesh, propagating and drawing isolines");
     let mesh = load_mesh(&args.mesh, args.weld)?;
     let sources = points::sources(&mesh, &args.sources)?;
@@ -83,6 +87,8 @@ pub fn run(args: &IsolinesArgs) -> CliResult {
     let lines = query.isolines(&levels, &options)?;
     drop(spinner);
     write_isolines(&mut outputs, &args.output, format, &mesh, &lines)?;
+    args.picture
+        .draw(&mut outputs, &query, &sources, Some(&lines))?;
     outputs.commit()?;
     let closed = lines.iter().filter(|l| l.closed).count();
     let points: usize = lines.iter().map(|l| l.points.len()).sum();

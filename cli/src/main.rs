@@ -12,6 +12,7 @@ mod matrix;
 mod metric;
 mod output;
 mod path;
+mod picture;
 mod points;
 mod skeleton;
 mod terrain;
@@ -86,7 +87,8 @@ enum Command {
         #[arg(long)]
         weld: bool,
     },
-    /// Compute a distance field on the bundled Spot model and write a coloured PLY.
+    /// Compute a distance field on the bundled Spot model and write a coloured PLY and a
+    /// picture of it (PNG, beside the PLY).
     #[command(after_help = with_examples("", DEMO_EXAMPLES))]
     Demo {
         /// Where to write the mesh: .ply (coloured), .txt or .csv; by default into
@@ -104,7 +106,8 @@ fn with_examples(before: &str, examples: &str) -> String {
     }
 }
 
-const DISTANCE_EXAMPLES: &str = "  geotracks distance mesh.obj --source 0 -o distance.ply
+const DISTANCE_EXAMPLES: &str = "  geotracks distance mesh.obj --source 0 -o distance.ply --png distance.png
+  geotracks distance mesh.obj --source 0 -o d.txt --png d.png --view 30,20 --size 800x800
   geotracks distance mesh.obj --source 0 --source f:12:0.2,0.3,0.5 --voronoi cells.txt -o d.csv
   geotracks distance mesh.obj --source 0 --density rho.txt --max-distance 2.5 -o d.txt --stats run.json
   geotracks distance mesh.obj --source 0 -o - | head   # vertex,distance on standard output";
@@ -116,7 +119,7 @@ const PATH_EXAMPLES: &str = "  geotracks path mesh.obj --source 0 --target 100 -
 const MATRIX_EXAMPLES: &str = "  geotracks matrix mesh.obj --sources sources.txt -o all.csv
   geotracks matrix mesh.obj --sources sources.txt --targets targets.txt -o pairs.csv";
 
-const ISOLINES_EXAMPLES: &str = "  geotracks isolines mesh.obj --source 0 -o iso.obj
+const ISOLINES_EXAMPLES: &str = "  geotracks isolines mesh.obj --source 0 -o iso.obj --png iso.png
   geotracks isolines mesh.obj --source 0 --at 0.5,1,1.5 -o iso.geojson
   geotracks isolines mesh.obj --source f:12:0.2,0.3,0.5 --levels 20 --tensor m.txt -o iso.csv";
 

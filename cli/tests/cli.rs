@@ -519,6 +519,10 @@ fn demo_writes_a_coloured_ply() {
     let mesh = geotracks::mesh::io::read_mesh(&out_path).unwrap();
     let spot = geotracks::mesh::io::read_mesh(SPOT).unwrap();
     assert_eq!(mesh.positions().len(), spot.positions().len());
+    // And its picture beside it, said where.
+    let png = dir.path().join("spot.png");
+    assert!(stdout.contains(&png.display().to_string()), "{stdout}");
+    assert_eq!(png_size(&png), (1024, 768));
 }
 
 /// The demo's copy of Spot (inside the CLI crate, so that it can be published) is the
@@ -1489,4 +1493,89 @@ fn isolines_write_obj_csv_and_geojson_on_their_levels() {
         &bad,
         "--at NaN",
     );
+}
+
+/// The width and height a PNG's header gives.
+fn png_size(path: &Path) -> (u32, u32) {
+    let bytes = std::fs::read(path).unwrap();
+    assert_eq!(&bytes[1..4], b"PNG", "{} is not a PNG", path.display());
+    let be = |i: usize| u32::from_be_bytes(bytes[i..i + 4].try_into().unwrap());
+    (be(16), be(20))
+}
+
+#[test]
+fn pictures_of_distance_and_isolines_at_their_size_and_bad_options_leave_no_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = grid_obj(dir.path(), 4);
+    let mesh = mesh.to_str().unwrap();
+    let d = dir.path().join("d.txt");
+    let png = dir.path().join("d.png");
+    geotracks_ok(&[
+        "distance",
+        mesh,
+        "--source",
+        "0",
+        "-o",
+        d.to_str().unwrap(),
+        "--png",
+        png.to_str().unwrap(),
+    ]);
+    assert_eq!(png_size(&png), (1024, 768));
+    let iso = dir.path().join("iso.obj");
+    let png2 = dir.path().join("iso.png");
+    geotracks_ok(&[
+        "isolines",
+        mesh,
+        "--source",
+        "0",
+        "--at",
+        "1,2",
+        "-o",
+        iso.to_str().unwrap(),
+        "--png",
+        png2.to_str().unwrap(),
+        "--size",
+        "300x200",
+        "--view",
+        "30,45",
+    ]);
+    assert_eq!(png_size(&png2), (300, 200));
+    // Bad options: one error line, exit non-zero, no output at all.
+    for (extra, message) in [
+        (vec!["--view", "sideways"], "is not a view"),
+        (vec!["--view", "0,120"], "is not a view"),
+        (vec!["--size", "10x10"], "64 to 8192"),
+        (vec!["--size", "big"], "is not WxH"),
+    ] {
+        let out = dir.path().join("fresh.txt");
+        let pic = dir.path().join("fresh.png");
+        let mut args = vec![
+            "distance",
+            mesh,
+            "--source",
+            "0",
+            "-o",
+            out.to_str().unwrap(),
+            "--png",
+            pic.to_str().unwrap(),
+        ];
+        args.extend(extra);
+        let result = geotracks(&args);
+        assert!(!result.status.success(), "{args:?}");
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert!(stderr.contains(message), "{args:?}: {stderr}");
+        assert!(!out.exists() && !pic.exists());
+    }
+    // --view without --png is refused too (it would draw nothing).
+    let result = geotracks(&[
+        "distance",
+        mesh,
+        "--source",
+        "0",
+        "-o",
+        d.to_str().unwrap(),
+        "--view",
+        "top",
+    ]);
+    assert!(!result.status.success());
 }

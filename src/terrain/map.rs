@@ -334,15 +334,7 @@ impl MapImage {
     /// # Errors
     /// What `w` or the PNG encoder returns.
     pub fn write_png_to(&self, w: &mut dyn std::io::Write) -> std::io::Result<()> {
-        use image::ImageEncoder;
-        image::codecs::png::PngEncoder::new(w)
-            .write_image(
-                &self.rgba,
-                self.width,
-                self.height,
-                image::ExtendedColorType::Rgba8,
-            )
-            .map_err(std::io::Error::other)
+        crate::render::encode_png(w, self.width, self.height, &self.rgba)
     }
 }
 
