@@ -156,6 +156,14 @@ fn prism(h: f64) -> TriMesh {
     TriMesh::new(positions, faces).unwrap()
 }
 
+/// The source of the prism tests: the bottom face's centroid.
+fn prism_source() -> Source {
+    Source::new(SurfacePoint::Face {
+        face: 0,
+        bary: [1.0 / 3.0; 3],
+    })
+}
+
 /// The exact geodesic from the bottom face's centroid to point `x` of the top face of
 /// `prism(h)`: over each side, the straight line in the unfolding of bottom, side and
 /// top (it must cross both of the side's horizontal edges inside them); the distance
@@ -193,13 +201,9 @@ fn prism_exact(mesh: &TriMesh, h: f64, x: DVec3) -> (f64, DVec3, f64) {
 fn on_the_prism_the_gradient_backtracks_along_the_true_geodesic() {
     let h = 0.6;
     let mesh = prism(h);
-    let source = SurfacePoint::Face {
-        face: 0,
-        bary: [1.0 / 3.0; 3],
-    };
     let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
     let field = solver
-        .solve_from(&[Source::new(source)], &geotracks::Stop::NONE)
+        .solve_from(&[prism_source()], &geotracks::Stop::NONE)
         .unwrap();
     let query = solver.query(&field).unwrap();
     // The top's corners are all but equally far: interpolated vertex values give no
@@ -239,13 +243,9 @@ fn isolines_on_the_prism_top_follow_the_ridge() {
     use geotracks::trace::IsolineOptions;
     let h = 0.6;
     let mesh = prism(h);
-    let source = SurfacePoint::Face {
-        face: 0,
-        bary: [1.0 / 3.0; 3],
-    };
     let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
     let field = solver
-        .solve_from(&[Source::new(source)], &geotracks::Stop::NONE)
+        .solve_from(&[prism_source()], &geotracks::Stop::NONE)
         .unwrap();
     let query = solver.query(&field).unwrap();
     let top_corner = query.vertex_distances()[3];
@@ -308,13 +308,9 @@ fn isolines_on_the_prism_top_follow_the_ridge() {
 fn the_prism_top_splits_into_three_regions_along_the_ridge() {
     let h = 0.6;
     let mesh = prism(h);
-    let source = SurfacePoint::Face {
-        face: 0,
-        bary: [1.0 / 3.0; 3],
-    };
     let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
     let field = solver
-        .solve_from(&[Source::new(source)], &geotracks::Stop::NONE)
+        .solve_from(&[prism_source()], &geotracks::Stop::NONE)
         .unwrap();
     let query = solver.query(&field).unwrap();
     let regions = query.regions(1, DEFAULT_REGION_SUBDIVISIONS).unwrap();

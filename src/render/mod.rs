@@ -288,7 +288,7 @@ impl Picture {
         &self,
         path: impl AsRef<std::path::Path>,
     ) -> Result<(), crate::mesh::MeshError> {
-        crate::mesh::io::write_atomically(path.as_ref(), |w| self.write_png_to(w))
+        write_png_file(path.as_ref(), self.width, self.height, &self.rgba)
     }
 
     /// As [`Picture::write_png`], into `w`.
@@ -298,6 +298,17 @@ impl Picture {
     pub fn write_png_to(&self, w: &mut dyn std::io::Write) -> std::io::Result<()> {
         encode_png(w, self.width, self.height, &self.rgba)
     }
+}
+
+/// Writes an RGBA buffer as an 8-bit PNG file, atomically (pictures and terrain maps).
+#[cfg(feature = "png")]
+pub(crate) fn write_png_file(
+    path: &std::path::Path,
+    width: u32,
+    height: u32,
+    rgba: &[u8],
+) -> Result<(), crate::mesh::MeshError> {
+    crate::mesh::io::write_atomically(path, |w| encode_png(w, width, height, rgba))
 }
 
 /// Encodes an RGBA buffer as an 8-bit PNG into `w` (pictures and terrain maps).

@@ -219,30 +219,14 @@ impl Canvas {
             return; // seen edge-on (or degenerate): no pixel centre inside
         }
         let (w, h) = (self.width as f64, self.height as f64);
-        let x0 = q
-            .iter()
-            .map(|a| a.0)
-            .fold(f64::INFINITY, f64::min)
-            .max(0.0)
-            .floor() as usize;
-        let x1 = q
-            .iter()
-            .map(|a| a.0)
-            .fold(f64::NEG_INFINITY, f64::max)
-            .min(w - 1.0)
-            .ceil();
-        let y0 = q
-            .iter()
-            .map(|a| a.1)
-            .fold(f64::INFINITY, f64::min)
-            .max(0.0)
-            .floor() as usize;
-        let y1 = q
-            .iter()
-            .map(|a| a.1)
-            .fold(f64::NEG_INFINITY, f64::max)
-            .min(h - 1.0)
-            .ceil();
+        // The pixels the triangle's bounding box covers, clipped to the canvas.
+        let span = |coord: fn(&(f64, f64, f64)) -> f64, size: f64| {
+            let lo = q.iter().map(coord).fold(f64::INFINITY, f64::min);
+            let hi = q.iter().map(coord).fold(f64::NEG_INFINITY, f64::max);
+            (lo.max(0.0).floor() as usize, hi.min(size - 1.0).ceil())
+        };
+        let (x0, x1) = span(|a| a.0, w);
+        let (y0, y1) = span(|a| a.1, h);
         if !(x1 >= 0.0 && y1 >= 0.0) {
             return;
         }

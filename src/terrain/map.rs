@@ -326,7 +326,7 @@ impl MapImage {
         &self,
         path: impl AsRef<std::path::Path>,
     ) -> Result<(), crate::mesh::MeshError> {
-        crate::mesh::io::write_atomically(path.as_ref(), |w| self.write_png_to(w))
+        crate::render::write_png_file(path.as_ref(), self.width, self.height, &self.rgba)
     }
 
     /// As [`MapImage::write_png`], into `w`.
