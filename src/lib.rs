@@ -18,8 +18,9 @@
 //!   [`Workspace`] for many (reused buffers, parallel rows).
 //! - [`field`]: [`GeodesicField`], what a run returns: plain data.
 //! - [`trace`]: [`Query`], made by the solver that computed a field
-//!   ([`Solver::query`]): the distance at any surface point, paths ([`GeodesicPath`],
-//!   straightened) and nearest sources.
+//!   ([`Solver::query`]): the distance and gradient at any surface point, each face's
+//!   regions, paths ([`GeodesicPath`], straightened), isolines and nearest sources.
+//! - [`render`]: pictures of fields (the mesh coloured by distance, isolines, sources).
 //! - [`skeleton`]: grassfire on a medial axis from its boundary, and the skeleton of its
 //!   ridges.
 //! - [`terrain`]: elevation grids (ESRI ASCII, GeoTIFF) as meshes, terrain costs (slope
@@ -27,8 +28,8 @@
 //!
 //! Dependencies point one way: applications ([`skeleton`], [`terrain`]) use
 //! [`propagate`], which makes fields and hands out [`Query`]s; [`trace`] reads fields;
-//! [`field`] is plain data over [`steiner`] and [`mesh`]; the metrics know nothing of
-//! the rest. The command-line tool is the separate crate `geotracks-cli`.
+//! [`field`] is plain data over [`steiner`] and [`mesh`]; [`render`] draws a mesh and
+//! values on it; the metrics know nothing of the rest. The command-line tool is the separate crate `geotracks-cli`.
 //!
 //! ## Example
 //! ```
