@@ -21,8 +21,9 @@
 //!   ([`Solver::query`]): the distance and gradient at any surface point, each face's
 //!   regions, paths ([`GeodesicPath`], straightened), isolines and nearest sources.
 //! - [`render`]: pictures of fields (the mesh coloured by distance, isolines, sources).
-//! - [`skeleton`]: grassfire on a medial axis from its boundary, and the skeleton of its
-//!   ridges.
+//! - [`skeleton`]: curve skeletons of medial axes with the axis's topology: burnt from
+//!   the border or by radius, thinned by collapses in burn order, pruned by erosion
+//!   thickness.
 //! - [`terrain`]: elevation grids (ESRI ASCII, GeoTIFF) as meshes, terrain costs (slope
 //!   density, impassable faces, uphill tensor), routes ([`terrain::route`]) and maps.
 //!

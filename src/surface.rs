@@ -176,7 +176,7 @@ impl SurfacePoint {
     }
 
     /// The canonical point with barycentrics `bary` (valid) in face `face`.
-    fn in_face_closure(mesh: &TriMesh, face: u32, bary: [f64; 3]) -> SurfacePoint {
+    pub(crate) fn in_face_closure(mesh: &TriMesh, face: u32, bary: [f64; 3]) -> SurfacePoint {
         let corners = mesh.face_vertices(face);
         let zeros = bary.iter().filter(|&&b| b == 0.0).count();
         match zeros {
@@ -301,7 +301,7 @@ impl std::ops::Deref for Faces<'_> {
 
 /// Barycentric coordinates of the point of triangle `abc` closest to `p` (Ericson,
 /// *Real-Time Collision Detection*, 5.1.5: which Voronoi region of the triangle holds p).
-fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> [f64; 3] {
+pub(crate) fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> [f64; 3] {
     let (ab, ac, ap) = (b - a, c - a, p - a);
     let (d1, d2) = (ab.dot(ap), ac.dot(ap));
     if d1 <= 0.0 && d2 <= 0.0 {

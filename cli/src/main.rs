@@ -67,8 +67,8 @@ enum Command {
     /// field's regions meet) as polylines: .obj, .csv or .geojson.
     #[command(after_help = with_examples(points::SP_HELP, ISOLINES_EXAMPLES))]
     Isolines(isolines::IsolinesArgs),
-    /// Burn a medial axis (.ma) from its boundary and write the skeleton of its ridges,
-    /// joined with its free edges, as OBJ polylines.
+    /// The curve skeleton of a medial axis (.ma): burnt, thinned without changing its
+    /// topology, pruned by erosion thickness; OBJ polylines or a JSON graph with radii.
     #[command(after_help = with_examples("", SKELETON_EXAMPLES))]
     Skeleton(skeleton::SkeletonArgs),
     /// The cheapest route between two map points of an elevation grid (ESRI .asc or
@@ -124,8 +124,8 @@ const ISOLINES_EXAMPLES: &str = "  geotracks isolines mesh.obj --source 0 -o iso
   geotracks isolines mesh.obj --source f:12:0.2,0.3,0.5 --levels 20 --tensor m.txt -o iso.csv";
 
 const SKELETON_EXAMPLES: &str =
-    "  geotracks skeleton cow.ma --prune 3% -o cow_skeleton.obj --field cow_fire.ply
-  geotracks skeleton axis.ma --speed radius --prune 0.05 -o skeleton.obj";
+    "  geotracks skeleton cow.ma --prune 7% -o cow_skeleton.obj --field cow_fire.ply
+  geotracks skeleton axis.ma --burn radius --prune 0.05 -o skeleton.json";
 
 const TERRAIN_EXAMPLES: &str = "  geotracks terrain dem.tif --from 499.5,499.5 --to 9490.5,9290.7 -o route.geojson
   geotracks terrain dem.asc --from 1010,5010 --to 1290,5180 --cost slope:4,max:30 -o route.csv --png map.png";
@@ -307,9 +307,17 @@ pub(crate) fn output_format<F: Copy>(
 }
 
 fn info(path: &std::path::Path, weld: bool) -> CliResult {
-    let mesh = inputs::load_mesh(path, weld)?;
+    let is_axis = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("ma"));
+    // A medial axis may be made of curves only, which a mesh reader refuses.
+    let report = if is_axis && !weld {
+        geotracks::mesh::io::read_medial_axis(path)?.report()
+    } else {
+        inputs::load_mesh(path, weld)?.report()
+    };
     println!("{}", path.display());
-    println!("{}", mesh.report());
+    println!("{report}");
     Ok(())
 }
 

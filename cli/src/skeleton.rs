@@ -3,17 +3,17 @@
 use crate::output::Outputs;
 use crate::{ui, CliResult, Short};
 use geotracks::mesh::io::{read_medial_axis, write_obj_lines_to, write_ply_with_distance_to};
-use geotracks::skeleton::medial_axis_skeleton;
+use geotracks::skeleton::{medial_axis_skeleton, Burn, DEFAULT_PRUNE_PERCENT};
 use geotracks::{Method, Options};
 use std::path::PathBuf;
 use std::time::Instant;
 
-/// How fast the grassfire burns.
+/// When each point of the axis may burn.
 #[derive(Clone, Copy, clap::ValueEnum)]
-pub enum Speed {
-    /// The same everywhere (Euclidean distance on the sheets).
-    Uniform,
-    /// Faster where medial balls are larger (density mean(r) / r per vertex).
+pub enum BurnArg {
+    /// At its grassfire distance from the axis's border: curves along each sheet's middle.
+    Boundary,
+    /// At its medial radius: curves through the largest balls (faster, smoother).
     Radius,
 }
 
@@ -28,16 +28,17 @@ pub struct SkeletonArgs {
     /// Propagation method.
     #[arg(long, default_value = "tracks")]
     method: Method,
-    /// Prune branch points whose two sides are less than T apart along the boundary:
-    /// a length in the axis's units, or a percentage of its bounding box diagonal
-    /// (`2%`); 0 keeps everything.
-    #[arg(long, value_name = "T", default_value = "0")]
+    /// Prune branches that stood less than T as curves after the fire reached them
+    /// (their erosion thickness): a length in the axis's units, or a percentage of its
+    /// bounding box diagonal (`2%`); 0 keeps everything, `inf` only what never burns.
+    #[arg(long, value_name = "T", default_value_t = format!("{DEFAULT_PRUNE_PERCENT}%"))]
     prune: String,
-    /// Grassfire speed.
-    #[arg(long, value_enum, default_value = "uniform")]
-    speed: Speed,
-    /// Output: the skeleton as OBJ polylines (`v` and `l` lines; junctions shared).
-    #[arg(short, long)]
+    /// When each point may burn.
+    #[arg(long, value_enum, default_value = "boundary")]
+    burn: BurnArg,
+    /// Output: OBJ polylines (`v` and `l` lines; junctions shared) or a JSON graph
+    /// (points with position, medial radius and significance; edges; polylines).
+    #[arg(short, long, value_name = "SKELETON.obj|.json")]
     output: PathBuf,
     /// Also write the grassfire field as a coloured PLY of the sheets.
     #[arg(long, value_name = "FIELD.ply")]
@@ -45,7 +46,11 @@ pub struct SkeletonArgs {
 }
 
 pub fn run(args: &SkeletonArgs) -> CliResult {
-    crate::text_output_format(&args.output, &[("obj", ())], ())?;
+    let format = crate::text_output_format(
+        &args.output,
+        &[("obj", Format::Obj), ("json", Format::Json)],
+        Format::Obj,
+    )?;
     if let Some(field) = &args.field {
         crate::output_format(field, &[("ply", ())])?;
     }
@@ -54,7 +59,7 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
         None => (args.prune.trim().parse::<f64>(), false),
     };
     let prune = match value {
-        Ok(v) if v >= 0.0 && v.is_finite() => v,
+        Ok(v) if v >= 0.0 && !v.is_nan() => v,
         _ => {
             return Err(format!(
                 "--prune {}: expected a length >= 0 or a percentage such as 2%",
@@ -67,7 +72,7 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
     outputs.declare(&args.output)?;
     outputs.declare_some(args.field.as_ref())?;
     let start = Instant::now();
-    let spinner = ui::Spinner::start("reading the medial axis, burning and tracing ridges");
+    let spinner = ui::Spinner::start("reading the medial axis, burning and thinning it");
     let axis = read_medial_axis(&args.axis)?;
     let prune = if percent {
         prune / 100.0 * diagonal(&axis.positions)
@@ -75,13 +80,16 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
         prune
     };
     let options = Options::DEFAULT.with_k(args.k).with_method(args.method);
-    let radius_aware = matches!(args.speed, Speed::Radius);
-    let (skeleton, fire) = medial_axis_skeleton(&axis, radius_aware, &options, prune)?;
+    let burn = match args.burn {
+        BurnArg::Radius => Burn::Radius,
+        BurnArg::Boundary => Burn::Boundary,
+    };
+    let (skeleton, fire) = medial_axis_skeleton(&axis, burn, &options, prune)?;
     drop(spinner);
-    if skeleton.closed_components > 0 {
+    if skeleton.added_cycles > 0 {
         eprintln!(
-            "warning: {} closed part(s) of the medial axis have no boundary to burn from and no skeleton",
-            skeleton.closed_components
+            "warning: {} part(s) of the medial axis cannot be thinned without opening a cycle; the skeleton has {} cycle(s) the axis does not",
+            skeleton.added_cycles, skeleton.added_cycles
         );
     }
     let points: Vec<[f64; 3]> = skeleton.points.iter().map(|p| p.position).collect();
@@ -93,26 +101,68 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
         }
         (Some(path), ..) => {
             return Err(format!(
-                "{}: the medial axis has no sheet, so no grassfire field to write",
+                "{}: no grassfire field to write (the medial axis has no sheet with a border to burn from, or --burn radius)",
                 path.display()
             )
             .into())
         }
         (None, ..) => {}
     }
-    outputs.write(&args.output, |w| write_obj_lines_to(w, &points, &lines))?;
+    match format {
+        Format::Obj => outputs.write(&args.output, |w| write_obj_lines_to(w, &points, &lines))?,
+        Format::Json => outputs.write(&args.output, |w| write_json(w, &skeleton, &lines))?,
+    }
     outputs.commit()?;
     ui::info!(
-        "{}: {} skeleton points, {} polylines, {} component(s), length {}, {:.3} s; wrote {}",
+        "{}: {} skeleton points, {} polylines, {} component(s), {} cycle(s) (the axis has b1 = {}), {} tips, length {}, {:.3} s; wrote {}",
         args.axis.display(),
         skeleton.points.len(),
         lines.len(),
         skeleton.component_count(),
+        skeleton.cycle_count(),
+        axis.betti_numbers().b1,
+        skeleton.tip_count(),
         Short(skeleton.length()),
         start.elapsed().as_secs_f64(),
         crate::shown(&args.output)
     );
     Ok(())
+}
+
+#[derive(Clone, Copy)]
+enum Format {
+    Obj,
+    Json,
+}
+
+/// The skeleton as a JSON graph; a significance of `inf` (what never burns) is `null`.
+fn write_json(
+    w: &mut dyn std::io::Write,
+    skeleton: &geotracks::skeleton::Skeleton,
+    lines: &[Vec<u32>],
+) -> std::io::Result<()> {
+    let finite = |x: f64| x.is_finite().then_some(x);
+    let points: Vec<serde_json::Value> = skeleton
+        .points
+        .iter()
+        .map(|p| {
+            serde_json::json!({
+                "position": p.position,
+                "radius": p.radius,
+                "significance": finite(p.significance),
+            })
+        })
+        .collect();
+    let json = serde_json::json!({
+        "points": points,
+        "edges": skeleton.edges,
+        "polylines": lines,
+        "components": skeleton.component_count(),
+        "cycles": skeleton.cycle_count(),
+        "tips": skeleton.tip_count(),
+    });
+    serde_json::to_writer(&mut *w, &json).map_err(std::io::Error::other)?;
+    writeln!(w)
 }
 
 /// Length of the diagonal of the points' bounding box.

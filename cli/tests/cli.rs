@@ -1130,12 +1130,37 @@ fn skeleton_writes_a_connected_obj_graph_and_the_field() {
     roots.sort_unstable();
     roots.dedup();
     assert_eq!(roots.len(), 2);
-    // The separate curve is in the skeleton whole.
-    for p in [[3.0, 0.0, 0.0], [3.2, 0.0, 0.0], [3.4, 0.1, 0.0]] {
-        assert!(points.contains(&p), "{p:?} missing");
-    }
+    // The separate curve keeps at least its most significant point …
+    assert!(points.iter().any(|p| p[0] >= 3.0));
     let ply_bytes = std::fs::read(&ply).unwrap();
     assert!(ply_bytes.starts_with(b"ply\n"));
+    // … and, unpruned, is in the skeleton whole; the JSON graph says so.
+    let json = dir.path().join("skeleton.json");
+    geotracks_ok(&[
+        "skeleton",
+        SHEET_FINS,
+        "--prune",
+        "0",
+        "-o",
+        json.to_str().unwrap(),
+    ]);
+    let graph: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    let positions: Vec<Vec<f64>> = graph["points"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| serde_json::from_value(p["position"].clone()).unwrap())
+        .collect();
+    for p in [[3.0, 0.0, 0.0], [3.2, 0.0, 0.0], [3.4, 0.1, 0.0]] {
+        assert!(positions.contains(&p.to_vec()), "{p:?} missing");
+    }
+    assert_eq!(graph["components"], 2);
+    assert_eq!(graph["cycles"], 0);
+    assert!(graph["points"][0]["radius"].as_f64().unwrap() > 0.0);
+    assert_eq!(
+        graph["edges"].as_array().unwrap().len() + 2,
+        positions.len()
+    );
 }
 
 #[test]
@@ -1180,15 +1205,31 @@ fn skeleton_bad_input_fails_cleanly() {
         "4 0 4\nv 0 0 0 1\nv 1 0 0 1\nv 0 1 0 1\nv 0 0 1 1\nf 0 2 1\nf 0 1 3\nf 1 2 3\nf 0 3 2\n",
     )
     .unwrap();
+    // A closed axis (a cavity's sheet) has no border to burn from: punctured, it
+    // thins to one point, but has no grassfire field to write.
     assert_fails(
-        &["skeleton", closed.to_str().unwrap(), "-o", o],
+        &[
+            "skeleton",
+            closed.to_str().unwrap(),
+            "-o",
+            o,
+            "--field",
+            ply.to_str().unwrap(),
+        ],
         &obj,
-        "no boundary",
+        "no grassfire field",
     );
-    // Curves alone are their own skeleton.
-    geotracks_ok(&["skeleton", curves, "-o", o]);
+    geotracks_ok(&["skeleton", closed.to_str().unwrap(), "-o", o]);
+    let (points, _) = read_obj_graph(&obj);
+    assert_eq!(points.len(), 1);
+    // Curves alone are their own skeleton, unpruned; pruned, they burn from their tips
+    // (at 7 % of the diagonal, a star of short branches burns to its longest path).
+    geotracks_ok(&["skeleton", curves, "--prune", "0", "-o", o]);
     let (points, lines) = read_obj_graph(&obj);
     assert_eq!((points.len(), lines.len()), (4, 3));
+    geotracks_ok(&["skeleton", curves, "--prune", "inf", "-o", o]);
+    let (points, _) = read_obj_graph(&obj);
+    assert_eq!(points.len(), 1);
 }
 
 /// Every command's `--help` ends with examples (and so does the tool's).

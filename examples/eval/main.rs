@@ -32,6 +32,16 @@
 //! cargo run --release --example eval -- ../shared/data --isolines 10 [--max-faces N]
 //! ```
 //!
+//! With `--skeletons [PRUNE_PERCENT]` it skeletonizes every `DATA_DIR/ma/*.ma`: cycles,
+//! components and tips at each pruning level against the axis's Betti numbers (exit 1 if
+//! they differ), the end-to-end time, and, where `DATA_DIR/skeleton/<name>.mcf.obj` has a
+//! mean-curvature-flow skeleton, the distances between the two (the README's Skeletons
+//! table; `--radius` burns by the medial radius):
+//!
+//! ```text
+//! cargo run --release --example eval -- ../shared/data --skeletons [7] [--k 5] [--radius]
+//! ```
+//!
 //! With `--engines` it measures each engine against every exact reference, with its time,
 //! work and memory (the wave engine's tables in the README's Accuracy section):
 //!
@@ -88,6 +98,7 @@ mod isolines;
 mod plot;
 #[path = "../shared_data/mod.rs"]
 mod shared_data;
+mod skeletons;
 use shared_data::{manifest, read_reference, relative_error, source_of, MeshEntry};
 
 fn main() {
@@ -96,6 +107,8 @@ fn main() {
         engines::child(&argv[2..])
     } else if argv.iter().any(|a| a == "--engines") {
         engines::main(&argv)
+    } else if let Some(at) = argv.iter().position(|a| a == "--skeletons") {
+        skeletons_main(&argv, at)
     } else {
         run()
     };
@@ -103,6 +116,34 @@ fn main() {
         eprintln!("error: {e}");
         std::process::exit(1);
     }
+}
+
+/// `eval DATA_DIR --skeletons [PRUNE_PERCENT] [--k K] [--radius]`.
+fn skeletons_main(argv: &[String], at: usize) -> Result<(), String> {
+    let data = argv
+        .get(1)
+        .filter(|a| !a.starts_with("--"))
+        .ok_or("usage: eval DATA_DIR --skeletons [PRUNE_PERCENT] [--k K]")?;
+    let prune = match argv.get(at + 1) {
+        Some(p) if !p.starts_with("--") => p
+            .trim_end_matches('%')
+            .parse()
+            .map_err(|_| format!("bad prune '{p}'"))?,
+        _ => geotracks::skeleton::DEFAULT_PRUNE_PERCENT,
+    };
+    let k = match argv.iter().position(|a| a == "--k") {
+        Some(i) => argv
+            .get(i + 1)
+            .and_then(|v| v.parse().ok())
+            .ok_or("--k takes a number")?,
+        None => 5.0,
+    };
+    let burn = if argv.iter().any(|a| a == "--radius") {
+        geotracks::skeleton::Burn::Radius
+    } else {
+        geotracks::skeleton::Burn::Boundary
+    };
+    skeletons::skeletons(std::path::Path::new(data), prune, k, burn)
 }
 
 struct Args {

@@ -1,9 +1,10 @@
 //! Triangle meshes of any topology: [`TriMesh`] (an edge table where an edge may have any
-//! number of faces; no half-edges), per-face local 2D frames, a [`MeshReport`], and the
+//! number of faces; no half-edges), per-face local 2D frames, a [`MeshReport`], [`Betti`] numbers over GF(2), and the
 //! file readers and writers in [`io`].
 
 mod csr;
 mod error;
+mod homology;
 pub mod io;
 mod order;
 mod report;
@@ -12,6 +13,8 @@ mod trimesh;
 
 pub use csr::Csr;
 pub use error::MeshError;
+pub use homology::{graph_betti_numbers, Betti};
+pub(crate) use homology::{unique_edges, wire_edges, CycleSheets};
 pub(crate) use order::morton_order;
 pub use report::{MeshReport, SurfaceReport};
 pub(crate) use sets::DisjointSets;

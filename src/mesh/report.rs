@@ -1,4 +1,4 @@
-use super::{DisjointSets, TriMesh};
+use super::{Betti, DisjointSets, TriMesh};
 use std::collections::HashMap;
 use std::fmt;
 
@@ -20,9 +20,10 @@ pub struct MeshReport {
     pub max_edge_valence: usize,
     /// Faces dropped as degenerate (zero area or a repeated vertex).
     pub degenerate_faces: usize,
-    /// Connected components of the faces (faces that share a vertex are connected).
+    /// Connected components of the faces and line elements together (faces that share
+    /// a vertex are connected, and so are the ends of a line element).
     pub components: usize,
-    /// Vertices that no kept face uses.
+    /// Vertices that no kept face and no line element uses.
     pub unreferenced_vertices: usize,
     /// Line elements (free edges) carried along, e.g. from a medial axis.
     pub line_edges: usize,
@@ -36,6 +37,9 @@ pub struct MeshReport {
     /// Euler characteristic χ = V − E + F of the faces (vertices that no face uses left
     /// out): the sum of the components' χ.
     pub euler_characteristic: i64,
+    /// Betti numbers over GF(2) of the faces and line elements together: components,
+    /// independent cycles (tunnels, loops), closed surfaces (cavities).
+    pub betti: Betti,
     /// One entry per connected component of the faces, largest (most faces) first.
     pub surfaces: Vec<SurfaceReport>,
 }
@@ -69,11 +73,56 @@ pub struct SurfaceReport {
 }
 
 impl MeshReport {
+    /// The report of a graph with no faces (a medial axis of curves only): its edges are
+    /// line elements.
+    pub(crate) fn of_curves(positions: &[[f64; 3]], edges: &[[u32; 2]]) -> MeshReport {
+        let mut used = vec![false; positions.len()];
+        for &[a, b] in edges {
+            used[a as usize] = true;
+            used[b as usize] = true;
+        }
+        let mut bounds = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
+        for p in positions {
+            for axis in 0..3 {
+                bounds[0][axis] = bounds[0][axis].min(p[axis]);
+                bounds[1][axis] = bounds[1][axis].max(p[axis]);
+            }
+        }
+        let betti = super::graph_betti_numbers(positions.len(), edges);
+        MeshReport {
+            vertices: positions.len(),
+            faces: 0,
+            edges: 0,
+            boundary_edges: 0,
+            non_manifold_edges: 0,
+            max_edge_valence: 0,
+            degenerate_faces: 0,
+            components: betti.b0,
+            unreferenced_vertices: used.iter().filter(|&&u| !u).count(),
+            line_edges: edges.len(),
+            duplicate_positions: 0,
+            bounding_box: bounds,
+            mean_edge_length: 0.0,
+            euler_characteristic: 0,
+            betti,
+            surfaces: Vec::new(),
+        }
+    }
+
     pub(super) fn of(mesh: &TriMesh) -> MeshReport {
         let valences = (0..mesh.edge_count() as u32).map(|e| mesh.edge_faces(e).len());
+        let mut on_lines = vec![false; mesh.vertex_count()];
+        for &[a, b] in mesh.line_edges() {
+            on_lines[a as usize] = true;
+            on_lines[b as usize] = true;
+        }
         let unreferenced_vertices = (0..mesh.vertex_count() as u32)
-            .filter(|&v| mesh.vertex_faces(v).is_empty())
+            .filter(|&v| mesh.vertex_faces(v).is_empty() && !on_lines[v as usize])
             .count();
+        let face_vertices = (0..mesh.vertex_count() as u32)
+            .filter(|&v| !mesh.vertex_faces(v).is_empty())
+            .count();
+        let betti = mesh.betti_numbers();
         MeshReport {
             vertices: mesh.vertex_count(),
             faces: mesh.face_count(),
@@ -82,15 +131,15 @@ impl MeshReport {
             non_manifold_edges: valences.clone().filter(|&n| n > 2).count(),
             max_edge_valence: valences.max().unwrap_or(0),
             degenerate_faces: mesh.dropped_faces().len(),
-            components: vertex_components(mesh).1 - unreferenced_vertices,
+            components: betti.b0,
             unreferenced_vertices,
             line_edges: mesh.line_edges().len(),
             duplicate_positions: duplicate_positions(mesh),
             bounding_box: bounding_box(mesh),
             mean_edge_length: mesh.mean_edge_length(),
-            euler_characteristic: (mesh.vertex_count() - unreferenced_vertices) as i64
-                - mesh.edge_count() as i64
+            euler_characteristic: face_vertices as i64 - mesh.edge_count() as i64
                 + mesh.face_count() as i64,
+            betti,
             surfaces: surfaces(mesh),
         }
     }
@@ -303,10 +352,15 @@ impl fmt::Display for MeshReport {
             lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]
         )?;
         writeln!(f, "mean edge length      {}", self.mean_edge_length)?;
-        write!(
+        writeln!(
             f,
             "Euler characteristic  {} (V - E + F of the faces)",
             self.euler_characteristic
+        )?;
+        write!(
+            f,
+            "Betti numbers         b0 {}, b1 {}, b2 {} (over GF(2): components, independent cycles, closed surfaces; faces and line elements)",
+            self.betti.b0, self.betti.b1, self.betti.b2
         )?;
         const SHOWN: usize = 10;
         for (i, s) in self.surfaces.iter().take(SHOWN).enumerate() {

@@ -1,6 +1,12 @@
-//! Skeletons of medial axes: burn the surface from its boundary ([`Grassfire`]), trace
-//! the ridges where fronts from far-apart boundary origins meet, join them with the
-//! medial axis's free edges into one graph ([`Skeleton`]) and prune short branches.
+//! Curve skeletons of medial axes, and of any surface with a boundary: burn the
+//! surface from its boundary ([`Grassfire`]), thin it in the order it burns without
+//! changing its topology, and keep the curves that stood long enough ([`Skeleton`]).
+//!
+//! The skeleton is homotopy equivalent to the surface with its line elements (one
+//! component per component, as many independent cycles as the surface's b₁, see
+//! [`TriMesh::betti_numbers`]) at every pruning threshold: thinning removes only
+//! simplices that a collapse may remove, and pruning removes only branches from their
+//! tips. How it works is in the `thinning` module's notes.
 //!
 //! ```
 //! use geotracks::{mesh::TriMesh, skeleton::Skeleton, Euclidean, Options};
@@ -23,30 +29,35 @@
 //! }
 //! let mesh = TriMesh::new(positions, triangles)?;
 //! let skeleton = Skeleton::extract(&mesh, &Euclidean, &Options::DEFAULT.with_k(4.0))?;
-//! // Drop what lies between boundary points less than 1.5 apart along the boundary:
-//! // the corner branches (at most the strip's width, 1).
-//! let core = skeleton.pruned(1.5);
-//! assert_eq!(core.component_count(), 1);
-//! // What is left runs along the strip's middle line.
-//! assert!(core.points.iter().all(|p| (p.position[1] - 0.5).abs() < 0.05));
-//! assert!(core.length() > 2.5 && core.length() < skeleton.length());
+//! // Keep the branches that stood on curves for at least 1 (the strip is 4 × 1): one
+//! // trunk from end to end, along the middle line away from the ends.
+//! let core = skeleton.pruned(1.0);
+//! assert_eq!((core.component_count(), core.cycle_count(), core.tip_count()), (1, 0, 2));
+//! let middle = core.points.iter().filter(|p| (0.75..3.25).contains(&p.position[0]));
+//! assert!(middle.clone().count() >= 10);
+//! assert!(middle.clone().all(|p| (p.position[1] - 0.5).abs() < 0.26));
+//! // At any threshold, one point is left of a disc.
+//! assert_eq!(skeleton.pruned(f64::INFINITY).points.len(), 1);
 //! # Ok::<(), geotracks::Error>(())
 //! ```
 
-mod boundary;
+mod geometry;
 mod grassfire;
-mod ridges;
+mod thinning;
 
-pub use grassfire::{radius_speed, Grassfire};
+pub use grassfire::Grassfire;
 
 use crate::mesh::io::MedialAxis;
-use crate::mesh::{DisjointSets, TriMesh, NONE};
-use crate::options::{Options, Stop};
-use crate::steiner::SteinerLayout;
-use crate::surface::{Source, SurfacePoint};
+use crate::mesh::{unique_edges, wire_edges, DisjointSets, TriMesh, NONE};
+use crate::options::Options;
+use crate::surface::SurfacePoint;
 use crate::{Error, Euclidean, GeodesicField, Metric};
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
+
+/// The pruning threshold the command line uses by default, in % of the bounding-box
+/// diagonal of what is skeletonized: branches whose erosion thickness is less go. It is
+/// chosen on the shared medial axes against mean-curvature-flow skeletons (README,
+/// Skeletons).
+pub const DEFAULT_PRUNE_PERCENT: f64 = 7.0;
 
 /// A point of a [`Skeleton`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -54,18 +65,21 @@ use std::collections::BinaryHeap;
 pub struct SkeletonPoint {
     /// World position.
     pub position: [f64; 3],
-    /// Where it lies on the surface (a vertex for the ends of free edges).
+    /// Where it lies on the surface: a vertex as thinning leaves it, a point in a face
+    /// once [`Skeleton::smoothed`].
     pub on: SurfacePoint,
-    /// How far apart, along the boundary, the two origins whose fronts meet here are
-    /// (metric length), or, for origins on two boundary curves that no walk along the
-    /// boundary joins, their straight distance; `inf` for points of free edges, and for
-    /// the one point of a surface where no ridge was found; bridge points take the
-    /// smaller of their ends'. [`Skeleton::pruned`] removes points below a threshold.
+    /// How long (in the metric's length) the point stood on curves before the fire
+    /// burnt it from a tip: the erosion thickness of the branch there. It grows from a
+    /// branch's tip inwards; `inf` for points that never burn (the loops that carry the
+    /// surface's cycles, and one point per component that burns away entirely).
+    /// [`Skeleton::pruned`] keeps the points at or above a threshold.
     pub significance: f64,
+    /// The medial ball's radius there, once [`Skeleton::with_radii`] gave them.
+    pub radius: Option<f64>,
 }
 
-/// A skeleton: a graph of points on a surface (and on its free edges), with straight
-/// edges that each lie in one face or along one free edge.
+/// A curve skeleton: a graph of points on a surface (and on its line elements), with
+/// straight edges.
 #[derive(Clone, Debug, Default, PartialEq)]
 #[non_exhaustive]
 pub struct Skeleton {
@@ -73,148 +87,168 @@ pub struct Skeleton {
     pub points: Vec<SkeletonPoint>,
     /// Its edges, as pairs of indices into `points`.
     pub edges: Vec<[u32; 2]>,
-    /// Components of the surface that have no boundary, so no grassfire and no
-    /// skeleton (a closed sheet, say).
-    pub closed_components: usize,
+    /// Faces that thinning had to remove without a free edge: one per closed sheet (a
+    /// 2-cycle, which a graph cannot carry), and one per extra cycle below.
+    pub punctured_faces: usize,
+    /// Cycles the skeleton has that the surface does not: parts that are contractible
+    /// but cannot be collapsed (Bing's house); 0 on every medial axis we know of.
+    pub added_cycles: usize,
 }
 
 impl Skeleton {
-    /// The unpruned skeleton of `mesh` burnt from its boundary under `metric`, joined
-    /// with the mesh's line elements (free edges); see [`Skeleton::from_grassfire`].
+    /// The unpruned skeleton of `mesh` (its faces and line elements) thinned in the
+    /// order of its grassfire from the boundary under `metric`
+    /// ([`Skeleton::from_grassfire`]); a surface without a boundary (a closed sheet) is
+    /// punctured and burnt from there.
     ///
     /// # Errors
-    /// As [`Grassfire::burn`].
+    /// As [`Grassfire::burn`], except that no boundary is not an error.
     pub fn extract<M: Metric>(
         mesh: &TriMesh,
         metric: &M,
         options: &Options,
     ) -> Result<Skeleton, Error> {
-        let fire = Grassfire::burn(mesh, metric, options)?;
-        Skeleton::from_grassfire(&fire)
+        match Grassfire::burn(mesh, metric, options) {
+            Ok(fire) => Ok(Skeleton::from_grassfire(&fire)),
+            Err(Error::NoBoundary) => Ok(Skeleton::from_reach(
+                mesh,
+                metric,
+                &vec![f64::INFINITY; mesh.vertex_count()],
+            )),
+            Err(e) => Err(e),
+        }
     }
 
-    /// The unpruned skeleton from a grassfire already burnt (on its mesh, under its
-    /// metric and Steiner points):
-    /// - the ridges: crossings on edges where fronts from origins far apart along the
-    ///   boundary meet head-on, joined across each face;
-    /// - the mesh's line elements (a medial axis's free edges), whole;
-    /// - bridges: where this graph falls into pieces on one connected surface (a ridge
-    ///   too weak to see, or a free edge hanging off a sheet), the pieces are joined by
-    ///   shortest paths on the surface, cheapest first (a spanning tree of the
-    ///   pieces), so each connected surface gives one connected skeleton. A connected
-    ///   surface on which no ridge is found still gets one point: where the fire burnt
-    ///   last.
-    ///
-    /// The bridges' distance field is computed by the fire's solver.
-    ///
-    /// # Errors
-    /// As [`Solver::solve_from`](crate::Solver::solve_from), for the bridges.
-    pub fn from_grassfire<M: Metric>(fire: &Grassfire<'_, M>) -> Result<Skeleton, Error> {
-        let (mesh, metric) = (fire.solver().mesh(), fire.solver().metric());
-        let mut skeleton = ridges::ridges(mesh, metric, fire);
-        skeleton.drop_isolated();
-        skeleton.add_free_edges(mesh, mesh.line_edges());
-        let (component, count) = mesh.vertex_components();
-        let mut burnt = vec![false; count];
-        let mut last = vec![(f64::NEG_INFINITY, NONE); count];
-        let distances = fire.field().vertex_distances();
-        for (v, &d) in distances.iter().enumerate() {
-            let c = component[v] as usize;
-            if d.is_finite() && !mesh.vertex_faces(v as u32).is_empty() {
-                burnt[c] = true;
-                if d > last[c].0 {
-                    last[c] = (d, v as u32);
-                }
-            }
-        }
-        // Surfaces without any ridge point get their last-burnt vertex.
-        let mut has_point = vec![false; count];
-        for point in &skeleton.points {
-            if let Some(v) = any_vertex(mesh, point.on) {
-                has_point[component[v as usize] as usize] = true;
-            }
-        }
-        for c in 0..count {
-            if burnt[c] && !has_point[c] {
-                skeleton.push(mesh, SurfacePoint::Vertex(last[c].1), f64::INFINITY);
-            }
-        }
-        let mut has_faces = vec![false; count];
-        for t in mesh.triangles() {
-            has_faces[component[t[0] as usize] as usize] = true;
-        }
-        skeleton.closed_components = (0..count).filter(|&c| !burnt[c] && has_faces[c]).count();
-        skeleton.bridge(fire.solver())?;
-        Ok(skeleton)
+    /// The unpruned skeleton of a grassfire's surface, each vertex reached when the
+    /// grassfire reaches it: [`Skeleton::from_reach`] with its vertex distances, under
+    /// its metric.
+    pub fn from_grassfire<M: Metric>(fire: &Grassfire<'_, M>) -> Skeleton {
+        let solver = fire.solver();
+        Skeleton::from_reach(
+            solver.mesh(),
+            solver.metric(),
+            fire.field().vertex_distances(),
+        )
     }
 
-    /// The skeleton of a medial axis of curves only: its free edges.
-    pub fn from_curves(positions: &[[f64; 3]], free_edges: &[[u32; 2]]) -> Skeleton {
-        let mut skeleton = Skeleton::default();
-        let mut node_of = vec![NONE; positions.len()];
-        for &[a, b] in free_edges {
-            let mut node = |v: u32| {
-                if node_of[v as usize] == NONE {
-                    node_of[v as usize] = skeleton.points.len() as u32;
-                    skeleton.points.push(SkeletonPoint {
-                        position: positions[v as usize],
-                        on: SurfacePoint::Vertex(v),
-                        significance: f64::INFINITY,
-                    });
-                }
-                node_of[v as usize]
-            };
-            let edge = [node(a), node(b)];
-            skeleton.edges.push(edge);
-        }
-        skeleton
+    /// The unpruned skeleton of `mesh`'s faces and line elements, thinned by the
+    /// extended grassfire: each vertex may burn from its `reach` time on (a medial axis's
+    /// radii, a grassfire's distances, or any function whose ridges the skeleton should
+    /// follow; `inf` where no fire comes), the fire then moving at `metric`'s speed
+    /// (along line elements, at their Euclidean length). Every vertex of a face or line
+    /// element is a point; the edges are every curve thinning left on the way, and each
+    /// point's significance is its erosion thickness.
+    ///
+    /// # Panics
+    /// If `reach` does not have one value per vertex.
+    pub fn from_reach<M: Metric>(mesh: &TriMesh, metric: &M, reach: &[f64]) -> Skeleton {
+        assert_eq!(
+            reach.len(),
+            mesh.vertex_count(),
+            "one reach time per vertex"
+        );
+        let wires = wire_edges(mesh);
+        let lengths = edge_costs(mesh, metric, &wires);
+        // Crossing a face from an edge: from the edge's middle to the opposite corner.
+        let cross = |f: u32, e: u32| {
+            let [a, b] = mesh.edge_vertices(e);
+            let corner = mesh
+                .face_vertices(f)
+                .into_iter()
+                .find(|&v| v != a && v != b);
+            let middle = SurfacePoint::Edge { edge: e, t: 0.5 }.in_face(mesh, f);
+            match (
+                corner.and_then(|c| SurfacePoint::Vertex(c).in_face(mesh, f)),
+                middle,
+            ) {
+                (Some(c), Some(m)) => metric.cost(f, &m, &c),
+                _ => 0.0,
+            }
+        };
+        let thinning = thinning::thin(
+            Some(mesh),
+            mesh.vertex_count(),
+            &wires,
+            reach,
+            |e| lengths[e as usize],
+            cross,
+        );
+        let positions: Vec<[f64; 3]> = mesh.positions().iter().map(|p| p.to_array()).collect();
+        Skeleton::from_thinning(&positions, thinning)
     }
 
-    /// The skeleton with its points of significance below `threshold` removed, least
-    /// significant first, as long as removing one does not cut its piece of the graph
-    /// apart: branches shrink from their tips, small loops left by the discretisation
-    /// open up, and each component keeps at least one point.
-    /// `threshold` ≤ 0 removes nothing.
+    /// The unpruned skeleton of a graph (a medial axis of curves only), burnt from its
+    /// tips along the edges at their Euclidean length, each vertex from its `reach` on
+    /// (its medial radius; `None`: 0, so a point's significance is the length of the
+    /// branch burnt into it).
     ///
-    /// A loop whose points are all below the threshold opens (a ridge around a small
-    /// hole); it shrinks like a branch from there. Whether a point cuts the graph is checked near it (its neighbours must stay
-    /// joined within [`Skeleton::LOCAL_HOPS`] hops), so a point on a long loop of low
-    /// significance stays.
-    pub fn pruned(&self, threshold: f64) -> Skeleton {
-        let n = self.points.len();
-        let neighbours = self.adjacency();
-        let (component, count) = self.components();
-        let mut left_in = vec![0usize; count];
-        for &c in &component {
-            left_in[c as usize] += 1;
-        }
-        let mut removed = vec![false; n];
-        let mut search = LocalSearch::new(n);
-        let mut queue = BinaryHeap::new();
-        let weak = |i: usize| self.points[i].significance < threshold;
-        for i in (0..n).filter(|&i| weak(i)) {
-            queue.push(Reverse((Ordered(self.points[i].significance), i as u32)));
-        }
-        while let Some(Reverse((_, i))) = queue.pop() {
-            let i = i as usize;
-            let c = component[i] as usize;
-            if removed[i] || left_in[c] == 1 || !search.removable(i as u32, &neighbours, &removed) {
+    /// # Panics
+    /// If `reach` is given without one value per position.
+    pub fn from_curves(
+        positions: &[[f64; 3]],
+        free_edges: &[[u32; 2]],
+        reach: Option<&[f64]>,
+    ) -> Skeleton {
+        let edges = unique_edges(free_edges);
+        let length = |e: u32| {
+            let [a, b] = edges[e as usize];
+            glam::DVec3::from(positions[a as usize]).distance(positions[b as usize].into())
+        };
+        let zeros = vec![0.0; positions.len()];
+        let reach = reach.unwrap_or(&zeros);
+        assert_eq!(reach.len(), positions.len(), "one reach time per vertex");
+        let thinning = thinning::thin(None, positions.len(), &edges, reach, length, |_, _| 0.0);
+        Skeleton::from_thinning(positions, thinning)
+    }
+
+    fn from_thinning(positions: &[[f64; 3]], thinning: thinning::Thinning) -> Skeleton {
+        let mut point_of = vec![NONE; positions.len()];
+        let mut points = Vec::new();
+        for (v, &significance) in thinning.significance.iter().enumerate() {
+            if significance.is_nan() {
                 continue;
             }
-            removed[i] = true;
-            left_in[c] -= 1;
-            // A neighbour that was kept to hold the graph together may be free now.
-            for &j in &neighbours[i] {
-                if !removed[j as usize] && weak(j as usize) {
-                    queue.push(Reverse((Ordered(self.points[j as usize].significance), j)));
-                }
-            }
+            point_of[v] = points.len() as u32;
+            points.push(SkeletonPoint {
+                position: positions[v],
+                on: SurfacePoint::Vertex(v as u32),
+                significance,
+                radius: None,
+            });
         }
-        self.keep(|i| !removed[i])
+        let edges = thinning
+            .curves
+            .iter()
+            .map(|&[a, b]| [point_of[a as usize], point_of[b as usize]])
+            .collect();
+        Skeleton {
+            points,
+            edges,
+            punctured_faces: thinning.punctured,
+            added_cycles: thinning.opened,
+        }
     }
 
-    /// How far [`Skeleton::pruned`] looks for another way between a point's neighbours.
-    pub const LOCAL_HOPS: u32 = 24;
+    /// The skeleton with the points of significance below `threshold` removed (and their
+    /// edges). Significance never decreases from a tip inwards, so branches shrink from
+    /// their tips as the threshold rises, loops never open, and each component keeps at
+    /// least one point: at `f64::INFINITY`, what never burns (one point of a
+    /// contractible surface). `threshold` ≤ 0 removes nothing.
+    pub fn pruned(&self, threshold: f64) -> Skeleton {
+        // A NaN threshold removes nothing, as 0 does.
+        let threshold = if threshold.is_nan() { 0.0 } else { threshold };
+        self.keep(|i| self.points[i].significance >= threshold)
+    }
+
+    /// Independent cycles of the graph: edges − points + components.
+    pub fn cycle_count(&self) -> usize {
+        unique_edges(&self.edges).len() + self.component_count() - self.points.len()
+    }
+
+    /// Points with exactly one edge (branch tips).
+    pub fn tip_count(&self) -> usize {
+        self.adjacency().iter().filter(|n| n.len() == 1).count()
+    }
 
     /// The graph cut into polylines (point indices) between points whose degree is not
     /// 2; a cycle of degree-2 points is one closed polyline (first point repeated last).
@@ -337,189 +371,102 @@ impl Skeleton {
         Skeleton {
             points,
             edges,
-            closed_components: self.closed_components,
+            ..*self
         }
-    }
-
-    /// Drops points without any edge (a ridge seen on one edge only).
-    fn drop_isolated(&mut self) {
-        let mut touched = vec![false; self.points.len()];
-        for &[a, b] in &self.edges {
-            touched[a as usize] = true;
-            touched[b as usize] = true;
-        }
-        *self = self.keep(|i| touched[i]);
-    }
-
-    fn push(&mut self, mesh: &TriMesh, on: SurfacePoint, significance: f64) -> u32 {
-        self.points.push(SkeletonPoint {
-            position: on.position(mesh).to_array(),
-            on,
-            significance,
-        });
-        self.points.len() as u32 - 1
-    }
-
-    fn add_free_edges(&mut self, mesh: &TriMesh, free_edges: &[[u32; 2]]) {
-        let positions: Vec<[f64; 3]> = mesh.positions().iter().map(|p| p.to_array()).collect();
-        let curves = Skeleton::from_curves(&positions, free_edges);
-        let offset = self.points.len() as u32;
-        self.points.extend(curves.points);
-        self.edges
-            .extend(curves.edges.iter().map(|&[a, b]| [a + offset, b + offset]));
-    }
-
-    /// Joins the pieces of the graph that lie on one connected surface by shortest
-    /// paths, cheapest first.
-    fn bridge<M: Metric>(&mut self, solver: &crate::Solver<'_, M>) -> Result<(), Error> {
-        let (mesh, metric) = (solver.mesh(), solver.metric());
-        let (piece, _) = self.components();
-        let (surface, _) = mesh.vertex_components();
-        // A piece may touch several surfaces (through free edges): count each pair once.
-        let mut touching: Vec<(u32, u32)> = self
-            .points
-            .iter()
-            .enumerate()
-            .filter_map(|(i, p)| any_vertex(mesh, p.on).map(|v| (surface[v as usize], piece[i])))
-            .collect();
-        touching.sort_unstable();
-        touching.dedup();
-        if touching.windows(2).all(|w| w[0].0 != w[1].0) {
-            return Ok(());
-        }
-        // A distance field from every point of the graph that lies on a face.
-        let on_faces: Vec<u32> = (0..self.points.len() as u32)
-            .filter(|&i| !self.points[i as usize].on.faces(mesh).is_empty())
-            .collect();
-        let sources: Vec<Source> = on_faces
-            .iter()
-            .map(|&i| Source::new(self.points[i as usize].on))
-            .collect();
-        let field = solver.solve_from(&sources, &Stop::NONE)?;
-        let query = solver.query(&field)?;
-        let labels = query.node_labels();
-        let layout = field.layout();
-        let distances = field.node_distances();
-        // Neighbouring nodes along an edge from two different pieces: a candidate bridge.
-        let mut candidates = Vec::new();
-        for e in 0..mesh.edge_count() as u32 {
-            for pair in edge_sequence(mesh, layout, e).windows(2) {
-                let (p, q) = (pair[0], pair[1]);
-                let (lp, lq) = (labels[p as usize], labels[q as usize]);
-                if lp == NONE || lq == NONE {
-                    continue;
-                }
-                let (a, b) = (on_faces[lp as usize], on_faces[lq as usize]);
-                if piece[a as usize] == piece[b as usize] {
-                    continue;
-                }
-                let step = cost_along(mesh, layout, metric, e, p, q);
-                let cost = distances[p as usize] + step + distances[q as usize];
-                if cost.is_finite() {
-                    candidates.push((Ordered(cost), p, q));
-                }
-            }
-        }
-        candidates.sort_unstable_by_key(|c| c.0);
-        let mut sets = DisjointSets::new(self.points.len());
-        for &[a, b] in &self.edges {
-            sets.join(a, b);
-        }
-        for (_, p, q) in candidates {
-            let (a, b) = (
-                on_faces[labels[p as usize] as usize],
-                on_faces[labels[q as usize] as usize],
-            );
-            if !sets.join(a, b) {
-                continue;
-            }
-            // Paths end at the sources their labels name: a and b.
-            let from_p = query.path(layout.surface_point(p))?;
-            let from_q = query.path(layout.surface_point(q))?;
-            let significance = self.points[a as usize]
-                .significance
-                .min(self.points[b as usize].significance);
-            // a ← … ← p — q → … → b; the paths end at their sources, which are a and b.
-            let mut chain = vec![a];
-            for &point in from_p.points[..from_p.points.len() - 1].iter().rev() {
-                chain.push(self.push(mesh, point, significance));
-            }
-            for &point in &from_q.points[..from_q.points.len() - 1] {
-                chain.push(self.push(mesh, point, significance));
-            }
-            chain.push(b);
-            self.edges.extend(chain.windows(2).map(|w| [w[0], w[1]]));
-        }
-        Ok(())
     }
 }
 
-/// The skeleton of a medial axis read from a `.ma` file, with `prune` as in
-/// [`Skeleton::pruned`]: its sheets burnt from their boundary (with a
-/// [`radius_speed`] density when `radius_aware`, else Euclidean) and joined with its
-/// free edges; for a medial axis of curves only, its free edges. Also returns the
-/// grassfire's distance field, if there were sheets.
+/// Per edge of the complex (the mesh's edges, then `wires`), what a tip pays to burn
+/// along it: `metric`'s cost between its ends in the cheapest face around it, or the
+/// Euclidean length of a wire.
+fn edge_costs<M: Metric>(mesh: &TriMesh, metric: &M, wires: &[[u32; 2]]) -> Vec<f64> {
+    let mut costs: Vec<f64> = (0..mesh.edge_count() as u32)
+        .map(|e| {
+            let [a, b] = mesh.edge_vertices(e).map(SurfacePoint::Vertex);
+            mesh.edge_faces(e)
+                .iter()
+                .filter_map(|&g| Some(metric.cost(g, &a.in_face(mesh, g)?, &b.in_face(mesh, g)?)))
+                .fold(f64::INFINITY, f64::min)
+        })
+        .collect();
+    costs.extend(
+        wires
+            .iter()
+            .map(|&[a, b]| mesh.position(a).distance(mesh.position(b))),
+    );
+    costs
+}
+
+/// What decides when each point of a medial axis may burn.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Burn {
+    /// Its grassfire distance from the axis's own border, on the sheets (geodesic, by
+    /// the engine of the [`Options`]): the curves follow the middle of each sheet. The
+    /// default: the closest to mean-curvature-flow skeletons on the shared axes.
+    #[default]
+    Boundary,
+    /// Its medial radius: the time eroding the shape from its surface takes to reach
+    /// the ball's centre (as in erosion thickness, Yan et al. 2016). Sheets are eaten
+    /// from where the shape is thin, and the curves left follow the ridges of the
+    /// radius, through the largest balls; smoother and four times faster (no
+    /// propagation), but it drops thin flat parts (ears) sooner.
+    Radius,
+}
+
+/// The skeleton of a medial axis read from a `.ma` file, ready to use:
+/// [`Skeleton::of_medial_axis`] pruned at `prune` (a length, see
+/// [`Skeleton::pruned`]), smoothed on the axis ([`Skeleton::smoothed`] with
+/// [`Skeleton::SMOOTHING`] rounds) and given the medial radii. Also returns the
+/// grassfire's distance field for [`Burn::Boundary`] on an axis with sheets and a
+/// border.
 ///
 /// # Errors
-/// As [`Skeleton::extract`]; [`Error::Metric`] if a radius is unusable for the
-/// radius-aware speed.
+/// As [`Skeleton::of_medial_axis`].
 pub fn medial_axis_skeleton(
     axis: &MedialAxis,
-    radius_aware: bool,
+    burn: Burn,
     options: &Options,
     prune: f64,
 ) -> Result<(Skeleton, Option<GeodesicField>), Error> {
-    let Some(mesh) = &axis.surface else {
-        let skeleton = Skeleton::from_curves(&axis.positions, &axis.free_edges);
-        return Ok((skeleton.pruned(prune), None));
+    let (skeleton, field) = Skeleton::of_medial_axis(axis, burn, options)?;
+    let skeleton = skeleton.pruned(prune);
+    let skeleton = match &axis.surface {
+        Some(mesh) => skeleton.smoothed(mesh, Skeleton::SMOOTHING),
+        None => skeleton,
     };
-    let (skeleton, field) = if radius_aware {
-        let fire = Grassfire::burn(mesh, radius_speed(mesh, &axis.radii)?, options)?;
-        (Skeleton::from_grassfire(&fire)?, fire.into_field())
-    } else {
-        let fire = Grassfire::burn(mesh, Euclidean, options)?;
-        (Skeleton::from_grassfire(&fire)?, fire.into_field())
-    };
-    Ok((skeleton.pruned(prune), Some(field)))
+    Ok((
+        skeleton.with_radii(axis.surface.as_ref(), &axis.radii),
+        field,
+    ))
 }
 
-/// The nodes along edge `e` from its lower vertex to its higher one.
-fn edge_sequence(mesh: &TriMesh, layout: &SteinerLayout, e: u32) -> Vec<u32> {
-    let [lo, hi] = mesh.edge_vertices(e);
-    std::iter::once(lo)
-        .chain(layout.edge_nodes(e))
-        .chain(std::iter::once(hi))
-        .collect()
-}
-
-/// The cost between neighbouring nodes `p` and `q` of edge `e`, in the cheapest face
-/// around it, as the engines charge a step along an edge.
-fn cost_along<M: Metric>(
-    mesh: &TriMesh,
-    layout: &SteinerLayout,
-    metric: &M,
-    e: u32,
-    p: u32,
-    q: u32,
-) -> f64 {
-    mesh.edge_faces(e)
-        .iter()
-        .map(|&g| {
-            metric.cost(
-                g,
-                &layout.point_in_face(mesh, p, g),
-                &layout.point_in_face(mesh, q, g),
-            )
+impl Skeleton {
+    /// The unpruned skeleton of a medial axis: its sheets and free edges thinned by the
+    /// fire `burn` chooses ([`Skeleton::from_reach`], or [`Skeleton::from_curves`] for
+    /// an axis of curves only). Also returns the grassfire's distance field for
+    /// [`Burn::Boundary`] on an axis with sheets and a border.
+    ///
+    /// # Errors
+    /// As [`Skeleton::extract`] for [`Burn::Boundary`]; none otherwise.
+    pub fn of_medial_axis(
+        axis: &MedialAxis,
+        burn: Burn,
+        options: &Options,
+    ) -> Result<(Skeleton, Option<GeodesicField>), Error> {
+        let Some(mesh) = &axis.surface else {
+            let reach = matches!(burn, Burn::Radius).then_some(axis.radii.as_slice());
+            let skeleton = Skeleton::from_curves(&axis.positions, &axis.free_edges, reach);
+            return Ok((skeleton, None));
+        };
+        Ok(match burn {
+            Burn::Radius => (Skeleton::from_reach(mesh, &Euclidean, &axis.radii), None),
+            Burn::Boundary => match Grassfire::burn(mesh, Euclidean, options) {
+                Ok(fire) => (Skeleton::from_grassfire(&fire), Some(fire.into_field())),
+                Err(Error::NoBoundary) => (Skeleton::extract(mesh, &Euclidean, options)?, None),
+                Err(e) => return Err(e),
+            },
         })
-        .fold(f64::INFINITY, f64::min)
-}
-
-/// A vertex of the face, edge or vertex `on` lies on.
-fn any_vertex(mesh: &TriMesh, on: SurfacePoint) -> Option<u32> {
-    match on {
-        SurfacePoint::Vertex(v) => Some(v),
-        SurfacePoint::Edge { edge, .. } => Some(mesh.edge_vertices(edge)[0]),
-        SurfacePoint::Face { face, .. } => Some(mesh.face_vertices(face)[0]),
     }
 }
 
@@ -538,57 +485,5 @@ impl PartialOrd for Ordered {
 impl Ord for Ordered {
     fn cmp(&self, other: &Self) -> std::cmp::Ordering {
         self.0.total_cmp(&other.0)
-    }
-}
-
-/// A breadth-first search limited to [`Skeleton::LOCAL_HOPS`] hops, reusing its
-/// buffers between calls.
-struct LocalSearch {
-    /// The call that last reached each point.
-    seen: Vec<u32>,
-    call: u32,
-    frontier: Vec<(u32, u32)>,
-}
-
-impl LocalSearch {
-    fn new(n: usize) -> LocalSearch {
-        LocalSearch {
-            seen: vec![0; n],
-            call: 0,
-            frontier: Vec::new(),
-        }
-    }
-
-    /// Can point `i` go without cutting its neighbours apart (near `i`)?
-    fn removable(&mut self, i: u32, neighbours: &[Vec<u32>], removed: &[bool]) -> bool {
-        let around: Vec<u32> = neighbours[i as usize]
-            .iter()
-            .copied()
-            .filter(|&j| !removed[j as usize])
-            .collect();
-        if around.len() <= 1 {
-            return true;
-        }
-        self.call += 1;
-        let call = self.call;
-        self.seen[i as usize] = call;
-        self.seen[around[0] as usize] = call;
-        self.frontier.clear();
-        self.frontier.push((around[0], 0));
-        let mut at = 0;
-        while at < self.frontier.len() {
-            let (u, hops) = self.frontier[at];
-            at += 1;
-            if hops == Skeleton::LOCAL_HOPS {
-                continue;
-            }
-            for &v in &neighbours[u as usize] {
-                if !removed[v as usize] && self.seen[v as usize] != call {
-                    self.seen[v as usize] = call;
-                    self.frontier.push((v, hops + 1));
-                }
-            }
-        }
-        around.iter().all(|&j| self.seen[j as usize] == call)
     }
 }

@@ -776,3 +776,26 @@ fn strip(
     assert_embedded(&unrolled, &triangles);
     (TriMesh::new(positions, triangles).unwrap(), unrolled)
 }
+
+/// A closed torus around the z axis: `around` × `across` quads (radii `big` and
+/// `small`), each split in two.
+pub fn torus(around: usize, across: usize, big: f64, small: f64) -> TriMesh {
+    let mut positions = Vec::new();
+    for i in 0..around {
+        let u = std::f64::consts::TAU * i as f64 / around as f64;
+        for j in 0..across {
+            let v = std::f64::consts::TAU * j as f64 / across as f64;
+            let r = big + small * v.cos();
+            positions.push([r * u.cos(), r * u.sin(), small * v.sin()]);
+        }
+    }
+    let id = |i: usize, j: usize| ((i % around) * across + j % across) as u32;
+    let mut triangles = Vec::new();
+    for i in 0..around {
+        for j in 0..across {
+            triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+            triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    TriMesh::new(positions, triangles).unwrap()
+}

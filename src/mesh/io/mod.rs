@@ -59,6 +59,27 @@ pub struct MedialAxis {
     pub radii: Vec<f64>,
 }
 
+impl MedialAxis {
+    /// What the axis is made of ([`TriMesh::report`] of its sheets and free edges, or,
+    /// for an axis of curves only, the same report with no faces), with its Betti
+    /// numbers over GF(2).
+    pub fn report(&self) -> super::MeshReport {
+        match &self.surface {
+            Some(mesh) => mesh.report(),
+            None => super::MeshReport::of_curves(&self.positions, &self.free_edges),
+        }
+    }
+
+    /// Betti numbers over GF(2) of the sheets and free edges together: what a skeleton
+    /// of the axis keeps (components b₀, independent cycles b₁).
+    pub fn betti_numbers(&self) -> super::Betti {
+        match &self.surface {
+            Some(mesh) => mesh.betti_numbers(),
+            None => super::graph_betti_numbers(self.positions.len(), &self.free_edges),
+        }
+    }
+}
+
 /// The extensions [`read_mesh`] knows, for [`MeshError::UnknownFormat`].
 const READABLE: &str = "obj, ply, off, stl, ma";
 

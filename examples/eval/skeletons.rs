@@ -1,0 +1,227 @@
+//! Skeletons of the shared medial axes (`--skeletons`): topology at every pruning level
+//! against the axis's Betti numbers, and, where `skeleton/<name>.mcf.obj` holds a
+//! mean-curvature-flow skeleton of the same shape, the distances between the two curves
+//! (the README's Skeletons table).
+
+use geotracks::mesh::io::read_medial_axis;
+use geotracks::skeleton::{medial_axis_skeleton, Burn, Skeleton};
+use geotracks::{Method, Options};
+use glam::DVec3;
+use std::path::Path;
+use std::time::Instant;
+
+/// Pruning levels, in % of the axis's bounding-box diagonal.
+const LEVELS: [f64; 8] = [0.0, 0.5, 1.0, 2.0, 3.0, 5.0, 10.0, f64::INFINITY];
+
+pub fn skeletons(data: &Path, prune_percent: f64, k: f64, burn: Burn) -> Result<(), String> {
+    let dir = data.join("ma");
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .map_err(|e| format!("{}: {e}", dir.display()))?
+        .filter_map(|entry| {
+            let path = entry.ok()?.path();
+            (path.extension()? == "ma").then(|| path.file_stem()?.to_str().map(String::from))?
+        })
+        .collect();
+    names.sort();
+    let options = Options::DEFAULT.with_k(k).with_method(Method::Tracks);
+    println!("Topology: independent cycles of the skeleton (E − V + C) / components / tips at each --prune level (% of the diagonal), against the axis's b1 / b0 over GF(2).\n");
+    let mut header = String::from("| axis | faces | b0 | b1 |");
+    let mut rule = String::from("|---|---:|---:|---:|");
+    for level in LEVELS {
+        header += &format!(
+            " {} |",
+            if level.is_finite() {
+                format!("{level} %")
+            } else {
+                "∞".into()
+            }
+        );
+        rule += "---:|";
+    }
+    println!("{header} end to end |\n{rule}---:|");
+    let mut failures = Vec::new();
+    let mut comparisons = Vec::new();
+    for name in &names {
+        let path = dir.join(format!("{name}.ma"));
+        let start = Instant::now();
+        let axis = read_medial_axis(&path).map_err(|e| e.to_string())?;
+        let diagonal = diagonal(&axis.positions);
+        let (at_default, _) =
+            medial_axis_skeleton(&axis, burn, &options, prune_percent / 100.0 * diagonal)
+                .map_err(|e| e.to_string())?;
+        let seconds = start.elapsed().as_secs_f64();
+        let betti = axis.betti_numbers();
+        let (full, _) =
+            Skeleton::of_medial_axis(&axis, burn, &options).map_err(|e| e.to_string())?;
+        let faces = axis.surface.as_ref().map_or(0, |m| m.face_count());
+        let mut row = format!("| {name} | {faces} | {} | {} |", betti.b0, betti.b1);
+        for level in LEVELS {
+            let pruned = full.pruned(level / 100.0 * diagonal);
+            let (cycles, components) = (pruned.cycle_count(), pruned.component_count());
+            row += &format!(" {cycles} / {components} / {} |", pruned.tip_count());
+            if cycles != betti.b1 + full.added_cycles || components != betti.b0 {
+                failures.push(format!(
+                    "{name} at {level} %: {cycles} cycles, {components} components"
+                ));
+            }
+        }
+        println!("{row} {seconds:.3} s |");
+        let reference = data.join("skeleton").join(format!("{name}.mcf.obj"));
+        if reference.exists() {
+            // How far the reference itself lies from the axis: no skeleton on the axis can
+            // come closer to it than that.
+            let reference = read_polylines(&reference)?;
+            let floor = axis.surface.as_ref().map(|mesh| {
+                let gaps: Vec<f64> = sample(&reference.segments, 0.002 * diagonal)
+                    .iter()
+                    .map(|&p| {
+                        geotracks::SurfacePoint::nearest(mesh, p.to_array())
+                            .map_or(f64::INFINITY, |q| q.position(mesh).distance(p))
+                    })
+                    .collect();
+                gaps.iter().sum::<f64>() / gaps.len().max(1) as f64
+            });
+            comparisons.push((name.clone(), at_default, reference, diagonal, floor));
+        }
+    }
+    println!("\nAgainst CGAL's mean-curvature-flow skeleton of the shape, at --prune {prune_percent} %: both sampled every 0.2 % of the diagonal; distances in % of the diagonal.\n");
+    println!("| axis | reference → ours mean / max | ours → reference mean / max | tips ours / reference | junctions ours / reference | length ours / reference | reference → axis mean |");
+    println!("|---|---:|---:|---:|---:|---:|---:|");
+    for (name, ours, reference, diagonal, floor) in comparisons {
+        let ours_segments = segments_of(&ours.polyline_positions());
+        let step = 0.002 * diagonal;
+        let (to_ours_mean, to_ours_max) =
+            spread(&sample(&reference.segments, step), &ours_segments);
+        let (to_ref_mean, to_ref_max) = spread(&sample(&ours_segments, step), &reference.segments);
+        let pct = |x: f64| 100.0 * x / diagonal;
+        let junctions = ours.points.len() - ours.tip_count() - degree_two(&ours);
+        println!(
+            "| {name} | {:.2} % / {:.2} % | {:.2} % / {:.2} % | {} / {} | {} / {} | {:.1} / {:.1} | {} |",
+            pct(to_ours_mean),
+            pct(to_ours_max),
+            pct(to_ref_mean),
+            pct(to_ref_max),
+            ours.tip_count(),
+            reference.tips,
+            junctions,
+            reference.junctions,
+            ours.length(),
+            reference.segments.iter().map(|(a, b)| a.distance(*b)).sum::<f64>(),
+            floor.map_or("–".into(), |f| format!("{:.2} %", pct(f)))
+        );
+    }
+    if !failures.is_empty() {
+        return Err(format!(
+            "skeleton topology differs from the axis's: {}",
+            failures.join("; ")
+        ));
+    }
+    Ok(())
+}
+
+fn degree_two(skeleton: &Skeleton) -> usize {
+    let mut degree = vec![0usize; skeleton.points.len()];
+    for &[a, b] in &skeleton.edges {
+        degree[a as usize] += 1;
+        degree[b as usize] += 1;
+    }
+    degree.iter().filter(|&&d| d == 2 || d == 0).count()
+}
+
+struct Polylines {
+    segments: Vec<(DVec3, DVec3)>,
+    tips: usize,
+    junctions: usize,
+}
+
+/// OBJ `v` and `l` lines.
+fn read_polylines(path: &Path) -> Result<Polylines, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut vertices = Vec::new();
+    let mut edges = Vec::new();
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("v") => {
+                let c: Vec<f64> = words.take(3).filter_map(|w| w.parse().ok()).collect();
+                vertices.push(DVec3::new(c[0], c[1], c[2]));
+            }
+            Some("l") => {
+                let ids: Vec<usize> = words
+                    .filter_map(|w| w.parse::<usize>().ok())
+                    .map(|i| i - 1)
+                    .collect();
+                edges.extend(ids.windows(2).map(|w| (w[0].min(w[1]), w[0].max(w[1]))));
+            }
+            _ => {}
+        }
+    }
+    edges.sort_unstable();
+    edges.dedup();
+    let mut degree = vec![0usize; vertices.len()];
+    for &(a, b) in &edges {
+        degree[a] += 1;
+        degree[b] += 1;
+    }
+    Ok(Polylines {
+        segments: edges
+            .iter()
+            .map(|&(a, b)| (vertices[a], vertices[b]))
+            .collect(),
+        tips: degree.iter().filter(|&&d| d == 1).count(),
+        junctions: degree.iter().filter(|&&d| d > 2).count(),
+    })
+}
+
+fn segments_of(lines: &[Vec<[f64; 3]>]) -> Vec<(DVec3, DVec3)> {
+    lines
+        .iter()
+        .flat_map(|line| {
+            line.windows(2)
+                .map(|w| (DVec3::from(w[0]), DVec3::from(w[1])))
+        })
+        .collect()
+}
+
+/// Points every `step` along the segments (both ends of each included).
+fn sample(segments: &[(DVec3, DVec3)], step: f64) -> Vec<DVec3> {
+    let mut points = Vec::new();
+    for &(a, b) in segments {
+        let n = (a.distance(b) / step).ceil().max(1.0) as usize;
+        points.extend((0..=n).map(|i| a.lerp(b, i as f64 / n as f64)));
+    }
+    points
+}
+
+/// Mean and max distance from the points to the segments.
+fn spread(points: &[DVec3], segments: &[(DVec3, DVec3)]) -> (f64, f64) {
+    let distances: Vec<f64> = points
+        .iter()
+        .map(|&p| {
+            segments
+                .iter()
+                .map(|&(a, b)| {
+                    let ab = b - a;
+                    let t = if ab.length_squared() > 0.0 {
+                        ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    p.distance(a + t * ab)
+                })
+                .fold(f64::INFINITY, f64::min)
+        })
+        .collect();
+    let mean = distances.iter().sum::<f64>() / distances.len().max(1) as f64;
+    (mean, distances.iter().copied().fold(0.0, f64::max))
+}
+
+fn diagonal(points: &[[f64; 3]]) -> f64 {
+    let mut lo = DVec3::splat(f64::INFINITY);
+    let mut hi = DVec3::splat(f64::NEG_INFINITY);
+    for &p in points {
+        lo = lo.min(p.into());
+        hi = hi.max(p.into());
+    }
+    lo.distance(hi)
+}

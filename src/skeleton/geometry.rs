@@ -1,0 +1,142 @@
+//! Where a skeleton's points sit: smoothed along its polylines and kept on the surface,
+//! and the medial radius there.
+
+use super::{Skeleton, SkeletonPoint};
+use crate::mesh::TriMesh;
+use crate::surface::{closest_on_triangle, SurfacePoint};
+use glam::DVec3;
+
+impl Skeleton {
+    /// Rounds of smoothing [`medial_axis_skeleton`](super::medial_axis_skeleton) gives.
+    pub const SMOOTHING: usize = 10;
+
+    /// The skeleton with its polylines smoothed on the surface: each point of degree 2
+    /// moves towards its neighbours' mean and back (Taubin's λ|μ smoothing, which does
+    /// not shrink the curve), then onto the nearest point of the faces near where it
+    /// was, `rounds` times. Tips, junctions and points on line elements stay. Thinning
+    /// leaves points on vertices, so a curve zig-zags along edges by up to a face; this
+    /// takes the zig-zag out while every point stays on the surface.
+    pub fn smoothed(&self, mesh: &TriMesh, rounds: usize) -> Skeleton {
+        const LAMBDA: f64 = 0.5;
+        const MU: f64 = -0.53;
+        let neighbours = self.adjacency();
+        let home: Vec<Option<Vec<u32>>> = self
+            .points
+            .iter()
+            .zip(&neighbours)
+            .map(|(p, around)| {
+                let faces = nearby_faces(mesh, p.on);
+                (around.len() == 2 && !faces.is_empty()).then_some(faces)
+            })
+            .collect();
+        let mut at: Vec<DVec3> = self.points.iter().map(|p| p.position.into()).collect();
+        let mut on: Vec<SurfacePoint> = self.points.iter().map(|p| p.on).collect();
+        for _ in 0..rounds {
+            for step in [LAMBDA, MU] {
+                let before = at.clone();
+                for (i, around) in neighbours.iter().enumerate() {
+                    if home[i].is_some() {
+                        let mean = around.iter().map(|&j| before[j as usize]).sum::<DVec3>()
+                            / around.len() as f64;
+                        at[i] = before[i] + step * (mean - before[i]);
+                    }
+                }
+            }
+            for (i, faces) in home.iter().enumerate() {
+                if let Some(faces) = faces {
+                    let (point, nearest) = nearest_on(mesh, faces, at[i]);
+                    at[i] = point;
+                    on[i] = nearest;
+                }
+            }
+        }
+        let points = self
+            .points
+            .iter()
+            .enumerate()
+            .map(|(i, p)| SkeletonPoint {
+                position: at[i].to_array(),
+                on: on[i],
+                ..*p
+            })
+            .collect();
+        self.with_points(points)
+    }
+
+    /// The same graph with new points (one per point).
+    fn with_points(&self, points: Vec<SkeletonPoint>) -> Skeleton {
+        debug_assert_eq!(points.len(), self.points.len());
+        Skeleton {
+            points,
+            edges: self.edges.clone(),
+            ..*self
+        }
+    }
+
+    /// The skeleton with each point's medial radius, interpolated from `radii` (one per
+    /// vertex) where it lies on `mesh` (without a mesh, only points on vertices get one).
+    ///
+    /// # Panics
+    /// If a point lies on a vertex that `radii` has no entry for.
+    pub fn with_radii(&self, mesh: Option<&TriMesh>, radii: &[f64]) -> Skeleton {
+        let radius_at = |on: SurfacePoint| -> Option<f64> {
+            match (on, mesh) {
+                (SurfacePoint::Vertex(v), _) => Some(radii[v as usize]),
+                (SurfacePoint::Edge { edge, t }, Some(mesh)) => {
+                    let [a, b] = mesh.edge_vertices(edge);
+                    Some((1.0 - t) * radii[a as usize] + t * radii[b as usize])
+                }
+                (SurfacePoint::Face { face, bary }, Some(mesh)) => Some(
+                    mesh.face_vertices(face)
+                        .iter()
+                        .zip(bary)
+                        .map(|(&v, w)| w * radii[v as usize])
+                        .sum(),
+                ),
+                _ => None,
+            }
+        };
+        let points = self
+            .points
+            .iter()
+            .map(|p| SkeletonPoint {
+                radius: radius_at(p.on),
+                ..*p
+            })
+            .collect();
+        self.with_points(points)
+    }
+}
+
+/// The faces within two rings of the vertex nearest `on`.
+fn nearby_faces(mesh: &TriMesh, on: SurfacePoint) -> Vec<u32> {
+    let centre = match on {
+        SurfacePoint::Vertex(v) => v,
+        SurfacePoint::Edge { edge, .. } => mesh.edge_vertices(edge)[0],
+        SurfacePoint::Face { face, .. } => mesh.face_vertices(face)[0],
+    };
+    let mut faces: Vec<u32> = Vec::new();
+    for &f in mesh.vertex_faces(centre) {
+        for v in mesh.face_vertices(f) {
+            faces.extend_from_slice(mesh.vertex_faces(v));
+        }
+    }
+    faces.sort_unstable();
+    faces.dedup();
+    faces
+}
+
+/// The point of `faces` nearest `p`, and where it lies.
+fn nearest_on(mesh: &TriMesh, faces: &[u32], p: DVec3) -> (DVec3, SurfacePoint) {
+    let mut best = (f64::INFINITY, DVec3::ZERO, faces[0], [1.0, 0.0, 0.0]);
+    for &f in faces {
+        let [a, b, c] = mesh.face_vertices(f).map(|v| mesh.position(v));
+        let bary = closest_on_triangle(p, a, b, c);
+        let q = a * bary[0] + b * bary[1] + c * bary[2];
+        let d = q.distance_squared(p);
+        if d < best.0 {
+            best = (d, q, f, bary);
+        }
+    }
+    (best.1, SurfacePoint::in_face_closure(mesh, best.2, best.3))
+}
