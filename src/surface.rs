@@ -176,7 +176,7 @@ impl SurfacePoint {
     }
 
     /// The canonical point with barycentrics `bary` (valid) in face `face`.
-    pub(crate) fn in_face_closure(mesh: &TriMesh, face: u32, bary: [f64; 3]) -> SurfacePoint {
+    fn in_face_closure(mesh: &TriMesh, face: u32, bary: [f64; 3]) -> SurfacePoint {
         let corners = mesh.face_vertices(face);
         let zeros = bary.iter().filter(|&&b| b == 0.0).count();
         match zeros {
@@ -265,18 +265,27 @@ impl SurfacePoint {
     /// Cost: a brute-force scan of every face, O(faces) per call;
     /// for many queries on a large mesh, a spatial index would be the thing to add.
     pub fn nearest(mesh: &TriMesh, xyz: [f64; 3]) -> Option<SurfacePoint> {
-        let p = DVec3::from(xyz);
-        let mut best: Option<(f64, u32, [f64; 3])> = None;
-        for f in 0..mesh.face_count() as u32 {
+        Self::nearest_among(mesh, 0..mesh.face_count() as u32, DVec3::from(xyz)).map(|(on, _)| on)
+    }
+
+    /// The point of `faces` nearest to `p` (Euclidean, in space), in canonical form,
+    /// and its position; `None` for no face.
+    pub(crate) fn nearest_among(
+        mesh: &TriMesh,
+        faces: impl IntoIterator<Item = u32>,
+        p: DVec3,
+    ) -> Option<(SurfacePoint, DVec3)> {
+        let mut best: Option<(f64, u32, [f64; 3], DVec3)> = None;
+        for f in faces {
             let [a, b, c] = mesh.face_vertices(f).map(|v| mesh.position(v));
             let bary = closest_on_triangle(p, a, b, c);
             let q = a * bary[0] + b * bary[1] + c * bary[2];
             let d = q.distance_squared(p);
-            if best.is_none_or(|(bd, _, _)| d < bd) {
-                best = Some((d, f, bary));
+            if best.is_none_or(|(bd, ..)| d < bd) {
+                best = Some((d, f, bary, q));
             }
         }
-        best.map(|(_, f, bary)| Self::in_face_closure(mesh, f, bary))
+        best.map(|(_, f, bary, q)| (Self::in_face_closure(mesh, f, bary), q))
     }
 }
 
@@ -301,7 +310,7 @@ impl std::ops::Deref for Faces<'_> {
 
 /// Barycentric coordinates of the point of triangle `abc` closest to `p` (Ericson,
 /// *Real-Time Collision Detection*, 5.1.5: which Voronoi region of the triangle holds p).
-pub(crate) fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> [f64; 3] {
+fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> [f64; 3] {
     let (ab, ac, ap) = (b - a, c - a, p - a);
     let (d1, d2) = (ab.dot(ap), ac.dot(ap));
     if d1 <= 0.0 && d2 <= 0.0 {

@@ -54,6 +54,10 @@ fn rectangle_axis(w: f64, h: f64) -> Vec<(DVec3, DVec3)> {
     ]
 }
 
+fn betti(b0: usize, b1: usize, b2: usize) -> geotracks::mesh::Betti {
+    geotracks::mesh::Betti { b0, b1, b2 }
+}
+
 /// Every pruning level the topology checks try.
 const LEVELS: [f64; 7] = [0.0, 0.01, 0.05, 0.2, 0.5, 2.0, f64::INFINITY];
 
@@ -223,37 +227,14 @@ fn skeletons_keep_the_topology_of_the_surface() {
     let ball = sphere(2, 0.1, 5);
     let skeleton = Skeleton::extract(&ball, &Euclidean, &K5).unwrap();
     assert_eq!(skeleton.punctured_faces, 1);
-    check_topology(
-        "sphere",
-        &skeleton,
-        geotracks::mesh::Betti {
-            b0: 1,
-            b1: 0,
-            b2: 0,
-        },
-    );
+    check_topology("sphere", &skeleton, betti(1, 0, 0));
     assert_eq!(ball.betti_numbers().b2, 1);
     // A torus: punctured once, two cycles.
     let torus = common::torus(24, 12, 2.0, 0.7);
     let skeleton = Skeleton::extract(&torus, &Euclidean, &K5).unwrap();
-    assert_eq!(
-        torus.betti_numbers(),
-        geotracks::mesh::Betti {
-            b0: 1,
-            b1: 2,
-            b2: 1
-        }
-    );
+    assert_eq!(torus.betti_numbers(), betti(1, 2, 1));
     assert_eq!(skeleton.punctured_faces, 1);
-    check_topology(
-        "torus",
-        &skeleton,
-        geotracks::mesh::Betti {
-            b0: 1,
-            b1: 2,
-            b2: 0,
-        },
-    );
+    check_topology("torus", &skeleton, betti(1, 2, 0));
 }
 
 /// A saw-toothed border (every other border vertex pushed out by a third of a cell)

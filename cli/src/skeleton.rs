@@ -75,7 +75,7 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
     let spinner = ui::Spinner::start("reading the medial axis, burning and thinning it");
     let axis = read_medial_axis(&args.axis)?;
     let prune = if percent {
-        prune / 100.0 * diagonal(&axis.positions)
+        prune / 100.0 * axis.diagonal()
     } else {
         prune
     };
@@ -163,17 +163,4 @@ fn write_json(
     });
     serde_json::to_writer(&mut *w, &json).map_err(std::io::Error::other)?;
     writeln!(w)
-}
-
-/// Length of the diagonal of the points' bounding box.
-fn diagonal(points: &[[f64; 3]]) -> f64 {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in points {
-        for c in 0..3 {
-            lo[c] = lo[c].min(p[c]);
-            hi[c] = hi[c].max(p[c]);
-        }
-    }
-    (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt()
 }

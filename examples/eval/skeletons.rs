@@ -45,7 +45,7 @@ pub fn skeletons(data: &Path, prune_percent: f64, k: f64, burn: Burn) -> Result<
         let path = dir.join(format!("{name}.ma"));
         let start = Instant::now();
         let axis = read_medial_axis(&path).map_err(|e| e.to_string())?;
-        let diagonal = diagonal(&axis.positions);
+        let diagonal = axis.diagonal();
         let (at_default, _) =
             medial_axis_skeleton(&axis, burn, &options, prune_percent / 100.0 * diagonal)
                 .map_err(|e| e.to_string())?;
@@ -94,7 +94,7 @@ pub fn skeletons(data: &Path, prune_percent: f64, k: f64, burn: Burn) -> Result<
             spread(&sample(&reference.segments, step), &ours_segments);
         let (to_ref_mean, to_ref_max) = spread(&sample(&ours_segments, step), &reference.segments);
         let pct = |x: f64| 100.0 * x / diagonal;
-        let junctions = ours.points.len() - ours.tip_count() - degree_two(&ours);
+        let junctions = junction_count(&ours);
         println!(
             "| {name} | {:.2} % / {:.2} % | {:.2} % / {:.2} % | {} / {} | {} / {} | {:.1} / {:.1} | {} |",
             pct(to_ours_mean),
@@ -119,13 +119,14 @@ pub fn skeletons(data: &Path, prune_percent: f64, k: f64, burn: Burn) -> Result<
     Ok(())
 }
 
-fn degree_two(skeleton: &Skeleton) -> usize {
+/// Points with three or more edges.
+fn junction_count(skeleton: &Skeleton) -> usize {
     let mut degree = vec![0usize; skeleton.points.len()];
     for &[a, b] in &skeleton.edges {
         degree[a as usize] += 1;
         degree[b as usize] += 1;
     }
-    degree.iter().filter(|&&d| d == 2 || d == 0).count()
+    degree.iter().filter(|&&d| d > 2).count()
 }
 
 struct Polylines {
@@ -214,14 +215,4 @@ fn spread(points: &[DVec3], segments: &[(DVec3, DVec3)]) -> (f64, f64) {
         .collect();
     let mean = distances.iter().sum::<f64>() / distances.len().max(1) as f64;
     (mean, distances.iter().copied().fold(0.0, f64::max))
-}
-
-fn diagonal(points: &[[f64; 3]]) -> f64 {
-    let mut lo = DVec3::splat(f64::INFINITY);
-    let mut hi = DVec3::splat(f64::NEG_INFINITY);
-    for &p in points {
-        lo = lo.min(p.into());
-        hi = hi.max(p.into());
-    }
-    lo.distance(hi)
 }

@@ -1,6 +1,6 @@
 //! Triangle meshes of any topology: [`TriMesh`] (an edge table where an edge may have any
-//! number of faces; no half-edges), per-face local 2D frames, a [`MeshReport`], [`Betti`] numbers over GF(2), and the
-//! file readers and writers in [`io`].
+//! number of faces; no half-edges), per-face local 2D frames, a [`MeshReport`], [`Betti`]
+//! numbers over GF(2), and the file readers and writers in [`io`].
 
 mod csr;
 mod error;

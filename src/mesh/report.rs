@@ -81,13 +81,6 @@ impl MeshReport {
             used[a as usize] = true;
             used[b as usize] = true;
         }
-        let mut bounds = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
-        for p in positions {
-            for axis in 0..3 {
-                bounds[0][axis] = bounds[0][axis].min(p[axis]);
-                bounds[1][axis] = bounds[1][axis].max(p[axis]);
-            }
-        }
         let betti = super::graph_betti_numbers(positions.len(), edges);
         MeshReport {
             vertices: positions.len(),
@@ -101,7 +94,7 @@ impl MeshReport {
             unreferenced_vertices: used.iter().filter(|&&u| !u).count(),
             line_edges: edges.len(),
             duplicate_positions: 0,
-            bounding_box: bounds,
+            bounding_box: bounding_box(positions.iter().copied()),
             mean_edge_length: 0.0,
             euler_characteristic: 0,
             betti,
@@ -135,7 +128,7 @@ impl MeshReport {
             unreferenced_vertices,
             line_edges: mesh.line_edges().len(),
             duplicate_positions: duplicate_positions(mesh),
-            bounding_box: bounding_box(mesh),
+            bounding_box: bounding_box(mesh.positions().iter().map(|p| p.to_array())),
             mean_edge_length: mesh.mean_edge_length(),
             euler_characteristic: face_vertices as i64 - mesh.edge_count() as i64
                 + mesh.face_count() as i64,
@@ -157,10 +150,11 @@ pub(crate) fn duplicate_positions(mesh: &TriMesh) -> usize {
         .count()
 }
 
-fn bounding_box(mesh: &TriMesh) -> [[f64; 3]; 2] {
+/// The smallest and largest coordinates of `points` (infinite bounds for none).
+pub(crate) fn bounding_box(points: impl IntoIterator<Item = [f64; 3]>) -> [[f64; 3]; 2] {
     let mut bounds = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
-    for p in mesh.positions() {
-        for (axis, c) in p.to_array().into_iter().enumerate() {
+    for p in points {
+        for (axis, c) in p.into_iter().enumerate() {
             bounds[0][axis] = bounds[0][axis].min(c);
             bounds[1][axis] = bounds[1][axis].max(c);
         }

@@ -263,7 +263,6 @@ impl Canvas {
             return;
         }
         let steps = (length / 0.5).ceil().min(1e6) as usize + 1;
-        let r = radius.ceil() as i64;
         for s in 0..=steps {
             let t = s as f64 / steps as f64;
             let (x, y, z) = (
@@ -271,17 +270,9 @@ impl Canvas {
                 pa.1 + t * (pb.1 - pa.1),
                 pa.2 + t * (pb.2 - pa.2),
             );
-            for dy in -r..=r {
-                for dx in -r..=r {
-                    let (px, py) = (x.floor() as i64 + dx, y.floor() as i64 + dy);
-                    if px < 0 || py < 0 || px >= self.width as i64 || py >= self.height as i64 {
-                        continue;
-                    }
-                    let (cx, cy) = (px as f64 + 0.5 - x, py as f64 + 0.5 - y);
-                    let i = py as usize * self.width as usize + px as usize;
-                    if cx * cx + cy * cy <= radius * radius && z >= self.depth[i] - camera.bias {
-                        self.colour[i] = colour;
-                    }
+            for i in self.pixels_within(x, y, radius) {
+                if z >= self.depth[i] - camera.bias {
+                    self.colour[i] = colour;
                 }
             }
         }
@@ -290,19 +281,23 @@ impl Canvas {
     /// A disc of `radius` pixels round world point `p`, on top of everything.
     pub fn disc(&mut self, camera: &Camera, p: DVec3, radius: f64, colour: [f64; 3]) {
         let (x, y, _) = camera.project(p);
-        let r = radius.ceil() as i64;
-        for dy in -r..=r {
-            for dx in -r..=r {
-                let (px, py) = (x.floor() as i64 + dx, y.floor() as i64 + dy);
-                if px < 0 || py < 0 || px >= self.width as i64 || py >= self.height as i64 {
-                    continue;
-                }
-                let (cx, cy) = (px as f64 + 0.5 - x, py as f64 + 0.5 - y);
-                if cx * cx + cy * cy <= radius * radius {
-                    self.colour[py as usize * self.width as usize + px as usize] = colour;
-                }
-            }
+        for i in self.pixels_within(x, y, radius) {
+            self.colour[i] = colour;
         }
+    }
+
+    /// The canvas indices of the pixels whose centres lie within `radius` of `(x, y)`.
+    fn pixels_within(&self, x: f64, y: f64, radius: f64) -> impl Iterator<Item = usize> {
+        let (w, h) = (self.width as i64, self.height as i64);
+        let r = radius.ceil() as i64;
+        let (x0, y0) = (x.floor() as i64, y.floor() as i64);
+        (-r..=r)
+            .flat_map(move |dy| (-r..=r).map(move |dx| (x0 + dx, y0 + dy)))
+            .filter(move |&(px, py)| {
+                let (cx, cy) = (px as f64 + 0.5 - x, py as f64 + 0.5 - y);
+                px >= 0 && py >= 0 && px < w && py < h && cx * cx + cy * cy <= radius * radius
+            })
+            .map(move |(px, py)| py as usize * w as usize + px as usize)
     }
 
     /// The canvas averaged over `k × k` blocks.

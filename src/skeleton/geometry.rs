@@ -3,7 +3,7 @@
 
 use super::{Skeleton, SkeletonPoint};
 use crate::mesh::TriMesh;
-use crate::surface::{closest_on_triangle, SurfacePoint};
+use crate::surface::SurfacePoint;
 use glam::DVec3;
 
 impl Skeleton {
@@ -43,10 +43,12 @@ impl Skeleton {
                 }
             }
             for (i, faces) in home.iter().enumerate() {
-                if let Some(faces) = faces {
-                    let (point, nearest) = nearest_on(mesh, faces, at[i]);
-                    at[i] = point;
-                    on[i] = nearest;
+                let nearest = faces.as_ref().and_then(|faces| {
+                    SurfacePoint::nearest_among(mesh, faces.iter().copied(), at[i])
+                });
+                if let Some((point, position)) = nearest {
+                    on[i] = point;
+                    at[i] = position;
                 }
             }
         }
@@ -124,19 +126,4 @@ fn nearby_faces(mesh: &TriMesh, on: SurfacePoint) -> Vec<u32> {
     faces.sort_unstable();
     faces.dedup();
     faces
-}
-
-/// The point of `faces` nearest `p`, and where it lies.
-fn nearest_on(mesh: &TriMesh, faces: &[u32], p: DVec3) -> (DVec3, SurfacePoint) {
-    let mut best = (f64::INFINITY, DVec3::ZERO, faces[0], [1.0, 0.0, 0.0]);
-    for &f in faces {
-        let [a, b, c] = mesh.face_vertices(f).map(|v| mesh.position(v));
-        let bary = closest_on_triangle(p, a, b, c);
-        let q = a * bary[0] + b * bary[1] + c * bary[2];
-        let d = q.distance_squared(p);
-        if d < best.0 {
-            best = (d, q, f, bary);
-        }
-    }
-    (best.1, SurfacePoint::in_face_closure(mesh, best.2, best.3))
 }

@@ -68,11 +68,11 @@ pub struct SkeletonPoint {
     /// Where it lies on the surface: a vertex as thinning leaves it, a point in a face
     /// once [`Skeleton::smoothed`].
     pub on: SurfacePoint,
-    /// How long (in the metric's length) the point stood on curves before the fire
-    /// burnt it from a tip: the erosion thickness of the branch there. It grows from a
-    /// branch's tip inwards; `inf` for points that never burn (the loops that carry the
-    /// surface's cycles, and one point per component that burns away entirely).
-    /// [`Skeleton::pruned`] keeps the points at or above a threshold.
+    /// The erosion thickness of the point's branch (in the metric's length): how long
+    /// the branch stood on curves only before the fire burnt it from its tip, the same
+    /// for every point of the branch; `inf` for points that never burn (the loops that
+    /// carry the surface's cycles, and one point per component that burns away
+    /// entirely). [`Skeleton::pruned`] keeps the points at or above a threshold.
     pub significance: f64,
     /// The medial ball's radius there, once [`Skeleton::with_radii`] gave them.
     pub radius: Option<f64>,
@@ -108,15 +108,7 @@ impl Skeleton {
         metric: &M,
         options: &Options,
     ) -> Result<Skeleton, Error> {
-        match Grassfire::burn(mesh, metric, options) {
-            Ok(fire) => Ok(Skeleton::from_grassfire(&fire)),
-            Err(Error::NoBoundary) => Ok(Skeleton::from_reach(
-                mesh,
-                metric,
-                &vec![f64::INFINITY; mesh.vertex_count()],
-            )),
-            Err(e) => Err(e),
-        }
+        Ok(burn_from_border(mesh, metric, options)?.0)
     }
 
     /// The unpruned skeleton of a grassfire's surface, each vertex reached when the
@@ -230,10 +222,10 @@ impl Skeleton {
     }
 
     /// The skeleton with the points of significance below `threshold` removed (and their
-    /// edges). Significance never decreases from a tip inwards, so branches shrink from
-    /// their tips as the threshold rises, loops never open, and each component keeps at
-    /// least one point: at `f64::INFINITY`, what never burns (one point of a
-    /// contractible surface). `threshold` ≤ 0 removes nothing.
+    /// edges). A branch's significance is never above the one it ends on, so whole
+    /// branches go, least significant first, as the threshold rises; loops never open,
+    /// and each component keeps at least one point: at `f64::INFINITY`, what never burns
+    /// (one point of a contractible surface). `threshold` ≤ 0 removes nothing.
     pub fn pruned(&self, threshold: f64) -> Skeleton {
         // A NaN threshold removes nothing, as 0 does.
         let threshold = if threshold.is_nan() { 0.0 } else { threshold };
@@ -409,8 +401,9 @@ pub enum Burn {
     /// Its medial radius: the time eroding the shape from its surface takes to reach
     /// the ball's centre (as in erosion thickness, Yan et al. 2016). Sheets are eaten
     /// from where the shape is thin, and the curves left follow the ridges of the
-    /// radius, through the largest balls; smoother and four times faster (no
-    /// propagation), but it drops thin flat parts (ears) sooner.
+    /// radius, through the largest balls. About four times faster (no propagation);
+    /// farther from mean-curvature-flow skeletons at their worst point on the shared
+    /// axes (README, Skeletons).
     Radius,
 }
 
@@ -461,12 +454,25 @@ impl Skeleton {
         };
         Ok(match burn {
             Burn::Radius => (Skeleton::from_reach(mesh, &Euclidean, &axis.radii), None),
-            Burn::Boundary => match Grassfire::burn(mesh, Euclidean, options) {
-                Ok(fire) => (Skeleton::from_grassfire(&fire), Some(fire.into_field())),
-                Err(Error::NoBoundary) => (Skeleton::extract(mesh, &Euclidean, options)?, None),
-                Err(e) => return Err(e),
-            },
+            Burn::Boundary => burn_from_border(mesh, &Euclidean, options)?,
         })
+    }
+}
+
+/// The unpruned skeleton of `mesh` burnt from its border, with the grassfire's field;
+/// without a border, punctured (no fire reaches: every reach is `inf`) and no field.
+fn burn_from_border<M: Metric>(
+    mesh: &TriMesh,
+    metric: &M,
+    options: &Options,
+) -> Result<(Skeleton, Option<GeodesicField>), Error> {
+    match Grassfire::burn(mesh, metric, options) {
+        Ok(fire) => Ok((Skeleton::from_grassfire(&fire), Some(fire.into_field()))),
+        Err(Error::NoBoundary) => {
+            let unreached = vec![f64::INFINITY; mesh.vertex_count()];
+            Ok((Skeleton::from_reach(mesh, metric, &unreached), None))
+        }
+        Err(e) => Err(e),
     }
 }
 

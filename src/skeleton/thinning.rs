@@ -41,9 +41,8 @@ use std::collections::BinaryHeap;
 
 /// The result of thinning a complex.
 pub(crate) struct Thinning {
-    /// Per vertex: how long it stood on curves only (time it became a tip − time it lost
-    /// its last face, never less than its burnt children's); `inf` for vertices never removed; NaN for
-    /// vertices that no face or line element uses.
+    /// Per vertex: its branch's significance (see the module's notes); `inf` for
+    /// vertices never removed; NaN for vertices that no face or line element uses.
     pub significance: Vec<f64>,
     /// Every edge that was a curve at some time (a line element, or an edge that lost its
     /// last face), as a vertex pair.
@@ -106,8 +105,8 @@ enum Event {
     Tip(u32),
 }
 
-/// The burn's state: what is left of the complex, and the queue of collapses.
-struct Burn<'c, 'm, L, C> {
+/// The collapse's state: what is left of the complex, and the queue of moves.
+struct Collapse<'c, 'm, L, C> {
     complex: &'c Complex<'m>,
     /// Per vertex, its reach (see the module's notes); in a part that had to be
     /// punctured, the puncture's time plus the distance from it.
@@ -155,7 +154,7 @@ pub(crate) fn thin(
     cross: impl Fn(u32, u32) -> f64,
 ) -> Thinning {
     let complex = Complex::new(mesh, vertex_count, extra);
-    let mut burn = Burn::new(&complex, reach.to_vec(), length, cross);
+    let mut burn = Collapse::new(&complex, reach.to_vec(), length, cross);
     loop {
         burn.run();
         if burn.faces_left == 0 {
@@ -166,7 +165,7 @@ pub(crate) fn thin(
     burn.finish()
 }
 
-impl<'c, 'm, L: Fn(u32) -> f64, C: Fn(u32, u32) -> f64> Burn<'c, 'm, L, C> {
+impl<'c, 'm, L: Fn(u32) -> f64, C: Fn(u32, u32) -> f64> Collapse<'c, 'm, L, C> {
     fn new(complex: &'c Complex<'m>, reach: Vec<f64>, length: L, cross: C) -> Self {
         let (nv, ne, nf) = (
             complex.vertex_count,
@@ -190,7 +189,7 @@ impl<'c, 'm, L: Fn(u32) -> f64, C: Fn(u32, u32) -> f64> Burn<'c, 'm, L, C> {
         let used: Vec<bool> = (0..nv)
             .map(|v| vertex_faces[v] > 0 || vertex_edges[v] > 0)
             .collect();
-        let mut burn = Burn {
+        let mut burn = Collapse {
             complex,
             reach,
             cross,

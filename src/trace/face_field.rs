@@ -251,16 +251,17 @@ impl<M: Metric> Query<'_, M> {
     /// adding those it lacks): a face's own candidates serve it and three neighbours.
     pub(super) fn face_field_using(&self, f: u32, own: &mut Vec<FaceField>) -> FaceField {
         let mut field = self.own_candidates(f);
-        // Not for the other engines: their fields are the Steiner graph's, extended
-        // into faces from their own nodes.
-        if let (true, Some(frame)) = (self.has_waves(), field.flat) {
-            self.push_neighbours(f, &frame, &mut field, own);
-        }
-        // Only candidates that can give the least value somewhere in the face: no less
-        // than σ plus the distance from the site to the face.
         if let Some(frame) = field.flat {
             let triangle = frame.corners().map(|[x, y]| P(x, y));
+            // Neighbours' candidates are windowed, so they leave this bound as it is.
             let bound = upper_bound(&field.candidates, &triangle);
+            // Not for the other engines: their fields are the Steiner graph's, extended
+            // into faces from their own nodes.
+            if self.has_waves() && bound.is_finite() {
+                self.push_neighbours(f, &frame, (&triangle, bound), &mut field, own);
+            }
+            // Only candidates that can give the least value somewhere in the face: no
+            // less than σ plus the distance from the site to the face.
             for c in &mut field.candidates {
                 if let Site::Flat(s) | Site::Windowed { at: s, .. } = c.site {
                     c.floor = c.sigma + distance_to_triangle(s, &triangle);
@@ -324,20 +325,17 @@ impl<M: Metric> Query<'_, M> {
     /// the edge has one length in every face's flattening), unfolded onto `f`: lines
     /// from their sites that cross the shared edge. Sites on the edge or on `f`'s side
     /// of it are left out (`f` has them, or their lines do not cross), and so are those
-    /// that cannot beat the face's upper bound ([`upper_bound`]) anywhere in it.
+    /// that cannot beat `bound`, the face's upper bound ([`upper_bound`]), anywhere in
+    /// `triangle` (its flattened corners).
     fn push_neighbours(
         &self,
         f: u32,
         frame: &FaceFrame,
+        (triangle, bound): (&[P; 3], f64),
         out: &mut FaceField,
         own: &mut Vec<FaceField>,
     ) {
         let mesh = self.mesh;
-        let triangle = frame.corners().map(|[x, y]| P(x, y));
-        let bound = upper_bound(&out.candidates, &triangle);
-        if !bound.is_finite() {
-            return;
-        }
         for (slot, &edge) in mesh.face_edges(f).iter().enumerate() {
             if !self.glues(edge) {
                 continue;
@@ -373,7 +371,7 @@ impl<M: Metric> Query<'_, M> {
                         Site::Metric(_) => continue,
                     };
                     if to.edge_coords(at).1 > behind
-                        || c.sigma + distance_to_triangle(at, &triangle) > bound
+                        || c.sigma + distance_to_triangle(at, triangle) > bound
                     {
                         continue;
                     }

@@ -70,6 +70,13 @@ impl MedialAxis {
         }
     }
 
+    /// The length of the diagonal of the bounding box of all its vertices: the scale
+    /// that percentages of a skeleton's pruning threshold refer to.
+    pub fn diagonal(&self) -> f64 {
+        let [lo, hi] = super::report::bounding_box(self.positions.iter().copied());
+        (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt()
+    }
+
     /// Betti numbers over GF(2) of the sheets and free edges together: what a skeleton
     /// of the axis keeps (components b₀, independent cycles b₁).
     pub fn betti_numbers(&self) -> super::Betti {
