@@ -18,9 +18,9 @@ pub struct PictureArgs {
     /// isolines, the sources marked in red, and a colour bar with the range.
     #[arg(long, value_name = "PICTURE.png")]
     pub png: Option<PathBuf>,
-    /// Where the picture looks from: auto (along the mesh's thinnest axis, from the
-    /// first source's side), front (+z, y up), back, left, right, top, bottom, or AZ,EL
-    /// (degrees about +y from the front, and above the horizon).
+    /// Where the picture looks from: auto (from where the faces show the most area,
+    /// the first source facing the eye), front (+z, y up), back, left, right, top,
+    /// bottom, or AZ,EL (degrees about +y from the front, and above the horizon).
     #[arg(
         long,
         value_name = "VIEW",
