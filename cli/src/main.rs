@@ -125,7 +125,8 @@ const ISOLINES_EXAMPLES: &str = "  geotracks isolines mesh.obj --source 0 -o iso
 
 const SKELETON_EXAMPLES: &str =
     "  geotracks skeleton cow.ma --prune 7% -o cow_skeleton.obj --field cow_fire.ply
-  geotracks skeleton axis.ma --burn radius --prune 0.05 -o skeleton.json";
+  geotracks skeleton axis.ma --burn radius --prune 0.05 -o skeleton.json
+  geotracks skeleton cow.ma -o cow.obj --png cow.png --view 30,20";
 
 const TERRAIN_EXAMPLES: &str = "  geotracks terrain dem.tif --from 499.5,499.5 --to 9490.5,9290.7 -o route.geojson
   geotracks terrain dem.asc --from 1010,5010 --to 1290,5180 --cost slope:4,max:30 -o route.csv --png map.png";

@@ -34,7 +34,7 @@ pub struct PictureArgs {
     pub size: (u32, u32),
 }
 
-fn parse_size(text: &str) -> Result<(u32, u32), String> {
+pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
     let bad = || format!("'{text}' is not WxH (two whole numbers of pixels, e.g. 1024x768)");
     let (w, h) = text.split_once(['x', 'X']).ok_or_else(bad)?;
     let (w, h) = (

@@ -3,6 +3,7 @@
 use crate::output::Outputs;
 use crate::{ui, CliResult, Short};
 use geotracks::mesh::io::{read_medial_axis, write_obj_lines_to, write_ply_with_distance_to};
+use geotracks::render::{render_skeleton, PictureOptions, View};
 use geotracks::skeleton::{medial_axis_skeleton, Burn, DEFAULT_PRUNE_PERCENT};
 use geotracks::{Method, Options};
 use std::path::PathBuf;
@@ -43,6 +44,24 @@ pub struct SkeletonArgs {
     /// Also write the grassfire field as a coloured PLY of the sheets.
     #[arg(long, value_name = "FIELD.ply")]
     field: Option<PathBuf>,
+    /// Also draw a picture (.png): the skeleton coloured by medial radius over the
+    /// pale, semi-transparent axis, tips and junctions as dots.
+    #[arg(long, value_name = "PICTURE.png")]
+    png: Option<PathBuf>,
+    /// Where the picture looks from: auto (onto the sheets), front (+z, y up), back,
+    /// left, right, top, bottom, or AZ,EL (degrees about +y from the front, and above
+    /// the horizon).
+    #[arg(
+        long,
+        value_name = "VIEW",
+        default_value = "auto",
+        requires = "png",
+        allow_hyphen_values = true
+    )]
+    view: View,
+    /// The picture's size in pixels: WxH (64 to 8192 each).
+    #[arg(long, value_name = "WxH", default_value = "1024x768", value_parser = crate::picture::parse_size, requires = "png")]
+    size: (u32, u32),
 }
 
 pub fn run(args: &SkeletonArgs) -> CliResult {
@@ -53,6 +72,9 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
     )?;
     if let Some(field) = &args.field {
         crate::output_format(field, &[("ply", ())])?;
+    }
+    if let Some(png) = &args.png {
+        crate::output_format(png, &[("png", ())])?;
     }
     let (value, percent) = match args.prune.strip_suffix('%') {
         Some(p) => (p.trim().parse::<f64>(), true),
@@ -71,6 +93,7 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
     let mut outputs = Outputs::new([args.axis.as_path()]);
     outputs.declare(&args.output)?;
     outputs.declare_some(args.field.as_ref())?;
+    outputs.declare_some(args.png.as_ref())?;
     let start = Instant::now();
     let spinner = ui::Spinner::start("reading the medial axis, burning and thinning it");
     let axis = read_medial_axis(&args.axis)?;
@@ -107,6 +130,13 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
             .into())
         }
         (None, ..) => {}
+    }
+    if let Some(path) = &args.png {
+        let options = PictureOptions::DEFAULT
+            .with_size(args.size.0, args.size.1)
+            .with_view(args.view);
+        let picture = render_skeleton(&axis, &skeleton, &options)?;
+        outputs.write(path, |w| picture.write_png_to(w))?;
     }
     match format {
         Format::Obj => outputs.write(&args.output, |w| write_obj_lines_to(w, &points, &lines))?,

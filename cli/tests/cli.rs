@@ -1156,6 +1156,34 @@ fn skeleton_writes_a_connected_obj_graph_and_the_field() {
     }
     assert_eq!(graph["components"], 2);
     assert_eq!(graph["cycles"], 0);
+    // A picture of it, of the size asked for; a bad view leaves no file.
+    let png = dir.path().join("skeleton.png");
+    geotracks_ok(&[
+        "skeleton",
+        SHEET_FINS,
+        "-o",
+        json.to_str().unwrap(),
+        "--png",
+        png.to_str().unwrap(),
+        "--size",
+        "400x300",
+    ]);
+    assert_eq!(png_size(&png), (400, 300));
+    std::fs::remove_file(&png).unwrap();
+    assert_fails(
+        &[
+            "skeleton",
+            SHEET_FINS,
+            "-o",
+            json.to_str().unwrap(),
+            "--png",
+            png.to_str().unwrap(),
+            "--view",
+            "sideways",
+        ],
+        &png,
+        "not a view",
+    );
     assert!(graph["points"][0]["radius"].as_f64().unwrap() > 0.0);
     assert_eq!(
         graph["edges"].as_array().unwrap().len() + 2,

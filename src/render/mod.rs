@@ -1,5 +1,6 @@
-//! Pictures of distance fields: the mesh shaded and coloured by distance, isolines
-//! drawn on it, sources marked, a colour bar with the range written on it.
+//! Pictures of distance fields ([`render_field`]: the mesh shaded and coloured by
+//! distance, isolines drawn on it, sources marked, a colour bar with the range written
+//! on it) and of curve skeletons over their medial axis ([`render_skeleton`]).
 //!
 //! A small software rasterizer, here rather than a rendering crate: a picture is one
 //! orthographic view of one triangle mesh, flat-shaded, with lines and discs on top —
@@ -21,10 +22,16 @@
 //! - **Overlays**: isolines (dark, depth-tested with a small bias, so hidden parts are
 //!   not drawn), sources (red discs with a white ring, on top), and a colour bar on the
 //!   right with `0`, the middle and the maximum written with a built-in 5 × 7 font.
+//! - **Skeletons**: the axis's sheets pale and a little transparent (curves behind a
+//!   sheet show through it, mixed with its colour), the skeleton coloured by medial
+//!   radius, tips and junctions as dots.
 //! - Drawn at twice the size and averaged down (anti-aliasing).
 
 mod font;
 mod raster;
+mod skeleton;
+
+pub use skeleton::render_skeleton;
 
 use crate::mesh::TriMesh;
 use crate::Error;
@@ -181,15 +188,7 @@ pub fn render_field(
     sources: &[DVec3],
     options: &PictureOptions,
 ) -> Result<Picture, Error> {
-    for (option, value) in [("width", options.width), ("height", options.height)] {
-        if !SIDES.contains(&value) {
-            return Err(Error::InvalidPictureOption {
-                option,
-                value: value as f64,
-                expected: "between 64 and 8192 pixels",
-            });
-        }
-    }
+    check_size(options)?;
     if vertex_values.len() != mesh.vertex_count() {
         return Err(Error::InvalidPictureOption {
             option: "vertex values",
@@ -236,6 +235,20 @@ pub fn render_field(
     let mut picture = canvas.downsample(SUPERSAMPLE);
     colour_bar(&mut picture, max);
     Ok(picture)
+}
+
+/// [`Error::InvalidPictureOption`] unless both sides are 64 to 8192 pixels.
+fn check_size(options: &PictureOptions) -> Result<(), Error> {
+    for (option, value) in [("width", options.width), ("height", options.height)] {
+        if !SIDES.contains(&value) {
+            return Err(Error::InvalidPictureOption {
+                option,
+                value: value as f64,
+                expected: "between 64 and 8192 pixels",
+            });
+        }
+    }
+    Ok(())
 }
 
 const UNREACHED: [f64; 3] = [170.0, 170.0, 170.0];

@@ -5,7 +5,7 @@ use super::{Picture, PictureOptions, View, SUPERSAMPLE};
 use crate::mesh::TriMesh;
 use glam::DVec3;
 
-/// An orthographic camera fitted to a mesh: screen `x` along `right`, `y` down along
+/// An orthographic camera fitted to a scene: screen `x` along `right`, `y` down along
 /// `−up`, depth along `towards` (from the scene to the eye: larger is nearer).
 pub(super) struct Camera {
     centre: DVec3,
@@ -29,10 +29,21 @@ impl Camera {
         source: Option<DVec3>,
         bar: u32,
     ) -> Camera {
-        let positions = mesh.positions();
+        Camera::fit_points(mesh.positions(), Some(mesh), options, source, bar)
+    }
+
+    /// As [`Camera::fit`], fitted to `positions`; the automatic view looks onto the
+    /// faces of `surface` if it has area, else across the points' thinnest spread.
+    pub fn fit_points(
+        positions: &[DVec3],
+        surface: Option<&TriMesh>,
+        options: &PictureOptions,
+        source: Option<DVec3>,
+        bar: u32,
+    ) -> Camera {
         let n = positions.len().max(1) as f64;
         let centroid = positions.iter().fold(DVec3::ZERO, |s, &p| s + p) / n;
-        let (right, up, towards) = axes(options.view, mesh, centroid, source);
+        let (right, up, towards) = axes(options.view, positions, surface, centroid, source);
         let (mut lo, mut hi) = (
             (f64::INFINITY, f64::INFINITY),
             (f64::NEG_INFINITY, f64::NEG_INFINITY),
@@ -100,7 +111,8 @@ impl Camera {
 /// `(right, up, towards)`, right-handed (`right × up = towards`).
 fn axes(
     view: View,
-    mesh: &TriMesh,
+    positions: &[DVec3],
+    surface: Option<&TriMesh>,
     centroid: DVec3,
     source: Option<DVec3>,
 ) -> (DVec3, DVec3, DVec3) {
@@ -124,7 +136,7 @@ fn axes(
         View::Top => (x, -z, y),
         View::Bottom => (x, z, -y),
         View::Orbit { azimuth, elevation } => orbit(azimuth, elevation),
-        View::Auto => auto_axes(mesh, centroid, source).unwrap_or((x, y, z)),
+        View::Auto => auto_axes(positions, surface, centroid, source).unwrap_or((x, y, z)),
     }
 }
 
@@ -132,9 +144,11 @@ fn axes(
 /// (the top eigenvector of `Σ area · n nᵀ`; for a closed surface, across its thinnest
 /// extent; for a sheet or a book of sheets, onto them rather than edge-on), with the
 /// vertex cloud's widest direction across the picture, up as the world's up where it
-/// can be, and the first source on the eye's side. `None` for a mesh without area.
+/// can be, and the first source on the eye's side. Without a surface with area (curves
+/// only), towards the eye is the points' thinnest spread. `None` for a single point.
 fn auto_axes(
-    mesh: &TriMesh,
+    positions: &[DVec3],
+    surface: Option<&TriMesh>,
     centroid: DVec3,
     source: Option<DVec3>,
 ) -> Option<(DVec3, DVec3, DVec3)> {
@@ -148,18 +162,34 @@ fn auto_axes(
         (d.is_finite() && d.length() > 0.5 && eigen.eigenvalues[i] > 0.0).then(|| d.normalize())
     };
     let mut shown = Matrix3::<f64>::zeros();
-    for f in 0..mesh.face_count() as u32 {
-        let p = mesh.face_vertices(f).map(|v| mesh.position(v));
-        let n = (p[1] - p[0]).cross(p[2] - p[0]); // length: twice the area
-        let len = n.length();
-        if len > 0.0 {
-            shown += v3(n) * v3(n).transpose() / len;
+    if let Some(mesh) = surface {
+        for f in 0..mesh.face_count() as u32 {
+            let p = mesh.face_vertices(f).map(|v| mesh.position(v));
+            let n = (p[1] - p[0]).cross(p[2] - p[0]); // length: twice the area
+            let len = n.length();
+            if len > 0.0 {
+                shown += v3(n) * v3(n).transpose() / len;
+            }
         }
     }
-    let mut towards = top(shown)?;
+    let mut towards = match top(shown) {
+        Some(towards) => towards,
+        None => {
+            // Curves only: look along the points' least spread.
+            let mut cloud = Matrix3::<f64>::zeros();
+            for &p in positions {
+                cloud += v3(p - centroid) * v3(p - centroid).transpose();
+            }
+            let eigen = SymmetricEigen::new(cloud);
+            let i = eigen.eigenvalues.imin();
+            let c = eigen.eigenvectors.column(i);
+            let d = DVec3::new(c[0], c[1], c[2]);
+            (d.is_finite() && eigen.eigenvalues.max() > 0.0).then(|| d.normalize())?
+        }
+    };
     // The widest spread of the vertices across the view.
     let mut spread = Matrix3::<f64>::zeros();
-    for &p in mesh.positions() {
+    for &p in positions {
         let d = p - centroid;
         let d = d - towards * d.dot(towards);
         spread += v3(d) * v3(d).transpose();
@@ -191,6 +221,13 @@ pub(super) struct Canvas {
     height: u32,
     colour: Vec<[f64; 3]>,
     depth: Vec<f64>,
+    /// The surface's colours under lines drawn through it ([`Canvas::line`]), kept
+    /// from the first such line on, so that a line seen through the surface is mixed
+    /// with the surface once, however many times it is drawn over a pixel.
+    surface: Vec<[f64; 3]>,
+    /// Per pixel: 0 nothing over the surface, 1 a line seen through it, 2 a line in
+    /// front of it (which one seen through does not cover).
+    line: Vec<u8>,
 }
 
 impl Canvas {
@@ -202,6 +239,8 @@ impl Canvas {
             height,
             colour: vec![[255.0; 3]; n],
             depth: vec![f64::NEG_INFINITY; n],
+            surface: Vec::new(),
+            line: vec![0; n],
         }
     }
 
@@ -257,6 +296,24 @@ impl Canvas {
     /// A segment of world points `a`–`b`, `radius` pixels wide each side, where it is
     /// not behind the surface (to the camera's bias).
     pub fn segment(&mut self, camera: &Camera, a: DVec3, b: DVec3, radius: f64, colour: [f64; 3]) {
+        self.line(camera, a, b, radius, colour, 0.0);
+    }
+
+    /// As [`Canvas::segment`], and where the segment is behind the surface, seen
+    /// through it: `colour` mixed into the surface's at `through` (0 to 1), as if the
+    /// surface let `through` of the light behind it pass.
+    pub fn line(
+        &mut self,
+        camera: &Camera,
+        a: DVec3,
+        b: DVec3,
+        radius: f64,
+        colour: [f64; 3],
+        through: f64,
+    ) {
+        if through > 0.0 && self.surface.is_empty() {
+            self.surface = self.colour.clone();
+        }
         let (pa, pb) = (camera.project(a), camera.project(b));
         let length = (pb.0 - pa.0).hypot(pb.1 - pa.1);
         if !length.is_finite() {
@@ -273,6 +330,12 @@ impl Canvas {
             for i in self.pixels_within(x, y, radius) {
                 if z >= self.depth[i] - camera.bias {
                     self.colour[i] = colour;
+                    self.line[i] = 2;
+                } else if through > 0.0 && self.line[i] < 2 {
+                    let under = self.surface[i];
+                    self.colour[i] =
+                        std::array::from_fn(|k| under[k] + through * (colour[k] - under[k]));
+                    self.line[i] = 1;
                 }
             }
         }
