@@ -175,6 +175,17 @@ pub enum Error {
         /// The cost returned.
         value: f64,
     },
+    /// A metric returned a NaN or negative cost for a wire (a line element that is no
+    /// face edge, [`TriMesh::vertex_wires`](crate::mesh::TriMesh::vertex_wires)).
+    #[error("metric '{metric}' returned {value} for the wire from vertex {} to vertex {}; costs must be ≥ 0 and not NaN", wire[0], wire[1])]
+    InvalidWireCost {
+        /// The metric's name.
+        metric: String,
+        /// The wire's vertices, lower first.
+        wire: [u32; 2],
+        /// The cost returned.
+        value: f64,
+    },
     /// The metric's costs on this mesh add up beyond the f64 range, so distances could
     /// overflow (a density of 1e300 over long edges, say). Scale the metric or the
     /// mesh down.

@@ -489,3 +489,52 @@ fn a_closed_surface_has_no_boundary_to_burn_from() {
         Err(geotracks::Error::NoBoundary)
     ));
 }
+
+/// The dunce hat: a triangle whose three sides are glued as `a a a⁻¹`. It is
+/// contractible but has no free edge, so no collapse can start: thinning punctures one
+/// face (there is no closed sheet to prefer), which opens a cycle the surface does not
+/// have, and the skeleton says so (`added_cycles`) rather than hiding it.
+#[test]
+fn the_dunce_hat_reports_the_cycle_it_cannot_avoid() {
+    // The glued border: corner c and the sides' thirds x, y, at z = 1; inside, a ring
+    // of nine vertices and a centre at z = 0.
+    let mut positions = vec![[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [0.5, 0.8, 1.0]];
+    let (c, x, y) = (0u32, 1u32, 2u32);
+    // Round the triangle P0 → P1 → P2 → P0: side P0P1 is a (c x y c), P1P2 is a, and
+    // P2P0 is a⁻¹ (c y x c).
+    let border = [c, x, y, c, x, y, c, y, x];
+    let ring: Vec<u32> = (0..9u32).map(|i| 3 + i).collect();
+    let corners = [[0.0, 0.0], [3.0, 0.0], [1.5, 2.6]];
+    for i in 0..9 {
+        let (side, third) = (i / 3, (i % 3) as f64 / 3.0);
+        let (a, b) = (corners[side], corners[(side + 1) % 3]);
+        let p = [a[0] + third * (b[0] - a[0]), a[1] + third * (b[1] - a[1])];
+        // Pulled towards the centre (1.5, 0.87).
+        positions.push([1.5 + 0.6 * (p[0] - 1.5), 0.87 + 0.6 * (p[1] - 0.87), 0.0]);
+    }
+    let centre = positions.len() as u32;
+    positions.push([1.5, 0.87, 0.0]);
+    let mut faces = Vec::new();
+    for i in 0..9 {
+        let j = (i + 1) % 9;
+        faces.push([border[i], border[j], ring[i]]);
+        faces.push([border[j], ring[j], ring[i]]);
+        faces.push([ring[i], ring[j], centre]);
+    }
+    let mesh = TriMesh::new(positions, faces).unwrap();
+    assert_eq!(mesh.face_count(), 27);
+    let report = mesh.report();
+    assert_eq!(report.boundary_edges, 0);
+    assert_eq!(mesh.betti_numbers(), betti(1, 0, 0), "contractible");
+    let skeleton = Skeleton::extract(&mesh, &Euclidean, &K5).unwrap();
+    assert_eq!(skeleton.added_cycles, 1);
+    assert_eq!(skeleton.punctured_faces, 1);
+    for level in [0.0, 0.1, f64::INFINITY] {
+        let pruned = skeleton.pruned(level);
+        assert_eq!(
+            (pruned.cycle_count(), pruned.component_count()),
+            (1, 1),
+            "at {level}: b1 + added cycles"
+        );
+    }
+}

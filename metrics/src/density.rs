@@ -129,6 +129,11 @@ impl Metric for Density {
             (max - min) * diameter
         }
     }
+    /// `length · (ρ(a) + ρ(b)) / 2`: the density linear along the wire, as on an edge.
+    fn wire_cost(&self, a: u32, b: u32, length: f64) -> f64 {
+        let (ra, rb) = (self.per_vertex[a as usize], self.per_vertex[b as usize]);
+        (length * 0.5 * (ra + rb)).min(f64::MAX)
+    }
     fn name(&self) -> &str {
         "density"
     }

@@ -86,7 +86,8 @@ impl FacePoint {
     }
 }
 
-/// The cost of straight segments inside faces: the one thing the engine asks of a metric.
+/// The cost of straight segments inside faces: what the engine asks of a metric (and,
+/// for the rare meshes with wires, their cost: [`Metric::wire_cost`]).
 ///
 /// Implementations must be deterministic, symmetric (`cost(f, a, b) == cost(f, b, a)`),
 /// non-negative, and zero only for `a == b`. They are called in the engine's innermost
@@ -137,6 +138,18 @@ pub trait Metric: Sync {
         0.0
     }
 
+    /// Cost of the wire from vertex `a` to vertex `b`, `length` long (Euclidean): a
+    /// line element that is no edge of a face (a medial axis's free curves), which
+    /// distances travel from end to end. The default is `length`: a wire has no face
+    /// whose cost could weigh it (so `Tensor` and custom metrics charge its length).
+    /// A metric with per-vertex data can do better; `Density` charges
+    /// `length · (ρ(a) + ρ(b)) / 2`. The same rules as for [`Metric::cost`] hold:
+    /// symmetric, ≥ 0, `+inf` for a wire that cannot be crossed.
+    fn wire_cost(&self, a: u32, b: u32, length: f64) -> f64 {
+        let _ = (a, b);
+        length
+    }
+
     /// A short name for reports, e.g. `"euclidean"`.
     fn name(&self) -> &str {
         "custom"
@@ -162,6 +175,10 @@ impl<M: Metric + ?Sized> Metric for &M {
     fn face_gram(&self, face: u32) -> Option<[f64; 3]> {
         (**self).face_gram(face)
     }
+    #[inline]
+    fn wire_cost(&self, a: u32, b: u32, length: f64) -> f64 {
+        (**self).wire_cost(a, b, length)
+    }
     fn name(&self) -> &str {
         (**self).name()
     }
@@ -185,6 +202,10 @@ impl<M: Metric + ?Sized> Metric for Box<M> {
     #[inline]
     fn face_gram(&self, face: u32) -> Option<[f64; 3]> {
         (**self).face_gram(face)
+    }
+    #[inline]
+    fn wire_cost(&self, a: u32, b: u32, length: f64) -> f64 {
+        (**self).wire_cost(a, b, length)
     }
     fn name(&self) -> &str {
         (**self).name()

@@ -14,7 +14,7 @@
 //! elimination over GF(2).
 
 use super::{DisjointSets, TriMesh, NONE};
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 
 /// Betti numbers over GF(2) of a complex of vertices, edges and triangles.
 ///
@@ -49,7 +49,7 @@ impl TriMesh {
     /// Cost: near-linear in the mesh's size, plus an elimination over the sheets and
     /// junction edges (small for a medial axis).
     pub fn betti_numbers(&self) -> Betti {
-        let wires = wire_edges(self);
+        let wires: Vec<[u32; 2]> = self.wires().collect();
         let mut edges: Vec<[u32; 2]> = (0..self.edge_count() as u32)
             .map(|e| self.edge_vertices(e))
             .collect();
@@ -85,27 +85,6 @@ pub(crate) fn unique_edges(edges: &[[u32; 2]]) -> Vec<[u32; 2]> {
     unique.sort_unstable();
     unique.dedup();
     unique
-}
-
-/// The line elements of `mesh` that are not edges of its faces, each once as
-/// `[lower, higher]`, sorted; loops at one vertex are left out.
-pub(crate) fn wire_edges(mesh: &TriMesh) -> Vec<[u32; 2]> {
-    if mesh.line_edges().is_empty() {
-        return Vec::new();
-    }
-    let face_edges: HashSet<[u32; 2]> = (0..mesh.edge_count() as u32)
-        .map(|e| mesh.edge_vertices(e))
-        .collect();
-    let mut wires: Vec<[u32; 2]> = mesh
-        .line_edges()
-        .iter()
-        .filter(|e| e[0] != e[1])
-        .map(|&[a, b]| [a.min(b), a.max(b)])
-        .filter(|e| !face_edges.contains(e))
-        .collect();
-    wires.sort_unstable();
-    wires.dedup();
-    wires
 }
 
 /// Components among the vertices that some edge uses, and how many vertices that is.

@@ -14,7 +14,7 @@ mod trimesh;
 pub use csr::Csr;
 pub use error::MeshError;
 pub use homology::{graph_betti_numbers, Betti};
-pub(crate) use homology::{unique_edges, wire_edges, CycleSheets};
+pub(crate) use homology::{unique_edges, CycleSheets};
 pub(crate) use order::morton_order;
 pub use report::{MeshReport, SurfaceReport};
 pub(crate) use sets::DisjointSets;

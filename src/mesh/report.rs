@@ -164,7 +164,7 @@ pub(crate) fn bounding_box(points: impl IntoIterator<Item = [f64; 3]>) -> [[f64;
 
 /// The topology of each connected component of the faces.
 fn surfaces(mesh: &TriMesh) -> Vec<SurfaceReport> {
-    let (labels, count) = vertex_components(mesh);
+    let (labels, count) = face_components(mesh);
     let mut reports = vec![
         SurfaceReport {
             vertices: 0,
@@ -299,9 +299,9 @@ fn boundary_loops(mesh: &TriMesh, labels: &[u32], count: usize) -> Vec<usize> {
     loops
 }
 
-/// Labels each vertex with its component (vertices joined by face edges) and counts the
-/// components, unreferenced vertices counting as one each.
-pub(crate) fn vertex_components(mesh: &TriMesh) -> (Vec<u32>, usize) {
+/// Labels each vertex with its component of the faces (vertices joined by face edges)
+/// and counts the components, vertices of no face counting as one each.
+fn face_components(mesh: &TriMesh) -> (Vec<u32>, usize) {
     let mut sets = DisjointSets::new(mesh.vertex_count());
     for e in 0..mesh.edge_count() as u32 {
         let [a, b] = mesh.edge_vertices(e);

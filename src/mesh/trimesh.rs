@@ -132,6 +132,9 @@ pub struct TriMesh {
     vertex_faces: Csr,
     vertex_edges: Csr,
     line_edges: Vec<[u32; 2]>,
+    /// Per vertex, the vertices joined to it by a wire (a line element that is no face
+    /// edge): the 1-skeleton that distances also travel.
+    vertex_wires: Csr,
     input_faces: Vec<u32>,
     dropped: Vec<DroppedFace>,
 }
@@ -149,8 +152,10 @@ impl TriMesh {
     }
 
     /// As [`TriMesh::new`], also keeping line elements: edges that may belong to no face
-    /// (a medial axis has them). They carry no area and take no part in propagation;
-    /// line elements that are also face edges are kept as given.
+    /// (a medial axis has them). Those that are no face edge are *wires*
+    /// ([`TriMesh::vertex_wires`]): curves without area that distances travel along,
+    /// vertex to vertex, at the metric's [`wire_cost`](geotracks_metrics::Metric::wire_cost);
+    /// line elements that are also face edges are kept as given and change nothing.
     ///
     /// # Errors
     /// As [`TriMesh::new`], plus [`MeshError::EdgeIndexOutOfRange`].
@@ -236,7 +241,7 @@ impl TriMesh {
                 .enumerate()
                 .flat_map(|(e, ev)| ev.iter().map(move |&v| (v, e as u32))),
         );
-        Ok(TriMesh {
+        let mut mesh = TriMesh {
             positions,
             triangles: kept,
             frames,
@@ -245,10 +250,13 @@ impl TriMesh {
             edge_faces,
             vertex_faces,
             vertex_edges,
-            line_edges,
+            line_edges: Vec::new(),
+            vertex_wires: Csr::from_pairs(n, std::iter::empty()),
             input_faces,
             dropped,
-        })
+        };
+        mesh.set_line_elements(line_edges)?;
+        Ok(mesh)
     }
 
     /// Replaces the line elements (see [`TriMesh::with_line_elements`]); useful when which
@@ -259,8 +267,59 @@ impl TriMesh {
     /// mesh is left unchanged then.
     pub fn set_line_elements(&mut self, line_edges: Vec<[u32; 2]>) -> Result<(), MeshError> {
         check_line_edges(&line_edges, self.positions.len())?;
+        let mut wires: Vec<[u32; 2]> = line_edges
+            .iter()
+            .filter(|e| e[0] != e[1])
+            .map(|&[a, b]| [a.min(b), a.max(b)])
+            .filter(|&[a, b]| {
+                !self
+                    .vertex_edges(a)
+                    .iter()
+                    .any(|&e| self.edge_vertices(e).contains(&b))
+            })
+            .collect();
+        wires.sort_unstable();
+        wires.dedup();
+        self.vertex_wires = Csr::from_pairs(
+            self.positions.len(),
+            wires.iter().flat_map(|&[a, b]| [(a, b), (b, a)]),
+        );
         self.line_edges = line_edges;
         Ok(())
+    }
+
+    /// The vertices joined to `v` by a wire: a line element that is no edge of a face
+    /// (each wire once, whichever way and however often the line elements list it).
+    ///
+    /// ```
+    /// use geotracks::mesh::TriMesh;
+    /// // A triangle with a tail: the wire 2–3, and the face edge 0–1 listed again.
+    /// let mesh = TriMesh::with_line_elements(
+    ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 2.0, 0.0]],
+    ///     vec![[0, 1, 2]],
+    ///     vec![[3, 2], [0, 1], [2, 3]],
+    /// )?;
+    /// assert_eq!(mesh.vertex_wires(2), &[3]);
+    /// assert_eq!(mesh.vertex_wires(3), &[2]);
+    /// assert!(mesh.vertex_wires(0).is_empty());
+    /// # Ok::<(), geotracks::mesh::MeshError>(())
+    /// ```
+    ///
+    /// # Panics
+    /// If `v` is not a vertex of the mesh.
+    #[inline]
+    pub fn vertex_wires(&self, v: u32) -> &[u32] {
+        self.vertex_wires.row(v)
+    }
+
+    /// The wires ([`TriMesh::vertex_wires`]), each once as `[lower, higher]`, sorted.
+    pub fn wires(&self) -> impl Iterator<Item = [u32; 2]> + '_ {
+        (0..self.positions.len() as u32).flat_map(move |a| {
+            self.vertex_wires(a)
+                .iter()
+                .filter(move |&&b| a < b)
+                .map(move |&b| [a, b])
+        })
     }
 
     /// Vertex positions.
@@ -352,11 +411,16 @@ impl TriMesh {
             .sum::<f64>()
     }
 
-    /// Labels each vertex with its connected component (vertices joined by face edges;
-    /// an unreferenced vertex is a component of its own) and returns the labels and the
-    /// number of components. Distances propagate only within a component.
+    /// Labels each vertex with its connected component (vertices joined by face edges
+    /// or wires; an unreferenced vertex is a component of its own) and returns the
+    /// labels and the number of components. Distances propagate only within a
+    /// component.
     pub fn vertex_components(&self) -> (Vec<u32>, usize) {
-        super::report::vertex_components(self)
+        let mut sets = super::DisjointSets::new(self.vertex_count());
+        for [a, b] in self.edge_vertices.iter().copied().chain(self.wires()) {
+            sets.join(a, b);
+        }
+        sets.labels()
     }
 
     /// Counts of elements, boundary and non-manifold edges, components and so on.

@@ -1,7 +1,7 @@
 //! What every engine shares: per-node distances and parents, the work counters, the
 //! metric call with its sanity check, and relaxation along edges.
 
-use crate::mesh::{TriMesh, NONE};
+use crate::mesh::{Csr, TriMesh, NONE};
 use crate::steiner::{NodeKind, SteinerLayout};
 use geotracks_metrics::{FacePoint, Metric};
 
@@ -47,6 +47,8 @@ pub(super) struct Frontier<'a, M, Q> {
     pub layout: &'a SteinerLayout,
     /// Cost between consecutive nodes of each edge, when the metric allows caching it.
     pub edge_steps: Option<&'a [f64]>,
+    /// Per vertex, its wires: the other end and the wire's cost.
+    pub wires: &'a Csr<(u32, f64)>,
     pub distance: &'a mut [f64],
     pub parent: &'a mut [u32],
     pub parent_face: &'a mut [u32],
@@ -112,6 +114,7 @@ impl<'a, M: Metric> Frontier<'a, M, ()> {
             metric: self.metric,
             layout: self.layout,
             edge_steps: self.edge_steps,
+            wires: self.wires,
             distance: self.distance,
             parent: self.parent,
             parent_face: self.parent_face,
@@ -224,8 +227,19 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
         self.pushes += self.queue.push(node, value, value) as u64;
     }
 
+    /// Relaxes the vertices at the other ends of vertex `v`'s wires (a vertex's node is
+    /// its id): a wire is travelled whole, at its cost.
+    #[inline]
+    pub fn relax_along_wires(&mut self, v: u32, d: f64) {
+        let wires = self.wires;
+        for &(w, cost) in wires.row(v) {
+            self.relax(w, d + cost, v, NONE);
+        }
+    }
+
     /// Relaxes `q`'s neighbours along its edges (for a vertex, the first node of every
-    /// edge around it; for a Steiner point, the nodes before and after it). Straight
+    /// edge around it, and the other end of every wire; for a Steiner point, the nodes
+    /// before and after it). Straight
     /// segments add up along an edge, so the next neighbour is enough; the segment costs
     /// what it costs in the cheapest face around the edge.
     pub fn relax_along_edges(&mut self, q: u32, kind: NodeKind, d: f64) {
@@ -243,6 +257,7 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
                     };
                     self.relax_along_edge(e, q, next, d);
                 }
+                self.relax_along_wires(v, d);
             }
             NodeKind::Steiner { edge, index } => {
                 let [lo, hi] = mesh.edge_vertices(edge);

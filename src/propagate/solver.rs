@@ -10,7 +10,7 @@ use super::{graph, tracks, Method, Options, Stop};
 use crate::field::Wave;
 use crate::field::{FieldView, GeodesicField, Root, SolverId, Stats};
 use crate::flat;
-use crate::mesh::{FaceFrame, TriMesh, NONE};
+use crate::mesh::{Csr, FaceFrame, TriMesh, NONE};
 use crate::steiner::SteinerLayout;
 use crate::surface::{PointError, Source, SurfacePoint};
 use crate::trace::Query;
@@ -61,8 +61,11 @@ pub struct Solver<'m, M> {
     /// How far below a node's value its offers can reach (see `Frontier::reach`).
     reach: f64,
     bucket_width: f64,
-    /// The sum of the edges' finite costs: no run's value exceeds a start plus this.
+    /// The sum of the edges' and wires' finite costs: no run's value exceeds a start
+    /// plus this.
     cost_total: f64,
+    /// Per vertex, its wires: the vertex at the other end and the wire's cost.
+    wires: Csr<(u32, f64)>,
     setup_seconds: f64,
 }
 
@@ -200,7 +203,9 @@ impl<'m, M: Metric> Solver<'m, M> {
                 std::borrow::Cow::Owned(first_face_steps(mesh, &metric, &layout))
             }
         };
-        let cost_total = check_cost_range(&metric, &layout, &steps)?;
+        let wires = wire_costs(mesh, &metric)?;
+        setup_tests += wires.len() as u64 / 2;
+        let cost_total = check_cost_range(&metric, &layout, &steps, &wires)?;
         // Only the tracks engine uses a bucket queue (the baselines keep a heap).
         let (tables, bucket_width) = match options.method {
             Method::Tracks | Method::Wave => {
@@ -237,6 +242,7 @@ impl<'m, M: Metric> Solver<'m, M> {
             reach,
             bucket_width,
             cost_total,
+            wires,
             setup_seconds: start.elapsed().as_secs_f64(),
         })
     }
@@ -459,6 +465,7 @@ impl<'m, M: Metric> Solver<'m, M> {
             metric: &self.metric,
             layout: &self.layout,
             edge_steps: self.edge_steps.as_deref(),
+            wires: &self.wires,
             distance,
             parent,
             parent_face,
@@ -813,19 +820,52 @@ fn check_cost_range<M: Metric>(
     metric: &M,
     layout: &SteinerLayout,
     steps: &[f64],
+    wires: &Csr<(u32, f64)>,
 ) -> Result<f64, Error> {
-    let total: f64 = steps
+    let edges: f64 = steps
         .iter()
         .enumerate()
         .filter(|(_, s)| s.is_finite())
         .map(|(e, s)| s * (layout.count(e as u32) + 1) as f64)
         .sum();
+    // Each wire is listed from both ends.
+    let wires: f64 = (0..wires.rows() as u32)
+        .flat_map(|v| wires.row(v).iter().filter(move |(w, _)| v < *w))
+        .map(|&(_, c)| c)
+        .filter(|c| c.is_finite())
+        .sum();
+    let total = edges + wires;
     if total.is_finite() {
         return Ok(total);
     }
     Err(Error::CostOverflow {
         metric: metric.name().to_string(),
     })
+}
+
+/// The metric's cost of every wire of `mesh`, listed from both ends.
+///
+/// # Errors
+/// [`Error::InvalidWireCost`] for a NaN or negative cost.
+fn wire_costs<M: Metric>(mesh: &TriMesh, metric: &M) -> Result<Csr<(u32, f64)>, Error> {
+    let mut costs = Vec::new();
+    for [a, b] in mesh.wires() {
+        let cost = metric.wire_cost(a, b, mesh.position(a).distance(mesh.position(b)));
+        if cost.is_nan() || cost < 0.0 {
+            return Err(Error::InvalidWireCost {
+                metric: metric.name().to_string(),
+                wire: [a, b],
+                value: cost,
+            });
+        }
+        costs.push(([a, b], cost));
+    }
+    Ok(Csr::from_pairs(
+        mesh.vertex_count(),
+        costs
+            .iter()
+            .flat_map(|&([a, b], c)| [(a, (b, c)), (b, (a, c))]),
+    ))
 }
 
 impl<M: Metric> Solver<'_, M> {

@@ -171,6 +171,9 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
             let at = high as u32 as f64;
             self.along_edge(v, d, next, step, None, (at, 0.0), len, NONE);
         }
+        // A vertex reached along a wire is a point source for its faces, as every
+        // vertex is: nothing more to carry.
+        self.search.relax_along_wires(v, d);
         let parent_face = self.search.parent_face[v as usize];
         for &inc in tables.corners.row(v) {
             let r = &tables.faces[inc.record() as usize];

@@ -48,7 +48,7 @@ mod thinning;
 pub use grassfire::Grassfire;
 
 use crate::mesh::io::MedialAxis;
-use crate::mesh::{unique_edges, wire_edges, DisjointSets, TriMesh, NONE};
+use crate::mesh::{unique_edges, DisjointSets, TriMesh, NONE};
 use crate::options::Options;
 use crate::surface::SurfacePoint;
 use crate::{Error, Euclidean, GeodesicField, Metric};
@@ -127,7 +127,7 @@ impl Skeleton {
     /// extended grassfire: each vertex may burn from its `reach` time on (a medial axis's
     /// radii, a grassfire's distances, or any function whose ridges the skeleton should
     /// follow; `inf` where no fire comes), the fire then moving at `metric`'s speed
-    /// (along line elements, at their Euclidean length). Every vertex of a face or line
+    /// (along wires, at [`Metric::wire_cost`]). Every vertex of a face or line
     /// element is a point; the edges are every curve thinning left on the way, and each
     /// point's significance is its erosion thickness.
     ///
@@ -139,7 +139,7 @@ impl Skeleton {
             mesh.vertex_count(),
             "one reach time per vertex"
         );
-        let wires = wire_edges(mesh);
+        let wires: Vec<[u32; 2]> = mesh.wires().collect();
         let lengths = edge_costs(mesh, metric, &wires);
         // Crossing a face from an edge: from the edge's middle to the opposite corner.
         let cross = |f: u32, e: u32| {
@@ -384,7 +384,7 @@ fn edge_costs<M: Metric>(mesh: &TriMesh, metric: &M, wires: &[[u32; 2]]) -> Vec<
     costs.extend(
         wires
             .iter()
-            .map(|&[a, b]| mesh.position(a).distance(mesh.position(b))),
+            .map(|&[a, b]| metric.wire_cost(a, b, mesh.position(a).distance(mesh.position(b)))),
     );
     costs
 }

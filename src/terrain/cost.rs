@@ -284,6 +284,9 @@ impl<M: Metric> Metric for Impassable<M> {
             self.inner.face_gram(face)
         }
     }
+    fn wire_cost(&self, a: u32, b: u32, length: f64) -> f64 {
+        self.inner.wire_cost(a, b, length)
+    }
     fn name(&self) -> &str {
         "impassable"
     }
@@ -483,6 +486,9 @@ impl Metric for TerrainMetric {
     }
     fn face_gram(&self, face: u32) -> Option<[f64; 3]> {
         each!(self, m => m.face_gram(face))
+    }
+    fn wire_cost(&self, a: u32, b: u32, length: f64) -> f64 {
+        each!(self, m => m.wire_cost(a, b, length))
     }
     fn name(&self) -> &str {
         each!(self, m => m.name())

@@ -39,7 +39,9 @@ pub use straighten::straighten;
 pub struct GeodesicPath {
     /// The polyline's points, each a vertex, an edge point or a face point.
     pub points: Vec<SurfacePoint>,
-    /// The face each segment lies in (one fewer than the points).
+    /// The face each segment lies in (one fewer than the points); [`NONE`] for a
+    /// segment along a wire, between the wire's two vertices
+    /// ([`TriMesh::vertex_wires`]).
     pub faces: Vec<u32>,
     /// The index of the source the path ends at, in the run's sources.
     pub source: u32,
@@ -80,7 +82,9 @@ impl GeodesicPath {
     }
 }
 
-/// The cost of the straight segment `a`–`b` inside face `f`, whose closure holds both.
+/// The cost of the straight segment `a`–`b` inside face `f`, whose closure holds both;
+/// for `f` = [`NONE`], of the wire between vertices `a` and `b` (`inf` if they are not
+/// two vertices: no such segment).
 pub(crate) fn segment_cost<M: Metric>(
     mesh: &TriMesh,
     metric: &M,
@@ -88,6 +92,12 @@ pub(crate) fn segment_cost<M: Metric>(
     a: SurfacePoint,
     b: SurfacePoint,
 ) -> f64 {
+    if f == NONE {
+        let (SurfacePoint::Vertex(u), SurfacePoint::Vertex(v)) = (a, b) else {
+            return f64::INFINITY;
+        };
+        return metric.wire_cost(u, v, mesh.position(u).distance(mesh.position(v)));
+    }
     let pa = a.in_face(mesh, f).expect("segment end on its face");
     let pb = b.in_face(mesh, f).expect("segment end on its face");
     metric.cost(f, &pa, &pb)
@@ -203,16 +213,22 @@ impl<M: Metric> Query<'_, M> {
     }
 
     /// The face around the edge that joins nodes `a` and `b` (neighbours along it) in
-    /// which the segment between them costs least.
+    /// which the segment between them costs least; [`NONE`] for two vertices joined by
+    /// a wire and no face edge.
     fn cheapest_face_along(&self, a: u32, b: u32) -> u32 {
         let (mesh, metric, layout) = (self.mesh, self.metric, self.field.layout);
         let edge = match (layout.kind(a), layout.kind(b)) {
             (NodeKind::Steiner { edge, .. }, _) | (_, NodeKind::Steiner { edge, .. }) => edge,
-            (NodeKind::Vertex(u), NodeKind::Vertex(v)) => *mesh
-                .vertex_edges(u)
-                .iter()
-                .find(|&&e| mesh.edge_vertices(e).contains(&v))
-                .expect("nodes joined along an edge share it"),
+            (NodeKind::Vertex(u), NodeKind::Vertex(v)) => {
+                match mesh
+                    .vertex_edges(u)
+                    .iter()
+                    .find(|&&e| mesh.edge_vertices(e).contains(&v))
+                {
+                    Some(&e) => e,
+                    None => return NONE,
+                }
+            }
         };
         let (pa, pb) = (layout.surface_point(a), layout.surface_point(b));
         let faces = mesh.edge_faces(edge);

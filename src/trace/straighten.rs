@@ -23,7 +23,7 @@
 //! across a book's spine.
 
 use super::{segment_cost, GeodesicPath};
-use crate::mesh::TriMesh;
+use crate::mesh::{TriMesh, NONE};
 use crate::surface::SurfacePoint;
 use geotracks_metrics::{FacePoint, Metric};
 use glam::DVec3;
@@ -52,7 +52,44 @@ const SNAP: f64 = 1e-3;
 /// the wrong side ends a round with crossings pressed against it; the next round puts
 /// them at the vertex, where unpinning can take the other side. A round that ends
 /// longer than it began is undone, and unpinning stops.
+///
+/// A path that runs along wires (segments with face [`NONE`]) is straightened piece by
+/// piece between them: a wire is a fixed curve, and its ends stay where they are.
 pub fn straighten<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
+    if !path.faces.contains(&NONE) {
+        straighten_in_faces(path, mesh, metric);
+        return;
+    }
+    let mut points = Vec::with_capacity(path.points.len());
+    let mut faces = Vec::with_capacity(path.faces.len());
+    let mut start = 0;
+    for end in 0..=path.faces.len() {
+        if end < path.faces.len() && path.faces[end] != NONE {
+            continue;
+        }
+        // Points start..=end lie in faces: straighten them as a path of their own.
+        let mut piece = GeodesicPath {
+            points: path.points[start..=end].to_vec(),
+            faces: path.faces[start..end].to_vec(),
+            ..path.clone()
+        };
+        if !piece.faces.is_empty() {
+            straighten_in_faces(&mut piece, mesh, metric);
+        }
+        if !points.is_empty() {
+            faces.push(NONE); // the wire from the last piece's end to this one's start
+        }
+        points.extend(piece.points);
+        faces.extend(piece.faces);
+        start = end + 1;
+    }
+    path.points = points;
+    path.faces = faces;
+    path.length = path.metric_length(mesh, metric);
+}
+
+/// [`straighten`] for a path whose segments all lie in faces.
+fn straighten_in_faces<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
     let mut length = path.metric_length(mesh, metric);
     let mut unpinning = true;
     for round in 0..ROUNDS {

@@ -303,6 +303,7 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
             }
             self.search.relax(next, d + step, v, NONE);
         }
+        self.search.relax_along_wires(v, d);
         for &f in mesh.vertex_faces(v) {
             let prunes = self.search.metric.prunes_on(f);
             let r = &tables.faces[tables.record_of(f) as usize];
