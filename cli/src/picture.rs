@@ -1,6 +1,6 @@
 //! `--png`, `--view`, `--size`: a picture of a distance field (library:
-//! `geotracks::render`), for `distance`, `isolines` and `demo`.
-
+//! `geotracks::render`), for `distance`, `isolines` and `demo`; `skeleton` shares the
+//! camera arguments.
 use crate::output::Outputs;
 use crate::CliResult;
 use geotracks::render::{render_field, PictureOptions, View};
@@ -18,9 +18,17 @@ pub struct PictureArgs {
     /// isolines, the sources marked in red, and a colour bar with the range.
     #[arg(long, value_name = "PICTURE.png")]
     pub png: Option<PathBuf>,
-    /// Where the picture looks from: auto (from where the faces show the most area,
-    /// the first source facing the eye), front (+z, y up), back, left, right, top,
-    /// bottom, or AZ,EL (degrees about +y from the front, and above the horizon).
+    #[command(flatten)]
+    pub camera: CameraArgs,
+}
+
+/// Where a picture looks from and how large it is (`--view`, `--size`; they need
+/// `--png`).
+#[derive(clap::Args)]
+pub struct CameraArgs {
+    /// Where the picture looks from: auto (from where the faces show the most area; for
+    /// a field, the first source facing the eye), front (+z, y up), back, left, right,
+    /// top, bottom, or AZ,EL (degrees about +y from the front, and above the horizon).
     #[arg(
         long,
         value_name = "VIEW",
@@ -34,7 +42,16 @@ pub struct PictureArgs {
     pub size: (u32, u32),
 }
 
-pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
+impl CameraArgs {
+    /// The picture options these arguments ask for.
+    pub fn options(&self) -> PictureOptions {
+        PictureOptions::DEFAULT
+            .with_size(self.size.0, self.size.1)
+            .with_view(self.view)
+    }
+}
+
+fn parse_size(text: &str) -> Result<(u32, u32), String> {
     let bad = || format!("'{text}' is not WxH (two whole numbers of pixels, e.g. 1024x768)");
     let (w, h) = text.split_once(['x', 'X']).ok_or_else(bad)?;
     let (w, h) = (
@@ -58,12 +75,6 @@ impl PictureArgs {
         outputs.declare_some(self.png.as_ref())
     }
 
-    fn options(&self) -> PictureOptions {
-        PictureOptions::DEFAULT
-            .with_size(self.size.0, self.size.1)
-            .with_view(self.view)
-    }
-
     /// Draws the field of `query` with `lines` (or, if `None`, ten isolines spread over
     /// the field) into the picture, if one was asked for.
     pub fn draw<M: Metric>(
@@ -76,7 +87,7 @@ impl PictureArgs {
         let Some(path) = &self.png else {
             return Ok(());
         };
-        draw(outputs, path, query, sources, lines, &self.options())
+        draw(outputs, path, query, sources, lines, &self.camera.options())
     }
 }
 

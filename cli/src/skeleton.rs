@@ -1,9 +1,10 @@
 //! `geotracks skeleton`: the skeleton of a medial axis, burnt from its boundary.
 
 use crate::output::Outputs;
+use crate::picture::CameraArgs;
 use crate::{ui, CliResult, Short};
 use geotracks::mesh::io::{read_medial_axis, write_obj_lines_to, write_ply_with_distance_to};
-use geotracks::render::{render_skeleton, PictureOptions, View};
+use geotracks::render::render_skeleton;
 use geotracks::skeleton::{medial_axis_skeleton, Burn, DEFAULT_PRUNE_PERCENT};
 use geotracks::{Method, Options};
 use std::path::PathBuf;
@@ -48,20 +49,8 @@ pub struct SkeletonArgs {
     /// pale, semi-transparent axis, tips and junctions as dots.
     #[arg(long, value_name = "PICTURE.png")]
     png: Option<PathBuf>,
-    /// Where the picture looks from: auto (onto the sheets), front (+z, y up), back,
-    /// left, right, top, bottom, or AZ,EL (degrees about +y from the front, and above
-    /// the horizon).
-    #[arg(
-        long,
-        value_name = "VIEW",
-        default_value = "auto",
-        requires = "png",
-        allow_hyphen_values = true
-    )]
-    view: View,
-    /// The picture's size in pixels: WxH (64 to 8192 each).
-    #[arg(long, value_name = "WxH", default_value = "1024x768", value_parser = crate::picture::parse_size, requires = "png")]
-    size: (u32, u32),
+    #[command(flatten)]
+    camera: CameraArgs,
 }
 
 pub fn run(args: &SkeletonArgs) -> CliResult {
@@ -132,10 +121,7 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
         (None, ..) => {}
     }
     if let Some(path) = &args.png {
-        let options = PictureOptions::DEFAULT
-            .with_size(args.size.0, args.size.1)
-            .with_view(args.view);
-        let picture = render_skeleton(&axis, &skeleton, &options)?;
+        let picture = render_skeleton(&axis, &skeleton, &args.camera.options())?;
         outputs.write(path, |w| picture.write_png_to(w))?;
     }
     match format {

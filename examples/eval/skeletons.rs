@@ -41,6 +41,7 @@ pub fn skeletons(data: &Path, prune_percent: f64, k: f64, burn: Burn) -> Result<
     println!("{header} end to end |\n{rule}---:|");
     let mut failures = Vec::new();
     let mut comparisons = Vec::new();
+    let mut breakdowns = Vec::new();
     for name in &names {
         let path = dir.join(format!("{name}.ma"));
         let start = Instant::now();
@@ -71,16 +72,72 @@ pub fn skeletons(data: &Path, prune_percent: f64, k: f64, burn: Burn) -> Result<
             // How far the reference itself lies from the axis: no skeleton on the axis can
             // come closer to it than that.
             let reference = read_polylines(&reference)?;
-            let floor = axis.surface.as_ref().map(|mesh| {
-                let gaps: Vec<f64> = sample(&reference.segments, 0.002 * diagonal)
-                    .iter()
-                    .map(|&p| {
-                        geotracks::SurfacePoint::nearest(mesh, p.to_array())
-                            .map_or(f64::INFINITY, |q| q.position(mesh).distance(p))
-                    })
-                    .collect();
-                gaps.iter().sum::<f64>() / gaps.len().max(1) as f64
-            });
+            let to_axis = |points: &[DVec3]| -> Option<f64> {
+                let mesh = axis.surface.as_ref()?;
+                let gaps = points.iter().map(|&p| {
+                    geotracks::SurfacePoint::nearest(mesh, p.to_array())
+                        .map_or(f64::INFINITY, |q| q.position(mesh).distance(p))
+                });
+                Some(gaps.sum::<f64>() / points.len().max(1) as f64)
+            };
+            let floor = to_axis(&sample(&reference.segments, 0.002 * diagonal));
+            // Per branch of the reference: its share of the samples, its mean distance
+            // to ours, and its own floor.
+            let ours_segments = segments_of(&at_default.polyline_positions());
+            let mut branches: Vec<Branch> = reference
+                .branches
+                .iter()
+                .map(|line| {
+                    let points = sample(&segments_of(std::slice::from_ref(line)), 0.002 * diagonal);
+                    Branch {
+                        ends: [line[0], line[line.len() - 1]],
+                        kind: "",
+                        samples: points.len(),
+                        to_other: spread(&points, &ours_segments).0,
+                        floor: to_axis(&points),
+                    }
+                })
+                .collect();
+            let mut degree = vec![0usize; at_default.points.len()];
+            for &[a, b] in &at_default.edges {
+                degree[a as usize] += 1;
+                degree[b as usize] += 1;
+            }
+            let mut ours_branches: Vec<Branch> = at_default
+                .polylines()
+                .iter()
+                .filter(|ids| ids.len() > 1)
+                .map(|ids| {
+                    let line: Vec<[f64; 3]> = ids
+                        .iter()
+                        .map(|&i| at_default.points[i as usize].position)
+                        .collect();
+                    let points =
+                        sample(&segments_of(std::slice::from_ref(&line)), 0.002 * diagonal);
+                    // Points on the loops that carry the axis's cycles never burn.
+                    let on_loop = ids
+                        .iter()
+                        .all(|&i| at_default.points[i as usize].significance.is_infinite());
+                    let kind = if on_loop {
+                        "loop"
+                    } else if ids.iter().any(|&i| degree[i as usize] == 1) {
+                        "to a tip"
+                    } else {
+                        "inner"
+                    };
+                    Branch {
+                        ends: [line[0], line[line.len() - 1]],
+                        kind,
+                        samples: points.len(),
+                        to_other: spread(&points, &reference.segments).0,
+                        floor: None,
+                    }
+                })
+                .collect();
+            let excess = |b: &Branch| b.samples as f64 * (b.to_other - b.floor.unwrap_or(0.0));
+            branches.sort_by(|a, b| excess(b).total_cmp(&excess(a)));
+            ours_branches.sort_by(|a, b| excess(b).total_cmp(&excess(a)));
+            breakdowns.push((name.clone(), diagonal, branches, ours_branches));
             comparisons.push((name.clone(), at_default, reference, diagonal, floor));
         }
     }
@@ -110,6 +167,35 @@ pub fn skeletons(data: &Path, prune_percent: f64, k: f64, burn: Burn) -> Result<
             floor.map_or("–".into(), |f| format!("{:.2} %", pct(f)))
         );
     }
+    println!("\nWhere the distances come from: the branches (polylines between tips and junctions) that add most to each mean, with their share of it (branch samples × distance / all samples, in % of the diagonal; reference → ours less the branch's own distance to the axis, which no skeleton on the axis can remove).\n");
+    println!("| axis | direction | branch (ends) | samples | mean distance | to the axis | share of the mean |");
+    println!("|---|---|---|---:|---:|---:|---:|");
+    for (name, diagonal, reference, ours) in &breakdowns {
+        let pct = |x: f64| 100.0 * x / diagonal;
+        for (direction, branches) in [("reference → ours", reference), ("ours → reference", ours)]
+        {
+            let total: usize = branches.iter().map(|b| b.samples).sum();
+            for b in branches.iter().take(BREAKDOWN_ROWS) {
+                let share =
+                    b.samples as f64 * (b.to_other - b.floor.unwrap_or(0.0)) / total.max(1) as f64;
+                let at = |p: [f64; 3]| format!("({:.2}, {:.2}, {:.2})", p[0], p[1], p[2]);
+                println!(
+                    "| {name} | {direction} | {} – {}{} | {} | {:.2} % | {} | {:.2} % |",
+                    at(b.ends[0]),
+                    at(b.ends[1]),
+                    if b.kind.is_empty() {
+                        String::new()
+                    } else {
+                        format!(", {}", b.kind)
+                    },
+                    b.samples,
+                    pct(b.to_other),
+                    b.floor.map_or("–".into(), |f| format!("{:.2} %", pct(f))),
+                    pct(share)
+                );
+            }
+        }
+    }
     if !failures.is_empty() {
         return Err(format!(
             "skeleton topology differs from the axis's: {}",
@@ -117,6 +203,21 @@ pub fn skeletons(data: &Path, prune_percent: f64, k: f64, burn: Burn) -> Result<
         ));
     }
     Ok(())
+}
+
+/// Rows of the breakdown per axis and direction.
+const BREAKDOWN_ROWS: usize = 5;
+
+/// One branch of a skeleton, measured against the other skeleton.
+struct Branch {
+    ends: [[f64; 3]; 2],
+    /// For ours: on a loop, ending at a tip, or between junctions.
+    kind: &'static str,
+    samples: usize,
+    /// Mean distance of its samples to the other skeleton.
+    to_other: f64,
+    /// Mean distance of its samples to the axis (reference branches only).
+    floor: Option<f64>,
 }
 
 /// Points with three or more edges.
@@ -131,6 +232,8 @@ fn junction_count(skeleton: &Skeleton) -> usize {
 
 struct Polylines {
     segments: Vec<(DVec3, DVec3)>,
+    /// The branches: polylines between tips and junctions.
+    branches: Vec<Vec<[f64; 3]>>,
     tips: usize,
     junctions: usize,
 }
@@ -164,7 +267,12 @@ fn read_polylines(path: &Path) -> Result<Polylines, String> {
         degree[a] += 1;
         degree[b] += 1;
     }
+    // The graph unpruned is itself: its polylines are the branches.
+    let positions: Vec<[f64; 3]> = vertices.iter().map(|v| v.to_array()).collect();
+    let pairs: Vec<[u32; 2]> = edges.iter().map(|&(a, b)| [a as u32, b as u32]).collect();
+    let branches = Skeleton::from_curves(&positions, &pairs, None).polyline_positions();
     Ok(Polylines {
+        branches,
         segments: edges
             .iter()
             .map(|&(a, b)| (vertices[a], vertices[b]))
