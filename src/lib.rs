@@ -6,7 +6,8 @@
 //!
 //! ## Map of the crate
 //! - [`mesh`]: [`TriMesh`](mesh::TriMesh) (an edge may have any number of faces; its
-//!   connectivity is its own methods: faces of an edge, edges of a face, …), readers
+//!   connectivity is its own methods: faces of an edge, edges of a face, …; line
+//!   elements that are no face edge are wires, which distances travel too), readers
 //!   and writers ([`mesh::io`]).
 //! - [`metrics`] (re-exported crate `geotracks-metrics`): the [`Metric`] trait and the
 //!   built-ins [`Euclidean`], [`Density`], [`Tensor`].
@@ -20,7 +21,8 @@
 //! - [`trace`]: [`Query`], made by the solver that computed a field
 //!   ([`Solver::query`]): the distance and gradient at any surface point, each face's
 //!   regions, paths ([`GeodesicPath`], straightened), isolines and nearest sources.
-//! - [`render`]: pictures of fields (the mesh coloured by distance, isolines, sources).
+//! - [`render`]: pictures of fields (the mesh coloured by distance, isolines, sources)
+//!   and of skeletons over their medial axis.
 //! - [`skeleton`]: curve skeletons of medial axes with the axis's topology: burnt from
 //!   the border or by radius, thinned by collapses in burn order, pruned by erosion
 //!   thickness.
