@@ -90,7 +90,9 @@ pub use glam;
 
 pub use error::{Error, PointRole, SizeLimit, ValueRole};
 pub use field::{GeodesicField, Stats};
-pub use geotracks_metrics::{Density, Euclidean, FacePoint, Metric, MetricError, Tensor};
+pub use geotracks_metrics::{
+    BuiltinMetric, Density, Euclidean, FacePoint, Metric, MetricError, Tensor,
+};
 pub use options::{Method, Options, Stop};
 pub use propagate::{distance_field, Solver, Workspace};
 pub use steiner::{SteinerLayout, SteinerScheme};

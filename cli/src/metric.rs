@@ -1,10 +1,10 @@
 //! The options every propagating command shares: Steiner points, engine, and the metric
-//! (Euclidean, or a density or tensor file), read into one [`MeshMetric`].
+//! (Euclidean, or a density or tensor file), read into one [`BuiltinMetric`] (the library's enum of the three).
 
 use crate::inputs::{read_density, read_tensor};
 use crate::CliResult;
 use geotracks::mesh::TriMesh;
-use geotracks::{Density, Euclidean, FacePoint, Method, Metric, Options, Tensor};
+use geotracks::{BuiltinMetric, Euclidean, Method, Options};
 use std::path::PathBuf;
 
 /// Steiner points, engine and metric.
@@ -57,67 +57,11 @@ impl MetricArgs {
     }
 
     /// Reads the metric's file, if any.
-    pub fn metric(&self, mesh: &TriMesh) -> CliResult<MeshMetric> {
+    pub fn metric(&self, mesh: &TriMesh) -> CliResult<BuiltinMetric> {
         Ok(match (&self.density, &self.tensor) {
-            (Some(path), _) => MeshMetric::Density(read_density(path, mesh)?),
-            (None, Some(path)) => MeshMetric::Tensor(read_tensor(path, mesh)?),
-            (None, None) => MeshMetric::Euclidean(Euclidean),
+            (Some(path), _) => BuiltinMetric::Density(read_density(path, mesh)?),
+            (None, Some(path)) => BuiltinMetric::Tensor(read_tensor(path, mesh)?),
+            (None, None) => BuiltinMetric::Euclidean(Euclidean),
         })
-    }
-}
-
-/// The metric chosen on the command line. One type for the three, so each command
-/// builds one solver; the engine is monomorphised on it, and the `match` below takes the
-/// same arm at every call. Not free: on the bunny (69K faces, k = 5, tracks) a run
-/// executes 8 % (Euclidean), 6 % (density) and 7 % (tensor) more instructions than on
-/// each metric's own type (callgrind); in time, Euclidean ran about 5 % slower and the
-/// others within noise (commit message of the CLI crate split).
-pub enum MeshMetric {
-    /// No file: the length.
-    Euclidean(Euclidean),
-    /// `--density`.
-    Density(Density),
-    /// `--tensor`.
-    Tensor(Tensor),
-}
-
-/// `each!(self, m => expr)`: `expr` with `m` bound to the metric inside, for each
-/// variant: one match, the variants' bodies inlined.
-macro_rules! each {
-    ($self:ident, $m:ident => $e:expr) => {
-        match $self {
-            MeshMetric::Euclidean($m) => $e,
-            MeshMetric::Density($m) => $e,
-            MeshMetric::Tensor($m) => $e,
-        }
-    };
-}
-
-impl Metric for MeshMetric {
-    // Always: left to itself the compiler keeps the match with the three metrics'
-    // bodies out of line, and a run costs 12–13 % more instructions instead of 6–8 %.
-    #[inline(always)]
-    fn cost(&self, face: u32, a: &FacePoint, b: &FacePoint) -> f64 {
-        each!(self, m => m.cost(face, a, b))
-    }
-    fn is_face_norm(&self) -> bool {
-        each!(self, m => m.is_face_norm())
-    }
-    #[inline(always)]
-    fn prunes_on(&self, face: u32) -> bool {
-        each!(self, m => m.prunes_on(face))
-    }
-    #[inline(always)]
-    fn triangle_slack(&self, face: u32, diameter: f64) -> f64 {
-        each!(self, m => m.triangle_slack(face, diameter))
-    }
-    fn face_gram(&self, face: u32) -> Option<[f64; 3]> {
-        each!(self, m => m.face_gram(face))
-    }
-    fn wire_cost(&self, a: u32, b: u32, length: f64) -> f64 {
-        each!(self, m => m.wire_cost(a, b, length))
-    }
-    fn name(&self) -> &str {
-        each!(self, m => m.name())
     }
 }

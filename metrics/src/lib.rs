@@ -44,11 +44,13 @@
 //! ```
 #![forbid(unsafe_code)]
 
+mod builtin;
 mod density;
 mod error;
 mod euclidean;
 mod tensor;
 
+pub use builtin::BuiltinMetric;
 pub use density::Density;
 pub use error::MetricError;
 pub use euclidean::Euclidean;

@@ -267,6 +267,12 @@ impl<'m, M: Metric> Solver<'m, M> {
         &self.metric
     }
 
+    /// The engine that runs: the one asked for, except that the wavefront engine gives
+    /// way to the track-pruned one for a metric that is not flat on each face.
+    pub fn method(&self) -> Method {
+        self.method
+    }
+
     /// Queries on `field` (the distance at any surface point, paths, labels) with this
     /// solver's mesh, metric and layout.
     ///

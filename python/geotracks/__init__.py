@@ -1,0 +1,228 @@
+"""Geodesic distances, shortest paths and distance matrices on triangle meshes.
+
+Any topology (non-manifold edges, medial axes with free edges), under the Euclidean
+metric, a density per vertex (:class:`Density`) or a tensor per face (:class:`Tensor`);
+numpy arrays in and out. Build a :class:`MeshSolver` once per mesh and ask it many
+questions; the work runs in Rust with the GIL released, matrices on all cores.
+
+>>> import numpy as np, geotracks
+>>> V = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], dtype=float)
+>>> F = np.array([[0, 1, 2], [0, 2, 3]])
+>>> solver = geotracks.MeshSolver(V, F)
+>>> d = solver.distance(0)
+>>> round(float(d[2]), 12) == round(2 ** 0.5, 12)
+True
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple, Optional, Sequence, Union
+
+import numpy as np
+
+from ._geotracks import GeotracksError
+from ._geotracks import MeshSolverCore as _Core
+from ._geotracks import read_mesh as _read_mesh
+
+__all__ = [
+    "Density",
+    "GeotracksError",
+    "MeshSolver",
+    "Path",
+    "Tensor",
+    "read_mesh",
+]
+
+#: A source or target: a vertex id, or a surface point written as on the command line:
+#: ``"e:E:t"`` (edge ``E`` at parameter ``t`` from its lower-id vertex) or
+#: ``"f:F:b0,b1,b2"`` (face ``F`` at barycentric coordinates).
+Point = Union[int, str]
+
+
+def _numbers(array, name: str, columns: Optional[int] = None, ndim: int = 2) -> np.ndarray:
+    """`array` as a C-contiguous float64 array of `ndim` dimensions (and `columns`
+    columns), refusing what is not numbers."""
+    a = np.asarray(array)
+    if a.dtype.kind not in "fiu":
+        raise TypeError(f"{name} must hold real numbers; got dtype {a.dtype}")
+    if a.ndim != ndim or (columns is not None and a.shape[-1] != columns):
+        want = "(n,)" if ndim == 1 else f"(n, {columns})" if ndim == 2 else f"(n, {columns}, {columns})"
+        raise ValueError(f"{name} must have shape {want}; got {a.shape}")
+    return np.ascontiguousarray(a, dtype=np.float64)
+
+
+def _ids(array, name: str, ndim: int, columns: Optional[int] = None) -> np.ndarray:
+    """`array` as a C-contiguous int64 array of vertex ids."""
+    a = np.asarray(array)
+    if a.size == 0 and a.dtype.kind == "f":
+        a = a.astype(np.int64)
+    if a.dtype.kind not in "iu":
+        raise TypeError(f"{name} must hold integer vertex ids; got dtype {a.dtype}")
+    if a.ndim != ndim or (columns is not None and a.shape[-1] != columns):
+        want = "(n,)" if ndim == 1 else f"(m, {columns})"
+        raise ValueError(f"{name} must have shape {want}; got {a.shape}")
+    if a.dtype == np.uint64 and a.size and a.max() > np.iinfo(np.int64).max:
+        raise GeotracksError(f"{name} holds a vertex id beyond 2^63")
+    return np.ascontiguousarray(a, dtype=np.int64)
+
+
+def _points(points, name: str) -> list:
+    """One point or a sequence of them, as a list of ints and strings."""
+    if isinstance(points, (str, int, np.integer)):
+        points = [points]
+    elif isinstance(points, np.ndarray):
+        points = points.ravel().tolist()
+    out = []
+    for p in points:
+        if isinstance(p, (bool, np.bool_)):
+            raise TypeError(f"{name}: {p!r} is not a vertex id or a surface point")
+        if isinstance(p, (int, np.integer)):
+            out.append(int(p))
+        elif isinstance(p, str):
+            out.append(p)
+        else:
+            raise TypeError(f"{name}: {p!r} is not a vertex id or a surface point")
+    if not out:
+        raise GeotracksError(f"{name}: no point given")
+    return out
+
+
+class Density:
+    """A positive cost per vertex, linear on each face: a segment costs its length times
+    the mean density along it (weighted geodesics). A constant ``c`` scales every
+    distance by ``c``.
+
+    :param rho: one positive number per vertex, shape ``(n,)``.
+    """
+
+    def __init__(self, rho):
+        self.rho = _numbers(rho, "rho", ndim=1)
+
+    def _data(self) -> tuple:
+        return "density", self.rho.reshape(-1, 1)
+
+
+class Tensor:
+    """A symmetric positive-definite 3 × 3 matrix per face, in world coordinates,
+    restricted to each face's plane: a segment ``v`` inside a face costs
+    ``sqrt(vᵀ M v)`` (direction-dependent, anisotropic cost).
+
+    :param per_face: shape ``(m, 3, 3)``, symmetric, one matrix per face.
+    """
+
+    def __init__(self, per_face):
+        m = _numbers(per_face, "per_face", columns=3, ndim=3)
+        if m.shape[1] != 3:
+            raise ValueError(f"per_face must have shape (m, 3, 3); got {m.shape}")
+        if not np.allclose(m, np.swapaxes(m, 1, 2), rtol=1e-12, atol=0.0, equal_nan=True):
+            raise GeotracksError("per_face: each matrix must be symmetric")
+        self.per_face = m
+
+    def _data(self) -> tuple:
+        m = self.per_face
+        upper = np.stack(
+            [m[:, 0, 0], m[:, 0, 1], m[:, 0, 2], m[:, 1, 1], m[:, 1, 2], m[:, 2, 2]], axis=1
+        )
+        return "tensor", np.ascontiguousarray(upper)
+
+
+class Path(NamedTuple):
+    """A shortest path, from the source to the target."""
+
+    #: World positions, shape ``(p, 3)``.
+    points: np.ndarray
+    #: Where each point lies: ``"V"`` (a vertex), ``"e:E:t"`` or ``"f:F:b0,b1,b2"``.
+    surface_points: list
+    #: Its length under the solver's metric.
+    length: float
+
+
+class MeshSolver:
+    """A mesh and a solver on it, reused by every query.
+
+    :param V: vertex positions, shape ``(n, 3)``, real numbers.
+    :param F: triangles, shape ``(m, 3)``, integer vertex ids (0-based). Faces with a
+        repeated vertex or no area are dropped.
+    :param k: mean number of Steiner points per edge (default: 2 for the wavefront
+        engine, 5 where the Steiner graph runs: a density, or ``method="tracks"``).
+    :param method: ``"wave"`` (the default: exact on planar and developable meshes from
+        one source; with a density it runs ``"tracks"``), ``"tracks"`` (the
+        track-pruned Steiner graph), ``"graph"`` (the complete Steiner graph) or
+        ``"dijkstra"`` (mesh edges only).
+    :param metric: ``None`` (Euclidean), a :class:`Density` or a :class:`Tensor`.
+    :raises GeotracksError: for a mesh the library refuses (NaN or huge coordinates, a
+        face naming a missing vertex, no usable face) or a bad metric.
+    """
+
+    def __init__(self, V, F, k: Optional[float] = None, method: str = "wave", metric=None):
+        V = _numbers(V, "V", columns=3)
+        F = _ids(F, "F", ndim=2, columns=3)
+        if metric is None:
+            kind, data = "euclidean", None
+        elif isinstance(metric, (Density, Tensor)):
+            kind, data = metric._data()
+        else:
+            raise TypeError(f"metric must be None, geotracks.Density or geotracks.Tensor; got {type(metric).__name__}")
+        self._core = _Core(V, F, None if k is None else float(k), str(method), kind, data)
+
+    @property
+    def vertex_count(self) -> int:
+        """Number of vertices."""
+        return self._core.vertex_count
+
+    @property
+    def face_count(self) -> int:
+        """Number of faces kept."""
+        return self._core.face_count
+
+    @property
+    def method(self) -> str:
+        """The engine that runs."""
+        return self._core.method
+
+    def distance(self, sources, max_distance: float = np.inf, targets=None) -> np.ndarray:
+        """Distance from the nearest of ``sources`` to every vertex, shape ``(n,)``;
+        ``inf`` where unreached (another component, beyond ``max_distance``).
+
+        :param sources: a vertex id or surface point, or a sequence of them.
+        :param max_distance: stop there; farther vertices are ``inf``.
+        :param targets: stop once the values at these points are final (the values
+            returned there are exact; others may be ``inf``).
+        """
+        targets = None if targets is None else _points(targets, "targets")
+        return self._core.distance(_points(sources, "sources"), float(max_distance), targets)
+
+    def voronoi(self, sources) -> tuple:
+        """``(distances, labels)``: the distance to every vertex and the index (into
+        ``sources``) of its nearest source, ``-1`` where unreached."""
+        return self._core.voronoi(_points(sources, "sources"))
+
+    def path(self, source, target) -> Path:
+        """The shortest path from ``source`` (one point or several: the nearest) to
+        ``target``, straightened, as a :class:`Path` (points from the source to the
+        target)."""
+        points, names, length = self._core.path(_points(source, "source"), _points(target, "target")[0])
+        return Path(points[::-1].copy(), names[::-1], length)
+
+    def distance_matrix(self, sources, targets=None) -> np.ndarray:
+        """Distances from each source vertex (rows) to every vertex, or to ``targets``
+        (columns), computed in parallel; shape ``(len(sources), n or len(targets))``."""
+        sources = _ids(np.atleast_1d(sources), "sources", ndim=1)
+        targets = None if targets is None else _ids(np.atleast_1d(targets), "targets", ndim=1)
+        return self._core.distance_matrix(sources, targets)
+
+    def local_distance_matrix(self, max_distance: float):
+        """Every pair of vertices within ``max_distance`` of each other, as a
+        ``scipy.sparse.csr_matrix`` of shape ``(n, n)`` (row: the source vertex; the
+        diagonal's zeros are stored). What tvb-gdist's ``local_gdist_matrix`` gives."""
+        from scipy.sparse import csr_matrix
+
+        rows, cols, data = self._core.local_distance_matrix(float(max_distance))
+        n = self.vertex_count
+        return csr_matrix((data, (rows, cols)), shape=(n, n))
+
+
+def read_mesh(path) -> tuple:
+    """Reads a mesh file (OBJ, PLY, OFF, STL, ``.ma``): ``(V (n, 3) float64, F (m, 3)
+    int64)``; degenerate faces are dropped."""
+    return _read_mesh(str(path))

@@ -1,0 +1,54 @@
+"""Type stubs of the compiled module (`python/src/lib.rs`); use the `geotracks`
+package's wrappers, which check arrays and document the calls."""
+
+from os import PathLike
+from typing import Optional, Union
+
+import numpy as np
+import numpy.typing as npt
+
+_Point = Union[int, str]
+
+class GeotracksError(ValueError):
+    """What the geotracks library refused, with its message."""
+
+class MeshSolverCore:
+    def __init__(
+        self,
+        vertices: npt.NDArray[np.float64],
+        faces: npt.NDArray[np.int64],
+        k: Optional[float],
+        method: str,
+        metric: str,
+        data: Optional[npt.NDArray[np.float64]] = None,
+    ) -> None: ...
+    @property
+    def vertex_count(self) -> int: ...
+    @property
+    def face_count(self) -> int: ...
+    @property
+    def method(self) -> str: ...
+    def distance(
+        self,
+        sources: list[_Point],
+        max_distance: float = ...,
+        targets: Optional[list[_Point]] = None,
+    ) -> npt.NDArray[np.float64]: ...
+    def voronoi(
+        self, sources: list[_Point]
+    ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]: ...
+    def path(
+        self, sources: list[_Point], target: _Point
+    ) -> tuple[npt.NDArray[np.float64], list[str], float]: ...
+    def distance_matrix(
+        self,
+        sources: npt.NDArray[np.int64],
+        targets: Optional[npt.NDArray[np.int64]] = None,
+    ) -> npt.NDArray[np.float64]: ...
+    def local_distance_matrix(
+        self, max_distance: float
+    ) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64], npt.NDArray[np.float64]]: ...
+
+def read_mesh(
+    path: Union[str, PathLike[str]],
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]: ...

@@ -1,0 +1,346 @@
+//! The compiled part of the `geotracks` Python package (`geotracks._geotracks`).
+//!
+//! The Python layer (`python/geotracks/__init__.py`) checks the arrays' shapes and kinds
+//! and hands them here as C-contiguous `float64` / `int64`; this layer builds the
+//! library's types, runs them with the GIL released, and returns numpy arrays that own
+//! the library's buffers (no copy). Errors become `geotracks.GeotracksError` (a
+//! `ValueError`) with the library's message.
+
+use geotracks::mesh::io::read_mesh as read_mesh_file;
+use geotracks::mesh::TriMesh;
+use geotracks::{
+    BuiltinMetric, Density, Euclidean, Method, Options, Solver, Source, Stop, SurfacePoint, Tensor,
+};
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
+use pyo3::prelude::*;
+
+pyo3::create_exception!(
+    geotracks,
+    GeotracksError,
+    pyo3::exceptions::PyValueError,
+    "What the geotracks library refused, with its message (bad mesh, bad source, bad metric…)."
+);
+
+/// The library's error as a Python exception.
+fn error(e: impl std::fmt::Display) -> PyErr {
+    GeotracksError::new_err(e.to_string())
+}
+
+/// A numpy vector owned by Python.
+type Vector<'py, T> = Bound<'py, PyArray1<T>>;
+/// A numpy matrix owned by Python.
+type Matrix<'py, T> = Bound<'py, PyArray2<T>>;
+
+/// A solver borrows its mesh: both live in one cell.
+type SolverOf<'m> = Solver<'m, BuiltinMetric>;
+
+self_cell::self_cell!(
+    struct MeshAndSolver {
+        owner: TriMesh,
+        #[covariant]
+        dependent: SolverOf,
+    }
+);
+
+/// A source or target as Python gives it: a vertex id, or a surface point in the
+/// command line's form (`"e:E:t"`, `"f:F:b0,b1,b2"`).
+#[derive(FromPyObject)]
+enum PointArg {
+    Vertex(i64),
+    Text(String),
+}
+
+impl PointArg {
+    fn point(&self) -> PyResult<SurfacePoint> {
+        match self {
+            PointArg::Vertex(v) => u32::try_from(*v)
+                .map(SurfacePoint::Vertex)
+                .map_err(|_| error(format!("vertex {v} is not a vertex id (0 to 2^32 - 2)"))),
+            PointArg::Text(text) => text
+                .parse()
+                .map_err(|e| error(format!("'{text}' is not a surface point: {e}"))),
+        }
+    }
+}
+
+fn sources_of(points: &[PointArg]) -> PyResult<Vec<Source>> {
+    points.iter().map(|p| Ok(Source::new(p.point()?))).collect()
+}
+
+/// The triangles as `u32` ids, refusing negative or too large ones.
+fn triangles(faces: &PyReadonlyArray2<'_, i64>) -> PyResult<Vec<[u32; 3]>> {
+    let f = faces.as_array();
+    let id = |i: usize, c: usize| {
+        u32::try_from(f[[i, c]])
+            .map_err(|_| error(format!("F[{i}, {c}] = {} is not a vertex id", f[[i, c]])))
+    };
+    (0..f.nrows())
+        .map(|i| Ok([id(i, 0)?, id(i, 1)?, id(i, 2)?]))
+        .collect()
+}
+
+fn positions(vertices: &PyReadonlyArray2<'_, f64>) -> Vec<[f64; 3]> {
+    let v = vertices.as_array();
+    (0..v.nrows())
+        .map(|i| [v[[i, 0]], v[[i, 1]], v[[i, 2]]])
+        .collect()
+}
+
+/// The mesh and a solver on it, reused by every query (`geotracks.MeshSolver` wraps it).
+#[pyclass(module = "geotracks._geotracks", frozen)]
+struct MeshSolverCore {
+    cell: MeshAndSolver,
+}
+
+#[pymethods]
+impl MeshSolverCore {
+    /// `V` (n, 3) float64, `F` (m, 3) int64; `metric`: "euclidean", "density" (with
+    /// `data` one value per vertex) or "tensor" (with `data` (m, 6): xx, xy, xz, yy, yz,
+    /// zz per face).
+    #[new]
+    #[pyo3(signature = (vertices, faces, k, method, metric, data=None))]
+    fn new(
+        py: Python<'_>,
+        vertices: PyReadonlyArray2<'_, f64>,
+        faces: PyReadonlyArray2<'_, i64>,
+        k: Option<f64>,
+        method: &str,
+        metric: &str,
+        data: Option<PyReadonlyArray2<'_, f64>>,
+    ) -> PyResult<Self> {
+        let method: Method = method.parse().map_err(error)?;
+        let mesh = TriMesh::new(positions(&vertices), triangles(&faces)?).map_err(error)?;
+        let metric = match (metric, &data) {
+            ("euclidean", _) => BuiltinMetric::Euclidean(Euclidean),
+            ("density", Some(data)) => {
+                let rho = data.as_array().iter().copied().collect();
+                BuiltinMetric::Density(Density::new(&mesh, rho).map_err(error)?)
+            }
+            ("tensor", Some(data)) => {
+                let t = data.as_array();
+                let world: Vec<[f64; 6]> = (0..t.nrows())
+                    .map(|i| std::array::from_fn(|c| t[[i, c]]))
+                    .collect();
+                BuiltinMetric::Tensor(Tensor::from_world(&mesh, &world).map_err(error)?)
+            }
+            (other, _) => return Err(error(format!("unknown metric '{other}'"))),
+        };
+        // The wavefront engine wants fewer points than the Steiner graph for the same
+        // accuracy (as on the command line).
+        let k = k.unwrap_or(match (method, &metric) {
+            (Method::Wave, BuiltinMetric::Euclidean(_) | BuiltinMetric::Tensor(_)) => 2.0,
+            _ => 5.0,
+        });
+        let options = Options::DEFAULT.with_k(k).with_method(method);
+        let cell =
+            py.detach(|| MeshAndSolver::try_new(mesh, |mesh| Solver::new(mesh, metric, &options)));
+        Ok(MeshSolverCore {
+            cell: cell.map_err(error)?,
+        })
+    }
+
+    /// Number of vertices.
+    #[getter]
+    fn vertex_count(&self) -> usize {
+        self.cell.borrow_owner().vertex_count()
+    }
+
+    /// Number of faces kept (degenerate ones are dropped).
+    #[getter]
+    fn face_count(&self) -> usize {
+        self.cell.borrow_owner().face_count()
+    }
+
+    /// The engine that runs (a metric that is not flat on each face runs "tracks").
+    #[getter]
+    fn method(&self) -> String {
+        self.cell.borrow_dependent().method().to_string()
+    }
+
+    /// Distance to every vertex from the nearest source; `inf` where unreached.
+    #[pyo3(signature = (sources, max_distance=f64::INFINITY, targets=None))]
+    fn distance<'py>(
+        &self,
+        py: Python<'py>,
+        sources: Vec<PointArg>,
+        max_distance: f64,
+        targets: Option<Vec<PointArg>>,
+    ) -> PyResult<Vector<'py, f64>> {
+        let (distances, _) = self.field(py, &sources, max_distance, targets, false)?;
+        Ok(distances.into_pyarray(py))
+    }
+
+    /// Distance to every vertex and, per vertex, the index of its nearest source (-1
+    /// where unreached).
+    fn voronoi<'py>(
+        &self,
+        py: Python<'py>,
+        sources: Vec<PointArg>,
+    ) -> PyResult<(Vector<'py, f64>, Vector<'py, i64>)> {
+        let (distances, labels) = self.field(py, &sources, f64::INFINITY, None, true)?;
+        Ok((distances.into_pyarray(py), labels.into_pyarray(py)))
+    }
+
+    /// The shortest path from `target` to the nearest of `sources`, straightened:
+    /// `(points (p, 3), surface points, length)`, from the target to the source.
+    fn path<'py>(
+        &self,
+        py: Python<'py>,
+        sources: Vec<PointArg>,
+        target: PointArg,
+    ) -> PyResult<(Matrix<'py, f64>, Vec<String>, f64)> {
+        let sources = sources_of(&sources)?;
+        let target = target.point()?;
+        let (mesh, solver) = (self.cell.borrow_owner(), self.cell.borrow_dependent());
+        let path = py
+            .detach(|| solver.shortest_path(&sources, target))
+            .map_err(error)?;
+        let xyz = path.positions(mesh);
+        let points = Array2::from_shape_fn((xyz.len(), 3), |(i, c)| xyz[i][c]);
+        let names = path.points.iter().map(|p| p.to_string()).collect();
+        Ok((points.into_pyarray(py), names, path.length))
+    }
+
+    /// One row per source vertex: its distance to every vertex, or to `targets`; rows
+    /// computed on all cores.
+    #[pyo3(signature = (sources, targets=None))]
+    fn distance_matrix<'py>(
+        &self,
+        py: Python<'py>,
+        sources: PyReadonlyArray1<'_, i64>,
+        targets: Option<PyReadonlyArray1<'_, i64>>,
+    ) -> PyResult<Matrix<'py, f64>> {
+        let ids = |a: &PyReadonlyArray1<'_, i64>, what: &str| -> PyResult<Vec<u32>> {
+            a.as_array()
+                .iter()
+                .map(|&v| {
+                    u32::try_from(v).map_err(|_| error(format!("{what} {v} is not a vertex id")))
+                })
+                .collect()
+        };
+        let sources = ids(&sources, "source")?;
+        let targets = targets.map(|t| ids(&t, "target")).transpose()?;
+        let solver = self.cell.borrow_dependent();
+        let rows = py
+            .detach(|| solver.distance_rows(&sources, targets.as_deref()))
+            .map_err(error)?;
+        let width = targets.map_or(self.vertex_count(), |t| t.len());
+        let matrix = Array2::from_shape_fn((rows.len(), width), |(i, j)| rows[i][j]);
+        Ok(matrix.into_pyarray(py))
+    }
+
+    /// Every pair of vertices within `max_distance`, as `(rows, columns, distances)`
+    /// (row: the source vertex), one run per vertex stopped at `max_distance`, on all
+    /// cores.
+    fn local_distance_matrix<'py>(
+        &self,
+        py: Python<'py>,
+        max_distance: f64,
+    ) -> PyResult<(Vector<'py, i64>, Vector<'py, i64>, Vector<'py, f64>)> {
+        use rayon::prelude::*;
+        if max_distance.is_nan() || max_distance < 0.0 {
+            return Err(error(format!(
+                "max_distance = {max_distance}: it must be a number >= 0"
+            )));
+        }
+        let solver = self.cell.borrow_dependent();
+        let n = self.vertex_count() as u32;
+        let stop = Stop::NONE.with_max_distance(max_distance);
+        let rows: Result<Vec<Vec<(u32, f64)>>, geotracks::Error> = py.detach(|| {
+            (0..n)
+                .into_par_iter()
+                .map_init(
+                    || solver.workspace(),
+                    |workspace, v| {
+                        solver.run_from(workspace, &[Source::new(v)], &stop)?;
+                        Ok(workspace
+                            .vertex_distances()
+                            .iter()
+                            .enumerate()
+                            .filter(|(_, d)| d.is_finite())
+                            .map(|(j, &d)| (j as u32, d))
+                            .collect())
+                    },
+                )
+                .collect()
+        });
+        let rows = rows.map_err(error)?;
+        let total: usize = rows.iter().map(Vec::len).sum();
+        let (mut r, mut c, mut d) = (
+            Vec::with_capacity(total),
+            Vec::with_capacity(total),
+            Vec::with_capacity(total),
+        );
+        for (i, row) in rows.iter().enumerate() {
+            for &(j, value) in row {
+                r.push(i as i64);
+                c.push(j as i64);
+                d.push(value);
+            }
+        }
+        Ok((r.into_pyarray(py), c.into_pyarray(py), d.into_pyarray(py)))
+    }
+}
+
+impl MeshSolverCore {
+    /// One run from `sources`: vertex distances and, if asked, labels.
+    fn field(
+        &self,
+        py: Python<'_>,
+        sources: &[PointArg],
+        max_distance: f64,
+        targets: Option<Vec<PointArg>>,
+        labels: bool,
+    ) -> PyResult<(Vec<f64>, Vec<i64>)> {
+        let sources = sources_of(sources)?;
+        let targets = targets
+            .unwrap_or_default()
+            .iter()
+            .map(PointArg::point)
+            .collect::<PyResult<Vec<_>>>()?;
+        let stop = Stop::NONE
+            .with_max_distance(max_distance)
+            .with_targets(targets);
+        let solver = self.cell.borrow_dependent();
+        py.detach(|| {
+            let field = solver.solve_from(&sources, &stop)?;
+            let distances = field.vertex_distances().to_vec();
+            let labels = if labels {
+                let query = solver.query(&field)?;
+                query
+                    .vertex_labels()
+                    .into_iter()
+                    .map(|l| if l == u32::MAX { -1 } else { l as i64 })
+                    .collect()
+            } else {
+                Vec::new()
+            };
+            Ok::<_, geotracks::Error>((distances, labels))
+        })
+        .map_err(error)
+    }
+}
+
+/// Reads a mesh file (OBJ, PLY, OFF, STL, `.ma`): `(V (n, 3) float64, F (m, 3) int64)`.
+#[pyfunction]
+fn read_mesh<'py>(
+    py: Python<'py>,
+    path: std::path::PathBuf,
+) -> PyResult<(Matrix<'py, f64>, Matrix<'py, i64>)> {
+    let mesh = py.detach(|| read_mesh_file(&path)).map_err(error)?;
+    let p = mesh.positions();
+    let t = mesh.triangles();
+    let vertices = Array2::from_shape_fn((p.len(), 3), |(i, c)| p[i][c]);
+    let faces = Array2::from_shape_fn((t.len(), 3), |(i, c)| t[i][c] as i64);
+    Ok((vertices.into_pyarray(py), faces.into_pyarray(py)))
+}
+
+/// The compiled part of the `geotracks` Python package.
+#[pymodule]
+fn _geotracks(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<MeshSolverCore>()?;
+    m.add_function(wrap_pyfunction!(read_mesh, m)?)?;
+    m.add("GeotracksError", m.py().get_type::<GeotracksError>())?;
+    Ok(())
+}

@@ -1,0 +1,234 @@
+"""The Python bindings: results against exact references and analytic cases, the same
+answers however a query is asked, and errors for bad input."""
+
+import threading
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import geotracks
+
+DATA = Path(__file__).resolve().parents[2] / "tests" / "data"
+
+
+@pytest.fixture(scope="module")
+def spot():
+    return geotracks.read_mesh(DATA / "spot.obj")
+
+
+def grid(n=8, size=1.0):
+    """A flat n × n grid on [0, size]², z = 0."""
+    xs = np.linspace(0.0, size, n + 1)
+    X, Y = np.meshgrid(xs, xs)
+    V = np.stack([X.ravel(), Y.ravel(), np.zeros(X.size)], axis=1)
+    F = []
+    for j in range(n):
+        for i in range(n):
+            a = j * (n + 1) + i
+            F += [[a, a + 1, a + n + 2], [a, a + n + 2, a + n + 1]]
+    return V, np.array(F)
+
+
+def test_spot_against_the_exact_distances(spot):
+    V, F = spot
+    assert V.shape == (2930, 3) and F.shape == (5856, 3)
+    assert V.dtype == np.float64 and F.dtype == np.int64
+    exact = np.fromfile(DATA / "spot.src0.f64", dtype="<f8")
+    solver = geotracks.MeshSolver(V, F)
+    assert solver.method == "wave"
+    d = solver.distance(0)
+    assert d.shape == (2930,) and d[0] == 0.0
+    error = np.abs(d[1:] - exact[1:]) / exact[1:]
+    # The README's accuracy on Spot at k = 2 (mean 0.002–0.06 % on the shared meshes).
+    assert error.mean() < 1e-3 and error.max() < 2e-2, (error.mean(), error.max())
+    tracks = geotracks.MeshSolver(V, F, method="tracks").distance(0)
+    assert np.abs(tracks - exact)[1:].max() / exact.max() < 2e-2
+
+
+def test_a_plane_is_exact_and_surface_points_are_sources():
+    V, F = grid(8)
+    solver = geotracks.MeshSolver(V, F)
+    d = solver.distance(0)
+    assert np.allclose(d, np.hypot(V[:, 0], V[:, 1]), atol=1e-12)
+    # A source inside face 0 at its centroid, and on an edge.
+    centroid = V[F[0]].mean(axis=0)
+    d = solver.distance("f:0:0.3333333333333333,0.3333333333333333,0.3333333333333334")
+    assert np.allclose(d, np.linalg.norm(V - centroid, axis=1), atol=1e-9)
+    two = solver.distance([0, len(V) - 1])
+    far = np.hypot(V[:, 0] - 1.0, V[:, 1] - 1.0)
+    assert np.allclose(two, np.minimum(np.hypot(V[:, 0], V[:, 1]), far), atol=1e-12)
+
+
+def test_early_stops():
+    V, F = grid(8)
+    solver = geotracks.MeshSolver(V, F)
+    d = solver.distance(0, max_distance=0.5)
+    r = np.hypot(V[:, 0], V[:, 1])
+    assert np.all(np.isinf(d[r > 0.5 + 1e-9]))
+    assert np.allclose(d[r <= 0.5], r[r <= 0.5], atol=1e-12)
+    full = solver.distance(0)
+    stopped = solver.distance(0, targets=[10])
+    assert stopped[10] == full[10]
+    assert np.isinf(stopped).any()
+
+
+def test_metrics():
+    V, F = grid(6)
+    plain = geotracks.MeshSolver(V, F, method="tracks").distance(0)
+    twice = geotracks.MeshSolver(V, F, metric=geotracks.Density(np.full(len(V), 2.0)))
+    assert twice.method == "tracks"
+    assert np.allclose(twice.distance(0), 2.0 * plain, rtol=1e-12)
+    identity = geotracks.Tensor(np.repeat(np.eye(3)[None], len(F), axis=0))
+    same = geotracks.MeshSolver(V, F, metric=identity).distance(0)
+    assert np.allclose(same, np.hypot(V[:, 0], V[:, 1]), atol=1e-12)
+    # Moving along x costs 3 times as much: the far corner along x is 3 away.
+    stretched = np.repeat(np.diag([9.0, 1.0, 1.0])[None], len(F), axis=0)
+    d = geotracks.MeshSolver(V, F, metric=geotracks.Tensor(stretched)).distance(0)
+    assert abs(d[6] - 3.0) < 1e-9
+
+
+def test_voronoi_labels_each_source_region():
+    V, F = grid(8)
+    solver = geotracks.MeshSolver(V, F)
+    d, labels = solver.voronoi([0, 80])
+    assert labels.dtype == np.int64 and labels[0] == 0 and labels[80] == 1
+    nearer_first = np.hypot(V[:, 0], V[:, 1]) < np.hypot(V[:, 0] - 1, V[:, 1] - 1) - 1e-9
+    assert np.all(labels[nearer_first] == 0)
+    assert np.allclose(d, solver.distance([0, 80]))
+
+
+def test_path_on_spot(spot):
+    V, F = spot
+    solver = geotracks.MeshSolver(V, F)
+    path = solver.path(0, 100)
+    assert path.points.shape[1] == 3 and len(path.surface_points) == len(path.points)
+    assert path.surface_points[0] == "0" and path.surface_points[-1] == "100"
+    assert np.allclose(path.points[0], V[0]) and np.allclose(path.points[-1], V[100])
+    d = solver.distance(0)[100]
+    assert path.length <= d + 1e-12 and path.length > 0.999 * d
+    steps = np.linalg.norm(np.diff(path.points, axis=0), axis=1).sum()
+    assert abs(steps - path.length) < 1e-9
+
+
+def test_dense_and_sparse_matrices_agree(spot):
+    V, F = spot
+    solver = geotracks.MeshSolver(V, F)
+    rows = solver.distance_matrix(np.arange(5))
+    assert rows.shape == (5, len(V))
+    for i in range(5):
+        assert np.array_equal(rows[i], solver.distance(i))
+    picked = solver.distance_matrix([3, 7], targets=[0, 10, 20])
+    assert picked.shape == (2, 3)
+    assert np.array_equal(picked[0], rows[3][[0, 10, 20]])
+    assert np.array_equal(picked[1], solver.distance(7)[[0, 10, 20]])
+    radius = 0.1
+    sparse = solver.local_distance_matrix(radius)
+    assert sparse.shape == (len(V), len(V))
+    for i in range(5):
+        row = sparse.getrow(i)
+        dense = rows[i]
+        within = np.flatnonzero(dense <= radius)
+        assert set(row.indices) == set(within)
+        assert np.array_equal(row.toarray().ravel()[within], dense[within])
+
+
+def test_many_threads_share_one_solver(spot):
+    V, F = spot
+    solver = geotracks.MeshSolver(V, F)
+    expected = [solver.distance(s) for s in range(4)]
+    results = [None] * 4
+
+    def run(s):
+        results[s] = solver.distance(s)
+
+    threads = [threading.Thread(target=run, args=(s,)) for s in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for s in range(4):
+        assert np.array_equal(results[s], expected[s])
+
+
+def test_non_contiguous_and_other_numeric_types_give_the_same_answer():
+    V, F = grid(4)
+    base = geotracks.MeshSolver(V, F).distance(0)
+    wide = np.zeros((len(V), 6))
+    wide[:, ::2] = V  # every other column: a strided view
+    assert not wide[:, ::2].flags["C_CONTIGUOUS"]
+    assert np.array_equal(geotracks.MeshSolver(wide[:, ::2], F).distance(0), base)
+    assert np.array_equal(geotracks.MeshSolver(V.astype(np.float32).astype(np.float64), F.astype(np.uint32)).distance(0), base)
+    assert np.array_equal(geotracks.MeshSolver(V.tolist(), F.tolist()).distance(np.int32(0)), base)
+
+
+@pytest.mark.parametrize(
+    "V, F, error, words",
+    [
+        (np.zeros((4, 2)), [[0, 1, 2]], ValueError, "shape (n, 3)"),
+        (np.zeros((4, 3)), [0, 1, 2], ValueError, "shape (m, 3)"),
+        (np.array([["a", "b", "c"]] * 3), [[0, 1, 2]], TypeError, "real numbers"),
+        (np.eye(3), np.array([[0.0, 1.0, 2.0]]), TypeError, "integer vertex ids"),
+        (np.array([[0, 0, 0], [1, 0, 0], [0, np.nan, 0]]), [[0, 1, 2]], geotracks.GeotracksError, "vertex 2"),
+        (np.eye(3), [[0, 1, 3]], geotracks.GeotracksError, "vertex"),
+        (np.eye(3), [[0, 1, -1]], geotracks.GeotracksError, "not a vertex id"),
+        (np.zeros((3, 3)), [[0, 1, 2]], geotracks.GeotracksError, "no usable face"),
+    ],
+)
+def test_bad_meshes_are_refused(V, F, error, words):
+    with pytest.raises(error, match=None) as info:
+        geotracks.MeshSolver(V, F)
+    assert words in str(info.value), str(info.value)
+
+
+def test_bad_queries_are_refused():
+    V, F = grid(2)
+    solver = geotracks.MeshSolver(V, F)
+    assert issubclass(geotracks.GeotracksError, ValueError)
+    with pytest.raises(geotracks.GeotracksError, match="out of range|does not exist|vertex 99"):
+        solver.distance(99)
+    with pytest.raises(geotracks.GeotracksError, match="not a surface point"):
+        solver.distance("f:0:2,3")
+    with pytest.raises(TypeError):
+        solver.distance(1.5)
+    with pytest.raises(geotracks.GeotracksError, match="no point"):
+        solver.distance([])
+    with pytest.raises(geotracks.GeotracksError):
+        solver.distance(0, max_distance=float("nan"))
+    with pytest.raises(geotracks.GeotracksError, match="target"):
+        solver.distance_matrix([0], targets=[1000])
+    with pytest.raises(geotracks.GeotracksError, match="max_distance"):
+        solver.local_distance_matrix(-1.0)
+    with pytest.raises(geotracks.GeotracksError, match="method|wave"):
+        geotracks.MeshSolver(V, F, method="fast")
+    with pytest.raises(geotracks.GeotracksError, match="density"):
+        geotracks.MeshSolver(V, F, metric=geotracks.Density(np.ones(3)))
+    with pytest.raises(geotracks.GeotracksError):
+        geotracks.MeshSolver(V, F, metric=geotracks.Density(-np.ones(len(V))))
+    with pytest.raises(geotracks.GeotracksError, match="symmetric"):
+        geotracks.Tensor(np.repeat(np.array([[[1.0, 2.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]]), len(F), 0))
+    with pytest.raises(geotracks.GeotracksError):
+        geotracks.MeshSolver(V, F, metric=geotracks.Tensor(np.repeat(-np.eye(3)[None], len(F), 0)))
+    with pytest.raises(TypeError, match="metric"):
+        geotracks.MeshSolver(V, F, metric="euclidean")
+    with pytest.raises(geotracks.GeotracksError):
+        geotracks.read_mesh(DATA / "no-such-file.obj")
+
+
+def test_the_docstring_examples_run():
+    import doctest
+
+    result = doctest.testmod(geotracks)
+    assert result.attempted > 0 and result.failed == 0
+
+
+def test_the_readme_example_runs(monkeypatch):
+    """The README's Python example, as written (its paths are the repository's)."""
+    root = DATA.parents[1]
+    text = (root / "README.md").read_text(encoding="utf-8")
+    start = text.index("```python\nimport numpy as np\nimport geotracks")
+    code = text[start + len("```python\n") : text.index("```", start + 10)]
+    monkeypatch.chdir(root)
+    scope = {}
+    exec(compile(code, "README.md", "exec"), scope)
+    assert scope["M"].shape == (10, scope["solver"].vertex_count)
