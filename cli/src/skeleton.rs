@@ -5,7 +5,7 @@ use crate::picture::CameraArgs;
 use crate::{ui, CliResult, Short};
 use geotracks::mesh::io::{read_medial_axis, write_obj_lines_to, write_ply_with_distance_to};
 use geotracks::render::render_skeleton;
-use geotracks::skeleton::{medial_axis_skeleton, Burn, DEFAULT_PRUNE_PERCENT};
+use geotracks::skeleton::{medial_axis_skeleton, Burn, Prune, DEFAULT_PRUNE_PERCENT};
 use geotracks::{Method, Options};
 use std::path::PathBuf;
 use std::time::Instant;
@@ -65,20 +65,7 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
     if let Some(png) = &args.png {
         crate::output_format(png, &[("png", ())])?;
     }
-    let (value, percent) = match args.prune.strip_suffix('%') {
-        Some(p) => (p.trim().parse::<f64>(), true),
-        None => (args.prune.trim().parse::<f64>(), false),
-    };
-    let prune = match value {
-        Ok(v) if v >= 0.0 && !v.is_nan() => v,
-        _ => {
-            return Err(format!(
-                "--prune {}: expected a length >= 0 or a percentage such as 2%",
-                args.prune
-            )
-            .into())
-        }
-    };
+    let prune: Prune = args.prune.parse().map_err(|e| format!("--prune {e}"))?;
     let mut outputs = Outputs::new([args.axis.as_path()]);
     outputs.declare(&args.output)?;
     outputs.declare_some(args.field.as_ref())?;
@@ -86,11 +73,7 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
     let start = Instant::now();
     let spinner = ui::Spinner::start("reading the medial axis, burning and thinning it");
     let axis = read_medial_axis(&args.axis)?;
-    let prune = if percent {
-        prune / 100.0 * axis.diagonal()
-    } else {
-        prune
-    };
+    let prune = prune.threshold(axis.diagonal());
     let options = Options::DEFAULT.with_k(args.k).with_method(args.method);
     let burn = match args.burn {
         BurnArg::Radius => Burn::Radius,

@@ -23,14 +23,20 @@ import numpy as np
 from ._geotracks import GeotracksError
 from ._geotracks import MeshSolverCore as _Core
 from ._geotracks import read_mesh as _read_mesh
+from ._geotracks import skeleton as _skeleton
+from ._geotracks import terrain_route as _terrain_route
 
 __all__ = [
     "Density",
     "GeotracksError",
     "MeshSolver",
     "Path",
+    "Route",
+    "Skeleton",
     "Tensor",
     "read_mesh",
+    "skeleton",
+    "terrain_route",
 ]
 
 #: A source or target: a vertex id, or a surface point written as on the command line:
@@ -226,3 +232,61 @@ def read_mesh(path) -> tuple:
     """Reads a mesh file (OBJ, PLY, OFF, STL, ``.ma``): ``(V (n, 3) float64, F (m, 3)
     int64)``; degenerate faces are dropped."""
     return _read_mesh(str(path))
+
+
+class Route(NamedTuple):
+    """A route across an elevation grid, from the start to the end."""
+
+    #: Map x, y and elevation z of each point, shape ``(p, 3)``.
+    points: np.ndarray
+    #: The cost from the start to each point, shape ``(p,)`` (0 at the start).
+    cumulative_cost: np.ndarray
+    #: The route's total cost.
+    cost: float
+
+
+def terrain_route(dem, start, end, cost: str = "none", k: float = 2.0) -> Route:
+    """The least-cost route across an elevation grid (ESRI ASCII ``.asc`` or GeoTIFF)
+    between two map points ``(x, y)``, straightened.
+
+    :param cost: ``"none"`` (3D length), ``"slope:A"`` (length times ``1 + A·slope``),
+        ``"slope:A,max:DEG"`` (faces steeper than DEG impassable) or ``"uphill:B"``
+        (climbing costs ``B`` times more across the contour lines); as
+        ``geotracks terrain --cost``.
+    :raises GeotracksError: for an unreadable grid, a point off the grid or on NODATA,
+        a bad cost, or no route.
+    """
+    start = tuple(float(c) for c in start)
+    end = tuple(float(c) for c in end)
+    if len(start) != 2 or len(end) != 2:
+        raise ValueError("start and end are map points (x, y)")
+    points, cumulative, total = _terrain_route(str(dem), start, end, str(cost), float(k))
+    return Route(points, cumulative, total)
+
+
+class Skeleton(NamedTuple):
+    """A curve skeleton: points on the medial axis and straight edges between them."""
+
+    #: Positions, shape ``(p, 3)``.
+    points: np.ndarray
+    #: The medial radius interpolated at each point, shape ``(p,)``.
+    radii: np.ndarray
+    #: Each point's branch significance (erosion thickness; ``inf`` on loops and for
+    #: the last point of each component), shape ``(p,)``.
+    significance: np.ndarray
+    #: Point index pairs, shape ``(e, 2)``.
+    edges: np.ndarray
+    #: The axis's first Betti number: the skeleton's independent cycles.
+    b1: int
+
+
+def skeleton(axis, prune="7%", burn: str = "boundary", k: float = 5.0) -> Skeleton:
+    """The curve skeleton of a medial axis file (``.ma``) with the axis's topology, as
+    ``geotracks skeleton`` makes it.
+
+    :param prune: a length, or a percentage of the bounding-box diagonal (``"7%"``, the
+        default); branches whose erosion thickness is less go whole.
+    :param burn: ``"boundary"`` (the grassfire from the axis's border) or ``"radius"``
+        (each point burns at its medial radius).
+    """
+    return Skeleton(*_skeleton(str(axis), str(prune), str(burn), float(k)))

@@ -52,3 +52,19 @@ class MeshSolverCore:
 def read_mesh(
     path: Union[str, PathLike[str]],
 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]: ...
+def terrain_route(
+    dem: str,
+    start: tuple[float, float],
+    end: tuple[float, float],
+    cost: str = "none",
+    k: float = 2.0,
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], float]: ...
+def skeleton(
+    axis: str, prune: str = "7%", burn: str = "boundary", k: float = 5.0
+) -> tuple[
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.int64],
+    int,
+]: ...

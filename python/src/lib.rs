@@ -336,11 +336,114 @@ fn read_mesh<'py>(
     Ok((vertices.into_pyarray(py), faces.into_pyarray(py)))
 }
 
+/// A route across an elevation grid (ESRI ASCII or GeoTIFF) from map point `start` to
+/// `end` under the terrain cost `cost` (`none`, `slope:A[,max:DEG]`, `uphill:B`):
+/// `(points (p, 3) map x, y and elevation, cumulative cost (p,), cost)`.
+#[pyfunction]
+#[pyo3(signature = (dem, start, end, cost="none", k=2.0))]
+fn terrain_route<'py>(
+    py: Python<'py>,
+    dem: std::path::PathBuf,
+    start: [f64; 2],
+    end: [f64; 2],
+    cost: &str,
+    k: f64,
+) -> PyResult<(Matrix<'py, f64>, Vector<'py, f64>, f64)> {
+    use geotracks::terrain::{read_terrain, route, TerrainCost};
+    let cost: TerrainCost = cost.parse().map_err(error)?;
+    let route = py
+        .detach(|| {
+            let (_, terrain) = read_terrain(&dem).map_err(|e| e.to_string())?;
+            let locate = |which: &str, [x, y]: [f64; 2]| {
+                terrain
+                    .locate(x, y)
+                    .map_err(|e| format!("{which} ({x}, {y}): {e}"))
+            };
+            let (from, to) = (locate("start", start)?, locate("end", end)?);
+            let metric = cost.metric(&terrain.mesh).map_err(|e| e.to_string())?;
+            let options = Options::DEFAULT.with_k(k);
+            let solver = Solver::new(&terrain.mesh, metric, &options).map_err(|e| e.to_string())?;
+            route(&solver, from, to, false).map_err(|e| match e {
+                geotracks::Error::Unreachable { .. } => "no route: the end cannot be reached \
+                    from the start (impassable faces or NODATA separate them)"
+                    .to_string(),
+                e => e.to_string(),
+            })
+        })
+        .map_err(error)?;
+    let p = &route.points;
+    let points = Array2::from_shape_fn((p.len(), 3), |(i, c)| p[i][c]);
+    let total = route.cost();
+    Ok((
+        points.into_pyarray(py),
+        route.cumulative_cost.into_pyarray(py),
+        total,
+    ))
+}
+
+/// The curve skeleton of a medial axis file (`.ma`), pruned at `prune` (a length, or
+/// a percentage of the bounding-box diagonal such as `"7%"`), burnt from the border
+/// (`burn="boundary"`) or by medial radius (`"radius"`): `(points (p, 3), radii (p,),
+/// significance (p,), edges (e, 2), b1)`.
+#[pyfunction]
+#[pyo3(signature = (axis, prune="7%", burn="boundary", k=5.0))]
+#[allow(clippy::type_complexity)] // five named arrays, as the Python wrapper documents
+fn skeleton<'py>(
+    py: Python<'py>,
+    axis: std::path::PathBuf,
+    prune: &str,
+    burn: &str,
+    k: f64,
+) -> PyResult<(
+    Matrix<'py, f64>,
+    Vector<'py, f64>,
+    Vector<'py, f64>,
+    Matrix<'py, i64>,
+    usize,
+)> {
+    use geotracks::skeleton::{medial_axis_skeleton, Burn, Prune};
+    let burn = match burn {
+        "boundary" => Burn::Boundary,
+        "radius" => Burn::Radius,
+        other => {
+            return Err(error(format!(
+                "burn '{other}': expected 'boundary' or 'radius'"
+            )))
+        }
+    };
+    let prune: Prune = prune.parse().map_err(|e| error(format!("prune {e}")))?;
+    let (skeleton, b1) = py
+        .detach(|| {
+            let axis = geotracks::mesh::io::read_medial_axis(&axis).map_err(|e| e.to_string())?;
+            let threshold = prune.threshold(axis.diagonal());
+            let options = Options::DEFAULT.with_k(k).with_method(Method::Tracks);
+            let (skeleton, _) = medial_axis_skeleton(&axis, burn, &options, threshold)
+                .map_err(|e| e.to_string())?;
+            Ok::<_, String>((skeleton, axis.betti_numbers().b1))
+        })
+        .map_err(error)?;
+    let p = &skeleton.points;
+    let points = Array2::from_shape_fn((p.len(), 3), |(i, c)| p[i].position[c]);
+    let radii: Vec<f64> = p.iter().map(|q| q.radius.unwrap_or(f64::NAN)).collect();
+    let significance: Vec<f64> = p.iter().map(|q| q.significance).collect();
+    let e = &skeleton.edges;
+    let edges = Array2::from_shape_fn((e.len(), 2), |(i, c)| e[i][c] as i64);
+    Ok((
+        points.into_pyarray(py),
+        radii.into_pyarray(py),
+        significance.into_pyarray(py),
+        edges.into_pyarray(py),
+        b1,
+    ))
+}
+
 /// The compiled part of the `geotracks` Python package.
 #[pymodule]
 fn _geotracks(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<MeshSolverCore>()?;
     m.add_function(wrap_pyfunction!(read_mesh, m)?)?;
+    m.add_function(wrap_pyfunction!(terrain_route, m)?)?;
+    m.add_function(wrap_pyfunction!(skeleton, m)?)?;
     m.add("GeotracksError", m.py().get_type::<GeotracksError>())?;
     Ok(())
 }

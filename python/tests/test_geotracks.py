@@ -232,3 +232,43 @@ def test_the_readme_example_runs(monkeypatch):
     scope = {}
     exec(compile(code, "README.md", "exec"), scope)
     assert scope["M"].shape == (10, scope["solver"].vertex_count)
+
+
+def test_terrain_route_on_a_plane(tmp_path):
+    # A tilted plane z = 0.5 x on a 21 × 21 grid of 1 m cells.
+    rows = "\n".join(" ".join(f"{0.5 * c:g}" for c in range(21)) for _ in range(21))
+    dem = tmp_path / "tilted.asc"
+    dem.write_text(
+        "ncols 21\nnrows 21\nxllcorner 0\nyllcorner 0\ncellsize 1\nNODATA_value -9999\n" + rows + "\n"
+    )
+    route = geotracks.terrain_route(dem, (2.5, 2.5), (17.5, 10.5))
+    straight = np.linalg.norm([15.0, 8.0, 7.5])
+    assert abs(route.cost - straight) < 1e-6 * straight
+    assert np.allclose(route.points[0][:2], [2.5, 2.5]) and np.allclose(route.points[-1][:2], [17.5, 10.5])
+    assert route.cumulative_cost[0] == 0.0 and route.cumulative_cost[-1] == route.cost
+    steeper = geotracks.terrain_route(dem, (2.5, 2.5), (17.5, 10.5), cost="slope:4")
+    assert steeper.cost > route.cost
+    with pytest.raises(geotracks.GeotracksError, match="start"):
+        geotracks.terrain_route(dem, (-50, 2), (10, 10))
+    with pytest.raises(geotracks.GeotracksError):
+        geotracks.terrain_route(dem, (2, 2), (10, 10), cost="steep")
+
+
+def test_skeleton_of_a_medial_axis():
+    sk = geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune="2%")
+    p = len(sk.points)
+    assert sk.points.shape == (p, 3) and sk.radii.shape == (p,) and sk.edges.shape[1] == 2
+    assert np.all(sk.radii > 0) and sk.edges.max() < p
+    # Cycles of the graph (E − V + C) equal the axis's b1.
+    import scipy.sparse as sparse
+    from scipy.sparse.csgraph import connected_components
+
+    graph = sparse.coo_matrix((np.ones(len(sk.edges)), (sk.edges[:, 0], sk.edges[:, 1])), shape=(p, p))
+    components = connected_components(graph, directed=False)[0]
+    assert len(sk.edges) - p + components == sk.b1
+    everything = geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune=0)
+    assert len(everything.points) > p
+    with pytest.raises(geotracks.GeotracksError, match="prune"):
+        geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune="-1")
+    with pytest.raises(geotracks.GeotracksError, match="burn"):
+        geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", burn="fire")

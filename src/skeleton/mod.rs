@@ -59,6 +59,56 @@ use crate::{Error, Euclidean, GeodesicField, Metric};
 /// Skeletons).
 pub const DEFAULT_PRUNE_PERCENT: f64 = 7.0;
 
+/// A pruning threshold as people write it: a length in the axis's units (`0.05`,
+/// `inf`), or a percentage of its bounding-box diagonal (`7%`), so that the same value
+/// means the same on a small and a large shape.
+///
+/// ```
+/// use geotracks::skeleton::Prune;
+/// let p: Prune = "7%".parse()?;
+/// assert_eq!(p, Prune::Percent(7.0));
+/// assert!((p.threshold(200.0) - 14.0).abs() < 1e-12);
+/// assert_eq!("0.5".parse::<Prune>()?.threshold(200.0), 0.5);
+/// assert!("-1".parse::<Prune>().is_err() && "much".parse::<Prune>().is_err());
+/// # Ok::<(), String>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Prune {
+    /// A length (≥ 0; `inf` keeps only what never burns).
+    Length(f64),
+    /// A percentage of the bounding-box diagonal (≥ 0).
+    Percent(f64),
+}
+
+impl Prune {
+    /// The threshold for a shape whose bounding-box diagonal is `diagonal`.
+    pub fn threshold(self, diagonal: f64) -> f64 {
+        match self {
+            Prune::Length(length) => length,
+            Prune::Percent(percent) => percent / 100.0 * diagonal,
+        }
+    }
+}
+
+impl std::str::FromStr for Prune {
+    type Err = String;
+
+    /// `T` (a length) or `P%`; refuses negative values, NaN and anything else.
+    fn from_str(text: &str) -> Result<Prune, String> {
+        let text = text.trim();
+        let (number, make): (&str, fn(f64) -> Prune) = match text.strip_suffix('%') {
+            Some(p) => (p.trim(), Prune::Percent),
+            None => (text, Prune::Length),
+        };
+        match number.parse::<f64>() {
+            Ok(v) if v >= 0.0 => Ok(make(v)),
+            _ => Err(format!(
+                "'{text}': expected a length >= 0 or a percentage such as 2%"
+            )),
+        }
+    }
+}
+
 /// A point of a [`Skeleton`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
