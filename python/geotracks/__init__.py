@@ -217,14 +217,21 @@ class MeshSolver:
         targets = None if targets is None else _ids(np.atleast_1d(targets), "targets", ndim=1)
         return self._core.distance_matrix(sources, targets)
 
+    def local_distance_rows(self, sources, max_distance: float) -> tuple:
+        """For each source vertex, every vertex within ``max_distance``: ``(rows,
+        columns, distances)`` arrays (row: the source's vertex id), computed in
+        parallel: the triples of :meth:`local_distance_matrix` for some rows only."""
+        sources = _ids(np.atleast_1d(sources), "sources", ndim=1)
+        return self._core.local_distance_rows(sources, float(max_distance))
+
     def local_distance_matrix(self, max_distance: float):
         """Every pair of vertices within ``max_distance`` of each other, as a
         ``scipy.sparse.csr_matrix`` of shape ``(n, n)`` (row: the source vertex; the
         diagonal's zeros are stored). What tvb-gdist's ``local_gdist_matrix`` gives."""
         from scipy.sparse import csr_matrix
 
-        rows, cols, data = self._core.local_distance_matrix(float(max_distance))
         n = self.vertex_count
+        rows, cols, data = self._core.local_distance_rows(np.arange(n, dtype=np.int64), float(max_distance))
         return csr_matrix((data, (rows, cols)), shape=(n, n))
 
 

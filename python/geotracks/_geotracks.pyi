@@ -45,8 +45,8 @@ class MeshSolverCore:
         sources: npt.NDArray[np.int64],
         targets: Optional[npt.NDArray[np.int64]] = None,
     ) -> npt.NDArray[np.float64]: ...
-    def local_distance_matrix(
-        self, max_distance: float
+    def local_distance_rows(
+        self, sources: npt.NDArray[np.int64], max_distance: float
     ) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64], npt.NDArray[np.float64]]: ...
 
 def read_mesh(

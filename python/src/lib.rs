@@ -230,12 +230,13 @@ impl MeshSolverCore {
         Ok(matrix.into_pyarray(py))
     }
 
-    /// Every pair of vertices within `max_distance`, as `(rows, columns, distances)`
-    /// (row: the source vertex), one run per vertex stopped at `max_distance`, on all
-    /// cores.
-    fn local_distance_matrix<'py>(
+    /// Every pair (source, vertex) within `max_distance` of each other, for each vertex
+    /// of `sources`, as `(rows, columns, distances)` (row: the source's vertex id), one
+    /// run per source stopped at `max_distance`, on all cores.
+    fn local_distance_rows<'py>(
         &self,
         py: Python<'py>,
+        sources: PyReadonlyArray1<'_, i64>,
         max_distance: f64,
     ) -> PyResult<(Vector<'py, i64>, Vector<'py, i64>, Vector<'py, f64>)> {
         use rayon::prelude::*;
@@ -244,15 +245,25 @@ impl MeshSolverCore {
                 "max_distance = {max_distance}: it must be a number >= 0"
             )));
         }
+        let n = self.vertex_count();
+        let sources: Vec<u32> = sources
+            .as_array()
+            .iter()
+            .map(|&v| match u32::try_from(v) {
+                Ok(s) if (s as usize) < n => Ok(s),
+                _ => Err(error(format!(
+                    "source {v} is not a vertex id (the mesh has {n} vertices)"
+                ))),
+            })
+            .collect::<PyResult<_>>()?;
         let solver = self.cell.borrow_dependent();
-        let n = self.vertex_count() as u32;
         let stop = Stop::NONE.with_max_distance(max_distance);
         let rows: Result<Vec<Vec<(u32, f64)>>, geotracks::Error> = py.detach(|| {
-            (0..n)
-                .into_par_iter()
+            sources
+                .par_iter()
                 .map_init(
                     || solver.workspace(),
-                    |workspace, v| {
+                    |workspace, &v| {
                         solver.run_from(workspace, &[Source::new(v)], &stop)?;
                         Ok(workspace
                             .vertex_distances()
@@ -272,9 +283,9 @@ impl MeshSolverCore {
             Vec::with_capacity(total),
             Vec::with_capacity(total),
         );
-        for (i, row) in rows.iter().enumerate() {
+        for (&source, row) in sources.iter().zip(&rows) {
             for &(j, value) in row {
-                r.push(i as i64);
+                r.push(source as i64);
                 c.push(j as i64);
                 d.push(value);
             }
