@@ -29,6 +29,7 @@ from ._geotracks import terrain_route as _terrain_route
 __all__ = [
     "Density",
     "GeotracksError",
+    "Isoline",
     "MeshSolver",
     "Path",
     "Route",
@@ -143,6 +144,17 @@ class Path(NamedTuple):
     length: float
 
 
+class Isoline(NamedTuple):
+    """One piece of a level set of a distance field."""
+
+    #: The level.
+    level: float
+    #: World positions along the line, shape ``(p, 3)``.
+    points: np.ndarray
+    #: Whether the line closes on itself (its last point is then its first).
+    closed: bool
+
+
 class MeshSolver:
     """A mesh and a solver on it, reused by every query.
 
@@ -209,6 +221,15 @@ class MeshSolver:
         target)."""
         points, names, length = self._core.path(_points(source, "source"), _points(target, "target")[0])
         return Path(points[::-1].copy(), names[::-1], length)
+
+    def isolines(self, sources, levels, subdivisions: Optional[int] = None) -> list:
+        """The level sets of the distance from ``sources`` at each of ``levels``, as a
+        list of :class:`Isoline` (several per level where the set has several pieces),
+        each point on its level to 1e-12. ``subdivisions``: sub-triangles per face
+        edge (default 4); a loop smaller than one can be missed."""
+        levels = [float(x) for x in np.atleast_1d(levels)]
+        lines = self._core.isolines(_points(sources, "sources"), levels, subdivisions)
+        return [Isoline(level, points, closed) for level, points, closed in lines]
 
     def distance_matrix(self, sources, targets=None) -> np.ndarray:
         """Distances from each source vertex (rows) to every vertex, or to ``targets``

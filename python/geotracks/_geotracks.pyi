@@ -40,6 +40,9 @@ class MeshSolverCore:
     def path(
         self, sources: list[_Point], target: _Point
     ) -> tuple[npt.NDArray[np.float64], list[str], float]: ...
+    def isolines(
+        self, sources: list[_Point], levels: list[float], subdivisions: Optional[int] = None
+    ) -> list[tuple[float, npt.NDArray[np.float64], bool]]: ...
     def distance_matrix(
         self,
         sources: npt.NDArray[np.int64],

@@ -202,6 +202,40 @@ impl MeshSolverCore {
         Ok((points.into_pyarray(py), names, path.length))
     }
 
+    /// The isolines of the field from `sources` at `levels`: per line, its level,
+    /// its points (p, 3) and whether it closes on itself.
+    #[pyo3(signature = (sources, levels, subdivisions=None))]
+    #[allow(clippy::type_complexity)] // (level, points, closed) per line
+    fn isolines<'py>(
+        &self,
+        py: Python<'py>,
+        sources: Vec<PointArg>,
+        levels: Vec<f64>,
+        subdivisions: Option<u32>,
+    ) -> PyResult<Vec<(f64, Matrix<'py, f64>, bool)>> {
+        use geotracks::trace::IsolineOptions;
+        let sources = sources_of(&sources)?;
+        let (mesh, solver) = (self.cell.borrow_owner(), self.cell.borrow_dependent());
+        let mut options = IsolineOptions::DEFAULT;
+        if let Some(n) = subdivisions {
+            options = options.with_subdivisions(n);
+        }
+        let lines = py
+            .detach(|| {
+                let field = solver.solve_from(&sources, &Stop::NONE)?;
+                solver.query(&field)?.isolines(&levels, &options)
+            })
+            .map_err(error)?;
+        Ok(lines
+            .into_iter()
+            .map(|line| {
+                let xyz: Vec<_> = line.points.iter().map(|p| p.position(mesh)).collect();
+                let points = Array2::from_shape_fn((xyz.len(), 3), |(i, c)| xyz[i][c]);
+                (line.level, points.into_pyarray(py), line.closed)
+            })
+            .collect())
+    }
+
     /// One row per source vertex: its distance to every vertex, or to `targets`; rows
     /// computed on all cores.
     #[pyo3(signature = (sources, targets=None))]

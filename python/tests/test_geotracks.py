@@ -272,3 +272,19 @@ def test_skeleton_of_a_medial_axis():
         geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune="-1")
     with pytest.raises(geotracks.GeotracksError, match="burn"):
         geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", burn="fire")
+
+
+def test_isolines_lie_on_their_level():
+    V, F = grid(8)
+    solver = geotracks.MeshSolver(V, F)
+    lines = solver.isolines(0, [0.5, 1.2])
+    assert {line.level for line in lines} == {0.5, 1.2}
+    for line in lines:
+        r = np.hypot(line.points[:, 0], line.points[:, 1])
+        assert np.allclose(r, line.level, atol=1e-9), line.level
+        assert not line.closed and len(line.points) > 5
+    # A closed loop round a source in the middle.
+    (loop,) = solver.isolines(40, [0.25])
+    assert loop.closed and np.allclose(loop.points[0], loop.points[-1])
+    with pytest.raises(geotracks.GeotracksError):
+        solver.isolines(0, [float("nan")])
