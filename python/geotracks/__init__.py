@@ -222,6 +222,15 @@ class MeshSolver:
         points, names, length = self._core.path(_points(source, "source"), _points(target, "target")[0])
         return Path(points[::-1].copy(), names[::-1], length)
 
+    def gradient(self, sources, points) -> tuple:
+        """The field from ``sources`` at ``points`` (vertex ids or surface points):
+        ``(distances (p,), gradients (p, 3), directions (p, 3))``. The gradient of the
+        distance and the unit direction in which the geodesic that reaches the point
+        travels there, away from its source, both world vectors in the plane of the
+        point's face. ``inf`` and NaN where unreached; NaN vectors where the distance
+        has no gradient (at a source)."""
+        return self._core.gradient(_points(sources, "sources"), _points(points, "points"))
+
     def isolines(self, sources, levels, subdivisions: Optional[int] = None) -> list:
         """The level sets of the distance from ``sources`` at each of ``levels``, as a
         list of :class:`Isoline` (several per level where the set has several pieces),

@@ -40,6 +40,9 @@ class MeshSolverCore:
     def path(
         self, sources: list[_Point], target: _Point
     ) -> tuple[npt.NDArray[np.float64], list[str], float]: ...
+    def gradient(
+        self, sources: list[_Point], points: list[_Point]
+    ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
     def isolines(
         self, sources: list[_Point], levels: list[float], subdivisions: Optional[int] = None
     ) -> list[tuple[float, npt.NDArray[np.float64], bool]]: ...

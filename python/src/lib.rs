@@ -202,6 +202,47 @@ impl MeshSolverCore {
         Ok((points.into_pyarray(py), names, path.length))
     }
 
+    /// The field from `sources` at surface points: per point its distance, the
+    /// gradient of the distance and the direction the geodesic travels there (world
+    /// vectors in the point's face plane; `inf` and NaN where unreached, NaN vectors
+    /// where there is no gradient, as at a source).
+    #[allow(clippy::type_complexity)] // distances, gradients, directions
+    fn gradient<'py>(
+        &self,
+        py: Python<'py>,
+        sources: Vec<PointArg>,
+        points: Vec<PointArg>,
+    ) -> PyResult<(Vector<'py, f64>, Matrix<'py, f64>, Matrix<'py, f64>)> {
+        let sources = sources_of(&sources)?;
+        let points = points
+            .iter()
+            .map(PointArg::point)
+            .collect::<PyResult<Vec<_>>>()?;
+        let solver = self.cell.borrow_dependent();
+        let n = points.len();
+        let (mut d, mut g, mut t) = (
+            vec![f64::INFINITY; n],
+            Array2::from_elem((n, 3), f64::NAN),
+            Array2::from_elem((n, 3), f64::NAN),
+        );
+        py.detach(|| {
+            let field = solver.solve_from(&sources, &Stop::NONE)?;
+            let query = solver.query(&field)?;
+            for (i, &p) in points.iter().enumerate() {
+                d[i] = query.distance_at(p)?;
+                if let Some(gradient) = query.gradient_at(p)? {
+                    for c in 0..3 {
+                        g[[i, c]] = gradient.vector[c];
+                        t[[i, c]] = gradient.direction[c];
+                    }
+                }
+            }
+            Ok::<_, geotracks::Error>(())
+        })
+        .map_err(error)?;
+        Ok((d.into_pyarray(py), g.into_pyarray(py), t.into_pyarray(py)))
+    }
+
     /// The isolines of the field from `sources` at `levels`: per line, its level,
     /// its points (p, 3) and whether it closes on itself.
     #[pyo3(signature = (sources, levels, subdivisions=None))]

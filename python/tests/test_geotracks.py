@@ -288,3 +288,27 @@ def test_isolines_lie_on_their_level():
     assert loop.closed and np.allclose(loop.points[0], loop.points[-1])
     with pytest.raises(geotracks.GeotracksError):
         solver.isolines(0, [float("nan")])
+
+
+def test_distance_and_gradient_at_surface_points():
+    V, F = grid(8)
+    solver = geotracks.MeshSolver(V, F)
+    # The centroid of face 10, a point on edge 3, and a vertex.
+    points = ["f:10:0.2,0.3,0.5", "e:3:0.25", 40]
+    d, g, t = solver.gradient(0, points)
+    xyz = np.array([
+        0.2 * V[F[10][0]] + 0.3 * V[F[10][1]] + 0.5 * V[F[10][2]],
+        [np.nan] * 3,
+        V[40],
+    ])
+    for i in (0, 2):
+        r = np.linalg.norm(xyz[i])
+        assert abs(d[i] - r) < 1e-9
+        assert np.allclose(g[i], xyz[i] / r, atol=1e-9)  # away from the source, unit
+        assert np.allclose(t[i], xyz[i] / r, atol=1e-9)
+    assert np.isfinite(d[1]) and abs(np.linalg.norm(g[1]) - 1.0) < 1e-9
+    # At the source: distance 0, no gradient.
+    d, g, t = solver.gradient(0, [0])
+    assert d[0] == 0.0 and np.isnan(g[0]).all() and np.isnan(t[0]).all()
+    with pytest.raises(geotracks.GeotracksError):
+        solver.gradient(0, ["f:999:0.2,0.3,0.5"])
