@@ -38,6 +38,25 @@ impl Method {
             Method::Dijkstra => "dijkstra",
         }
     }
+
+    /// The mean number of Steiner points per edge to run with when none is asked for:
+    /// 2 for the wavefront engine, 5 for the Steiner graph (`Tracks`, `Graph`, and
+    /// `Wave` on a metric that is not `face_flat`, where the tracks engine runs), which
+    /// needs more points for the same accuracy. Dijkstra uses none (2 is given).
+    ///
+    /// ```
+    /// use geotracks::Method;
+    /// assert_eq!(Method::Wave.default_k(true), 2.0);
+    /// assert_eq!(Method::Wave.default_k(false), 5.0); // a density: tracks run
+    /// assert_eq!(Method::Graph.default_k(true), 5.0);
+    /// ```
+    pub fn default_k(self, face_flat: bool) -> f64 {
+        match self {
+            Method::Tracks | Method::Graph => 5.0,
+            Method::Wave if !face_flat => 5.0,
+            Method::Wave | Method::Dijkstra => 2.0,
+        }
+    }
 }
 
 impl fmt::Display for Method {

@@ -1,5 +1,6 @@
 //! The options every propagating command shares: Steiner points, engine, and the metric
-//! (Euclidean, or a density or tensor file), read into one [`BuiltinMetric`] (the library's enum of the three).
+//! (Euclidean, or a density or tensor file), read into one [`BuiltinMetric`] (the
+//! library's enum of the three).
 
 use crate::inputs::{read_density, read_tensor};
 use crate::CliResult;
@@ -33,13 +34,9 @@ impl MetricArgs {
     /// The k to run with: as given, else 2 for the wavefront engine, 5 where the
     /// Steiner graph runs (a density, or `--method tracks|graph`).
     pub fn k(&self) -> f64 {
-        self.k.unwrap_or(
-            if self.density.is_some() || matches!(self.method, Method::Tracks | Method::Graph) {
-                5.0
-            } else {
-                2.0
-            },
-        )
+        // A density is the one metric here that is not face-flat.
+        self.k
+            .unwrap_or(self.method.default_k(self.density.is_none()))
     }
 
     /// The run options.

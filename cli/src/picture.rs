@@ -1,6 +1,7 @@
 //! `--png`, `--view`, `--size`: a picture of a distance field (library:
 //! `geotracks::render`), for `distance`, `isolines` and `demo`; `skeleton` shares the
 //! camera arguments.
+
 use crate::output::Outputs;
 use crate::CliResult;
 use geotracks::render::{render_field, PictureOptions, View};

@@ -98,11 +98,7 @@ pub fn skeletons(data: &Path, prune_percent: f64, k: f64, burn: Burn) -> Result<
                     }
                 })
                 .collect();
-            let mut degree = vec![0usize; at_default.points.len()];
-            for &[a, b] in &at_default.edges {
-                degree[a as usize] += 1;
-                degree[b as usize] += 1;
-            }
+            let degree = at_default.degrees();
             let mut ours_branches: Vec<Branch> = at_default
                 .polylines()
                 .iter()
@@ -222,12 +218,7 @@ struct Branch {
 
 /// Points with three or more edges.
 fn junction_count(skeleton: &Skeleton) -> usize {
-    let mut degree = vec![0usize; skeleton.points.len()];
-    for &[a, b] in &skeleton.edges {
-        degree[a as usize] += 1;
-        degree[b as usize] += 1;
-    }
-    degree.iter().filter(|&&d| d > 2).count()
+    skeleton.degrees().iter().filter(|&&d| d > 2).count()
 }
 
 struct Polylines {
@@ -262,23 +253,18 @@ fn read_polylines(path: &Path) -> Result<Polylines, String> {
     }
     edges.sort_unstable();
     edges.dedup();
-    let mut degree = vec![0usize; vertices.len()];
-    for &(a, b) in &edges {
-        degree[a] += 1;
-        degree[b] += 1;
-    }
     // The graph unpruned is itself: its polylines are the branches.
     let positions: Vec<[f64; 3]> = vertices.iter().map(|v| v.to_array()).collect();
     let pairs: Vec<[u32; 2]> = edges.iter().map(|&(a, b)| [a as u32, b as u32]).collect();
-    let branches = Skeleton::from_curves(&positions, &pairs, None).polyline_positions();
+    let graph = Skeleton::from_curves(&positions, &pairs, None);
     Ok(Polylines {
-        branches,
+        branches: graph.polyline_positions(),
         segments: edges
             .iter()
             .map(|&(a, b)| (vertices[a], vertices[b]))
             .collect(),
-        tips: degree.iter().filter(|&&d| d == 1).count(),
-        junctions: degree.iter().filter(|&&d| d > 2).count(),
+        tips: graph.tip_count(),
+        junctions: junction_count(&graph),
     })
 }
 

@@ -1,5 +1,5 @@
-//! [`BuiltinMetric`], the built-in metrics as one type, and [`metric_enum!`](crate::metric_enum), which makes
-//! such a type of any metrics.
+//! [`BuiltinMetric`], the built-in metrics as one type, and
+//! [`metric_enum!`](crate::metric_enum), which makes such a type of any metrics.
 
 use crate::{Density, Euclidean, Tensor};
 

@@ -27,6 +27,23 @@ fn error(e: impl std::fmt::Display) -> PyErr {
     GeotracksError::new_err(e.to_string())
 }
 
+/// `v` as a vertex id (`what` names it in the error), refusing negative or too large
+/// values; whether the vertex exists is the library's to check.
+fn vertex_id(v: i64, what: impl std::fmt::Display) -> PyResult<u32> {
+    u32::try_from(v).map_err(|_| error(format!("{what} {v} is not a vertex id")))
+}
+
+/// The vertex ids of a numpy vector.
+fn vertex_ids(ids: &PyReadonlyArray1<'_, i64>, what: &str) -> PyResult<Vec<u32>> {
+    ids.as_array().iter().map(|&v| vertex_id(v, what)).collect()
+}
+
+/// One row `xyz(item)` per item: points as an (n, 3) matrix.
+fn matrix3<T>(items: &[T], xyz: impl Fn(&T) -> [f64; 3]) -> Array2<f64> {
+    let flat: Vec<f64> = items.iter().flat_map(xyz).collect();
+    Array2::from_shape_vec((items.len(), 3), flat).expect("three coordinates per row")
+}
+
 /// A numpy vector owned by Python.
 type Vector<'py, T> = Bound<'py, PyArray1<T>>;
 /// A numpy matrix owned by Python.
@@ -54,9 +71,7 @@ enum PointArg {
 impl PointArg {
     fn point(&self) -> PyResult<SurfacePoint> {
         match self {
-            PointArg::Vertex(v) => u32::try_from(*v)
-                .map(SurfacePoint::Vertex)
-                .map_err(|_| error(format!("vertex {v} is not a vertex id (0 to 2^32 - 2)"))),
+            PointArg::Vertex(v) => vertex_id(*v, "vertex").map(SurfacePoint::Vertex),
             PointArg::Text(text) => text
                 .parse()
                 .map_err(|e| error(format!("'{text}' is not a surface point: {e}"))),
@@ -71,10 +86,7 @@ fn sources_of(points: &[PointArg]) -> PyResult<Vec<Source>> {
 /// The triangles as `u32` ids, refusing negative or too large ones.
 fn triangles(faces: &PyReadonlyArray2<'_, i64>) -> PyResult<Vec<[u32; 3]>> {
     let f = faces.as_array();
-    let id = |i: usize, c: usize| {
-        u32::try_from(f[[i, c]])
-            .map_err(|_| error(format!("F[{i}, {c}] = {} is not a vertex id", f[[i, c]])))
-    };
+    let id = |i: usize, c: usize| vertex_id(f[[i, c]], format!("F[{i}, {c}] ="));
     (0..f.nrows())
         .map(|i| Ok([id(i, 0)?, id(i, 1)?, id(i, 2)?]))
         .collect()
@@ -126,12 +138,10 @@ impl MeshSolverCore {
             }
             (other, _) => return Err(error(format!("unknown metric '{other}'"))),
         };
-        // The wavefront engine wants fewer points than the Steiner graph for the same
-        // accuracy (as on the command line).
-        let k = k.unwrap_or(match (method, &metric) {
-            (Method::Wave, BuiltinMetric::Euclidean(_) | BuiltinMetric::Tensor(_)) => 2.0,
-            _ => 5.0,
-        });
+        // As on the command line: a density is the one built-in metric that is not
+        // face-flat.
+        let face_flat = !matches!(metric, BuiltinMetric::Density(_));
+        let k = k.unwrap_or(method.default_k(face_flat));
         let options = Options::DEFAULT.with_k(k).with_method(method);
         let cell =
             py.detach(|| MeshAndSolver::try_new(mesh, |mesh| Solver::new(mesh, metric, &options)));
@@ -196,8 +206,7 @@ impl MeshSolverCore {
         let path = py
             .detach(|| solver.shortest_path(&sources, target))
             .map_err(error)?;
-        let xyz = path.positions(mesh);
-        let points = Array2::from_shape_fn((xyz.len(), 3), |(i, c)| xyz[i][c]);
+        let points = matrix3(&path.points, |p| p.position(mesh).to_array());
         let names = path.points.iter().map(|p| p.to_string()).collect();
         Ok((points.into_pyarray(py), names, path.length))
     }
@@ -270,8 +279,7 @@ impl MeshSolverCore {
         Ok(lines
             .into_iter()
             .map(|line| {
-                let xyz: Vec<_> = line.points.iter().map(|p| p.position(mesh)).collect();
-                let points = Array2::from_shape_fn((xyz.len(), 3), |(i, c)| xyz[i][c]);
+                let points = matrix3(&line.points, |p| p.position(mesh).to_array());
                 (line.level, points.into_pyarray(py), line.closed)
             })
             .collect())
@@ -286,16 +294,8 @@ impl MeshSolverCore {
         sources: PyReadonlyArray1<'_, i64>,
         targets: Option<PyReadonlyArray1<'_, i64>>,
     ) -> PyResult<Matrix<'py, f64>> {
-        let ids = |a: &PyReadonlyArray1<'_, i64>, what: &str| -> PyResult<Vec<u32>> {
-            a.as_array()
-                .iter()
-                .map(|&v| {
-                    u32::try_from(v).map_err(|_| error(format!("{what} {v} is not a vertex id")))
-                })
-                .collect()
-        };
-        let sources = ids(&sources, "source")?;
-        let targets = targets.map(|t| ids(&t, "target")).transpose()?;
+        let sources = vertex_ids(&sources, "source")?;
+        let targets = targets.map(|t| vertex_ids(&t, "target")).transpose()?;
         let solver = self.cell.borrow_dependent();
         let rows = py
             .detach(|| solver.distance_rows(&sources, targets.as_deref()))
@@ -320,17 +320,7 @@ impl MeshSolverCore {
                 "max_distance = {max_distance}: it must be a number >= 0"
             )));
         }
-        let n = self.vertex_count();
-        let sources: Vec<u32> = sources
-            .as_array()
-            .iter()
-            .map(|&v| match u32::try_from(v) {
-                Ok(s) if (s as usize) < n => Ok(s),
-                _ => Err(error(format!(
-                    "source {v} is not a vertex id (the mesh has {n} vertices)"
-                ))),
-            })
-            .collect::<PyResult<_>>()?;
+        let sources = vertex_ids(&sources, "source")?;
         let solver = self.cell.borrow_dependent();
         let stop = Stop::NONE.with_max_distance(max_distance);
         let rows: Result<Vec<Vec<(u32, f64)>>, geotracks::Error> = py.detach(|| {
@@ -415,9 +405,8 @@ fn read_mesh<'py>(
     path: std::path::PathBuf,
 ) -> PyResult<(Matrix<'py, f64>, Matrix<'py, i64>)> {
     let mesh = py.detach(|| read_mesh_file(&path)).map_err(error)?;
-    let p = mesh.positions();
+    let vertices = matrix3(mesh.positions(), |p| p.to_array());
     let t = mesh.triangles();
-    let vertices = Array2::from_shape_fn((p.len(), 3), |(i, c)| p[i][c]);
     let faces = Array2::from_shape_fn((t.len(), 3), |(i, c)| t[i][c] as i64);
     Ok((vertices.into_pyarray(py), faces.into_pyarray(py)))
 }
@@ -457,8 +446,7 @@ fn terrain_route<'py>(
             })
         })
         .map_err(error)?;
-    let p = &route.points;
-    let points = Array2::from_shape_fn((p.len(), 3), |(i, c)| p[i][c]);
+    let points = matrix3(&route.points, |p| p.to_array());
     let total = route.cost();
     Ok((
         points.into_pyarray(py),
@@ -509,7 +497,7 @@ fn skeleton<'py>(
         })
         .map_err(error)?;
     let p = &skeleton.points;
-    let points = Array2::from_shape_fn((p.len(), 3), |(i, c)| p[i].position[c]);
+    let points = matrix3(p, |q| q.position);
     let radii: Vec<f64> = p.iter().map(|q| q.radius.unwrap_or(f64::NAN)).collect();
     let significance: Vec<f64> = p.iter().map(|q| q.significance).collect();
     let e = &skeleton.edges;

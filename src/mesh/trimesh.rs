@@ -267,19 +267,13 @@ impl TriMesh {
     /// mesh is left unchanged then.
     pub fn set_line_elements(&mut self, line_edges: Vec<[u32; 2]>) -> Result<(), MeshError> {
         check_line_edges(&line_edges, self.positions.len())?;
-        let mut wires: Vec<[u32; 2]> = line_edges
-            .iter()
-            .filter(|e| e[0] != e[1])
-            .map(|&[a, b]| [a.min(b), a.max(b)])
-            .filter(|&[a, b]| {
-                !self
-                    .vertex_edges(a)
-                    .iter()
-                    .any(|&e| self.edge_vertices(e).contains(&b))
-            })
-            .collect();
-        wires.sort_unstable();
-        wires.dedup();
+        let mut wires = super::unique_edges(&line_edges);
+        wires.retain(|&[a, b]| {
+            !self
+                .vertex_edges(a)
+                .iter()
+                .any(|&e| self.edge_vertices(e).contains(&b))
+        });
         self.vertex_wires = Csr::from_pairs(
             self.positions.len(),
             wires.iter().flat_map(|&[a, b]| [(a, b), (b, a)]),

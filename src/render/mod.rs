@@ -204,12 +204,10 @@ pub fn render_field(
         .fold(0.0, f64::max);
     let (w, h) = (options.width * SUPERSAMPLE, options.height * SUPERSAMPLE);
     let mut canvas = Canvas::new(w, h);
-    let light = camera.light();
     for f in 0..mesh.face_count() as u32 {
         let corners = mesh.face_vertices(f);
         let p = corners.map(|v| mesh.position(v));
-        let normal = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
-        let shade = 0.35 + 0.65 * normal.dot(light).abs();
+        let shade = camera.shade(p, 0.35);
         let values = corners.map(|v| vertex_values[v as usize]);
         canvas.triangle(&camera, p, |b| {
             let d = b[0] * values[0] + b[1] * values[1] + b[2] * values[2];

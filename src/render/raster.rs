@@ -103,8 +103,16 @@ impl Camera {
     }
 
     /// The light: from the eye, a little above and to the left.
-    pub fn light(&self) -> DVec3 {
+    fn light(&self) -> DVec3 {
         (self.towards + 0.45 * self.up - 0.3 * self.right).normalize()
+    }
+
+    /// How lit the triangle `p` is, from `ambient` (edge-on) to 1 (facing the light):
+    /// Lambert, two-sided (medial axes and non-manifold meshes have no consistent
+    /// orientation), plus ambient light.
+    pub fn shade(&self, p: [DVec3; 3], ambient: f64) -> f64 {
+        let normal = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
+        ambient + (1.0 - ambient) * normal.dot(self.light()).abs()
     }
 }
 
@@ -154,12 +162,19 @@ fn auto_axes(
 ) -> Option<(DVec3, DVec3, DVec3)> {
     use nalgebra::{Matrix3, SymmetricEigen, Vector3};
     let v3 = |d: DVec3| Vector3::new(d.x, d.y, d.z);
-    let top = |m: Matrix3<f64>| -> Option<DVec3> {
+    // The unit eigenvector of the largest (or smallest) eigenvalue of a covariance-like
+    // matrix that is not all zero.
+    let principal = |m: Matrix3<f64>, largest: bool| -> Option<DVec3> {
         let eigen = SymmetricEigen::new(m);
-        let i = eigen.eigenvalues.imax();
+        let values = &eigen.eigenvalues;
+        let i = if largest {
+            values.imax()
+        } else {
+            values.imin()
+        };
         let c = eigen.eigenvectors.column(i);
         let d = DVec3::new(c[0], c[1], c[2]);
-        (d.is_finite() && d.length() > 0.5 && eigen.eigenvalues[i] > 0.0).then(|| d.normalize())
+        (d.is_finite() && d.length() > 0.5 && values.max() > 0.0).then(|| d.normalize())
     };
     let mut shown = Matrix3::<f64>::zeros();
     if let Some(mesh) = surface {
@@ -172,7 +187,7 @@ fn auto_axes(
             }
         }
     }
-    let mut towards = match top(shown) {
+    let mut towards = match principal(shown, true) {
         Some(towards) => towards,
         None => {
             // Curves only: look along the points' least spread.
@@ -180,11 +195,7 @@ fn auto_axes(
             for &p in positions {
                 cloud += v3(p - centroid) * v3(p - centroid).transpose();
             }
-            let eigen = SymmetricEigen::new(cloud);
-            let i = eigen.eigenvalues.imin();
-            let c = eigen.eigenvectors.column(i);
-            let d = DVec3::new(c[0], c[1], c[2]);
-            (d.is_finite() && eigen.eigenvalues.max() > 0.0).then(|| d.normalize())?
+            principal(cloud, false)?
         }
     };
     // The widest spread of the vertices across the view.
@@ -194,7 +205,7 @@ fn auto_axes(
         let d = d - towards * d.dot(towards);
         spread += v3(d) * v3(d).transpose();
     }
-    let mut right = top(spread).unwrap_or_else(|| towards.any_orthonormal_vector());
+    let mut right = principal(spread, true).unwrap_or_else(|| towards.any_orthonormal_vector());
     let mut up = towards.cross(right);
     let world_up = if up.dot(DVec3::Y).abs() > 1e-6 {
         DVec3::Y

@@ -57,11 +57,9 @@ pub fn render_skeleton(
     let camera = Camera::fit_points(&positions, axis.surface.as_ref(), options, None, BAR_WIDTH);
     let mut canvas = Canvas::new(options.width * SUPERSAMPLE, options.height * SUPERSAMPLE);
     if let Some(mesh) = &axis.surface {
-        let light = camera.light();
         for f in 0..mesh.face_count() as u32 {
             let p = mesh.face_vertices(f).map(|v| mesh.position(v));
-            let normal = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
-            let shade = 0.55 + 0.45 * normal.dot(light).abs();
+            let shade = camera.shade(p, 0.55);
             let colour = SHEET.map(|c| PALE * 255.0 + (1.0 - PALE) * c * shade);
             canvas.triangle(&camera, p, |_| colour);
         }
@@ -98,12 +96,7 @@ pub fn render_skeleton(
             canvas.line(&camera, end, middle, 2.2 * ss, c, THROUGH);
         }
     }
-    let mut degree = vec![0u32; skeleton.points.len()];
-    for &[a, b] in &skeleton.edges {
-        degree[a as usize] += 1;
-        degree[b as usize] += 1;
-    }
-    for (i, &d) in degree.iter().enumerate() {
+    for (i, &d) in skeleton.degrees().iter().enumerate() {
         if d != 2 {
             canvas.disc(&camera, at(i as u32), 3.5 * ss, NODE);
         }

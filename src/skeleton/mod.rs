@@ -289,14 +289,25 @@ impl Skeleton {
 
     /// Points with exactly one edge (branch tips).
     pub fn tip_count(&self) -> usize {
-        self.adjacency().iter().filter(|n| n.len() == 1).count()
+        self.degrees().iter().filter(|&&d| d == 1).count()
+    }
+
+    /// Per point, how many edges it has: 1 at a tip, 2 along a curve, 3 or more at a
+    /// junction.
+    pub fn degrees(&self) -> Vec<u32> {
+        let mut degree = vec![0; self.points.len()];
+        for &[a, b] in &self.edges {
+            degree[a as usize] += 1;
+            degree[b as usize] += 1;
+        }
+        degree
     }
 
     /// The graph cut into polylines (point indices) between points whose degree is not
     /// 2; a cycle of degree-2 points is one closed polyline (first point repeated last).
     /// An isolated point is a polyline of one point.
     pub fn polylines(&self) -> Vec<Vec<u32>> {
-        let neighbours = self.adjacency();
+        let degree = self.degrees();
         let mut used = vec![false; self.edges.len()];
         let mut edge_ids: Vec<Vec<(u32, usize)>> = vec![Vec::new(); self.points.len()];
         for (k, &[a, b]) in self.edges.iter().enumerate() {
@@ -310,7 +321,7 @@ impl Skeleton {
             loop {
                 used[via] = true;
                 line.push(at);
-                if neighbours[at as usize].len() != 2 || at == start {
+                if degree[at as usize] != 2 || at == start {
                     break;
                 }
                 match edge_ids[at as usize].iter().find(|(_, k)| !used[*k]) {
@@ -321,7 +332,7 @@ impl Skeleton {
             line
         };
         for i in 0..self.points.len() as u32 {
-            match neighbours[i as usize].len() {
+            match degree[i as usize] {
                 0 => lines.push(vec![i]),
                 2 => {}
                 _ => {
@@ -419,8 +430,8 @@ impl Skeleton {
 }
 
 /// Per edge of the complex (the mesh's edges, then `wires`), what a tip pays to burn
-/// along it: `metric`'s cost between its ends in the cheapest face around it, or the
-/// Euclidean length of a wire.
+/// along it: `metric`'s cost between its ends in the cheapest face around it, or
+/// [`Metric::wire_cost`] for a wire.
 fn edge_costs<M: Metric>(mesh: &TriMesh, metric: &M, wires: &[[u32; 2]]) -> Vec<f64> {
     let mut costs: Vec<f64> = (0..mesh.edge_count() as u32)
         .map(|e| {
@@ -523,23 +534,5 @@ fn burn_from_border<M: Metric>(
             Ok((Skeleton::from_reach(mesh, metric, &unreached), None))
         }
         Err(e) => Err(e),
-    }
-}
-
-/// An f64 with a total order, for sorting and heaps.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Ordered(pub f64);
-
-impl Eq for Ordered {}
-
-impl PartialOrd for Ordered {
-    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
-        Some(self.cmp(other))
-    }
-}
-
-impl Ord for Ordered {
-    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
-        self.0.total_cmp(&other.0)
     }
 }

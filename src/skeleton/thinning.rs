@@ -34,7 +34,6 @@
 //! surface and leaves b₁ unchanged), else the face reached last (which adds one cycle;
 //! counted in [`Thinning::opened`]); the fire restarts there.
 
-use super::Ordered;
 use crate::mesh::{Csr, CycleSheets, TriMesh, NONE};
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
@@ -481,5 +480,23 @@ impl<'c, 'm, L: Fn(u32) -> f64, C: Fn(u32, u32) -> f64> Collapse<'c, 'm, L, C> {
             punctured: self.punctured,
             opened: self.opened,
         }
+    }
+}
+
+/// An f64 with a total order, for sorting and heaps.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Ordered(f64);
+
+impl Eq for Ordered {}
+
+impl PartialOrd for Ordered {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Ordered {
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        self.0.total_cmp(&other.0)
     }
 }

@@ -16,7 +16,6 @@ mod straighten;
 mod wave;
 
 use crate::mesh::{TriMesh, NONE};
-use crate::steiner::NodeKind;
 use crate::surface::SurfacePoint;
 use crate::Error;
 use geotracks_metrics::Metric;
@@ -186,11 +185,15 @@ impl<M: Metric> Query<'_, M> {
                 }
                 return Ok(finish(mesh, metric, points, faces, s));
             }
-            points.push(field.layout.surface_point(p));
+            let (from, to) = (
+                field.layout.surface_point(node),
+                field.layout.surface_point(p),
+            );
+            points.push(to);
             faces.push(if pf != NONE {
                 pf
             } else {
-                self.cheapest_face_along(node, p)
+                self.cheapest_face(from, to)
             });
             node = p;
         }
@@ -212,29 +215,29 @@ impl<M: Metric> Query<'_, M> {
         Ok(path)
     }
 
-    /// The face around the edge that joins nodes `a` and `b` (neighbours along it) in
-    /// which the segment between them costs least; [`NONE`] for two vertices joined by
-    /// a wire and no face edge.
-    fn cheapest_face_along(&self, a: u32, b: u32) -> u32 {
-        let (mesh, metric, layout) = (self.mesh, self.metric, self.field.layout);
-        let edge = match (layout.kind(a), layout.kind(b)) {
-            (NodeKind::Steiner { edge, .. }, _) | (_, NodeKind::Steiner { edge, .. }) => edge,
-            (NodeKind::Vertex(u), NodeKind::Vertex(v)) => {
-                match mesh
-                    .vertex_edges(u)
-                    .iter()
-                    .find(|&&e| mesh.edge_vertices(e).contains(&v))
-                {
-                    Some(&e) => e,
-                    None => return NONE,
-                }
-            }
+    /// The face around the edge that holds `a` and `b` (two points of one edge, such as
+    /// nodes that are neighbours along it) in which the segment between them costs
+    /// least; [`NONE`] for two vertices that share no face edge: the engines join such
+    /// vertices only along a wire.
+    pub(super) fn cheapest_face(&self, a: SurfacePoint, b: SurfacePoint) -> u32 {
+        let (mesh, metric) = (self.mesh, self.metric);
+        let edge = match (a, b) {
+            (SurfacePoint::Edge { edge, .. }, _) | (_, SurfacePoint::Edge { edge, .. }) => edge,
+            (SurfacePoint::Vertex(u), SurfacePoint::Vertex(v)) => match mesh
+                .vertex_edges(u)
+                .iter()
+                .copied()
+                .find(|&e| mesh.edge_vertices(e).contains(&v))
+            {
+                Some(e) => e,
+                None => return NONE,
+            },
+            _ => 0,
         };
-        let (pa, pb) = (layout.surface_point(a), layout.surface_point(b));
         let faces = mesh.edge_faces(edge);
         faces
             .iter()
-            .map(|&f| (segment_cost(mesh, metric, f, pa, pb), f))
+            .map(|&f| (segment_cost(mesh, metric, f, a, b), f))
             .min_by(|x, y| x.0.total_cmp(&y.0))
             .map_or(faces[0], |(_, f)| f)
     }

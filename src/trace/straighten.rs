@@ -71,7 +71,9 @@ pub fn straighten<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M
         let mut piece = GeodesicPath {
             points: path.points[start..=end].to_vec(),
             faces: path.faces[start..end].to_vec(),
-            ..path.clone()
+            source: path.source,
+            length: 0.0,
+            traced_length: path.traced_length,
         };
         if !piece.faces.is_empty() {
             straighten_in_faces(&mut piece, mesh, metric);

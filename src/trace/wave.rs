@@ -177,32 +177,6 @@ impl<M: Metric> Query<'_, M> {
         None
     }
 
-    /// The face of an edge that `a`–`b` (two points of it) costs least in; [`NONE`]
-    /// for two vertices joined by a wire and no face edge.
-    fn cheapest_face(&self, a: SurfacePoint, b: SurfacePoint) -> u32 {
-        let edge = match (a, b) {
-            (SurfacePoint::Edge { edge, .. }, _) | (_, SurfacePoint::Edge { edge, .. }) => edge,
-            (SurfacePoint::Vertex(u), SurfacePoint::Vertex(v)) => match self
-                .mesh
-                .vertex_edges(u)
-                .iter()
-                .copied()
-                .find(|&e| self.mesh.edge_vertices(e).contains(&v))
-            {
-                Some(e) => e,
-                None if self.mesh.vertex_wires(u).contains(&v) => return NONE,
-                None => 0,
-            },
-            _ => 0,
-        };
-        let faces = self.mesh.edge_faces(edge);
-        faces
-            .iter()
-            .map(|&f| (super::segment_cost(self.mesh, self.metric, f, a, b), f))
-            .min_by(|x, y| x.0.total_cmp(&y.0))
-            .map_or(faces[0], |(_, f)| f)
-    }
-
     /// How the path goes on from node `n`, which it has reached.
     pub(super) fn step_from(&self, n: u32) -> Option<Step> {
         let field = &self.field;

@@ -29,15 +29,22 @@ pub fn grid_with(n: usize, size: f64, place: impl Fn(f64, f64) -> [f64; 3]) -> T
             ));
         }
     }
-    let id = |i: usize, j: usize| (j * (n + 1) + i) as u32;
-    let mut triangles = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
+    let triangles = split_quads(n, n, |i, j| (j * (n + 1) + i) as u32);
+    TriMesh::new(positions, triangles).unwrap()
+}
+
+/// The triangles of a `cols × rows` grid of quads whose corner `(i, j)` is vertex
+/// `id(i, j)` (`i` in `0..=cols`, `j` in `0..=rows`), each quad cut along the same
+/// diagonal, from `(i, j)` to `(i + 1, j + 1)`.
+pub fn split_quads(cols: usize, rows: usize, id: impl Fn(usize, usize) -> u32) -> Vec<[u32; 3]> {
+    let mut triangles = Vec::with_capacity(2 * cols * rows);
+    for j in 0..rows {
+        for i in 0..cols {
             triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
             triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
         }
     }
-    TriMesh::new(positions, triangles).unwrap()
+    triangles
 }
 
 /// A non-manifold "book": `pages` rectangular pages of width `width` (away from the
@@ -789,13 +796,8 @@ pub fn torus(around: usize, across: usize, big: f64, small: f64) -> TriMesh {
             positions.push([r * u.cos(), r * u.sin(), small * v.sin()]);
         }
     }
+    // Quad (i, j) spans i..i+1 around and j..j+1 across, wrapping both ways.
     let id = |i: usize, j: usize| ((i % around) * across + j % across) as u32;
-    let mut triangles = Vec::new();
-    for i in 0..around {
-        for j in 0..across {
-            triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-            triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
-        }
-    }
+    let triangles = split_quads(around, across, id);
     TriMesh::new(positions, triangles).unwrap()
 }
