@@ -16,7 +16,7 @@ True
 
 from __future__ import annotations
 
-from typing import NamedTuple, Optional, Sequence, Union
+from typing import NamedTuple, Optional, Union
 
 import numpy as np
 
@@ -46,31 +46,26 @@ __all__ = [
 Point = Union[int, str]
 
 
-def _numbers(array, name: str, columns: Optional[int] = None, ndim: int = 2) -> np.ndarray:
-    """`array` as a C-contiguous float64 array of `ndim` dimensions (and `columns`
-    columns), refusing what is not numbers."""
+def _array(array, name: str, shape: tuple, integer: bool = False) -> np.ndarray:
+    """`array` as a C-contiguous float64 (or, with `integer`, int64) array of `shape`
+    (a tuple of sizes, a name such as ``"n"`` standing for any size), refusing what
+    is not real numbers (integers only, with `integer`) and other shapes."""
     a = np.asarray(array)
-    if a.dtype.kind not in "fiu":
+    if integer:
+        if a.size == 0 and a.dtype.kind == "f":
+            a = a.astype(np.int64)  # an empty list
+        if a.dtype.kind not in "iu":
+            raise TypeError(f"{name} must hold integer vertex ids; got dtype {a.dtype}")
+        if a.dtype == np.uint64 and a.size and a.max() > np.iinfo(np.int64).max:
+            raise GeotracksError(f"{name} holds a vertex id beyond 2^63")
+    elif a.dtype.kind not in "fiu":
         raise TypeError(f"{name} must hold real numbers; got dtype {a.dtype}")
-    if a.ndim != ndim or (columns is not None and a.shape[-1] != columns):
-        want = "(n,)" if ndim == 1 else f"(n, {columns})" if ndim == 2 else f"(n, {columns}, {columns})"
-        raise ValueError(f"{name} must have shape {want}; got {a.shape}")
-    return np.ascontiguousarray(a, dtype=np.float64)
-
-
-def _ids(array, name: str, ndim: int, columns: Optional[int] = None) -> np.ndarray:
-    """`array` as a C-contiguous int64 array of vertex ids."""
-    a = np.asarray(array)
-    if a.size == 0 and a.dtype.kind == "f":
-        a = a.astype(np.int64)
-    if a.dtype.kind not in "iu":
-        raise TypeError(f"{name} must hold integer vertex ids; got dtype {a.dtype}")
-    if a.ndim != ndim or (columns is not None and a.shape[-1] != columns):
-        want = "(n,)" if ndim == 1 else f"(m, {columns})"
-        raise ValueError(f"{name} must have shape {want}; got {a.shape}")
-    if a.dtype == np.uint64 and a.size and a.max() > np.iinfo(np.int64).max:
-        raise GeotracksError(f"{name} holds a vertex id beyond 2^63")
-    return np.ascontiguousarray(a, dtype=np.int64)
+    if a.ndim != len(shape) or any(
+        isinstance(want, int) and size != want for size, want in zip(a.shape, shape)
+    ):
+        sizes = ", ".join(str(want) for want in shape)
+        raise ValueError(f"{name} must have shape ({sizes}{',' if len(shape) == 1 else ''}); got {a.shape}")
+    return np.ascontiguousarray(a, dtype=np.int64 if integer else np.float64)
 
 
 def _points(points, name: str) -> list:
@@ -103,7 +98,7 @@ class Density:
     """
 
     def __init__(self, rho):
-        self.rho = _numbers(rho, "rho", ndim=1)
+        self.rho = _array(rho, "rho", ("n",))
 
     def _data(self) -> tuple:
         return "density", self.rho.reshape(-1, 1)
@@ -118,9 +113,7 @@ class Tensor:
     """
 
     def __init__(self, per_face):
-        m = _numbers(per_face, "per_face", columns=3, ndim=3)
-        if m.shape[1] != 3:
-            raise ValueError(f"per_face must have shape (m, 3, 3); got {m.shape}")
+        m = _array(per_face, "per_face", ("m", 3, 3))
         if not np.allclose(m, np.swapaxes(m, 1, 2), rtol=1e-12, atol=0.0, equal_nan=True):
             raise GeotracksError("per_face: each matrix must be symmetric")
         self.per_face = m
@@ -173,8 +166,8 @@ class MeshSolver:
     """
 
     def __init__(self, V, F, k: Optional[float] = None, method: str = "wave", metric=None):
-        V = _numbers(V, "V", columns=3)
-        F = _ids(F, "F", ndim=2, columns=3)
+        V = _array(V, "V", ("n", 3))
+        F = _array(F, "F", ("m", 3), integer=True)
         if metric is None:
             kind, data = "euclidean", None
         elif isinstance(metric, (Density, Tensor)):
@@ -243,15 +236,15 @@ class MeshSolver:
     def distance_matrix(self, sources, targets=None) -> np.ndarray:
         """Distances from each source vertex (rows) to every vertex, or to ``targets``
         (columns), computed in parallel; shape ``(len(sources), n or len(targets))``."""
-        sources = _ids(np.atleast_1d(sources), "sources", ndim=1)
-        targets = None if targets is None else _ids(np.atleast_1d(targets), "targets", ndim=1)
+        sources = _array(np.atleast_1d(sources), "sources", ("n",), integer=True)
+        targets = None if targets is None else _array(np.atleast_1d(targets), "targets", ("n",), integer=True)
         return self._core.distance_matrix(sources, targets)
 
     def local_distance_rows(self, sources, max_distance: float) -> tuple:
         """For each source vertex, every vertex within ``max_distance``: ``(rows,
         columns, distances)`` arrays (row: the source's vertex id), computed in
         parallel: the triples of :meth:`local_distance_matrix` for some rows only."""
-        sources = _ids(np.atleast_1d(sources), "sources", ndim=1)
+        sources = _array(np.atleast_1d(sources), "sources", ("n",), integer=True)
         return self._core.local_distance_rows(sources, float(max_distance))
 
     def local_distance_matrix(self, max_distance: float):

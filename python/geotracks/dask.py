@@ -32,7 +32,7 @@ from typing import Callable, Optional
 
 import numpy as np
 
-from . import MeshSolver, read_mesh
+from . import MeshSolver, _array, read_mesh
 
 __all__ = ["distance_matrix", "local_distance_matrix", "map_meshes"]
 
@@ -43,21 +43,13 @@ _solvers: "OrderedDict[str, MeshSolver]" = OrderedDict()
 builds = 0
 
 
-def _load(mesh):
-    """``(V, F)`` from a path or a pair."""
-    if isinstance(mesh, (str, os.PathLike)):
-        return read_mesh(mesh)
-    V, F = mesh
-    return V, F
-
-
 def _solver(key: str, mesh, options: dict) -> MeshSolver:
     """This process's solver for `key`, built on first use."""
     global builds
     solver = _solvers.get(key)
     if solver is None:
         builds += 1
-        V, F = _load(mesh)
+        V, F = read_mesh(mesh) if isinstance(mesh, (str, os.PathLike)) else mesh
         solver = MeshSolver(V, F, **options)
         _solvers[key] = solver
         while len(_solvers) > SOLVERS_KEPT:
@@ -89,9 +81,7 @@ def _options(k, method, metric) -> dict:
 
 
 def _chunks(sources, chunk: int):
-    sources = np.asarray(list(sources) if not isinstance(sources, np.ndarray) else sources)
-    if sources.ndim != 1 or sources.dtype.kind not in "iu":
-        raise TypeError("sources must be a sequence of vertex ids")
+    sources = _array(np.atleast_1d(np.asarray(list(sources))), "sources", ("n",), integer=True)
     if chunk < 1:
         raise ValueError(f"chunk must be at least 1; got {chunk}")
     return [sources[i : i + chunk] for i in range(0, len(sources), chunk)]
@@ -200,8 +190,7 @@ def map_meshes(function: Callable[[MeshSolver], object], paths, *, k=None, metho
     options = _options(k, method, metric)
 
     def run(path):
-        V, F = read_mesh(path)
-        return function(MeshSolver(V, F, **options))
+        return function(MeshSolver(*read_mesh(path), **options))
 
     paths = [os.fspath(p) for p in paths]
     return db.from_sequence(paths, npartitions=max(1, len(paths))).map(run)
