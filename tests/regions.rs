@@ -362,6 +362,38 @@ fn regions_tile_their_face_and_give_its_values() {
     }
 }
 
+#[test]
+fn nodes_on_a_sources_line_cut_no_slivers() {
+    // Two sources at opposite corners of a flat grid: every node on a row or column
+    // through a source, and every node downstream of the source on a diagonal, ties
+    // with the source along that line. Such ties go to the source: each face has one
+    // region per source that reaches it, and the bisector x + y = 1 splits the 16
+    // faces it crosses in two.
+    let n = 8;
+    let mesh = common::grid(n, 1.0);
+    let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
+    let corners = [0, ((n + 1) * (n + 1) - 1) as u32];
+    let field = solver.solve(&corners).unwrap();
+    let query = solver.query(&field).unwrap();
+    let mut split = 0;
+    for f in 0..mesh.face_count() as u32 {
+        let regions = query.regions(f, DEFAULT_REGION_SUBDIVISIONS).unwrap();
+        for r in &regions {
+            let nearest = corners
+                .iter()
+                .map(|&c| (r.virtual_source - mesh.position(c)).length())
+                .fold(f64::INFINITY, f64::min);
+            assert!(nearest < 1e-12 && r.offset.abs() < 1e-12, "face {f}: {r:?}");
+        }
+        match regions.len() {
+            1 => {}
+            2 => split += 1,
+            count => panic!("face {f}: {count} regions: {regions:?}"),
+        }
+    }
+    assert_eq!(split, 2 * n);
+}
+
 /// Over every face: the regions' areas add up to the face's, their points lie on it,
 /// and at each region's inner point its formula gives `distance_at` and its gradient
 /// `gradient_at`'s direction. Returns the worst gaps (area and value relative).

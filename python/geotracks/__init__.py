@@ -32,6 +32,7 @@ __all__ = [
     "Isoline",
     "MeshSolver",
     "Path",
+    "Region",
     "Route",
     "Skeleton",
     "Tensor",
@@ -148,6 +149,36 @@ class Isoline(NamedTuple):
     closed: bool
 
 
+class Region(NamedTuple):
+    """One region of a face: where one candidate gives the distance. Inside it the
+    distance at ``x`` is ``offset`` plus the metric length of the straight segment from
+    ``virtual_source`` to ``x`` in the face's plane, so its gradient points straight
+    away from ``virtual_source``."""
+
+    #: The face.
+    face: int
+    #: What gives the distance: ``("node", id)`` (a vertex or Steiner node), ``("source",
+    #: i)`` (the i-th source), ``("wave", id)`` (a Steiner node's wave, from its virtual
+    #: source) or ``("wave_bend", id)`` (that wave bending round an end of its window).
+    source: tuple
+    #: For a candidate of the neighbouring face, the edge its lines cross; ``-1``: none.
+    across: int
+    #: Where its straight lines come from (world, in the face's plane; a wave's virtual
+    #: source usually lies outside the face), shape ``(3,)``.
+    virtual_source: np.ndarray
+    #: The distance at ``virtual_source``.
+    offset: float
+    #: The boundary, counter-clockwise, shape ``(p, 3)``; not closed (the last point is
+    #: not repeated).
+    polygon: np.ndarray
+    #: Where each boundary point lies, as for :attr:`Path.surface_points`.
+    surface_points: list
+    #: Other regions inside this one, each a clockwise ``(h, 3)`` loop (usually none).
+    holes: list
+    #: Area, holes excluded.
+    area: float
+
+
 class MeshSolver:
     """A mesh and a solver on it, reused by every query.
 
@@ -232,6 +263,18 @@ class MeshSolver:
         levels = [float(x) for x in np.atleast_1d(levels)]
         lines = self._core.isolines(_points(sources, "sources"), levels, subdivisions)
         return [Isoline(level, points, closed) for level, points, closed in lines]
+
+    def regions(self, sources, faces=None, subdivisions: Optional[int] = None) -> list:
+        """The regions of the distance from ``sources`` in each of ``faces`` (default:
+        every face), as a list of :class:`Region`, face by face. Each face is cut by a
+        grid of ``subdivisions`` steps per edge (default 16): boundaries on the face's
+        edges and straight boundaries are exact, curved ones are chords between points
+        on the true boundary, and a region thinner than a grid step may be missed.
+        Unreached parts of a face belong to no region."""
+        if faces is not None:
+            faces = _array(np.atleast_1d(faces), "faces", ("n",), integer=True)
+        regions = self._core.regions(_points(sources, "sources"), faces, subdivisions)
+        return [Region(*r) for r in regions]
 
     def distance_matrix(self, sources, targets=None) -> np.ndarray:
         """Distances from each source vertex (rows) to every vertex, or to ``targets``

@@ -46,6 +46,24 @@ class MeshSolverCore:
     def isolines(
         self, sources: list[_Point], levels: list[float], subdivisions: Optional[int] = None
     ) -> list[tuple[float, npt.NDArray[np.float64], bool]]: ...
+    def regions(
+        self,
+        sources: list[_Point],
+        faces: Optional[npt.NDArray[np.int64]] = None,
+        subdivisions: Optional[int] = None,
+    ) -> list[
+        tuple[
+            int,
+            tuple[str, int],
+            int,
+            npt.NDArray[np.float64],
+            float,
+            npt.NDArray[np.float64],
+            list[str],
+            list[npt.NDArray[np.float64]],
+            float,
+        ]
+    ]: ...
     def distance_matrix(
         self,
         sources: npt.NDArray[np.int64],

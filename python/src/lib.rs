@@ -285,6 +285,76 @@ impl MeshSolverCore {
             .collect())
     }
 
+    /// The regions of `faces` (all faces if `None`) in the field from `sources`: per
+    /// region its face, what gives the distance there (`(kind, id)`), the edge its
+    /// lines cross (-1: none), its virtual source (3,), offset, polygon (p, 3) with its
+    /// surface points, holes and area. Faces are worked on all cores.
+    #[pyo3(signature = (sources, faces=None, subdivisions=None))]
+    fn regions<'py>(
+        &self,
+        py: Python<'py>,
+        sources: Vec<PointArg>,
+        faces: Option<PyReadonlyArray1<'_, i64>>,
+        subdivisions: Option<u32>,
+    ) -> PyResult<Vec<Bound<'py, pyo3::types::PyTuple>>> {
+        use geotracks::trace::{ValueSource, DEFAULT_REGION_SUBDIVISIONS};
+        use rayon::prelude::*;
+        let sources = sources_of(&sources)?;
+        let (mesh, solver) = (self.cell.borrow_owner(), self.cell.borrow_dependent());
+        let faces: Vec<u32> = match faces {
+            Some(ids) => ids
+                .as_array()
+                .iter()
+                .map(|&f| u32::try_from(f).map_err(|_| error(format!("face {f} is not a face id"))))
+                .collect::<PyResult<_>>()?,
+            None => (0..mesh.face_count() as u32).collect(),
+        };
+        let n = subdivisions.unwrap_or(DEFAULT_REGION_SUBDIVISIONS);
+        let regions = py
+            .detach(|| {
+                let field = solver.solve_from(&sources, &Stop::NONE)?;
+                let query = solver.query(&field)?;
+                let per_face: Result<Vec<_>, _> =
+                    faces.par_iter().map(|&f| query.regions(f, n)).collect();
+                Ok::<_, geotracks::Error>(per_face?.into_iter().flatten().collect::<Vec<_>>())
+            })
+            .map_err(error)?;
+        let position = |p: &SurfacePoint| p.position(mesh).to_array();
+        regions
+            .into_iter()
+            .map(|r| {
+                let (kind, id) = match r.source {
+                    ValueSource::Node(id) => ("node", id),
+                    ValueSource::Source(id) => ("source", id),
+                    ValueSource::Wave(id) => ("wave", id),
+                    ValueSource::WaveBend(id) => ("wave_bend", id),
+                    // The enum is non-exhaustive: a kind added later still reaches Python.
+                    other => return Err(error(format!("unknown region source {other:?}"))),
+                };
+                let polygon = matrix3(&r.polygon, position).into_pyarray(py);
+                let names: Vec<String> = r.polygon.iter().map(|p| p.to_string()).collect();
+                let holes: Vec<_> = r
+                    .holes
+                    .iter()
+                    .map(|h| matrix3(h, position).into_pyarray(py))
+                    .collect();
+                let across = r.across.map_or(-1, i64::from);
+                (
+                    r.face,
+                    (kind, id),
+                    across,
+                    r.virtual_source.to_array().to_vec().into_pyarray(py),
+                    r.offset,
+                    polygon,
+                    names,
+                    holes,
+                    r.area,
+                )
+                    .into_pyobject(py)
+            })
+            .collect()
+    }
+
     /// One row per source vertex: its distance to every vertex, or to `targets`; rows
     /// computed on all cores.
     #[pyo3(signature = (sources, targets=None))]

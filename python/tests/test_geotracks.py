@@ -290,6 +290,48 @@ def test_isolines_lie_on_their_level():
         solver.isolines(0, [float("nan")])
 
 
+def test_regions_on_a_plane_come_from_the_sources():
+    V, F = grid(8)
+    solver = geotracks.MeshSolver(V, F)
+    sources = [0, 80]  # opposite corners: the bisector x + y = 1 cuts the diagonal faces
+    regions = solver.regions(sources)
+    area = np.zeros(len(F))
+    big = np.zeros(len(F), dtype=int)
+    cell = 0.5 * (1 / 8) ** 2
+    for r in regions:
+        assert r.across == -1 or 0 <= r.across
+        assert r.polygon.shape == (len(r.surface_points), 3) and len(r.polygon) >= 3
+        # The region's formula, offset plus the straight line from its virtual source,
+        # is never below the distance (on a plane every candidate is a path), and
+        # gives it at the mesh's vertices on the boundary (the other boundary points
+        # are chords of curved boundaries, or where three regions meet).
+        value = r.offset + np.linalg.norm(r.polygon - r.virtual_source, axis=1)
+        exact = np.min([np.linalg.norm(r.polygon - V[s], axis=1) for s in sources], axis=0)
+        assert np.all(value >= exact - 1e-12)
+        at_vertex = np.array([p.isdigit() for p in r.surface_points])
+        assert np.allclose(value[at_vertex], exact[at_vertex], atol=1e-12)
+        # No slivers where a node ties with the source whose line it lies on; each
+        # region's lines come straight from a source.
+        assert r.area > 1e-6 * cell, r
+        assert min(np.linalg.norm(r.virtual_source - V[s]) for s in sources) < 1e-9
+        assert r.offset == pytest.approx(0.0, abs=1e-12)
+        big[r.face] += 1
+        area[r.face] += r.area
+    assert np.allclose(area, cell, rtol=1e-9)  # the regions tile every face
+    # Two real regions on the 16 faces the bisector x + y = 1 cuts (both halves of the
+    # 8 cells along it); one elsewhere.
+    assert np.count_nonzero(big == 2) == 16 and np.all(big >= 1)
+    # Some faces only, and with a finer grid: the same regions there.
+    some = solver.regions(sources, faces=[3, 7], subdivisions=32)
+    assert {r.face for r in some} == {3, 7}
+    with pytest.raises(geotracks.GeotracksError, match="face"):
+        solver.regions(0, faces=[len(F)])
+    with pytest.raises(geotracks.GeotracksError, match="face"):
+        solver.regions(0, faces=[-1])
+    with pytest.raises(geotracks.GeotracksError, match="subdivisions"):
+        solver.regions(0, faces=[0], subdivisions=0)
+
+
 def test_distance_and_gradient_at_surface_points():
     V, F = grid(8)
     solver = geotracks.MeshSolver(V, F)

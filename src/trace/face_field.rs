@@ -184,6 +184,34 @@ impl FaceField {
         best
     }
 
+    /// As [`FaceField::best`] (skipping none), but of the candidates within `tolerance`
+    /// of the least value, the one with the least `σ`: the farthest upstream. Where a
+    /// node lies on the straight line from a source (or another node) to `x`, both give
+    /// the same value, and the node is only a stop on the other's line; naming the
+    /// source keeps such exact ties from cutting slivers into a face's regions.
+    pub fn best_upstream<M: Metric>(
+        &self,
+        metric: &M,
+        x: &FacePoint,
+        tolerance: f64,
+    ) -> Option<(f64, usize)> {
+        let (value, mut chosen) = self.best(metric, x, |_| false)?;
+        let px = self.flat_point(x);
+        for (i, c) in self.candidates.iter().enumerate() {
+            if c.floor > value + tolerance {
+                break;
+            }
+            if c.sigma < self.candidates[chosen].sigma
+                && self
+                    .value_of(metric, c, x, px)
+                    .is_some_and(|v| v <= value + tolerance)
+            {
+                chosen = i;
+            }
+        }
+        Some((value, chosen))
+    }
+
     /// For a neighbour's candidate (see [`Candidate::across`]), where the line from its
     /// site to face point `x` crosses the shared edge: a fraction from its lower end.
     pub fn crossing(&self, c: &Candidate, x: &FacePoint) -> Option<f64> {

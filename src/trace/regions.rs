@@ -100,6 +100,10 @@ pub struct Region {
 pub const DEFAULT_REGION_SUBDIVISIONS: u32 = 16;
 /// Above this a face's grid is refused as a mistake (as for isolines).
 const MAX_REGION_SUBDIVISIONS: u32 = 1024;
+/// Candidates whose values at a point differ by less than this (of the face's
+/// diameter plus the value) tie there: the point goes to the one farthest upstream
+/// ([`FaceField::best_upstream`]).
+const TIE: f64 = 1e-10;
 /// Bisection steps for a switch point along a sub-triangle's side.
 const BISECTIONS: u32 = 40;
 
@@ -349,6 +353,8 @@ struct LabelGrid<'f, 'q, 'a, M> {
     n: usize,
     bary: Vec<[f64; 3]>,
     label: Vec<Option<usize>>,
+    /// The face's diameter: the scale of [`TIE`].
+    scale: f64,
     /// Per candidate, the first candidate with the same formula (site and σ): the
     /// waves of neighbouring nodes on an edge often carry one virtual source, and
     /// where they take over from each other the field does not change.
@@ -390,6 +396,7 @@ impl<'f, 'q, 'a, M: Metric> LabelGrid<'f, 'q, 'a, M> {
             n,
             bary,
             label: Vec::new(),
+            scale,
             same,
         };
         grid.label = grid.bary.iter().map(|&b| grid.label_at(b)).collect();
@@ -403,7 +410,9 @@ impl<'f, 'q, 'a, M: Metric> LabelGrid<'f, 'q, 'a, M> {
     /// The candidate giving the value at `bary` (`None`: unreached).
     fn label_at(&self, bary: [f64; 3]) -> Option<usize> {
         let x = self.query.mesh.frame(self.field.face).point(bary);
-        let (value, c) = self.field.best(self.query.metric, &x, |_| false)?;
+        let tolerance =
+            TIE * (self.scale + self.field.best(self.query.metric, &x, |_| false)?.0.abs());
+        let (value, c) = self.field.best_upstream(self.query.metric, &x, tolerance)?;
         let c = self.same[c];
         let horizon = self.query.field.horizon;
         let unreached = value > self.query.field.max_distance
