@@ -5,7 +5,7 @@
 #![allow(unsafe_code)]
 
 use geotracks::mesh::io::read_mesh;
-use geotracks::{Density, Euclidean, Metric, Options, Solver};
+use geotracks::{Density, Euclidean, Metric, Options, Solver, Source, Stop, Workspace};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -33,14 +33,19 @@ static GLOBAL: Counting = Counting;
 
 fn allocations_of_warm_runs<M: Metric>(solver: &Solver<'_, M>) -> usize {
     let mut ws = solver.workspace();
+    // Full runs, and local ones (which clear only what they touched).
+    // (Spot is about a unit across: this reaches a few percent of it.)
+    let local = Stop::NONE.with_max_distance(0.1);
+    let runs = |ws: &mut Workspace| {
+        for s in [0, 1000, 2000] {
+            solver.run(ws, &[s]).unwrap();
+            solver.run_from(ws, &[Source::new(s)], &local).unwrap();
+        }
+    };
     // Warm up: the first runs size the buffers (and the queue's buckets).
-    for s in [0, 1000, 2000] {
-        solver.run(&mut ws, &[s]).unwrap();
-    }
+    runs(&mut ws);
     let before = ALLOCATIONS.load(Ordering::Relaxed);
-    for s in [0, 1000, 2000] {
-        solver.run(&mut ws, &[s]).unwrap();
-    }
+    runs(&mut ws);
     ALLOCATIONS.load(Ordering::Relaxed) - before
 }
 

@@ -52,6 +52,10 @@ pub(super) struct Frontier<'a, M, Q> {
     pub distance: &'a mut [f64],
     pub parent: &'a mut [u32],
     pub parent_face: &'a mut [u32],
+    /// Every node whose distance, parent or wave this run set (a node may appear
+    /// twice): all others keep their reset values, so that forgetting after an early
+    /// stop and the next run's reset visit only these (see `Workspace::reset`).
+    pub touched: &'a mut Vec<u32>,
     pub queue: Q,
     /// Values above this are not taken: their nodes stay unreached.
     pub max_distance: f64,
@@ -118,6 +122,7 @@ impl<'a, M: Metric> Frontier<'a, M, ()> {
             distance: self.distance,
             parent: self.parent,
             parent_face: self.parent_face,
+            touched: self.touched,
             queue,
             max_distance: self.max_distance,
             reach: self.reach,
@@ -147,7 +152,10 @@ impl<'a, M: Metric> Frontier<'a, M, ()> {
         // (With a margin, values up to `max + reach` were taken: only a finite maximum
         // leaves some to forget.)
         if stopped_early || (reach > 0.0 && max < f64::INFINITY) {
-            for (node, d) in search.distance.iter_mut().enumerate() {
+            // Only touched nodes hold values: a local run pays for what it reached.
+            for &node in search.touched.iter() {
+                let node = node as usize;
+                let d = &mut search.distance[node];
                 // Values beyond the maximum distance were only kept for the margin.
                 let beyond = d.is_finite() && *d > max;
                 let not_final =
@@ -212,6 +220,9 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
     pub fn relax(&mut self, node: u32, value: f64, from: u32, face: u32) {
         let previous = self.distance[node as usize];
         if value < previous && value <= self.max_distance + self.reach {
+            if previous == f64::INFINITY {
+                self.touched.push(node);
+            }
             self.distance[node as usize] = value;
             self.parent[node as usize] = from;
             self.parent_face[node as usize] = face;

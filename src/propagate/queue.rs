@@ -142,6 +142,29 @@ impl BucketQueue {
             self.buckets.resize_with(WINDOW, Vec::new);
             self.occupied = vec![0; WINDOW / 64];
         }
+        if self.pending.len() == nodes {
+            // A pending node has an entry in the window, the far heap or the exact
+            // heap: clearing those nodes clears `pending`, at the cost of what the last
+            // run left queued rather than of the whole mesh.
+            let pending = &mut self.pending;
+            for (w, &word) in self.occupied.iter().enumerate() {
+                let mut bits = word;
+                while bits != 0 {
+                    let b = w * 64 + bits.trailing_zeros() as usize;
+                    for &q in &self.buckets[b] {
+                        pending[q as usize] = false;
+                    }
+                    bits &= bits - 1;
+                }
+            }
+            for &Entry(_, q) in self.far.iter().chain(self.exact.iter()) {
+                pending[q as usize] = false;
+            }
+            debug_assert!(pending.iter().all(|&p| !p), "a pending node left no entry");
+        } else {
+            self.pending.clear();
+            self.pending.resize(nodes, false);
+        }
         self.clear_window();
         self.current = 0;
         self.far.clear();
@@ -150,8 +173,6 @@ impl BucketQueue {
         self.exact_slot = usize::MAX;
         self.pops = 0;
         self.returns = 0;
-        self.pending.clear();
-        self.pending.resize(nodes, false);
         // No window until the first pop: everything waits in the heap.
         self.base = f64::NEG_INFINITY;
     }

@@ -80,6 +80,8 @@ pub struct Workspace {
     tracks: Vec<Track>,
     /// Per Steiner node, the wave it carries (wavefront engine).
     waves: Vec<Wave>,
+    /// The nodes the last run touched (see `Frontier::touched`).
+    touched: Vec<u32>,
     heap: HeapQueue,
     buckets: BucketQueue,
     /// The last run's sources, validated.
@@ -108,6 +110,35 @@ impl Workspace {
         &self.distance[..self.vertex_count.min(self.distance.len())]
     }
 
+    /// The vertices the last run reached and their distances, each once, in the order
+    /// they were first reached. It costs what the run touched, not the mesh: after a
+    /// run stopped at a small maximum distance, far less than scanning
+    /// [`Workspace::vertex_distances`].
+    ///
+    /// ```
+    /// use geotracks::{mesh::TriMesh, Euclidean, Options, Solver, Source, Stop};
+    /// let mesh = TriMesh::new(
+    ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+    ///     vec![[0, 1, 2], [0, 2, 3]],
+    /// )?;
+    /// let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT)?;
+    /// let mut workspace = solver.workspace();
+    /// let stop = Stop::NONE.with_max_distance(1.2);
+    /// solver.run_from(&mut workspace, &[Source::new(0)], &stop)?;
+    /// let mut reached: Vec<u32> = workspace.reached_vertices().map(|(v, _)| v).collect();
+    /// reached.sort();
+    /// assert_eq!(reached, [0, 1, 3]); // vertex 2 is √2 away
+    /// # Ok::<(), geotracks::Error>(())
+    /// ```
+    pub fn reached_vertices(&self) -> impl Iterator<Item = (u32, f64)> + '_ {
+        // A vertex enters `touched` once (when its value first drops from ∞; vertices
+        // carry no wave); values forgotten after the run are ∞ again.
+        self.touched.iter().filter_map(|&node| {
+            let d = self.distance[node as usize];
+            ((node as usize) < self.vertex_count && d.is_finite()).then_some((node, d))
+        })
+    }
+
     /// Distance at every node (vertices, then Steiner points) after the last run.
     pub fn node_distances(&self) -> &[f64] {
         &self.distance
@@ -129,12 +160,50 @@ impl Workspace {
         }
     }
 
-    /// Sizes and clears the buffers for a run; allocates only when they must grow.
-    fn reset(&mut self, vertex_count: usize, nodes: usize, instances: usize) {
+    /// Sizes and clears the buffers for a run over `nodes` nodes, `instances` tracks
+    /// and `waves` waves; allocates only when they must grow.
+    ///
+    /// Only the nodes the last run touched hold anything but reset values, so when
+    /// the sizes match and those are few (a run stopped at a maximum distance, as
+    /// when a local distance matrix runs once per vertex), only they are cleared: a
+    /// local run costs what it reaches, not the mesh. Tracks are cleared whole: the
+    /// tracks engine writes those of targets it does not reach.
+    fn reset(&mut self, vertex_count: usize, nodes: usize, instances: usize, waves: usize) {
+        let few = self.touched.len() < nodes / 4;
+        if few && self.distance.len() == nodes && self.vertex_count == vertex_count {
+            for &node in &self.touched {
+                let node = node as usize;
+                self.distance[node] = f64::INFINITY;
+                self.parent[node] = NONE;
+                self.parent_face[node] = NONE;
+            }
+            if self.waves.len() != waves {
+                fill(&mut self.waves, waves, Wave::NONE);
+            } else if waves > 0 {
+                for &node in &self.touched {
+                    if let Some(w) = (node as usize).checked_sub(vertex_count) {
+                        self.waves[w] = Wave::NONE;
+                    }
+                }
+            }
+            debug_assert!(
+                self.distance.iter().all(|d| *d == f64::INFINITY)
+                    && self
+                        .parent
+                        .iter()
+                        .chain(&self.parent_face)
+                        .all(|&p| p == NONE)
+                    && self.waves.iter().all(|w| !w.is_some()),
+                "a node the last run set was not recorded as touched"
+            );
+        } else {
+            fill(&mut self.distance, nodes, f64::INFINITY);
+            fill(&mut self.parent, nodes, NONE);
+            fill(&mut self.parent_face, nodes, NONE);
+            fill(&mut self.waves, waves, Wave::NONE);
+        }
+        self.touched.clear();
         self.vertex_count = vertex_count;
-        fill(&mut self.distance, nodes, f64::INFINITY);
-        fill(&mut self.parent, nodes, NONE);
-        fill(&mut self.parent_face, nodes, NONE);
         fill(&mut self.tracks, instances, Track::NONE);
     }
 }
@@ -445,7 +514,16 @@ impl<'m, M: Metric> Solver<'m, M> {
             (Some(tables), Method::Tracks) => tables.instances,
             _ => 0,
         };
-        workspace.reset(mesh.vertex_count(), self.layout.node_count(), instances);
+        let waves = match (&self.tables, self.method) {
+            (Some(_), Method::Wave) => self.layout.steiner_count(),
+            _ => 0,
+        };
+        workspace.reset(
+            mesh.vertex_count(),
+            self.layout.node_count(),
+            instances,
+            waves,
+        );
         let seed_tests = self.seed(workspace)?;
         let reset_seconds = start.elapsed().as_secs_f64();
         let propagate_start = Instant::now();
@@ -455,6 +533,7 @@ impl<'m, M: Metric> Solver<'m, M> {
             parent_face,
             tracks,
             waves,
+            touched,
             heap,
             buckets,
             seeds,
@@ -475,6 +554,7 @@ impl<'m, M: Metric> Solver<'m, M> {
             distance,
             parent,
             parent_face,
+            touched,
             queue: (),
             max_distance: stop.max_distance,
             reach: self.reach,
@@ -488,22 +568,18 @@ impl<'m, M: Metric> Solver<'m, M> {
         let outcome = match &self.tables {
             Some(tables) if self.method == Method::Wave => {
                 buckets.reset(self.layout.node_count(), self.bucket_width);
-                waves.clear();
-                waves.resize(self.layout.steiner_count(), Wave::NONE);
                 let isometric = &self.isometric;
                 search.run(buckets, seeds, |s| {
                     wave::propagate(s, tables, isometric, waves, seeds, sources)
                 })
             }
             Some(tables) => {
-                waves.clear();
                 buckets.reset(self.layout.node_count(), self.bucket_width);
                 search.run(buckets, seeds, |s| {
                     tracks::propagate(s, tables, tracks, seeds)
                 })
             }
             None => {
-                waves.clear();
                 heap.reset();
                 search.run(heap, seeds, graph::propagate)
             }
@@ -533,11 +609,13 @@ impl<'m, M: Metric> Solver<'m, M> {
         }));
         *horizon = outcome.horizon;
         if self.method == Method::Wave && outcome.horizon < f64::INFINITY {
-            // The waves of nodes the stop left unreached are not the run's.
-            let steiner = &distance[self.layout.vertex_count() as usize..];
-            for (wave, d) in waves.iter_mut().zip(steiner) {
-                if d.is_infinite() {
-                    *wave = Wave::NONE;
+            // The waves of nodes the stop left unreached are not the run's (and only
+            // touched nodes have any).
+            let vertex_count = self.layout.vertex_count() as usize;
+            for &node in touched.iter() {
+                let node = node as usize;
+                if node >= vertex_count && distance[node].is_infinite() {
+                    waves[node - vertex_count] = Wave::NONE;
                 }
             }
         }

@@ -118,6 +118,11 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
 
     #[inline(always)]
     fn wave_mut(&mut self, node: u32) -> &mut Wave {
+        if self.search.distance[node as usize] == f64::INFINITY {
+            // A wave kept by a node beyond the maximum distance (its value was refused):
+            // touched all the same, so that the next reset clears it.
+            self.search.touched.push(node);
+        }
         &mut self.waves[(node - self.vertex_count) as usize]
     }
 
