@@ -80,8 +80,11 @@ pub struct Workspace {
     tracks: Vec<Track>,
     /// Per Steiner node, the wave it carries (wavefront engine).
     waves: Vec<Wave>,
-    /// The nodes the last run touched (see `Frontier::touched`).
+    /// The nodes the last run touched (see `Frontier::touched`), if it recorded them.
     touched: Vec<u32>,
+    /// Whether `touched` lists every node the last run set (else it is empty and the
+    /// next reset clears everything).
+    recorded: bool,
     heap: HeapQueue,
     buckets: BucketQueue,
     /// The last run's sources, validated.
@@ -110,10 +113,10 @@ impl Workspace {
         &self.distance[..self.vertex_count.min(self.distance.len())]
     }
 
-    /// The vertices the last run reached and their distances, each once, in the order
-    /// they were first reached. It costs what the run touched, not the mesh: after a
-    /// run stopped at a small maximum distance, far less than scanning
-    /// [`Workspace::vertex_distances`].
+    /// The vertices the last run reached and their distances, each once. After a run
+    /// that could stop early (at a maximum distance or at targets) this costs what the
+    /// run touched, not the mesh, in the order the vertices were first reached; after a
+    /// full run, it scans [`Workspace::vertex_distances`] in vertex order.
     ///
     /// ```
     /// use geotracks::{mesh::TriMesh, Euclidean, Options, Solver, Source, Stop};
@@ -128,15 +131,28 @@ impl Workspace {
     /// let mut reached: Vec<u32> = workspace.reached_vertices().map(|(v, _)| v).collect();
     /// reached.sort();
     /// assert_eq!(reached, [0, 1, 3]); // vertex 2 is √2 away
+    /// solver.run(&mut workspace, &[0])?; // a full run
+    /// assert_eq!(workspace.reached_vertices().count(), 4);
     /// # Ok::<(), geotracks::Error>(())
     /// ```
     pub fn reached_vertices(&self) -> impl Iterator<Item = (u32, f64)> + '_ {
         // A vertex enters `touched` once (when its value first drops from ∞; vertices
         // carry no wave); values forgotten after the run are ∞ again.
-        self.touched.iter().filter_map(|&node| {
-            let d = self.distance[node as usize];
-            ((node as usize) < self.vertex_count && d.is_finite()).then_some((node, d))
-        })
+        let listed = self.recorded.then(|| {
+            self.touched.iter().filter_map(|&node| {
+                let d = self.distance[node as usize];
+                ((node as usize) < self.vertex_count && d.is_finite()).then_some((node, d))
+            })
+        });
+        let scanned = (!self.recorded).then(|| {
+            let d = self.vertex_distances().iter().enumerate();
+            d.filter(|(_, d)| d.is_finite())
+                .map(|(v, &d)| (v as u32, d))
+        });
+        listed
+            .into_iter()
+            .flatten()
+            .chain(scanned.into_iter().flatten())
     }
 
     /// Distance at every node (vertices, then Steiner points) after the last run.
@@ -169,7 +185,7 @@ impl Workspace {
     /// local run costs what it reaches, not the mesh. Tracks are cleared whole: the
     /// tracks engine writes those of targets it does not reach.
     fn reset(&mut self, vertex_count: usize, nodes: usize, instances: usize, waves: usize) {
-        let few = self.touched.len() < nodes / 4;
+        let few = self.recorded && self.touched.len() < nodes / 4;
         if few && self.distance.len() == nodes && self.vertex_count == vertex_count {
             for &node in &self.touched {
                 let node = node as usize;
@@ -524,6 +540,8 @@ impl<'m, M: Metric> Solver<'m, M> {
             instances,
             waves,
         );
+        // Only a run that may stop early can reach little (see `Frontier::records`).
+        workspace.recorded = stop.max_distance < f64::INFINITY || !workspace.targets.is_empty();
         let seed_tests = self.seed(workspace)?;
         let reset_seconds = start.elapsed().as_secs_f64();
         let propagate_start = Instant::now();
@@ -534,6 +552,7 @@ impl<'m, M: Metric> Solver<'m, M> {
             tracks,
             waves,
             touched,
+            recorded,
             heap,
             buckets,
             seeds,
@@ -555,6 +574,7 @@ impl<'m, M: Metric> Solver<'m, M> {
             parent,
             parent_face,
             touched,
+            records: *recorded,
             queue: (),
             max_distance: stop.max_distance,
             reach: self.reach,

@@ -118,7 +118,7 @@ impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
 
     #[inline(always)]
     fn wave_mut(&mut self, node: u32) -> &mut Wave {
-        if self.search.distance[node as usize] == f64::INFINITY {
+        if self.search.records && self.search.distance[node as usize] == f64::INFINITY {
             // A wave kept by a node beyond the maximum distance (its value was refused):
             // touched all the same, so that the next reset clears it.
             self.search.touched.push(node);
