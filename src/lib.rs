@@ -91,7 +91,7 @@ pub use glam;
 pub use error::{Error, PointRole, SizeLimit, ValueRole};
 pub use field::{GeodesicField, Stats};
 pub use geotracks_metrics::{
-    BuiltinMetric, Density, Euclidean, FacePoint, Metric, MetricError, Tensor,
+    BuiltinMetric, Density, Euclidean, FacePoint, Metric, MetricError, Reversed, Tensor,
 };
 pub use options::{Method, Options, Stop};
 pub use propagate::{distance_field, Solver, Workspace};

@@ -56,6 +56,9 @@ macro_rules! metric_enum {
             fn cost(&self, face: u32, a: &$crate::FacePoint, b: &$crate::FacePoint) -> f64 {
                 match self { $($name::$variant(m) => m.cost(face, a, b)),+ }
             }
+            fn is_symmetric(&self) -> bool {
+                match self { $($name::$variant(m) => m.is_symmetric()),+ }
+            }
             fn is_face_norm(&self) -> bool {
                 match self { $($name::$variant(m) => m.is_face_norm()),+ }
             }

@@ -91,15 +91,63 @@ impl FacePoint {
 /// The cost of straight segments inside faces: what the engine asks of a metric (and,
 /// for the rare meshes with wires, their cost: [`Metric::wire_cost`]).
 ///
-/// Implementations must be deterministic, symmetric (`cost(f, a, b) == cost(f, b, a)`),
-/// non-negative, and zero only for `a == b`. They are called in the engine's innermost
-/// loop, so keep them cheap: precompute per-face data in the constructor.
+/// Implementations must be deterministic, non-negative, and zero only for `a == b`.
+/// They are called in the engine's innermost loop, so keep them cheap: precompute
+/// per-face data in the constructor.
+///
+/// # Direction
+/// `cost(f, a, b)` is the cost of travelling from `a` to `b`. Most metrics are
+/// symmetric, `cost(f, a, b) == cost(f, b, a)` (the default of
+/// [`Metric::is_symmetric`]). A *directed* metric (climbing dearer than descending,
+/// a current, a wind: a Finsler metric) says so with `is_symmetric() == false`; the
+/// engine then measures every segment in the direction it is travelled, away from the
+/// sources, so a field is the cost *from* the sources. The cost of reaching the
+/// sources (a field *to* them) is a run under [`Reversed`].
+///
+/// ```
+/// use geotracks_metrics::{FacePoint, Metric, Reversed};
+///
+/// /// Moving in +u costs half what moving in −u does (a tail wind along u).
+/// struct Wind;
+///
+/// impl Metric for Wind {
+///     fn cost(&self, _face: u32, a: &FacePoint, b: &FacePoint) -> f64 {
+///         let du = b.uv[0] - a.uv[0];
+///         // A Randers norm: |v| + w·v with |w| < 1 stays positive and convex.
+///         a.distance(b) - 0.5 * du
+///     }
+///     fn is_symmetric(&self) -> bool {
+///         false
+///     }
+///     fn is_face_norm(&self) -> bool {
+///         true // an asymmetric norm: the triangle inequality holds one way round
+///     }
+/// }
+///
+/// let a = FacePoint { uv: [0.0, 0.0], bary: [1.0, 0.0, 0.0] };
+/// let b = FacePoint { uv: [1.0, 0.0], bary: [0.0, 1.0, 0.0] };
+/// assert_eq!(Wind.cost(0, &a, &b), 0.5);
+/// assert_eq!(Wind.cost(0, &b, &a), 1.5);
+/// assert_eq!(Reversed(Wind).cost(0, &a, &b), 1.5);
+/// ```
 pub trait Metric: Sync {
     /// Cost of the straight segment from `a` to `b`, both on the closure of face `face`.
     fn cost(&self, face: u32, a: &FacePoint, b: &FacePoint) -> f64;
 
-    /// Whether the cost is a norm of `b − a` on each face (so the triangle inequality
-    /// holds inside a face). Track pruning is exact for such metrics. Defaults to `false`.
+    /// Whether `cost(f, a, b) == cost(f, b, a)` for all faces and points (the default),
+    /// and `wire_cost(a, b, l) == wire_cost(b, a, l)`. A directed metric returns
+    /// `false` (see the trait's docs); the engine then caches no step costs along
+    /// edges, since they differ by direction. Saying `true` of a directed metric gives
+    /// wrong distances.
+    fn is_symmetric(&self) -> bool {
+        true
+    }
+
+    /// Whether the cost is a norm of `b − a` on each face, or for a directed metric an
+    /// asymmetric norm (positively homogeneous, convex: the triangle inequality
+    /// `cost(a, c) ≤ cost(a, b) + cost(b, c)` holds for points in that order). Track
+    /// pruning is exact for such metrics: its crossing lemma adds costs along straight
+    /// segments in their direction of travel only. Defaults to `false`.
     fn is_face_norm(&self) -> bool {
         false
     }
@@ -145,8 +193,8 @@ pub trait Metric: Sync {
     /// distances travel from end to end. The default is `length`: a wire has no face
     /// whose cost could weigh it (so `Tensor` and custom metrics charge its length).
     /// A metric with per-vertex data can do better; `Density` charges
-    /// `length · (ρ(a) + ρ(b)) / 2`. The same rules as for [`Metric::cost`] hold:
-    /// symmetric, ≥ 0, `+inf` for a wire that cannot be crossed.
+    /// `length · (ρ(a) + ρ(b)) / 2`. The same rules as for [`Metric::cost`] hold: ≥ 0,
+    /// `+inf` for a wire that cannot be crossed, from `a` to `b` for a directed metric.
     fn wire_cost(&self, a: u32, b: u32, length: f64) -> f64 {
         let _ = (a, b);
         length
@@ -162,6 +210,9 @@ impl<M: Metric + ?Sized> Metric for &M {
     #[inline]
     fn cost(&self, face: u32, a: &FacePoint, b: &FacePoint) -> f64 {
         (**self).cost(face, a, b)
+    }
+    fn is_symmetric(&self) -> bool {
+        (**self).is_symmetric()
     }
     fn is_face_norm(&self) -> bool {
         (**self).is_face_norm()
@@ -191,6 +242,9 @@ impl<M: Metric + ?Sized> Metric for Box<M> {
     fn cost(&self, face: u32, a: &FacePoint, b: &FacePoint) -> f64 {
         (**self).cost(face, a, b)
     }
+    fn is_symmetric(&self) -> bool {
+        (**self).is_symmetric()
+    }
     fn is_face_norm(&self) -> bool {
         (**self).is_face_norm()
     }
@@ -211,6 +265,47 @@ impl<M: Metric + ?Sized> Metric for Box<M> {
     }
     fn name(&self) -> &str {
         (**self).name()
+    }
+}
+
+/// `M` travelled the other way: `Reversed(m).cost(f, a, b) == m.cost(f, b, a)`.
+///
+/// Under a directed metric a run gives the cost of travelling *from* its sources; a run
+/// under `Reversed` gives the cost of travelling *to* them (the time to reach a
+/// shelter from everywhere, say), and its paths run backwards. For a symmetric metric
+/// it changes nothing.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Reversed<M>(pub M);
+
+impl<M: Metric> Metric for Reversed<M> {
+    #[inline(always)]
+    fn cost(&self, face: u32, a: &FacePoint, b: &FacePoint) -> f64 {
+        self.0.cost(face, b, a)
+    }
+    fn is_symmetric(&self) -> bool {
+        self.0.is_symmetric()
+    }
+    // The reverse of a (asymmetric) norm is one, the triangle inequality's slack is the
+    // same bound read backwards, and a flattening is symmetric.
+    fn is_face_norm(&self) -> bool {
+        self.0.is_face_norm()
+    }
+    #[inline(always)]
+    fn prunes_on(&self, face: u32) -> bool {
+        self.0.prunes_on(face)
+    }
+    #[inline(always)]
+    fn triangle_slack(&self, face: u32, diameter: f64) -> f64 {
+        self.0.triangle_slack(face, diameter)
+    }
+    fn face_gram(&self, face: u32) -> Option<[f64; 3]> {
+        self.0.face_gram(face)
+    }
+    fn wire_cost(&self, a: u32, b: u32, length: f64) -> f64 {
+        self.0.wire_cost(b, a, length)
+    }
+    fn name(&self) -> &str {
+        self.0.name()
     }
 }
 

@@ -305,15 +305,16 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
 }
 
 /// The cost between consecutive nodes of each edge, in the cheapest face around it, or
-/// `None` when the metric is not a norm on each face. For a norm the cost of a piece of
-/// an edge is its fraction of the whole edge's cost, so one evaluation per (edge, face)
-/// serves every step; the evaluations are returned as the second value.
+/// `None` when the metric is not a norm on each face, or is directed (a step then costs
+/// what it costs in its direction). For a norm the cost of a piece of an edge is its
+/// fraction of the whole edge's cost, so one evaluation per (edge, face) serves every
+/// step; the evaluations are returned as the second value.
 pub(super) fn edge_steps<M: Metric>(
     mesh: &TriMesh,
     metric: &M,
     layout: &SteinerLayout,
 ) -> Option<(Vec<f64>, u64)> {
-    if !metric.is_face_norm() {
+    if !metric.is_face_norm() || !metric.is_symmetric() {
         return None;
     }
     // Face by face, so that the mesh is read in order: each slot's whole edge, from the

@@ -904,15 +904,21 @@ fn edge_lengths(mesh: &TriMesh, flat_frames: Option<&[FaceFrame]>) -> Vec<f64> {
     lengths
 }
 
-/// The cost between consecutive nodes of each edge in its first face.
+/// The cost between consecutive nodes of each edge in its first face (for a directed
+/// metric, in the dearer direction: these bound what a path along edges costs).
 fn first_face_steps<M: Metric>(mesh: &TriMesh, metric: &M, layout: &SteinerLayout) -> Vec<f64> {
+    let directed = !metric.is_symmetric();
     (0..mesh.edge_count() as u32)
         .map(|e| {
             let f = mesh.edge_faces(e)[0];
             let [a, b] = mesh
                 .edge_vertices(e)
                 .map(|v| layout.point_in_face(mesh, v, f));
-            metric.cost(f, &a, &b) / (layout.count(e) + 1) as f64
+            let mut whole = metric.cost(f, &a, &b);
+            if directed {
+                whole = whole.max(metric.cost(f, &b, &a));
+            }
+            whole / (layout.count(e) + 1) as f64
         })
         .collect()
 }
@@ -932,9 +938,10 @@ fn check_cost_range<M: Metric>(
         .filter(|(_, s)| s.is_finite())
         .map(|(e, s)| s * (layout.count(e as u32) + 1) as f64)
         .sum();
-    // Each wire is listed from both ends.
+    // Each wire is listed from both ends, each way's cost: both count, a bound on its
+    // dearer way (which a directed metric may charge).
     let wires: f64 = (0..wires.rows() as u32)
-        .flat_map(|v| wires.row(v).iter().filter(move |(w, _)| v < *w))
+        .flat_map(|v| wires.row(v).iter())
         .map(|&(_, c)| c)
         .filter(|c| c.is_finite())
         .sum();
@@ -952,23 +959,31 @@ fn check_cost_range<M: Metric>(
 /// # Errors
 /// [`Error::InvalidWireCost`] for a NaN or negative cost.
 fn wire_costs<M: Metric>(mesh: &TriMesh, metric: &M) -> Result<Csr<(u32, f64)>, Error> {
+    let directed = !metric.is_symmetric();
     let mut costs = Vec::new();
     for [a, b] in mesh.wires() {
-        let cost = metric.wire_cost(a, b, mesh.position(a).distance(mesh.position(b)));
-        if cost.is_nan() || cost < 0.0 {
-            return Err(Error::InvalidWireCost {
-                metric: metric.name().to_string(),
-                wire: [a, b],
-                value: cost,
-            });
-        }
-        costs.push(([a, b], cost));
+        let length = mesh.position(a).distance(mesh.position(b));
+        let check = |[a, b]: [u32; 2]| {
+            let cost = metric.wire_cost(a, b, length);
+            if cost.is_nan() || cost < 0.0 {
+                return Err(Error::InvalidWireCost {
+                    metric: metric.name().to_string(),
+                    wire: [a, b],
+                    value: cost,
+                });
+            }
+            Ok(cost)
+        };
+        let forward = check([a, b])?;
+        // From b to a: the same, unless the metric is directed.
+        let backward = if directed { check([b, a])? } else { forward };
+        costs.push(([a, b], forward, backward));
     }
     Ok(Csr::from_pairs(
         mesh.vertex_count(),
         costs
             .iter()
-            .flat_map(|&([a, b], c)| [(a, (b, c)), (b, (a, c))]),
+            .flat_map(|&([a, b], forward, backward)| [(a, (b, forward)), (b, (a, backward))]),
     ))
 }
 

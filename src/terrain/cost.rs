@@ -264,6 +264,9 @@ impl<M: Metric> Metric for Impassable<M> {
             self.inner.cost(face, a, b)
         }
     }
+    fn is_symmetric(&self) -> bool {
+        self.inner.is_symmetric()
+    }
     // An infinite cost on a blocked face keeps the triangle inequality there, so the
     // inner metric's pruning stays valid (the engines test every target of a blocked
     // face and all of them lose).

@@ -57,7 +57,8 @@ impl GeodesicPath {
         self.points.iter().map(|p| p.position(mesh)).collect()
     }
 
-    /// The metric cost of each segment.
+    /// The metric cost of each segment, travelled from the source: segment `i` from
+    /// `points[i + 1]` to `points[i]` (the direction matters for a directed metric).
     pub fn segment_costs<M: Metric>(&self, mesh: &TriMesh, metric: &M) -> Vec<f64> {
         (0..self.faces.len())
             .map(|i| {
@@ -65,8 +66,8 @@ impl GeodesicPath {
                     mesh,
                     metric,
                     self.faces[i],
-                    self.points[i],
                     self.points[i + 1],
+                    self.points[i],
                 )
             })
             .collect()
@@ -216,9 +217,9 @@ impl<M: Metric> Query<'_, M> {
     }
 
     /// The face around the edge that holds `a` and `b` (two points of one edge, such as
-    /// nodes that are neighbours along it) in which the segment between them costs
-    /// least; [`NONE`] for two vertices that share no face edge: the engines join such
-    /// vertices only along a wire.
+    /// a node and its parent along it) in which the segment from `b` to `a` (as a path
+    /// travels it, from the source) costs least; [`NONE`] for two vertices that share
+    /// no face edge: the engines join such vertices only along a wire.
     pub(super) fn cheapest_face(&self, a: SurfacePoint, b: SurfacePoint) -> u32 {
         let (mesh, metric) = (self.mesh, self.metric);
         let edge = match (a, b) {
@@ -237,7 +238,7 @@ impl<M: Metric> Query<'_, M> {
         let faces = mesh.edge_faces(edge);
         faces
             .iter()
-            .map(|&f| (segment_cost(mesh, metric, f, a, b), f))
+            .map(|&f| (segment_cost(mesh, metric, f, b, a), f))
             .min_by(|x, y| x.0.total_cmp(&y.0))
             .map_or(faces[0], |(_, f)| f)
     }

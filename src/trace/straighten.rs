@@ -25,7 +25,7 @@
 use super::{segment_cost, GeodesicPath};
 use crate::mesh::{TriMesh, NONE};
 use crate::surface::SurfacePoint;
-use geotracks_metrics::{FacePoint, Metric};
+use geotracks_metrics::{FacePoint, Metric, Reversed};
 use glam::DVec3;
 
 /// Rounds of merge, unpin and Newton at most. A route whose Steiner-graph path lies some
@@ -93,6 +93,10 @@ pub fn straighten<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M
 /// [`straighten`] for a path whose segments all lie in faces.
 fn straighten_in_faces<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
     let mut length = path.metric_length(mesh, metric);
+    // The moves measure each segment from the point before it in the list to the one
+    // after; the list runs from the query point back to the source, against travel, so
+    // they measure under the reversed metric (a directed metric's travel costs).
+    let travel = &Reversed(metric);
     let mut unpinning = true;
     for round in 0..ROUNDS {
         let before = length;
@@ -100,11 +104,11 @@ fn straighten_in_faces<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metri
         if unpinning && round > 0 {
             snap_to_vertices(path, mesh);
         }
-        merge(path, mesh, metric);
+        merge(path, mesh, travel);
         if unpinning {
-            unpin(path, mesh, metric);
+            unpin(path, mesh, travel);
         }
-        newton(path, mesh, metric);
+        newton(path, mesh, travel);
         length = path.metric_length(mesh, metric);
         if let (Some(saved), true) = (saved, length > before) {
             // Leaving the vertices did not pay (a metric unlike the Euclidean angles
@@ -118,8 +122,8 @@ fn straighten_in_faces<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metri
             break;
         }
     }
-    slide(path, mesh, metric, length);
-    merge(path, mesh, metric);
+    slide(path, mesh, travel, length);
+    merge(path, mesh, travel);
     path.length = path.metric_length(mesh, metric);
 }
 

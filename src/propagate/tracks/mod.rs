@@ -355,7 +355,9 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
         // Along the edge, to the neighbours (numbered 0..=count+1 from the lower end).
         let prev = if index == 0 { ends()[0] } else { q - 1 };
         let next = if index + 1 == count { ends()[1] } else { q + 1 };
-        let step = self.step(edge, index, index + 1);
+        // (From `q`, at position index + 1, to each neighbour: the direction counts
+        // for a directed metric.)
+        let step = self.step(edge, index + 1, index);
         self.search.relax(prev, d + step, q, NONE);
         let step = self.step(edge, index + 1, index + 2);
         self.search.relax(next, d + step, q, NONE);
@@ -423,8 +425,8 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
         }
     }
 
-    /// The cost between the points at `a` and `b` (numbered from the edge's lower end,
-    /// consecutive) along `edge`: the cached step, or the cheapest over its faces.
+    /// The cost from the point at `a` to the one at `b` (numbered from the edge's lower
+    /// end, consecutive) along `edge`: the cached step, or the cheapest over its faces.
     #[inline(always)]
     fn step(&mut self, edge: &EdgeRecord, a: u32, b: u32) -> f64 {
         if !edge.step.is_nan() {
