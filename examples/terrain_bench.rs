@@ -53,7 +53,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ("none", 2.0),
         ("slope:4", 2.0),
         ("slope:4,max:30", 2.0),
-        ("uphill:8", 2.0),
+        ("incline:8", 2.0),
         ("slope:4", 5.0),
     ] {
         let t0 = Instant::now();
@@ -94,7 +94,7 @@ fn route_accuracy(path: &std::path::Path, extent: f64) -> Result<(), Box<dyn std
     ] {
         let from = terrain.locate(r[0] * extent, r[1] * extent)?;
         let to = terrain.locate(r[2] * extent, r[3] * extent)?;
-        for cost in ["none", "slope:4", "uphill:8"] {
+        for cost in ["none", "slope:4", "incline:8"] {
             let cost_model: TerrainCost = cost.parse()?;
             let mut costs = [0.0; 3];
             for (i, k) in [6.0, 1.0, 2.0].into_iter().enumerate() {

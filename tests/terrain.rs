@@ -9,12 +9,12 @@ use common::{random_mesh, Rng, DIJKSTRA, GRAPH, TRACKS};
 use geotracks::glam::DVec3;
 use geotracks::mesh::TriMesh;
 use geotracks::terrain::{
-    read_asc, read_geotiff, read_grid, slope_density, steeper_than, uphill_tensor, ElevationGrid,
-    GridGeometry, Impassable, TerrainCost, TerrainError, TerrainMesh,
+    incline_tensor, read_asc, read_geotiff, read_grid, slope_density, steeper_than, DirectedCost,
+    DirectedModel, ElevationGrid, GridGeometry, Impassable, TerrainCost, TerrainError, TerrainMesh,
 };
 use geotracks::{
     distance_field, Density, Error, Euclidean, GeodesicPath, Method, Metric, Options, Solver,
-    Source, Tensor,
+    Source, Stop, Tensor,
 };
 use proptest::prelude::*;
 use std::path::Path;
@@ -420,7 +420,31 @@ fn cost_specs_parse_and_check() {
                 max_degrees: Some(30.0),
             },
         ),
-        ("uphill:4", TerrainCost::Uphill { b: 4.0 }),
+        ("incline:4", TerrainCost::Incline { b: 4.0 }),
+        (
+            "uphill:4",
+            TerrainCost::Directed(DirectedModel::Uphill { b: 4.0 }),
+        ),
+        ("naismith", TerrainCost::Directed(DirectedModel::NAISMITH)),
+        ("rwalk", TerrainCost::Directed(DirectedModel::RWALK)),
+        (
+            "rwalk:1,5,0.5,-1,-0.3",
+            TerrainCost::Directed(DirectedModel::Walk {
+                a: 1.0,
+                b: 5.0,
+                c: 0.5,
+                d: -1.0,
+                slope_factor: -0.3,
+            }),
+        ),
+        (
+            "tobler",
+            TerrainCost::Directed(DirectedModel::Tobler { off_path: false }),
+        ),
+        (
+            "tobler:offpath",
+            TerrainCost::Directed(DirectedModel::Tobler { off_path: true }),
+        ),
     ] {
         assert_eq!(text.parse::<TerrainCost>().unwrap(), cost);
         assert_eq!(cost.to_string(), text);
@@ -435,6 +459,14 @@ fn cost_specs_parse_and_check() {
         "slope:1,min:3",
         "uphill:nan",
         "uphill:-2",
+        "incline:-2",
+        "naismith:1",
+        "rwalk:1,2,3",
+        "rwalk:0,6,1,-1",
+        "rwalk:0.72,6,4,-2",
+        "rwalk:0.72,6,2,1",
+        "rwalk:0.72,6,2,-2,0.1",
+        "tobler:onpath",
         "none:3",
         "steep:1",
     ] {
@@ -464,7 +496,7 @@ fn on_a_flat_grid_every_cost_is_euclidean() {
     let options = TRACKS;
     let euclid = distance_field(mesh, &Euclidean, &[0], &options).unwrap();
     let mut worst: f64 = 0.0;
-    for cost in ["none", "slope:5", "slope:5,max:10", "uphill:7"] {
+    for cost in ["none", "slope:5", "slope:5,max:10", "incline:7", "uphill:7"] {
         let cost: TerrainCost = cost.parse().unwrap();
         let metric = cost.metric(mesh).unwrap();
         let field = distance_field(mesh, &metric, &[0], &options).unwrap();
@@ -506,7 +538,7 @@ fn tilted_plane_slope_density_and_uphill_match_the_analytic_costs() {
         .iter()
         .all(|r| relative(*r, rho) < 1e-12));
     let b = 3.0;
-    let tensor = uphill_tensor(mesh, b).unwrap();
+    let tensor = incline_tensor(mesh, b).unwrap();
     let mut report = Vec::new();
     for (name, dir, slope_cost, uphill_cost) in [
         (
@@ -531,15 +563,172 @@ fn tilted_plane_slope_density_and_uphill_match_the_analytic_costs() {
                 relative(u.traced_length, uphill_cost),
             );
             report.push(format!(
-                "{name}, k = {k}: slope density {es:.1e} (graph {gs:.1e}), uphill {eu:.1e} (graph {gu:.1e})"
+                "{name}, k = {k}: slope density {es:.1e} (graph {gs:.1e}), incline {eu:.1e} (graph {gu:.1e})"
             ));
             assert!(es < 1e-6, "slope {name}: {} vs {slope_cost}", s.length);
-            assert!(eu < 1e-6, "uphill {name}: {} vs {uphill_cost}", u.length);
+            assert!(eu < 1e-6, "incline {name}: {} vs {uphill_cost}", u.length);
         }
     }
     println!("tilted plane (30°, a = {a}, b = {b}), relative error of the route cost:");
     for line in report {
         println!("  {line}");
+    }
+}
+
+/// The directed costs on a plane tilted 10° (gentle enough for every model to be
+/// convex, so the straight route is the cheapest), up the fall line, down it and
+/// across, against their formulas written out here: the route's cost and the field's
+/// value at its end.
+#[test]
+fn directed_costs_up_down_and_across_a_tilted_plane_match_their_formulas() {
+    let (alpha, beta) = (10f64.to_radians(), 25f64.to_radians());
+    let terrain = tilted(41, 1.0, alpha, beta);
+    let mesh = &terrain.mesh;
+    let (t, l) = (alpha.tan(), 14.0); // tangent, map length
+    let centre = [20.0, 20.0];
+    let line = |d: [f64; 2]| {
+        (
+            [centre[0] - d[0] * l / 2.0, centre[1] - d[1] * l / 2.0],
+            [centre[0] + d[0] * l / 2.0, centre[1] + d[1] * l / 2.0],
+        )
+    };
+    let (up, down, across) = (
+        line([beta.cos(), beta.sin()]),
+        line([-beta.cos(), -beta.sin()]),
+        line([-beta.sin(), beta.cos()]),
+    );
+    // Horizontal run h and rise dz of each route.
+    let legs = [
+        ("up", up, t * l),
+        ("down", down, -t * l),
+        ("across", across, 0.0),
+    ];
+    let tobler = |dz: f64| 0.6 * l * (3.5 * (dz / l + 0.05).abs()).exp();
+    type Formula<'a> = Box<dyn Fn(f64) -> f64 + 'a>; // the cost from the rise
+    let models: [(&str, Formula); 6] = [
+        (
+            "uphill:3",
+            Box::new(|dz: f64| l.hypot(dz) + 3.0 * dz.max(0.0)),
+        ),
+        ("naismith", Box::new(|dz: f64| 0.72 * l + 6.0 * dz.max(0.0))),
+        // tan 10° = 0.176: a moderate descent (above −0.2125), 1.9998 s per metre saved.
+        (
+            "rwalk",
+            Box::new(|dz: f64| 0.72 * l + if dz >= 0.0 { 6.0 * dz } else { 1.9998 * dz }),
+        ),
+        (
+            "rwalk:1,4,0.5,-0.5,-0.1",
+            // Past the slope factor −0.1: a steep descent, 0.5 s per metre lost.
+            Box::new(|dz: f64| l + if dz >= 0.0 { 4.0 * dz } else { -0.5 * dz }),
+        ),
+        ("tobler", Box::new(tobler)),
+        ("tobler:offpath", Box::new(move |dz: f64| tobler(dz) / 0.6)),
+    ];
+    let (mut worst, mut worst_across) = (0.0f64, 0.0f64);
+    for (name, formula) in &models {
+        let cost: TerrainCost = name.parse().unwrap();
+        assert!(cost.is_directed());
+        let metric = cost.metric(mesh).unwrap();
+        let solver = Solver::new(mesh, &metric, &Options::DEFAULT.with_k(2.0)).unwrap();
+        for (leg, (from, to), dz) in legs {
+            let expected = formula(dz);
+            let (a, b) = (
+                terrain.locate(from[0], from[1]).unwrap(),
+                terrain.locate(to[0], to[1]).unwrap(),
+            );
+            let path = solver.shortest_path(&[Source::new(a)], b).unwrap();
+            let error = relative(path.length, expected);
+            // Across, the route follows a contour, where uphill, Naismith and r.walk
+            // have a kink (climbing starts to cost): straightening moves one crossing
+            // at a time and can stall a little above the contour there (up to 1.9e-4).
+            let tolerance = if leg == "across" { 1e-3 } else { 1e-9 };
+            assert!(
+                error < tolerance,
+                "{name} {leg}: {} vs {expected}",
+                path.length
+            );
+            if leg != "across" {
+                worst = worst.max(error);
+            } else {
+                worst_across = worst_across.max(error);
+            }
+            assert!(path.traced_length >= path.length);
+        }
+        // Up and down differ (across is symmetric).
+        let (u, d) = (formula(t * l), formula(-t * l));
+        assert!((u - d).abs() > 0.01 * u, "{name}");
+    }
+    println!(
+        "tilted plane (10°): directed route costs within {worst:.1e} of their formulas up and down, {worst_across:.1e} across"
+    );
+}
+
+/// On flat ground the walking times are distance over speed: 0.72 s/m for Naismith
+/// and r.walk, 0.6·e^0.175 s/m for Tobler (5.04 km/h: its 6 km/h is for a slight
+/// descent), 1/0.6 of that off paths; `uphill` is the length.
+#[test]
+fn on_a_flat_grid_the_walking_times_are_distance_over_speed() {
+    let terrain = tilted(15, 1.0, 0.0, 0.0);
+    let mesh = &terrain.mesh;
+    let euclid = distance_field(mesh, &Euclidean, &[7], &TRACKS).unwrap();
+    let flat = 0.6 * 0.175f64.exp();
+    for (cost, per_metre) in [
+        ("uphill:5", 1.0),
+        ("naismith", 0.72),
+        ("rwalk", 0.72),
+        ("tobler", flat),
+        ("tobler:offpath", flat / 0.6),
+    ] {
+        let metric = cost.parse::<TerrainCost>().unwrap().metric(mesh).unwrap();
+        let field = distance_field(mesh, &metric, &[7], &TRACKS).unwrap();
+        for (d, e) in field
+            .vertex_distances()
+            .iter()
+            .zip(euclid.vertex_distances())
+        {
+            assert!(
+                (d - per_metre * e).abs() <= 1e-12 * (1.0 + e),
+                "{cost}: {d} vs {}",
+                per_metre * e
+            );
+        }
+    }
+}
+
+/// Steeper than 15.9°, Tobler's cost is not convex: zig-zagging up the fall line costs
+/// less than walking straight up it (switchbacks). The Steiner graph finds zig-zags at
+/// its resolution: the field lies below the straight walk, never below the best
+/// zig-zag (the convex envelope).
+#[test]
+fn tobler_zigzags_up_a_steep_slope() {
+    let alpha = 30f64.to_radians();
+    let terrain = tilted(31, 1.0, alpha, 0.0);
+    let mesh = &terrain.mesh;
+    let metric = DirectedCost::new(mesh, DirectedModel::Tobler { off_path: false }).unwrap();
+    assert_eq!(metric.nonconvex_faces(), mesh.face_count());
+    let t = alpha.tan();
+    let l = 20.0;
+    let straight = 0.6 * l * (3.5 * (t + 0.05)).exp();
+    // Two legs at ±φ from the fall line: each climbs t cos φ per unit of run.
+    let zigzag = |phi: f64| 0.6 * l * (3.5 * (t * phi.cos() + 0.05)).exp() / phi.cos();
+    let best = (0..9000)
+        .map(|i| zigzag(i as f64 * 1e-4 * std::f64::consts::FRAC_PI_2))
+        .fold(f64::INFINITY, f64::min);
+    let (from, to) = (
+        terrain.locate(5.5, 15.5).unwrap(),
+        terrain.locate(25.5, 15.5).unwrap(),
+    );
+    for k in [2.0, 6.0] {
+        let options = Options::DEFAULT.with_k(k);
+        let solver = Solver::new(mesh, &metric, &options).unwrap();
+        let field = solver
+            .solve_from(&[Source::new(from)], &Stop::NONE)
+            .unwrap();
+        let up = solver.query(&field).unwrap().distance_at(to).unwrap();
+        println!(
+            "tobler up 30°, k = {k}: {up:.2} s; straight {straight:.2} s, best zig-zag {best:.2} s"
+        );
+        assert!(up < 0.95 * straight && up >= best * (1.0 - 1e-9), "{up}");
     }
 }
 
@@ -556,7 +745,7 @@ fn max_slope_blocks_steep_faces_only() {
         .all(|&b| b));
     assert!(steeper_than(&terrain.mesh, 0.0).is_err());
     assert!(slope_density(&terrain.mesh, -1.0).is_err());
-    assert!(uphill_tensor(&terrain.mesh, f64::NAN).is_err());
+    assert!(incline_tensor(&terrain.mesh, f64::NAN).is_err());
 }
 
 /// The exact least-cost route from `a` to `b` (west to east) through the medium of
@@ -797,6 +986,26 @@ fn tracks_vs_graph<M: Metric>(mesh: &TriMesh, metric: &M, sources: &[u32], k: f6
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+    // The directed costs on bumpy terrain: convex faces pruned, the others tested in
+    // full, tracks = graph all the same.
+    #[test]
+    fn tracks_equals_graph_under_directed_costs(seed in any::<u64>(), n in 3usize..9, k in 1u32..6, relief in 0.0f64..3.0, which in 0usize..5, picks in prop::collection::vec(any::<u32>(), 1..3)) {
+        let mut rng = Rng(seed | 1);
+        let bumps: Vec<f64> = (0..(n + 1) * (n + 1)).map(|_| relief * rng.next()).collect();
+        let g = geometry(n + 1, n + 1, [0.0, 0.0], 1.0);
+        let grid = ElevationGrid::from_fn(g, |x, y| {
+            let (i, j) = (x.floor() as usize, y.floor() as usize);
+            Some(bumps[(j * (n + 1) + i).min(bumps.len() - 1)])
+        })
+        .unwrap();
+        let mesh = grid.to_mesh().unwrap().mesh;
+        let cost = ["uphill:3", "naismith", "rwalk", "tobler", "tobler:offpath"][which];
+        let metric = cost.parse::<TerrainCost>().unwrap().metric(&mesh).unwrap();
+        let sources: Vec<u32> = picks.iter().map(|s| s % mesh.vertex_count() as u32).collect();
+        let max = tracks_vs_graph(&mesh, &metric, &sources, k as f64);
+        prop_assert!(max <= 1e-9, "{}: relative deviation {}", cost, max);
+    }
 
     #[test]
     fn tracks_equals_graph_with_random_walls(seed in any::<u64>(), n in 3usize..9, k in 1u32..7, p in 0.0f64..0.5, picks in prop::collection::vec(any::<u32>(), 1..3)) {

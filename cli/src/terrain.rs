@@ -20,9 +20,14 @@ pub struct TerrainArgs {
     /// Where the route ends, in the grid's coordinates.
     #[arg(long, value_name = "X,Y", value_parser = parse_xy, allow_hyphen_values = true)]
     to: [f64; 2],
-    /// What a route costs: none (its 3D length), slope:A[,max:DEG] (density
-    /// 1 + A·tan²(slope); faces steeper than DEG degrees impassable), or uphill:B
-    /// (climbing the steepest line costs sqrt(1 + B·sin²(slope)) per unit, a contour 1).
+    /// What a route costs: none (its 3D length); slope:A[,max:DEG] (density
+    /// 1 + A·tan²(slope); faces steeper than DEG degrees impassable); incline:B
+    /// (crossing the slope costs sqrt(1 + B·sin²(slope)) per unit along the steepest
+    /// line, either way). Directed (climbing and descending differ): uphill:B (3D
+    /// length + B per metre climbed); naismith (0.72 s/m + 6 s per metre climbed);
+    /// rwalk[:a,b,c,d[,slope_factor]] (GRASS r.walk's walking time in seconds, its
+    /// defaults 0.72,6,1.9998,-1.9998,-0.2125); tobler[:offpath] (Tobler's hiking
+    /// function, seconds). Times assume metres.
     #[arg(long, default_value = "none", value_name = "COST")]
     cost: TerrainCost,
     /// Mean number of Steiner points per edge. 2 by default: the straightened route is
@@ -243,6 +248,8 @@ fn write_geojson(outputs: &mut Outputs, args: &TerrainArgs, route: &Route) -> Cl
                 "length_2d": route.length_2d(),
                 "traced_cost": route.traced_cost,
                 "cost_model": args.cost.to_string(),
+                "cost_unit": args.cost.unit(),
+                "directed": args.cost.is_directed(),
                 "k": args.k,
                 "from": args.from,
                 "to": args.to,

@@ -184,6 +184,7 @@ fn cli_costs_order_as_expected_and_max_slope_walls_off() {
     let none = run("none");
     assert!(none >= 280.0);
     assert!(run("slope:2") > none);
+    assert!(run("incline:5") > none);
     assert!(run("uphill:5") > none);
     // The hill's flanks reach about 25°: a 5° limit walls the route off.
     let walled = dir.path().join("walled.json");
@@ -203,6 +204,49 @@ fn cli_costs_order_as_expected_and_max_slope_walls_off() {
         &walled,
         "error: no route",
     );
+}
+
+/// A directed cost charges the way travelled: from the hill's foot to a point higher up
+/// and back differ, and the GeoJSON says the cost is directed, in seconds for times.
+#[test]
+fn cli_directed_costs_differ_up_and_down() {
+    let dir = tempfile::tempdir().unwrap();
+    let dem = hill_asc(dir.path());
+    let dem = dem.to_str().unwrap();
+    let out_path = dir.path().join("r.geojson");
+    let out = out_path.to_str().unwrap();
+    let run = |from: &str, to: &str, cost: &str| {
+        let printed = geotracks_ok(&[
+            "terrain", dem, "--from", from, "--to", to, "--cost", cost, "-o", out,
+        ]);
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&out_path).unwrap()).unwrap();
+        (last_value(&printed), json)
+    };
+    for cost in ["uphill:5", "naismith", "rwalk", "tobler"] {
+        let (up, json) = run("1010,5100", "1150,5150", cost);
+        let (down, _) = run("1150,5150", "1010,5100", cost);
+        assert!(up > 1.02 * down, "{cost}: up {up}, down {down}");
+        let properties = &json["features"][0]["properties"];
+        assert_eq!(properties["directed"], true);
+        assert_eq!(properties["cost_model"], cost);
+        let unit = if cost == "uphill:5" { "m" } else { "s" };
+        assert_eq!(properties["cost_unit"], unit);
+    }
+    std::fs::remove_file(&out_path).unwrap();
+    let args = [
+        "terrain",
+        dem,
+        "--from",
+        "1010,5100",
+        "--to",
+        "1150,5150",
+        "--cost",
+        "rwalk:1,2,3",
+        "-o",
+        out,
+    ];
+    assert_fails(&args, &out_path, "rwalk takes a,b,c,d");
 }
 
 #[test]

@@ -322,10 +322,13 @@ def terrain_route(dem, start, end, cost: str = "none", k: float = 2.0) -> Route:
     """The least-cost route across an elevation grid (ESRI ASCII ``.asc`` or GeoTIFF)
     between two map points ``(x, y)``, straightened.
 
-    :param cost: ``"none"`` (3D length), ``"slope:A"`` (length times ``1 + A·slope``),
-        ``"slope:A,max:DEG"`` (faces steeper than DEG impassable) or ``"uphill:B"``
-        (climbing costs ``B`` times more across the contour lines); as
-        ``geotracks terrain --cost``.
+    :param cost: ``"none"`` (3D length), ``"slope:A"`` (length times ``1 + A·tan²``),
+        ``"slope:A,max:DEG"`` (faces steeper than DEG impassable), ``"incline:B"``
+        (crossing the contour lines costs more, either way), or a directed cost,
+        climbing dearer than descending, from ``start``: ``"uphill:B"`` (3D length +
+        B per metre climbed), ``"naismith"``, ``"rwalk[:a,b,c,d[,sf]]"`` (GRASS
+        r.walk's walking time, seconds), ``"tobler[:offpath]"`` (Tobler's hiking
+        function, seconds); as ``geotracks terrain --cost``.
     :raises GeotracksError: for an unreadable grid, a point off the grid or on NODATA,
         a bad cost, or no route.
     """

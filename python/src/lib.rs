@@ -480,7 +480,8 @@ fn read_mesh<'py>(
 }
 
 /// A route across an elevation grid (ESRI ASCII or GeoTIFF) from map point `start` to
-/// `end` under the terrain cost `cost` (`none`, `slope:A[,max:DEG]`, `uphill:B`):
+/// `end` under the terrain cost `cost` (as `geotracks terrain --cost`; a directed one
+/// from `start`):
 /// `(points (p, 3) map x, y and elevation, cumulative cost (p,), cost)`.
 #[pyfunction]
 #[pyo3(signature = (dem, start, end, cost="none", k=2.0))]

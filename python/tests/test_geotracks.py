@@ -248,6 +248,11 @@ def test_terrain_route_on_a_plane(tmp_path):
     assert route.cumulative_cost[0] == 0.0 and route.cumulative_cost[-1] == route.cost
     steeper = geotracks.terrain_route(dem, (2.5, 2.5), (17.5, 10.5), cost="slope:4")
     assert steeper.cost > route.cost
+    # Naismith's rule is directed: 0.72 s per map metre, and 6 s per metre climbed.
+    up = geotracks.terrain_route(dem, (2.5, 2.5), (17.5, 10.5), cost="naismith")
+    down = geotracks.terrain_route(dem, (17.5, 10.5), (2.5, 2.5), cost="naismith")
+    assert abs(up.cost - (0.72 * 17.0 + 6.0 * 7.5)) < 1e-6 * up.cost
+    assert abs(down.cost - 0.72 * 17.0) < 1e-6 * down.cost
     with pytest.raises(geotracks.GeotracksError, match="start"):
         geotracks.terrain_route(dem, (-50, 2), (10, 10))
     with pytest.raises(geotracks.GeotracksError):

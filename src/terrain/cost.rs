@@ -1,10 +1,11 @@
-//! Terrain costs, all [`Metric`]s: a slope density, impassable faces, and an
-//! anisotropic cost that makes climbing the steepest line dearer than following a
-//! contour.
+//! Terrain costs, all [`Metric`]s: a slope density, impassable faces, an anisotropic
+//! cost that makes crossing the slope dearer than following a contour, and (in
+//! [`DirectedCost`]) costs that make climbing dearer than descending.
 //!
 //! They work on any terrain-like mesh (z up), not only on grids.
 
 use super::TerrainError;
+use super::{DirectedCost, DirectedModel};
 use crate::mesh::TriMesh;
 use geotracks_metrics::{Density, FacePoint, Metric, Tensor};
 use glam::DVec3;
@@ -128,21 +129,20 @@ pub fn steeper_than(mesh: &TriMesh, max_degrees: f64) -> Result<Vec<bool>, Terra
         .collect())
 }
 
-/// The anisotropic "uphill" tensor: per face, `M = I + b·g gᵀ` in the face's frame, with
-/// `g` the projection of the vertical onto the face (the steepest direction, with
+/// The anisotropic "incline" tensor: per face, `M = I + b·g gᵀ` in the face's frame,
+/// with `g` the projection of the vertical onto the face (the steepest direction, with
 /// `|g| = sin(slope)`). Moving along the steepest line costs `sqrt(1 + b·sin²(slope))`
 /// per unit length, along a contour 1, in between `sqrt(1 + b·sin²(slope)·cos²φ)` with
 /// φ the angle from the steepest line.
 ///
-/// The cost is the same going up or down: a metric's cost must be symmetric (the engine
-/// relies on it), so a true uphill ≠ downhill cost (a Finsler metric) is not something
-/// a [`Metric`] can express. This tensor charges the *effort of crossing the slope*
-/// in either direction.
+/// The cost is the same going up or down: it charges the *effort of crossing the
+/// slope* either way. For climbing dearer than descending, see [`DirectedCost`] (the
+/// cost `uphill:B`).
 ///
 /// # Errors
 /// [`TerrainError::Parameter`] unless `b` is finite and ≥ 0.
-pub fn uphill_tensor(mesh: &TriMesh, b: f64) -> Result<Tensor, TerrainError> {
-    check_factor("the uphill factor b", b)?;
+pub fn incline_tensor(mesh: &TriMesh, b: f64) -> Result<Tensor, TerrainError> {
+    check_factor("the incline factor b", b)?;
     let local = (0..mesh.face_count() as u32)
         .map(|f| {
             let [u, v] = geotracks_metrics::FaceGeometry::face_axes(mesh, f);
@@ -295,15 +295,19 @@ impl<M: Metric> Metric for Impassable<M> {
     }
 }
 
-/// A terrain cost as the command line names it: `none`, `slope:A[,max:DEG]` or
-/// `uphill:B`.
+/// A terrain cost as the command line names it: `none`, `slope:A[,max:DEG]`,
+/// `incline:B`, or a directed cost: `uphill:B`, `naismith`, `rwalk[:a,b,c,d[,sf]]`,
+/// `tobler[:offpath]`.
 ///
 /// ```
-/// use geotracks::terrain::TerrainCost;
+/// use geotracks::terrain::{DirectedModel, TerrainCost};
 /// let cost: TerrainCost = "slope:4,max:35".parse()?;
 /// assert_eq!(cost, TerrainCost::Slope { a: 4.0, max_degrees: Some(35.0) });
 /// assert_eq!(cost.to_string(), "slope:4,max:35");
 /// assert!("slope:-1".parse::<TerrainCost>().is_err());
+/// let walk: TerrainCost = "rwalk".parse()?;
+/// assert_eq!(walk, TerrainCost::Directed(DirectedModel::RWALK));
+/// assert!(walk.is_directed());
 /// # Ok::<(), geotracks::terrain::TerrainError>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
@@ -319,16 +323,20 @@ pub enum TerrainCost {
         /// The steepest passable slope, in degrees.
         max_degrees: Option<f64>,
     },
-    /// [`uphill_tensor`] with factor `b`.
-    Uphill {
+    /// [`incline_tensor`] with factor `b` (the same up and down).
+    Incline {
         /// The factor of `sin²(slope)` along the steepest line.
         b: f64,
     },
+    /// A [`DirectedCost`]: `uphill:B` (3D length + B per unit climbed), `naismith`,
+    /// `rwalk` (GRASS r.walk's walking time, seconds), `tobler` (Tobler's hiking
+    /// function, seconds).
+    Directed(DirectedModel),
 }
 
 impl fmt::Display for TerrainCost {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
+        match *self {
             TerrainCost::None => f.write_str("none"),
             TerrainCost::Slope { a, max_degrees } => {
                 write!(f, "slope:{a}")?;
@@ -337,7 +345,21 @@ impl fmt::Display for TerrainCost {
                 }
                 Ok(())
             }
-            TerrainCost::Uphill { b } => write!(f, "uphill:{b}"),
+            TerrainCost::Incline { b } => write!(f, "incline:{b}"),
+            TerrainCost::Directed(model) => match model {
+                DirectedModel::Uphill { b } => write!(f, "uphill:{b}"),
+                _ if model == DirectedModel::NAISMITH => f.write_str("naismith"),
+                _ if model == DirectedModel::RWALK => f.write_str("rwalk"),
+                DirectedModel::Walk {
+                    a,
+                    b,
+                    c,
+                    d,
+                    slope_factor,
+                } => write!(f, "rwalk:{a},{b},{c},{d},{slope_factor}"),
+                DirectedModel::Tobler { off_path: false } => f.write_str("tobler"),
+                DirectedModel::Tobler { off_path: true } => f.write_str("tobler:offpath"),
+            },
         }
     }
 }
@@ -374,9 +396,42 @@ impl FromStr for TerrainCost {
                 }
                 TerrainCost::Slope { a, max_degrees }
             }
-            "uphill" => TerrainCost::Uphill {
+            "incline" => TerrainCost::Incline {
                 b: number(rest, "the factor")?,
             },
+            "uphill" => TerrainCost::Directed(DirectedModel::Uphill {
+                b: number(rest, "the factor")?,
+            }),
+            "naismith" if rest.is_empty() => TerrainCost::Directed(DirectedModel::NAISMITH),
+            "rwalk" if rest.is_empty() => TerrainCost::Directed(DirectedModel::RWALK),
+            "rwalk" => {
+                let values = rest
+                    .split(',')
+                    .map(|x| number(x, "a coefficient"))
+                    .collect::<Result<Vec<f64>, _>>()?;
+                let slope_factor = match values.len() {
+                    4 => -0.2125,
+                    5 => values[4],
+                    n => {
+                        return Err(fail(format!(
+                            "rwalk takes a,b,c,d or a,b,c,d,slope_factor, not {n} numbers"
+                        )))
+                    }
+                };
+                TerrainCost::Directed(DirectedModel::Walk {
+                    a: values[0],
+                    b: values[1],
+                    c: values[2],
+                    d: values[3],
+                    slope_factor,
+                })
+            }
+            "tobler" if rest.is_empty() => {
+                TerrainCost::Directed(DirectedModel::Tobler { off_path: false })
+            }
+            "tobler" if rest.trim() == "offpath" => {
+                TerrainCost::Directed(DirectedModel::Tobler { off_path: true })
+            }
             _ => return Err(fail("unknown cost".into())),
         };
         cost.check().map_err(|e| fail(e.to_string()))?;
@@ -397,7 +452,23 @@ impl TerrainCost {
                 check_factor("the slope factor a", a)?;
                 max_degrees.map_or(Ok(()), check_max_slope)
             }
-            TerrainCost::Uphill { b } => check_factor("the uphill factor b", b),
+            TerrainCost::Incline { b } => check_factor("the incline factor b", b),
+            TerrainCost::Directed(model) => model.check(),
+        }
+    }
+
+    /// Whether the cost is directed (climbing and descending differ): a field is then
+    /// the cost *from* its sources.
+    pub fn is_directed(&self) -> bool {
+        matches!(self, TerrainCost::Directed(_))
+    }
+
+    /// The unit of the cost for a grid in metres: `"s"` for the walking times
+    /// (`naismith`, `rwalk`, `tobler`), `"m"` (of the cost's length) otherwise.
+    pub fn unit(&self) -> &'static str {
+        match self {
+            TerrainCost::Directed(DirectedModel::Walk { .. } | DirectedModel::Tobler { .. }) => "s",
+            _ => "m",
         }
     }
 
@@ -430,7 +501,10 @@ impl TerrainCost {
                 let density = slope_density(mesh, a)?;
                 TerrainMetric::WalledSlope(Impassable::new(mesh, density, steeper_than(mesh, m)?)?)
             }
-            TerrainCost::Uphill { b } => TerrainMetric::Uphill(uphill_tensor(mesh, b)?),
+            TerrainCost::Incline { b } => TerrainMetric::Incline(incline_tensor(mesh, b)?),
+            TerrainCost::Directed(model) => {
+                TerrainMetric::Directed(DirectedCost::new(mesh, model)?)
+            }
         })
     }
 }
@@ -442,7 +516,7 @@ impl TerrainCost {
 /// `match` in [`Metric::cost`] picks the same arm at every call. That is cheap, not
 /// free: the command line's equivalent enum measured 6–8 % more instructions per run
 /// than each metric's own type. Code that runs one cost many times can use the cost's
-/// own type ([`slope_density`], [`Impassable`], [`uphill_tensor`]).
+/// own type ([`slope_density`], [`Impassable`], [`incline_tensor`], [`DirectedCost`]).
 #[derive(Clone, Debug)]
 pub enum TerrainMetric {
     /// `none`: the 3D length.
@@ -451,13 +525,16 @@ pub enum TerrainMetric {
     Slope(Density),
     /// `slope:A,max:DEG`: [`slope_density`] with faces steeper than DEG impassable.
     WalledSlope(Impassable<Density>),
-    /// `uphill:B`: [`uphill_tensor`].
-    Uphill(Tensor),
+    /// `incline:B`: [`incline_tensor`].
+    Incline(Tensor),
+    /// `uphill:B`, `naismith`, `rwalk…`, `tobler…`: a [`DirectedCost`].
+    Directed(DirectedCost),
 }
 
 geotracks_metrics::metric_enum!(TerrainMetric {
     Length,
     Slope,
     WalledSlope,
-    Uphill
+    Incline,
+    Directed
 });

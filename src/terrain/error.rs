@@ -196,8 +196,11 @@ pub enum TerrainError {
         /// The vertex.
         vertex: u32,
     },
-    /// A cost specification (`slope:A[,max:DEG]`, `uphill:B`, `none`) could not be read.
-    #[error("cannot read cost '{text}': {reason} (expected slope:A[,max:DEG], uphill:B or none)")]
+    /// A cost specification (`none`, `slope:A[,max:DEG]`, `incline:B`, `uphill:B`,
+    /// `naismith`, `rwalk[:a,b,c,d[,sf]]`, `tobler[:offpath]`) could not be read.
+    #[error(
+        "cannot read cost '{text}': {reason} (expected none, slope:A[,max:DEG], incline:B, uphill:B, naismith, rwalk[:a,b,c,d[,sf]] or tobler[:offpath])"
+    )]
     CostSpec {
         /// The text given.
         text: String,

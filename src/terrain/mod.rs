@@ -6,10 +6,12 @@
 //! - [`ElevationGrid::to_mesh`]: a [`TerrainMesh`], two triangles per cell, which also
 //!   finds the surface point under a map point ([`TerrainMesh::locate`]).
 //! - Costs ([`cost`]): [`slope_density`] (`ρ = 1 + a·tan²(slope)`), [`Impassable`]
-//!   (walls: faces no route crosses), [`uphill_tensor`] (climbing the steepest line
-//!   costs more than following a contour); [`TerrainCost`] names them as the command
-//!   line does, and [`TerrainCost::metric`] builds it ([`TerrainMetric`], one type for
-//!   all of them).
+//!   (walls: faces no route crosses), [`incline_tensor`] (crossing the slope costs more
+//!   than following a contour, either way), and the directed costs of [`DirectedCost`]
+//!   (climbing dearer than descending: `uphill`, Naismith's rule and GRASS r.walk's
+//!   walking time, Tobler's hiking function); [`TerrainCost`] names them as the
+//!   command line does, and [`TerrainCost::metric`] builds it ([`TerrainMetric`], one
+//!   type for all of them).
 //! - [`route`]: the cheapest route between two points, start first, with its
 //!   cumulative cost.
 //! - [`map`]: a hillshaded picture of the grid with cost contours and a route.
@@ -34,6 +36,7 @@
 
 mod asc;
 pub mod cost;
+mod directed;
 mod error;
 mod geotiff;
 mod grid;
@@ -42,9 +45,10 @@ mod route;
 
 pub use asc::{read_asc, read_asc_bytes};
 pub use cost::{
-    face_slopes, slope_density, steeper_than, uphill_tensor, vertex_slope_tan2, Impassable,
+    face_slopes, incline_tensor, slope_density, steeper_than, vertex_slope_tan2, Impassable,
     TerrainCost, TerrainMetric,
 };
+pub use directed::{DirectedCost, DirectedModel};
 pub use error::TerrainError;
 pub use geotiff::{read_geotiff, read_geotiff_bytes};
 pub use grid::{ElevationGrid, GridGeometry, TerrainMesh};

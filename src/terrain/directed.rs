@@ -1,0 +1,305 @@
+//! Directed terrain costs: climbing and descending cost differently (Finsler metrics,
+//! see [`Metric::is_symmetric`]).
+//!
+//! Each is a function of a segment's horizontal length `h` and its rise `Δz` (negative
+//! going down), positively homogeneous: twice the segment, twice the cost. On a planar
+//! face the rise is linear in the segment, so the cost is a function of the direction
+//! only, scaled by the length.
+//!
+//! - [`DirectedModel::Uphill`]: the 3D length plus `b` per unit climbed. Convex in
+//!   every direction (a norm plus a positive part of a linear form): the tracks engine
+//!   prunes everywhere.
+//! - [`DirectedModel::Walk`]: the time model of GRASS `r.walk` (Aitken 1977, Langmuir
+//!   1984, after Naismith's rule), in seconds for metres: `a·h + b·Δz` climbing, `c·Δz`
+//!   on moderate descents and `d·Δz` on steep ones (steeper than the slope factor, a
+//!   tangent). [`DirectedModel::NAISMITH`] is `a = 0.72` s/m (5 km/h) and `b = 6` s/m
+//!   (an hour per 600 m of ascent), descents free; [`DirectedModel::RWALK`] is
+//!   r.walk's defaults. The switch to steep descents makes the cost jump, so it is
+//!   not convex on faces steep enough to descend steeply: the engine tests every target
+//!   there (no pruning), and prunes on the other faces.
+//! - [`DirectedModel::Tobler`]: walking time by Tobler's hiking function, speed
+//!   `6·exp(−3.5·|s + 0.05|)` km/h at the slope `s = Δz/h` along the walk (fastest
+//!   slightly downhill), times 0.6 off paths: `0.6·h·exp(3.5·|s + 0.05|)` seconds per
+//!   metre on a path. In polar form the cost per unit of horizontal run in direction θ
+//!   from the fall line is `f(m cos θ)`, with `m` the face's gradient; it is convex
+//!   exactly where `f + ∂²f/∂θ² ≥ 0`, which for `f = exp(3.5|s + 0.05|)` is
+//!   `3.5·m ≤ 1`: slopes up to 15.9°. Steeper, zig-zagging up or down costs less than
+//!   the straight fall line (switchbacks); the Steiner graph finds such zig-zags at its
+//!   own resolution, and the engine does not prune on those faces.
+//!
+//! Lengths and elevations must be in metres for the time models' seconds.
+
+use super::TerrainError;
+use crate::mesh::TriMesh;
+use geotracks_metrics::{FaceGeometry, FacePoint, Metric};
+
+/// How a [`DirectedCost`] charges a segment (see the module docs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum DirectedModel {
+    /// 3D length + `b` × metres climbed.
+    Uphill {
+        /// Extra cost per unit of climb.
+        b: f64,
+    },
+    /// GRASS r.walk's walking time (seconds): `a·h + b·Δz` up, `c·Δz` for a descent
+    /// no steeper than `slope_factor` (a negative tangent), `d·Δz` steeper.
+    Walk {
+        /// Seconds per metre on the flat (1 / speed).
+        a: f64,
+        /// Seconds per metre climbed.
+        b: f64,
+        /// Seconds per metre descended on moderate descents (positive: they are
+        /// faster).
+        c: f64,
+        /// Seconds per metre descended on steep descents (negative: they are slower).
+        d: f64,
+        /// The tangent where descents turn steep (negative).
+        slope_factor: f64,
+    },
+    /// Tobler's hiking function (seconds); `off_path` walks at 0.6 times the speed.
+    Tobler {
+        /// Off paths: 0.6 times the speed.
+        off_path: bool,
+    },
+}
+
+impl DirectedModel {
+    /// Naismith's rule as r.walk writes it: 0.72 s/m, 6 s per metre climbed.
+    pub const NAISMITH: DirectedModel = DirectedModel::Walk {
+        a: 0.72,
+        b: 6.0,
+        c: 0.0,
+        d: 0.0,
+        slope_factor: -0.2125,
+    };
+    /// GRASS r.walk's defaults (Langmuir 1984): `walk_coeff=0.72,6.0,1.9998,-1.9998`,
+    /// `slope_factor=-0.2125` (tan 12°).
+    pub const RWALK: DirectedModel = DirectedModel::Walk {
+        a: 0.72,
+        b: 6.0,
+        c: 1.9998,
+        d: -1.9998,
+        slope_factor: -0.2125,
+    };
+
+    /// Checks the parameters: every segment must cost ≥ 0 and more than 0 on the flat,
+    /// whatever the slope.
+    ///
+    /// # Errors
+    /// [`TerrainError::Parameter`] naming the first one out of range.
+    pub fn check(&self) -> Result<(), TerrainError> {
+        let bad = |what, value, expected| {
+            Err(TerrainError::Parameter {
+                what,
+                value,
+                expected,
+            })
+        };
+        match *self {
+            DirectedModel::Uphill { b } if !(b.is_finite() && b >= 0.0) => {
+                bad("the uphill factor b", b, "it must be a finite number ≥ 0")
+            }
+            DirectedModel::Walk {
+                a,
+                b,
+                c,
+                d,
+                slope_factor,
+            } => {
+                if !(a.is_finite() && a > 0.0) {
+                    return bad("r.walk's a", a, "it must be a finite number > 0 (s/m)");
+                }
+                if !(b.is_finite() && b >= 0.0) {
+                    return bad("r.walk's b", b, "it must be a finite number ≥ 0 (s/m)");
+                }
+                if !(slope_factor.is_finite() && slope_factor < 0.0) {
+                    return bad(
+                        "r.walk's slope factor",
+                        slope_factor,
+                        "it must be a negative tangent",
+                    );
+                }
+                // Moderate descents save c per metre down, at most down to the slope
+                // factor: a·h + c·Δz ≥ 0 there.
+                if !(c.is_finite() && a + c * slope_factor >= 0.0) {
+                    return bad(
+                        "r.walk's c",
+                        c,
+                        "a moderate descent would take negative time: c must be at most a / |slope factor|",
+                    );
+                }
+                if !(d.is_finite() && d <= 0.0) {
+                    return bad(
+                        "r.walk's d",
+                        d,
+                        "it must be ≤ 0: a steep descent cannot save time in proportion to its drop",
+                    );
+                }
+                Ok(())
+            }
+            _ => Ok(()),
+        }
+    }
+
+    /// The cost of a segment with horizontal length `h` and rise `dz`.
+    #[inline(always)]
+    fn cost(&self, h: f64, dz: f64) -> f64 {
+        match *self {
+            DirectedModel::Uphill { b } => h.hypot(dz) + b * dz.max(0.0),
+            DirectedModel::Walk {
+                a,
+                b,
+                c,
+                d,
+                slope_factor,
+            } => {
+                let per_rise = if dz >= 0.0 {
+                    b
+                } else if dz < slope_factor * h {
+                    d
+                } else {
+                    c
+                };
+                a * h + per_rise * dz
+            }
+            DirectedModel::Tobler { off_path } => {
+                if h == 0.0 {
+                    // Straight up or down a vertical face: no walking speed.
+                    return if dz == 0.0 { 0.0 } else { f64::INFINITY };
+                }
+                // 3.6 s/m at 1 km/h; 6 km/h at best.
+                let seconds = 0.6 * h * (3.5 * (dz / h + 0.05).abs()).exp();
+                if off_path {
+                    seconds / 0.6
+                } else {
+                    seconds
+                }
+            }
+        }
+    }
+
+    /// Whether the cost is convex (an asymmetric norm) on a face whose steepest
+    /// tangent is `m`.
+    fn convex_at(&self, m: f64) -> bool {
+        match *self {
+            DirectedModel::Uphill { .. } => true,
+            // No steep descent on the face, and climbing dearer than descending saves.
+            DirectedModel::Walk {
+                b, c, slope_factor, ..
+            } => -m >= slope_factor && c <= b,
+            // A margin of 1e-9 for the rounding of m.
+            DirectedModel::Tobler { .. } => 3.5 * m <= 1.0 - 1e-9,
+        }
+    }
+
+    /// Whether the cost is convex on every face, whatever its slope.
+    fn convex_everywhere(&self) -> bool {
+        match *self {
+            DirectedModel::Uphill { .. } => true,
+            DirectedModel::Walk { .. } => self.convex_at(f64::INFINITY),
+            DirectedModel::Tobler { .. } => false,
+        }
+    }
+}
+
+/// A directed terrain cost on a mesh (z up): [`DirectedModel`] applied to each
+/// segment's horizontal length and rise. Going up and down cost differently, so a
+/// field is the cost *from* its sources ([`crate::Reversed`] gives the cost *to* them).
+///
+/// ```
+/// use geotracks::terrain::{DirectedCost, DirectedModel, ElevationGrid, GridGeometry};
+/// use geotracks::{Options, Solver, Source, Stop};
+/// // A plane rising 0.1 m per metre eastwards, 1 m cells.
+/// let geometry = GridGeometry { ncols: 11, nrows: 3, lower_left: [0.0, 0.0], spacing: [1.0, 1.0] };
+/// let terrain = ElevationGrid::from_fn(geometry, |x, _| Some(0.1 * x))?.to_mesh()?;
+/// let naismith = DirectedCost::new(&terrain.mesh, DirectedModel::NAISMITH)?;
+/// let solver = Solver::new(&terrain.mesh, &naismith, &Options::DEFAULT)?;
+/// let (west, east) = (terrain.locate(0.0, 1.0)?, terrain.locate(10.0, 1.0)?);
+/// let time = |from, to| -> Result<f64, geotracks::Error> {
+///     let field = solver.solve_from(&[Source::new(from)], &Stop::NONE)?;
+///     solver.query(&field)?.distance_at(to)
+/// };
+/// // 10 m east and 1 m up: 0.72 s/m × 10 + 6 s per metre climbed.
+/// assert!((time(west, east)? - 13.2).abs() < 1e-9);
+/// assert!((time(east, west)? - 7.2).abs() < 1e-9); // descents are free
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct DirectedCost {
+    model: DirectedModel,
+    /// Per face, the world x, y, z of its frame's u and v axes: a segment `(du, dv)`
+    /// moves `du·u + dv·v`.
+    axes: Vec<[f64; 6]>,
+    /// Per face, whether the cost is convex there (the engine prunes only there).
+    convex: Vec<bool>,
+    convex_everywhere: bool,
+}
+
+impl DirectedCost {
+    /// `model` on `mesh`.
+    ///
+    /// # Errors
+    /// [`TerrainError::Parameter`] for a parameter out of range
+    /// ([`DirectedModel::check`]).
+    pub fn new(mesh: &TriMesh, model: DirectedModel) -> Result<Self, TerrainError> {
+        model.check()?;
+        let faces = mesh.face_count() as u32;
+        let axes: Vec<[f64; 6]> = (0..faces)
+            .map(|f| {
+                let [u, v] = mesh.face_axes(f);
+                [u[0], u[1], u[2], v[0], v[1], v[2]]
+            })
+            .collect();
+        let convex = axes
+            .iter()
+            .map(|&[ux, uy, uz, vx, vy, vz]| {
+                // The steepest tangent: the normal's tilt, |n_xy| / |n_z|.
+                let n = [uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx];
+                model.convex_at(n[0].hypot(n[1]) / n[2].abs())
+            })
+            .collect();
+        Ok(DirectedCost {
+            model,
+            axes,
+            convex,
+            convex_everywhere: model.convex_everywhere(),
+        })
+    }
+
+    /// The model.
+    pub fn model(&self) -> DirectedModel {
+        self.model
+    }
+
+    /// On how many faces the cost is not convex (where the engine cannot prune).
+    pub fn nonconvex_faces(&self) -> usize {
+        self.convex.iter().filter(|&&c| !c).count()
+    }
+}
+
+impl Metric for DirectedCost {
+    #[inline]
+    fn cost(&self, face: u32, a: &FacePoint, b: &FacePoint) -> f64 {
+        let [ux, uy, uz, vx, vy, vz] = self.axes[face as usize];
+        let (du, dv) = (b.uv[0] - a.uv[0], b.uv[1] - a.uv[1]);
+        let (x, y, z) = (du * ux + dv * vx, du * uy + dv * vy, du * uz + dv * vz);
+        self.model.cost(x.hypot(y), z)
+    }
+    fn is_symmetric(&self) -> bool {
+        false
+    }
+    fn is_face_norm(&self) -> bool {
+        self.convex_everywhere
+    }
+    fn prunes_on(&self, face: u32) -> bool {
+        self.convex[face as usize]
+    }
+    fn name(&self) -> &str {
+        match self.model {
+            DirectedModel::Uphill { .. } => "uphill",
+            DirectedModel::Walk { .. } if self.model == DirectedModel::NAISMITH => "naismith",
+            DirectedModel::Walk { .. } => "rwalk",
+            DirectedModel::Tobler { .. } => "tobler",
+        }
+    }
+}
