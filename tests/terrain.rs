@@ -318,6 +318,57 @@ fn geotiff_f32_with_nodata_and_pixel_is_area() {
     assert_eq!(terrain.mesh.face_count(), 3);
 }
 
+/// The grid's CRS, as an EPSG code: a GeoTIFF's `ProjectedCSTypeGeoKey` (not the
+/// user-defined 32767), or the authority at the end of the WKT in an ESRI grid's `.prj`
+/// (WKT1 and WKT2; none in ESRI's own WKT).
+#[test]
+fn the_crs_is_read_from_geotiff_keys_and_prj_files() {
+    use tiff::encoder::colortype::Gray32Float;
+    let dir = tempfile::tempdir().unwrap();
+    let data = [1.0f32, 2.0, 3.0, 4.0];
+    let tiff_with = |name: &str, code: Option<u16>| {
+        let path = dir.path().join(name);
+        let mut keys = vec![1u16, 1, 0, 2, 1024, 0, 1, 1, 1025, 0, 1, 1];
+        if let Some(code) = code {
+            keys[3] = 3;
+            keys.extend([3072, 0, 1, code]);
+        }
+        write_tiff::<Gray32Float>(
+            &path,
+            (2, 2),
+            &data,
+            Some([10.0, 10.0, 0.0]),
+            Some([0.0, 0.0, 0.0, 500000.0, 4600000.0, 0.0]),
+            Some(&keys),
+            None,
+        );
+        read_grid(&path).unwrap().epsg()
+    };
+    assert_eq!(tiff_with("utm.tif", Some(32633)), Some(32633));
+    assert_eq!(tiff_with("user.tif", Some(32767)), None);
+    assert_eq!(tiff_with("none.tif", None), None);
+
+    let asc = "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2\n3 4\n";
+    let asc_with = |name: &str, prj: Option<&str>| {
+        let path = write(dir.path(), &format!("{name}.asc"), asc);
+        if let Some(prj) = prj {
+            write(dir.path(), &format!("{name}.prj"), prj);
+        }
+        read_grid(&path).unwrap().epsg()
+    };
+    let wkt1 = r#"PROJCS["WGS 84 / UTM zone 33N",GEOGCS["WGS 84",DATUM["WGS_1984",
+        SPHEROID["WGS 84",6378137,298.257223563,AUTHORITY["EPSG","7030"]],AUTHORITY["EPSG","6326"]],
+        AUTHORITY["EPSG","4326"]],PROJECTION["Transverse_Mercator"],UNIT["metre",1],
+        AUTHORITY["EPSG","32633"]]"#;
+    let wkt2 = r#"PROJCRS["ETRS89 / UTM zone 32N", BASEGEOGCRS["ETRS89", ID["EPSG",4258]],
+        CONVERSION["UTM zone 32N", ID["EPSG",16032]], ID["EPSG",25832]]"#;
+    let esri = r#"PROJCS["WGS_1984_UTM_Zone_33N",GEOGCS["GCS_WGS_1984"],PROJECTION["Transverse_Mercator"]]"#;
+    assert_eq!(asc_with("wkt1", Some(wkt1)), Some(32633));
+    assert_eq!(asc_with("wkt2", Some(wkt2)), Some(25832));
+    assert_eq!(asc_with("esri", Some(esri)), None);
+    assert_eq!(asc_with("bare", None), None);
+}
+
 #[test]
 fn geotiff_i16_pixel_is_point_and_no_geokeys() {
     use tiff::encoder::colortype::GrayI16;

@@ -147,27 +147,22 @@ pub fn run(args: &TerrainArgs) -> CliResult {
             &terrain,
             route.vertex_costs.as_deref(),
             &xy,
-            &map::MapOptions::DEFAULT,
+            &map::MapOptions::DEFAULT.with_cost_unit(args.cost.unit()),
         )
     });
 
     drop(spinner);
     let (cost, length, length_2d) = (route.cost(), route.length(), route.length_2d());
+    let map_coordinates = MapCoordinates::of(&grid);
     match format {
-        OutputFormat::GeoJson => write_geojson(&mut outputs, args, &route)?,
-        OutputFormat::Csv => write_csv(&mut outputs, &args.output, &route)?,
+        OutputFormat::GeoJson => write_geojson(&mut outputs, args, &route, &map_coordinates)?,
+        OutputFormat::Csv => write_csv(&mut outputs, &args.output, &route, &map_coordinates)?,
     }
     if let (Some(path), Some(picture)) = (&args.png, &picture) {
         outputs.write(path, |w| picture.write_png_to(w))?;
     }
     if let (Some(path), Some(lines)) = (&args.contours, &contours) {
-        isolines::write_isolines(
-            &mut outputs,
-            path,
-            isolines::OutputFormat::GeoJson,
-            &terrain.mesh,
-            lines,
-        )?;
+        write_contours(&mut outputs, path, &terrain.mesh, lines, &map_coordinates)?;
     }
     outputs.commit()?;
 
@@ -231,13 +226,76 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     Ok(())
 }
 
-fn write_geojson(outputs: &mut Outputs, args: &TerrainArgs, route: &Route) -> CliResult {
-    let mut coordinates: Vec<[f64; 3]> = route.points.iter().map(|p| p.to_array()).collect();
+/// How map coordinates are written: rounded to a fixed number of decimals (so that a
+/// sample centre at 505000 prints as `505000`, not `504999.99999999994`), and the
+/// grid's CRS, when its file names one, as GeoJSON's `crs` member.
+struct MapCoordinates {
+    epsg: Option<u32>,
+    decimals: usize,
+}
+
+impl MapCoordinates {
+    fn of(grid: &terrain::ElevationGrid) -> Self {
+        // A ten-billionth of the grid's spacing (9 decimals for 10 m cells), far below
+        // any elevation model's precision, but no more than 15 significant digits at
+        // the largest coordinate, which every f64 holds exactly: the noise of a sum
+        // like `xll + 0.5 · cellsize` lies in the 16th and 17th digits.
+        let g = grid.geometry();
+        let [sx, sy] = g.spacing;
+        let (zmin, zmax) = grid.elevation_range().unwrap_or((0.0, 0.0));
+        let largest = [
+            g.lower_left[0].abs() + g.ncols as f64 * sx,
+            g.lower_left[1].abs() + g.nrows as f64 * sy,
+            zmin.abs(),
+            zmax.abs(),
+            1.0,
+        ]
+        .into_iter()
+        .fold(0.0, f64::max);
+        let fine = 10.0 - sx.min(sy).log10().floor();
+        let exact = 14.0 - largest.log10().floor();
+        MapCoordinates {
+            epsg: grid.epsg(),
+            decimals: fine.min(exact).clamp(0.0, 15.0) as usize,
+        }
+    }
+
+    /// `x` rounded to the decimals: the f64 nearest that decimal, which serde_json
+    /// and `{}` then print as written.
+    fn tidy(&self, x: f64) -> f64 {
+        format!("{x:.*}", self.decimals).parse().unwrap_or(x)
+    }
+
+    fn point(&self, p: geotracks::glam::DVec3) -> [f64; 3] {
+        [self.tidy(p.x), self.tidy(p.y), self.tidy(p.z)]
+    }
+
+    /// The GeoJSON `crs` member that GDAL's GeoJSON driver (and so QGIS) reads and
+    /// writes for a layer that is not WGS 84 (RFC 7946 dropped it, but for a projected
+    /// grid it is what those tools understand; a `.prj` beside a GeoJSON file is
+    /// ignored by them). Added to a FeatureCollection when the grid's EPSG code is known.
+    fn add_crs(&self, collection: &mut serde_json::Value) {
+        if let Some(code) = self.epsg {
+            collection["crs"] = serde_json::json!({
+                "type": "name",
+                "properties": { "name": format!("urn:ogc:def:crs:EPSG::{code}") }
+            });
+        }
+    }
+}
+
+fn write_geojson(
+    outputs: &mut Outputs,
+    args: &TerrainArgs,
+    route: &Route,
+    map: &MapCoordinates,
+) -> CliResult {
+    let mut coordinates: Vec<[f64; 3]> = route.points.iter().map(|&p| map.point(p)).collect();
     // A LineString needs two positions: a route of one point (start = end) repeats it.
     if coordinates.len() == 1 {
         coordinates.push(coordinates[0]);
     }
-    let json = serde_json::json!({
+    let mut json = serde_json::json!({
         "type": "FeatureCollection",
         "features": [{
             "type": "Feature",
@@ -257,6 +315,7 @@ fn write_geojson(outputs: &mut Outputs, args: &TerrainArgs, route: &Route) -> Cl
             }
         }]
     });
+    map.add_crs(&mut json);
     outputs.write(&args.output, |w| {
         serde_json::to_writer_pretty(&mut *w, &json).map_err(std::io::Error::other)?;
         writeln!(w)
@@ -264,7 +323,40 @@ fn write_geojson(outputs: &mut Outputs, args: &TerrainArgs, route: &Route) -> Cl
     Ok(())
 }
 
-fn write_csv(outputs: &mut Outputs, file: &Path, route: &Route) -> CliResult {
+/// The cost contours as GeoJSON: a LineString of `[x, y, z]` per contour, with its cost
+/// as `level` and whether it closes, in the grid's CRS.
+fn write_contours(
+    outputs: &mut Outputs,
+    path: &Path,
+    mesh: &geotracks::mesh::TriMesh,
+    lines: &[geotracks::trace::Isoline],
+    map: &MapCoordinates,
+) -> CliResult {
+    let features: Vec<serde_json::Value> = lines
+        .iter()
+        .map(|line| {
+            let coordinates: Vec<[f64; 3]> = line
+                .points
+                .iter()
+                .map(|p| map.point(p.position(mesh)))
+                .collect();
+            serde_json::json!({
+                "type": "Feature",
+                "properties": { "level": line.level, "closed": line.closed },
+                "geometry": { "type": "LineString", "coordinates": coordinates },
+            })
+        })
+        .collect();
+    let mut json = serde_json::json!({ "type": "FeatureCollection", "features": features });
+    map.add_crs(&mut json);
+    outputs.write(path, |w| {
+        serde_json::to_writer(&mut *w, &json).map_err(std::io::Error::other)?;
+        writeln!(w)
+    })?;
+    Ok(())
+}
+
+fn write_csv(outputs: &mut Outputs, file: &Path, route: &Route, map: &MapCoordinates) -> CliResult {
     outputs.write(file, |w| {
         writeln!(w, "x,y,z,cost,length")?;
         let mut length = 0.0;
@@ -275,9 +367,9 @@ fn write_csv(outputs: &mut Outputs, file: &Path, route: &Route) -> CliResult {
             writeln!(
                 w,
                 "{},{},{},{},{}",
-                p.x,
-                p.y,
-                p.z,
+                map.tidy(p.x),
+                map.tidy(p.y),
+                map.tidy(p.z),
                 Value(route.cumulative_cost[i]),
                 Value(length)
             )?;

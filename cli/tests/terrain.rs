@@ -431,6 +431,94 @@ fn cli_reads_a_geotiff() {
     assert!(relative(cost, expected) < 1e-6, "{cost} vs {expected}");
 }
 
+/// A GeoTIFF in UTM (EPSG:32633, 10 m pixels near x = 505 000): the route and the
+/// contours name its CRS as GDAL's GeoJSON driver reads it, and print coordinates
+/// without float noise (sample centres exactly; elsewhere no more than 15 significant
+/// digits: 8 decimals at y = 4 600 000).
+#[test]
+fn routes_carry_the_grids_crs_and_tidy_coordinates() {
+    use tiff::encoder::colortype::Gray32Float;
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("utm.tif");
+    let data: Vec<f32> = (0..400).map(|i| 100.0 + 0.3 * (i % 20) as f32).collect();
+    let mut keys = vec![
+        1u16, 1, 0, 3, 1024, 0, 1, 1, 1025, 0, 1, 1, 3072, 0, 1, 32633,
+    ];
+    write_tiff::<Gray32Float>(
+        &path,
+        (20, 20),
+        &data,
+        Some([10.0, 10.0, 0.0]),
+        Some([0.0, 0.0, 0.0, 504900.1, 4600200.7, 0.0]),
+        Some(&keys),
+        None,
+    );
+    let (route, contours) = (dir.path().join("r.geojson"), dir.path().join("c.geojson"));
+    // Sample centres: x = 504905.1 + 10 i, y = 4600195.7 − 10 j.
+    geotracks_ok(&[
+        "terrain",
+        path.to_str().unwrap(),
+        "--from",
+        "504905.1,4600195.7",
+        "--to",
+        "505085.1,4600025.7",
+        "--cost",
+        "tobler",
+        "-o",
+        route.to_str().unwrap(),
+        "--contours",
+        contours.to_str().unwrap(),
+    ]);
+    for file in [&route, &contours] {
+        let text = std::fs::read_to_string(file).unwrap();
+        let json: serde_json::Value = serde_json::from_str(&text).unwrap();
+        assert_eq!(
+            json["crs"]["properties"]["name"],
+            "urn:ogc:def:crs:EPSG::32633",
+            "{}",
+            file.display()
+        );
+        for feature in json["features"].as_array().unwrap() {
+            for point in feature["geometry"]["coordinates"].as_array().unwrap() {
+                for c in point.as_array().unwrap() {
+                    let printed = c.to_string();
+                    let decimals = printed.split('.').nth(1).map_or(0, str::len);
+                    assert!(decimals <= 8, "{printed} in {}", file.display());
+                }
+            }
+        }
+    }
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&route).unwrap()).unwrap();
+    let first = &json["features"][0]["geometry"]["coordinates"][0];
+    assert_eq!(first[0].to_string(), "504905.1");
+    assert_eq!(first[1].to_string(), "4600195.7");
+    // Without a code (user-defined CRS), no crs member.
+    keys[15] = 32767;
+    write_tiff::<Gray32Float>(
+        &path,
+        (20, 20),
+        &data,
+        Some([10.0, 10.0, 0.0]),
+        Some([0.0, 0.0, 0.0, 504900.1, 4600200.7, 0.0]),
+        Some(&keys),
+        None,
+    );
+    geotracks_ok(&[
+        "terrain",
+        path.to_str().unwrap(),
+        "--from",
+        "504905.1,4600195.7",
+        "--to",
+        "505085.1,4600025.7",
+        "-o",
+        route.to_str().unwrap(),
+    ]);
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&route).unwrap()).unwrap();
+    assert!(json.get("crs").is_none());
+}
+
 #[test]
 fn contours_lie_at_their_cost_on_a_flat_grid_and_bad_levels_leave_no_file() {
     let dir = tempfile::tempdir().unwrap();

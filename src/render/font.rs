@@ -1,10 +1,12 @@
-//! A 5 × 7 bitmap font for the colour bar's numbers: digits, `.`, `-`, `+` and `e`.
+//! A 5 × 7 bitmap font for the labels of pictures: digits, `.`, `-`, `+`, and the few
+//! letters that units and map labels need (`e`, `k`, `m`, `N`, `r`, `s`, `v`, `y`).
 
 use super::raster::put;
 use super::Picture;
 
-/// Rows of a glyph, top first; bit 4 is the leftmost column.
-fn glyph(c: char) -> Option<[u8; 7]> {
+/// Rows of a glyph, top first; bit 4 is the leftmost column. `None` for a character
+/// the font lacks (a space, say: drawn as a gap).
+pub(crate) fn glyph(c: char) -> Option<[u8; 7]> {
     Some(match c {
         '0' => [0x0E, 0x11, 0x13, 0x15, 0x19, 0x11, 0x0E],
         '1' => [0x04, 0x0C, 0x04, 0x04, 0x04, 0x04, 0x0E],
@@ -20,12 +22,19 @@ fn glyph(c: char) -> Option<[u8; 7]> {
         '-' => [0x00, 0x00, 0x00, 0x1F, 0x00, 0x00, 0x00],
         '+' => [0x00, 0x04, 0x04, 0x1F, 0x04, 0x04, 0x00],
         'e' => [0x00, 0x00, 0x0E, 0x11, 0x1F, 0x10, 0x0E],
+        'k' => [0x10, 0x10, 0x12, 0x14, 0x18, 0x14, 0x12],
+        'm' => [0x00, 0x00, 0x1A, 0x15, 0x15, 0x11, 0x11],
+        'N' => [0x11, 0x11, 0x19, 0x15, 0x13, 0x11, 0x11],
+        'r' => [0x00, 0x00, 0x16, 0x19, 0x10, 0x10, 0x10],
+        's' => [0x00, 0x00, 0x0E, 0x10, 0x0E, 0x01, 0x1E],
+        'v' => [0x00, 0x00, 0x11, 0x11, 0x11, 0x0A, 0x04],
+        'y' => [0x00, 0x00, 0x11, 0x11, 0x0F, 0x01, 0x0E],
         _ => return None,
     })
 }
 
 /// `value` in at most 4 significant digits: `0`, `0.1234`, `12.35`, `1.235e6`.
-pub(super) fn number(value: f64) -> String {
+pub(crate) fn number(value: f64) -> String {
     if value == 0.0 {
         return "0".into();
     }

@@ -27,7 +27,7 @@
 //!   radius, tips and junctions as dots.
 //! - Drawn at twice the size and averaged down (anti-aliasing).
 
-mod font;
+pub(crate) mod font;
 mod raster;
 mod skeleton;
 

@@ -38,7 +38,31 @@ pub fn read_asc(path: impl AsRef<Path>) -> Result<ElevationGrid, TerrainError> {
         path: path.to_path_buf(),
         source,
     })?;
-    read_asc_bytes(path, &bytes)
+    // GDAL writes an ESRI grid's CRS beside it, as WKT in a `.prj` of the same name.
+    let epsg = std::fs::read_to_string(path.with_extension("prj"))
+        .ok()
+        .and_then(|wkt| epsg_of_wkt(&wkt));
+    Ok(read_asc_bytes(path, &bytes)?.with_epsg(epsg))
+}
+
+/// The EPSG code a WKT string ends with: the last `AUTHORITY["EPSG","code"]` (WKT1,
+/// whose outermost CRS names its authority last) or `ID["EPSG",code]` (WKT2). `None`
+/// for a WKT without one (ESRI's `.prj` files often have none).
+pub(crate) fn epsg_of_wkt(wkt: &str) -> Option<u32> {
+    let compact: String = wkt.chars().filter(|c| !c.is_whitespace()).collect();
+    let upper = compact.to_ascii_uppercase();
+    ["AUTHORITY[\"EPSG\",", "ID[\"EPSG\","]
+        .iter()
+        .filter_map(|key| upper.rfind(key).map(|at| at + key.len()))
+        .max()
+        .and_then(|at| {
+            let code: String = upper[at..]
+                .trim_start_matches('"')
+                .chars()
+                .take_while(char::is_ascii_digit)
+                .collect();
+            code.parse().ok().filter(|&c| c > 0)
+        })
 }
 
 /// [`read_asc`] on a grid held in memory; errors name `path`.

@@ -32,6 +32,8 @@ const MODEL_TYPE_GEOGRAPHIC: u16 = 2;
 /// `GTRasterTypeGeoKey`: 1 is PixelIsArea, 2 PixelIsPoint.
 const RASTER_TYPE_KEY: u16 = 1025;
 const PIXEL_IS_POINT: u16 = 2;
+/// `ProjectedCSTypeGeoKey`: the projected CRS's EPSG code.
+const PROJECTED_CS_TYPE_KEY: u16 = 3072;
 
 /// Reads a single-band GeoTIFF (8-, 16-, 32- or 64-bit integer or 32- or 64-bit float
 /// samples; uncompressed, deflate or LZW; strips or tiles).
@@ -157,6 +159,10 @@ fn read_geotiff_from<R: Read + Seek>(
         ));
     }
     let pixel_is_point = geo_key(RASTER_TYPE_KEY) == Some(PIXEL_IS_POINT);
+    // An EPSG code, not 0 (undefined) or 32767 (user-defined: no code to name).
+    let epsg = geo_key(PROJECTED_CS_TYPE_KEY)
+        .filter(|&c| (1..32767).contains(&c))
+        .map(u32::from);
 
     let f64_tag = |decoder: &mut Decoder<_>, tag| -> Result<Option<Vec<f64>>, TerrainError> {
         decoder
@@ -253,7 +259,7 @@ fn read_geotiff_from<R: Read + Seek>(
             _ => z,
         })
         .collect();
-    ElevationGrid::checked(geometry, values)
+    Ok(ElevationGrid::checked(geometry, values)?.with_epsg(epsg))
 }
 
 /// A colour type in words, for messages.

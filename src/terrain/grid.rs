@@ -102,6 +102,8 @@ pub struct ElevationGrid {
     geometry: GridGeometry,
     /// Row-major from the northern row; NaN where missing.
     values: Vec<f64>,
+    /// The EPSG code of the coordinate reference system, when the file names one.
+    epsg: Option<u32>,
 }
 
 impl ElevationGrid {
@@ -140,7 +142,11 @@ impl ElevationGrid {
                 ),
             });
         }
-        Ok(ElevationGrid { geometry, values })
+        Ok(ElevationGrid {
+            geometry,
+            values,
+            epsg: None,
+        })
     }
 
     /// A grid whose elevation at each sample centre `(x, y)` is `f(x, y)` (`None`: no
@@ -161,6 +167,19 @@ impl ElevationGrid {
             }
         }
         Self::checked(geometry, values)
+    }
+
+    /// The EPSG code of the grid's coordinate reference system, when its file names
+    /// one: a GeoTIFF's `ProjectedCSTypeGeoKey`, or the authority code at the end of
+    /// the WKT in an ESRI ASCII grid's `.prj` beside it. `None` when it is unknown.
+    pub fn epsg(&self) -> Option<u32> {
+        self.epsg
+    }
+
+    /// The grid with its coordinate reference system named by EPSG code `code`.
+    pub fn with_epsg(mut self, code: Option<u32>) -> Self {
+        self.epsg = code;
+        self
     }
 
     /// Where the samples are.

@@ -1,5 +1,6 @@
 //! A picture of a terrain route: the grid hillshaded over a light elevation ramp, the
-//! cost-distance contours from the start, and the route on top.
+//! cost-distance contours from the start, and the route on top; a scale bar, a north
+//! arrow and the contour interval in the corners.
 //!
 //! Drawn pixel by pixel here (no plotting crate: the picture is a raster of the grid,
 //! so one pixel per sample is the natural scale, and a plotting library would add axes
@@ -39,6 +40,12 @@ pub struct MapOptions {
     pub azimuth: f64,
     /// Sun altitude above the horizon, degrees. Default: 45.
     pub altitude: f64,
+    /// The cost's unit, written after the contour interval (`"s"` for walking times).
+    /// Default: `"m"`.
+    pub cost_unit: &'static str,
+    /// The map's unit, written on the scale bar (`"m"`: and `"km"` from 1000 on).
+    /// Default: `"m"`.
+    pub map_unit: &'static str,
 }
 
 impl MapOptions {
@@ -49,7 +56,15 @@ impl MapOptions {
         contours: 10,
         azimuth: 315.0,
         altitude: 45.0,
+        cost_unit: "m",
+        map_unit: "m",
     };
+
+    /// These options with the cost's unit `unit` (see [`MapOptions::cost_unit`]).
+    pub const fn with_cost_unit(mut self, unit: &'static str) -> Self {
+        self.cost_unit = unit;
+        self
+    }
 }
 
 impl Default for MapOptions {
@@ -182,11 +197,164 @@ pub fn render(
             stroke(&mut rgba, w, h, p, p, 3.0 * radius, colour);
         }
     }
+    let map_width = ncols as f64 * g.spacing[0];
+    decorate(
+        &mut rgba,
+        w,
+        h,
+        scale / g.spacing[0],
+        map_width,
+        interval,
+        options,
+    );
     MapImage {
         width,
         height,
         rgba,
         contour_interval: interval,
+    }
+}
+
+const INK: [f64; 3] = [20.0, 20.0, 20.0];
+
+/// The corners: a scale bar (bottom left), a north arrow (top right; the grid is
+/// north up) and the contour interval with a stroke of the contours' colour (bottom
+/// right). `pixels_per_unit` converts map units to pixels.
+fn decorate(
+    rgba: &mut [u8],
+    w: usize,
+    h: usize,
+    pixels_per_unit: f64,
+    map_width: f64,
+    interval: Option<f64>,
+    options: &MapOptions,
+) {
+    // Font pixels of 2 at 512 pixels across, more on bigger pictures.
+    let font = ((w.max(h) as f64 / 400.0).round() as usize).max(2);
+    let margin = 4.0 * font as f64;
+    let text_height = 7.0 * font as f64;
+    // Scale bar: a round length near a fifth of the map.
+    let length = round_down(map_width / 5.0);
+    let bar = length * pixels_per_unit;
+    let (x0, y0) = (margin, h as f64 - margin);
+    let thick = font as f64 * 0.75;
+    for (colour, r) in [(HALO, thick + 1.5), (INK, thick)] {
+        let (a, b) = (DVec2::new(x0, y0), DVec2::new(x0 + bar, y0));
+        stroke(rgba, w, h, a, b, r, colour);
+        for x in [x0, x0 + bar] {
+            let tick = DVec2::new(x, y0 - 2.5 * font as f64);
+            stroke(rgba, w, h, tick, DVec2::new(x, y0), r, colour);
+        }
+    }
+    let label = match options.map_unit {
+        "m" if length >= 1000.0 => format!("{} km", crate::render::font::number(length / 1000.0)),
+        unit => format!("{} {unit}", crate::render::font::number(length)),
+    };
+    text(
+        rgba,
+        w,
+        h,
+        &label,
+        x0,
+        y0 - 4.0 * font as f64 - text_height,
+        font,
+        INK,
+    );
+    // North arrow: a filled triangle with an N under it.
+    let (cx, top) = (w as f64 - margin - 3.0 * font as f64, margin);
+    let tip = DVec2::new(cx, top);
+    let base = top + 8.0 * font as f64;
+    for (colour, grow) in [(HALO, 1.5), (INK, 0.0)] {
+        for i in 0..=(8 * font) {
+            let y = top + i as f64;
+            let half = 3.0 * font as f64 * (y - top) / (base - top) + grow;
+            stroke(
+                rgba,
+                w,
+                h,
+                DVec2::new(cx - half, y),
+                DVec2::new(cx + half, y),
+                0.5,
+                colour,
+            );
+        }
+        stroke(rgba, w, h, tip, tip, grow, colour);
+    }
+    text(
+        rgba,
+        w,
+        h,
+        "N",
+        cx - 2.5 * font as f64,
+        base + 2.0 * font as f64,
+        font,
+        INK,
+    );
+    // The contour interval.
+    if let Some(step) = interval {
+        let label = format!(
+            "every {} {}",
+            crate::render::font::number(step),
+            options.cost_unit
+        );
+        let width = 6.0 * font as f64 * label.chars().count() as f64;
+        let x = w as f64 - margin - width;
+        let y = h as f64 - margin - text_height;
+        text(rgba, w, h, &label, x, y, font, INK);
+        let (a, b) = (
+            DVec2::new(x - 9.0 * font as f64, y + text_height / 2.0),
+            DVec2::new(x - 2.0 * font as f64, y + text_height / 2.0),
+        );
+        stroke(rgba, w, h, a, b, 1.5, HALO);
+        stroke(rgba, w, h, a, b, 0.75, CONTOUR);
+    }
+}
+
+/// 1, 2 or 5 times a power of ten, the nearest at or below `x` (> 0).
+fn round_down(x: f64) -> f64 {
+    let p = 10f64.powf(x.log10().floor());
+    [5.0, 2.0, 1.0]
+        .into_iter()
+        .map(|m| m * p)
+        .find(|&v| v <= x * (1.0 + 1e-12))
+        .unwrap_or(p)
+}
+
+/// Writes `text` with its top-left corner at `(x, y)`, each font pixel `font` pixels,
+/// over a white halo one font pixel wide so that it reads on any ground.
+#[allow(clippy::too_many_arguments)]
+fn text(
+    rgba: &mut [u8],
+    w: usize,
+    h: usize,
+    text: &str,
+    x: f64,
+    y: f64,
+    font: usize,
+    colour: [f64; 3],
+) {
+    let f = font as f64;
+    let cells = |c: char| {
+        let rows = crate::render::font::glyph(c).unwrap_or([0; 7]);
+        (0..7).flat_map(move |r| {
+            (0..5)
+                .filter(move |col| rows[r] & (0x10 >> col) != 0)
+                .map(move |col| (col, r))
+        })
+    };
+    for (ink, grow) in [(HALO, f), (colour, 0.0)] {
+        for (k, c) in text.chars().enumerate() {
+            let left = x + (6 * k) as f64 * f;
+            for (col, r) in cells(c) {
+                let (x0, y0) = (left + col as f64 * f - grow, y + r as f64 * f - grow);
+                let (x1, y1) = (x0 + f + 2.0 * grow, y0 + f + 2.0 * grow);
+                for py in y0.max(0.0) as usize..(y1.max(0.0) as usize).min(h) {
+                    for px in x0.max(0.0) as usize..(x1.max(0.0) as usize).min(w) {
+                        put(rgba, w, px, py, ink, 1.0);
+                    }
+                }
+            }
+        }
     }
 }
 
@@ -349,5 +517,49 @@ mod tests {
         assert_eq!(nice_interval(3.0), 5.0);
         assert_eq!(nice_interval(70.0), 100.0);
         assert_eq!(nice_interval(200.0), 200.0);
+        assert_eq!(round_down(60.0), 50.0);
+        assert_eq!(round_down(1999.0), 1000.0);
+        assert_eq!(round_down(0.3), 0.2);
+    }
+
+    /// Dark pixels (the labels' ink) in a box of the picture.
+    fn ink(map: &MapImage, xs: std::ops::Range<usize>, ys: std::ops::Range<usize>) -> usize {
+        let w = map.width as usize;
+        ys.flat_map(|y| xs.clone().map(move |x| (x, y)))
+            .filter(|&(x, y)| map.rgba[4 * (y * w + x)..][..3].iter().all(|&c| c < 60))
+            .count()
+    }
+
+    #[test]
+    fn the_corners_hold_a_scale_bar_a_north_arrow_and_the_interval() {
+        use crate::terrain::{ElevationGrid, GridGeometry};
+        // 100 × 50 samples 10 m apart: 1000 m across, a 200 m bar (a fifth).
+        let geometry = GridGeometry {
+            ncols: 100,
+            nrows: 50,
+            lower_left: [0.0, 0.0],
+            spacing: [10.0, 10.0],
+        };
+        let grid = ElevationGrid::from_fn(geometry, |x, _| Some(0.01 * x)).unwrap();
+        let terrain = grid.to_mesh().unwrap();
+        let costs: Vec<f64> = terrain.mesh.positions().iter().map(|p| p.x).collect();
+        let options = MapOptions::DEFAULT.with_cost_unit("s");
+        let map = render(&grid, &terrain, Some(&costs), &[], &options);
+        let (w, h) = (map.width as usize, map.height as usize);
+        assert_eq!((w, h), (512, 256));
+        // The bar: 200 m at 0.512 px/m is 102 px, on the row `margin` above the bottom.
+        let font = 2;
+        let (x0, y0) = (4 * font, h - 4 * font);
+        let bar = ink(&map, x0..x0 + 102, y0..y0 + 1);
+        assert!(bar >= 95, "{bar} dark pixels along the bar");
+        assert_eq!(ink(&map, x0 + 110..x0 + 140, y0..y0 + 1), 0);
+        // The arrow and its N, top right; the interval's label, bottom right.
+        assert!(ink(&map, w - 40..w, 0..50) > 40);
+        assert!(ink(&map, w - 150..w, h - 30..h) > 60);
+        assert_eq!(map.contour_interval, Some(100.0));
+        // No field, no interval label; the bar and the arrow stay.
+        let bare = render(&grid, &terrain, None, &[], &options);
+        assert_eq!(ink(&bare, w - 150..w - 40, h - 30..h), 0);
+        assert!(ink(&bare, x0..x0 + 102, y0..y0 + 1) >= 95);
     }
 }
