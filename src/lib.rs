@@ -92,6 +92,7 @@ pub use error::{Error, PointRole, SizeLimit, ValueRole};
 pub use field::{GeodesicField, Stats};
 pub use geotracks_metrics::{
     BuiltinMetric, Density, Euclidean, FacePoint, Metric, MetricError, Reversed, Tensor,
+    TensorField,
 };
 pub use options::{Method, Options, Stop};
 pub use propagate::{distance_field, Solver, Workspace};

@@ -146,6 +146,22 @@ pub fn read_tensor(path: &Path, mesh: &TriMesh) -> CliResult<geotracks::Tensor> 
     })
 }
 
+/// One world-space tensor `xx xy xz yy yz zz` per vertex.
+pub fn read_tensor_field(path: &Path, mesh: &TriMesh) -> CliResult<geotracks::TensorField> {
+    let rows = read_rows(path, 6)?;
+    let values: Vec<[f64; 6]> = rows
+        .iter()
+        .map(|(_, r)| [r[0], r[1], r[2], r[3], r[4], r[5]])
+        .collect();
+    geotracks::TensorField::from_world(mesh, &values).map_err(|e| {
+        let line = match e {
+            geotracks::MetricError::VertexTensor { vertex, .. } => rows[vertex].0,
+            _ => 0,
+        };
+        input_error(path, line, e.to_string()).into()
+    })
+}
+
 /// Vertex ids, separated by white space or commas (`#` starts a comment), each below
 /// `vertex_count`.
 pub fn read_vertex_ids(path: &Path, vertex_count: usize) -> CliResult<Vec<u32>> {

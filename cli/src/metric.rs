@@ -1,8 +1,8 @@
 //! The options every propagating command shares: Steiner points, engine, and the metric
-//! (Euclidean, or a density or tensor file), read into one [`BuiltinMetric`] (the
-//! library's enum of the three).
+//! (Euclidean, or a density, tensor or tensor-field file), read into one
+//! [`BuiltinMetric`] (the library's enum of them).
 
-use crate::inputs::{read_density, read_tensor};
+use crate::inputs::{read_density, read_tensor, read_tensor_field};
 use crate::CliResult;
 use geotracks::mesh::TriMesh;
 use geotracks::{BuiltinMetric, Euclidean, Method, Options};
@@ -23,20 +23,24 @@ pub struct MetricArgs {
     #[arg(long, default_value = "wave")]
     pub method: Method,
     /// Per-vertex density file: one positive number per vertex.
-    #[arg(long, conflicts_with = "tensor")]
+    #[arg(long, conflicts_with_all = ["tensor", "tensor_field"])]
     pub density: Option<PathBuf>,
     /// Per-face tensor file: one line `xx xy xz yy yz zz` per face of the mesh file.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "tensor_field")]
     pub tensor: Option<PathBuf>,
+    /// Per-vertex tensor file: one line `xx xy xz yy yz zz` per vertex, interpolated
+    /// linearly across each face (a smooth Riemannian metric; runs tracks).
+    #[arg(long)]
+    pub tensor_field: Option<PathBuf>,
 }
 
 impl MetricArgs {
     /// The k to run with: as given, else 2 for the wavefront engine, 5 where the
     /// Steiner graph runs (a density, or `--method tracks|graph`).
     pub fn k(&self) -> f64 {
-        // A density is the one metric here that is not face-flat.
-        self.k
-            .unwrap_or(self.method.default_k(self.density.is_none()))
+        // A density and a tensor field are the metrics here that are not face-flat.
+        let face_flat = self.density.is_none() && self.tensor_field.is_none();
+        self.k.unwrap_or(self.method.default_k(face_flat))
     }
 
     /// The run options.
@@ -47,7 +51,7 @@ impl MetricArgs {
     /// The files the metric reads (none, or its density or tensor file): inputs that no
     /// output may overwrite.
     pub fn files(&self) -> impl Iterator<Item = &std::path::Path> {
-        [&self.density, &self.tensor]
+        [&self.density, &self.tensor, &self.tensor_field]
             .into_iter()
             .flatten()
             .map(PathBuf::as_path)
@@ -55,10 +59,11 @@ impl MetricArgs {
 
     /// Reads the metric's file, if any.
     pub fn metric(&self, mesh: &TriMesh) -> CliResult<BuiltinMetric> {
-        Ok(match (&self.density, &self.tensor) {
-            (Some(path), _) => BuiltinMetric::Density(read_density(path, mesh)?),
-            (None, Some(path)) => BuiltinMetric::Tensor(read_tensor(path, mesh)?),
-            (None, None) => BuiltinMetric::Euclidean(Euclidean),
+        Ok(match (&self.density, &self.tensor, &self.tensor_field) {
+            (Some(path), _, _) => BuiltinMetric::Density(read_density(path, mesh)?),
+            (None, Some(path), _) => BuiltinMetric::Tensor(read_tensor(path, mesh)?),
+            (None, None, Some(path)) => BuiltinMetric::TensorField(read_tensor_field(path, mesh)?),
+            (None, None, None) => BuiltinMetric::Euclidean(Euclidean),
         })
     }
 }

@@ -192,6 +192,28 @@ fn density_and_tensor_files() {
     let d = read_values(&out_path);
     assert!((d[1] - 2.0).abs() < 1e-12, "{d:?}"); // along x: sqrt(4)
     assert!((d[3] - 1.0).abs() < 1e-12, "{d:?}"); // along y: sqrt(1)
+
+    // Per vertex: 1 at the left edge, 9 along x at the right (vertices 1 and 2).
+    let field = dir.path().join("f.txt");
+    std::fs::write(
+        &field,
+        "1 0 0 1 0 1\n9 0 0 1 0 1\n9 0 0 1 0 1\n1 0 0 1 0 1\n",
+    )
+    .unwrap();
+    geotracks_ok(&[
+        "distance",
+        mesh,
+        "--source",
+        "0",
+        "--tensor-field",
+        field.to_str().unwrap(),
+        "-o",
+        out_path.to_str().unwrap(),
+    ]);
+    let d = read_values(&out_path);
+    // Along the bottom edge: ∫₀¹ sqrt(1 + 8t) dt = 26 / 12.
+    assert!((d[1] - 26.0 / 12.0).abs() < 1e-12, "{d:?}");
+    assert!((d[3] - 1.0).abs() < 1e-12, "{d:?}"); // along the left edge: 1
 }
 
 #[test]
@@ -238,7 +260,11 @@ fn bad_input_fails_cleanly() {
     let word = write("word.txt", "1\n1\nabc\n1\n");
     let indefinite = write("ind.txt", "1 0 0 1 0 1\n1 5 0 1 0 1\n");
     let one = write("one.txt", "1 0 0 1 0 1\n");
-    let options: [(&[&str], &str); 8] = [
+    let field = write(
+        "field.txt",
+        "1 0 0 1 0 1\n1 0 0 1 0 1\n1 0 0 -1 0 1\n1 0 0 1 0 1\n",
+    );
+    let options: [(&[&str], &str); 11] = [
         (&["--source", "9"], "source vertex 9 is out of range"),
         (&["--source", "0", "--k", "0"], "k = 0"),
         (
@@ -250,6 +276,15 @@ fn bad_input_fails_cleanly() {
         (&["--source", "0", "--density", &word], "word.txt:3"),
         (&["--source", "0", "--tensor", &indefinite], "ind.txt:2"),
         (&["--source", "0", "--tensor", &one], "expected 2 tensors"),
+        (&["--source", "0", "--tensor-field", &field], "field.txt:3"),
+        (
+            &["--source", "0", "--tensor-field", &one],
+            "expected 4 values (one per vertex)",
+        ),
+        (
+            &["--source", "0", "--tensor", &one, "--tensor-field", &one],
+            "cannot be used with",
+        ),
     ];
     for (extra, expected) in options {
         let mut args = vec!["distance", mesh];

@@ -1,10 +1,10 @@
 //! [`BuiltinMetric`], the built-in metrics as one type, and
 //! [`metric_enum!`](crate::metric_enum), which makes such a type of any metrics.
 
-use crate::{Density, Euclidean, Tensor};
+use crate::{Density, Euclidean, Tensor, TensorField};
 
 /// One of the built-in metrics, chosen at run time (a command-line option, a Python
-/// argument). One type for the three, so a caller builds one solver; the engine is
+/// argument). One type for them all, so a caller builds one solver; the engine is
 /// monomorphised on it, and the `match` ([`metric_enum!`](crate::metric_enum)) takes the
 /// same arm at every call.
 ///
@@ -20,12 +20,15 @@ pub enum BuiltinMetric {
     Density(Density),
     /// A tensor per face.
     Tensor(Tensor),
+    /// A tensor per vertex, linear across faces.
+    TensorField(TensorField),
 }
 
 crate::metric_enum!(BuiltinMetric {
     Euclidean,
     Density,
-    Tensor
+    Tensor,
+    TensorField
 });
 
 /// Implements [`Metric`](crate::Metric) for an enum whose variants each hold one metric

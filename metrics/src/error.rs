@@ -45,6 +45,24 @@ pub enum MetricError {
         /// Restricted tensor, vv entry.
         m22: f64,
     },
+    /// A vertex's tensor ([`crate::TensorField`]), restricted to the plane of a face
+    /// around the vertex, is not finite and symmetric positive-definite. Fix: give a
+    /// matrix whose restriction to every face of the vertex has positive eigenvalues
+    /// (a 2×2 map-frame tensor with a zero z row and column works on every face that
+    /// is not vertical).
+    #[error("tensor of vertex {vertex} is not finite and positive-definite in the plane of face {face} (restricted to [{m11}, {m12}; {m12}, {m22}])")]
+    VertexTensor {
+        /// The vertex index.
+        vertex: usize,
+        /// The face whose plane it was restricted to.
+        face: usize,
+        /// Restricted tensor, uu entry.
+        m11: f64,
+        /// Restricted tensor, uv entry.
+        m12: f64,
+        /// Restricted tensor, vv entry.
+        m22: f64,
+    },
     /// A principal direction is zero, not finite, or perpendicular to its face's plane.
     #[error("principal direction of face {face} is zero, not finite or normal to the face")]
     DegenerateDirection {

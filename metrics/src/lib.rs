@@ -13,6 +13,8 @@
 //!   exact integral, `|b − a| · (ρ(a) + ρ(b)) / 2`.
 //! - [`Tensor`]: a symmetric positive-definite 2×2 tensor per face, in the face's plane;
 //!   a segment costs `sqrt(vᵀ M v)` with `v = b − a`.
+//! - [`TensorField`]: an SPD tensor per vertex, linear across each face (a smooth
+//!   Riemannian metric); a segment costs the exact integral of `sqrt(vᵀ M v)` along it.
 //!
 //! Euclidean and Tensor are norms on each face (the triangle inequality holds inside a
 //! face), so the track pruning of geotracks is exact for them. Density is not a norm:
@@ -49,12 +51,14 @@ mod density;
 mod error;
 mod euclidean;
 mod tensor;
+mod tensor_field;
 
 pub use builtin::BuiltinMetric;
 pub use density::Density;
 pub use error::MetricError;
 pub use euclidean::Euclidean;
 pub use tensor::Tensor;
+pub use tensor_field::TensorField;
 
 /// A point on the closure of one face, as the engine hands it to a [`Metric`].
 #[derive(Clone, Copy, Debug, PartialEq)]

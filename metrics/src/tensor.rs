@@ -70,14 +70,7 @@ impl Tensor {
             .iter()
             .enumerate()
             .map(|(face, w)| {
-                let [u, v] = mesh.face_axes(face as u32);
-                let m = [[w[0], w[1], w[2]], [w[1], w[3], w[4]], [w[2], w[4], w[5]]];
-                let quad = |a: [f64; 3], b: [f64; 3]| {
-                    (0..3)
-                        .map(|i| a[i] * (0..3).map(|j| m[i][j] * b[j]).sum::<f64>())
-                        .sum::<f64>()
-                };
-                let r = [quad(u, u), quad(u, v), quad(v, v)];
+                let r = restrict(w, mesh.face_axes(face as u32));
                 check_spd(face, r).map(|()| r)
             })
             .collect::<Result<_, _>>()?;
@@ -149,6 +142,18 @@ impl Tensor {
     }
 }
 
+/// The world matrix `w` (`[xx, xy, xz, yy, yz, zz]`) restricted to the plane of the
+/// axes `[u, v]`: `[uᵀWu, uᵀWv, vᵀWv]`.
+pub(crate) fn restrict(w: &[f64; 6], [u, v]: [[f64; 3]; 2]) -> [f64; 3] {
+    let m = [[w[0], w[1], w[2]], [w[1], w[3], w[4]], [w[2], w[4], w[5]]];
+    let quad = |a: [f64; 3], b: [f64; 3]| {
+        (0..3)
+            .map(|i| a[i] * (0..3).map(|j| m[i][j] * b[j]).sum::<f64>())
+            .sum::<f64>()
+    };
+    [quad(u, u), quad(u, v), quad(v, v)]
+}
+
 fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
@@ -166,7 +171,7 @@ fn check_count<G: FaceGeometry + ?Sized>(mesh: &G, found: usize) -> Result<(), M
     }
 }
 
-fn check_spd(face: usize, [m11, m12, m22]: [f64; 3]) -> Result<(), MetricError> {
+pub(crate) fn check_spd(face: usize, [m11, m12, m22]: [f64; 3]) -> Result<(), MetricError> {
     if !(m11.is_finite() && m12.is_finite() && m22.is_finite()) {
         return Err(MetricError::NotFinite { face });
     }

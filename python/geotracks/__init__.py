@@ -1,7 +1,8 @@
 """Geodesic distances, shortest paths and distance matrices on triangle meshes.
 
 Any topology (non-manifold edges, medial axes with free edges), under the Euclidean
-metric, a density per vertex (:class:`Density`) or a tensor per face (:class:`Tensor`);
+metric, a density per vertex (:class:`Density`), a tensor per face (:class:`Tensor`) or per
+vertex (:class:`TensorField`);
 numpy arrays in and out. Build a :class:`MeshSolver` once per mesh and ask it many
 questions; the work runs in Rust with the GIL released, matrices on all cores.
 
@@ -36,6 +37,7 @@ __all__ = [
     "Route",
     "Skeleton",
     "Tensor",
+    "TensorField",
     "read_mesh",
     "skeleton",
     "terrain_route",
@@ -105,6 +107,15 @@ class Density:
         return "density", self.rho.reshape(-1, 1)
 
 
+def _symmetric_upper(m, name: str, rows: str) -> np.ndarray:
+    """``(k, 3, 3)`` symmetric matrices as their ``(k, 6)`` upper entries."""
+    m = _array(m, name, (rows, 3, 3))
+    if not np.allclose(m, np.swapaxes(m, 1, 2), rtol=1e-12, atol=0.0, equal_nan=True):
+        raise GeotracksError(f"{name}: each matrix must be symmetric")
+    upper = np.stack([m[:, 0, 0], m[:, 0, 1], m[:, 0, 2], m[:, 1, 1], m[:, 1, 2], m[:, 2, 2]], axis=1)
+    return np.ascontiguousarray(upper)
+
+
 class Tensor:
     """A symmetric positive-definite 3 × 3 matrix per face, in world coordinates,
     restricted to each face's plane: a segment ``v`` inside a face costs
@@ -114,17 +125,27 @@ class Tensor:
     """
 
     def __init__(self, per_face):
-        m = _array(per_face, "per_face", ("m", 3, 3))
-        if not np.allclose(m, np.swapaxes(m, 1, 2), rtol=1e-12, atol=0.0, equal_nan=True):
-            raise GeotracksError("per_face: each matrix must be symmetric")
-        self.per_face = m
+        self.per_face = _symmetric_upper(per_face, "per_face", "m")
 
     def _data(self) -> tuple:
-        m = self.per_face
-        upper = np.stack(
-            [m[:, 0, 0], m[:, 0, 1], m[:, 0, 2], m[:, 1, 1], m[:, 1, 2], m[:, 2, 2]], axis=1
-        )
-        return "tensor", np.ascontiguousarray(upper)
+        return "tensor", self.per_face
+
+
+class TensorField:
+    """A symmetric positive-definite 3 × 3 matrix per vertex, in world coordinates,
+    interpolated linearly across each face (in each face's plane): a smooth Riemannian
+    metric. A segment costs the exact integral of ``sqrt(vᵀ M v)`` along it; a field
+    that is constant on a face costs what :class:`Tensor` does. Runs the ``"tracks"``
+    engine.
+
+    :param per_vertex: shape ``(n, 3, 3)``, symmetric, one matrix per vertex.
+    """
+
+    def __init__(self, per_vertex):
+        self.per_vertex = _symmetric_upper(per_vertex, "per_vertex", "n")
+
+    def _data(self) -> tuple:
+        return "tensor_field", self.per_vertex
 
 
 class Path(NamedTuple):
@@ -191,7 +212,8 @@ class MeshSolver:
         one source; with a density it runs ``"tracks"``), ``"tracks"`` (the
         track-pruned Steiner graph), ``"graph"`` (the complete Steiner graph) or
         ``"dijkstra"`` (mesh edges only).
-    :param metric: ``None`` (Euclidean), a :class:`Density` or a :class:`Tensor`.
+    :param metric: ``None`` (Euclidean), a :class:`Density`, a :class:`Tensor` or a
+        :class:`TensorField`.
     :raises GeotracksError: for a mesh the library refuses (NaN or huge coordinates, a
         face naming a missing vertex, no usable face) or a bad metric.
     """
@@ -201,10 +223,13 @@ class MeshSolver:
         F = _array(F, "F", ("m", 3), integer=True)
         if metric is None:
             kind, data = "euclidean", None
-        elif isinstance(metric, (Density, Tensor)):
+        elif isinstance(metric, (Density, Tensor, TensorField)):
             kind, data = metric._data()
         else:
-            raise TypeError(f"metric must be None, geotracks.Density or geotracks.Tensor; got {type(metric).__name__}")
+            raise TypeError(
+                "metric must be None, geotracks.Density, geotracks.Tensor or geotracks.TensorField; "
+                f"got {type(metric).__name__}"
+            )
         self._core = _Core(V, F, None if k is None else float(k), str(method), kind, data)
 
     @property

@@ -10,6 +10,7 @@ use geotracks::mesh::io::read_mesh as read_mesh_file;
 use geotracks::mesh::TriMesh;
 use geotracks::{
     BuiltinMetric, Density, Euclidean, Method, Options, Solver, Source, Stop, SurfacePoint, Tensor,
+    TensorField,
 };
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
@@ -108,8 +109,8 @@ struct MeshSolverCore {
 #[pymethods]
 impl MeshSolverCore {
     /// `V` (n, 3) float64, `F` (m, 3) int64; `metric`: "euclidean", "density" (with
-    /// `data` one value per vertex) or "tensor" (with `data` (m, 6): xx, xy, xz, yy, yz,
-    /// zz per face).
+    /// `data` one value per vertex), "tensor" (with `data` (m, 6): xx, xy, xz, yy, yz,
+    /// zz per face) or "tensor_field" (`data` (n, 6), per vertex).
     #[new]
     #[pyo3(signature = (vertices, faces, k, method, metric, data=None))]
     fn new(
@@ -129,18 +130,26 @@ impl MeshSolverCore {
                 let rho = data.as_array().iter().copied().collect();
                 BuiltinMetric::Density(Density::new(&mesh, rho).map_err(error)?)
             }
-            ("tensor", Some(data)) => {
+            ("tensor" | "tensor_field", Some(data)) => {
                 let t = data.as_array();
                 let world: Vec<[f64; 6]> = (0..t.nrows())
                     .map(|i| std::array::from_fn(|c| t[[i, c]]))
                     .collect();
-                BuiltinMetric::Tensor(Tensor::from_world(&mesh, &world).map_err(error)?)
+                if metric == "tensor" {
+                    BuiltinMetric::Tensor(Tensor::from_world(&mesh, &world).map_err(error)?)
+                } else {
+                    let field = TensorField::from_world(&mesh, &world).map_err(error)?;
+                    BuiltinMetric::TensorField(field)
+                }
             }
             (other, _) => return Err(error(format!("unknown metric '{other}'"))),
         };
-        // As on the command line: a density is the one built-in metric that is not
-        // face-flat.
-        let face_flat = !matches!(metric, BuiltinMetric::Density(_));
+        // As on the command line: a density and a tensor field are the built-in
+        // metrics that are not face-flat.
+        let face_flat = !matches!(
+            metric,
+            BuiltinMetric::Density(_) | BuiltinMetric::TensorField(_)
+        );
         let k = k.unwrap_or(method.default_k(face_flat));
         let options = Options::DEFAULT.with_k(k).with_method(method);
         let cell =
