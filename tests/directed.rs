@@ -90,25 +90,6 @@ fn random_randers(mesh: &TriMesh, seed: u64, strength: f64) -> Randers {
     Randers::new(mesh, tensor, strength, |f| winds[f as usize])
 }
 
-/// Largest relative difference between the tracks engine and the complete graph.
-fn deviation<M: Metric>(mesh: &TriMesh, metric: &M, sources: &[u32], k: f64) -> f64 {
-    let options = Options::DEFAULT.with_k(k);
-    let graph = distance_field(mesh, metric, sources, &options.with_method(Method::Graph)).unwrap();
-    let tracks =
-        distance_field(mesh, metric, sources, &options.with_method(Method::Tracks)).unwrap();
-    assert_eq!(tracks.stats().method, Method::Tracks);
-    graph
-        .node_distances()
-        .iter()
-        .zip(tracks.node_distances())
-        .map(|(g, t)| match (g.is_finite(), t.is_finite()) {
-            (true, _) => (g - t).abs() / g.max(f64::MIN_POSITIVE),
-            (false, true) => f64::INFINITY,
-            (false, false) => 0.0,
-        })
-        .fold(0.0, f64::max)
-}
-
 fn pick(mesh: &TriMesh, picks: &[u32]) -> Vec<u32> {
     picks
         .iter()
@@ -125,7 +106,7 @@ proptest! {
     fn tracks_equal_the_graph_on_perturbed_grids(seed in any::<u64>(), n in 2usize..8, k in 1u32..7, strength in 0.0f64..0.9, picks in prop::collection::vec(any::<u32>(), 1..3)) {
         let mesh = random_mesh(seed, n).unwrap();
         let metric = random_randers(&mesh, seed ^ 0x5eed, strength);
-        let max = deviation(&mesh, &metric, &pick(&mesh, &picks), k as f64);
+        let max = common::tracks_vs_graph(&mesh, &metric, &pick(&mesh, &picks), k as f64);
         prop_assert!(max <= 1e-9, "relative deviation {}", max);
     }
 
@@ -133,7 +114,7 @@ proptest! {
     fn tracks_equal_the_graph_on_spheres_and_books(seed in any::<u64>(), book in any::<bool>(), k in 1u32..6, strength in 0.0f64..0.9, picks in prop::collection::vec(any::<u32>(), 1..3)) {
         let mesh = if book { random_book(seed, 4, 4) } else { sphere(1, 0.3, seed) };
         let metric = random_randers(&mesh, seed ^ 0xb00c, strength);
-        let max = deviation(&mesh, &metric, &pick(&mesh, &picks), k as f64);
+        let max = common::tracks_vs_graph(&mesh, &metric, &pick(&mesh, &picks), k as f64);
         prop_assert!(max <= 1e-9, "relative deviation {}", max);
     }
 
@@ -202,6 +183,26 @@ fn on_a_windy_plane_the_field_approaches_the_norm_and_is_directed() {
     assert!((west - 0.5 * 0.4).abs() < 1e-12, "{west}");
 }
 
+/// The traced and the straightened path from `s` to `t`, after checking that the
+/// traced path's cost, segment by segment from the source, is the field's value at `t`.
+fn traced_and_straightened<M: Metric>(
+    solver: &Solver<'_, M>,
+    s: SurfacePoint,
+    t: SurfacePoint,
+) -> (geotracks::GeodesicPath, geotracks::GeodesicPath) {
+    let field = solver.solve_from(&[Source::new(s)], &Stop::NONE).unwrap();
+    let query = solver.query(&field).unwrap();
+    let traced = query.trace(t).unwrap();
+    let at_t = query.distance_at(t).unwrap();
+    assert!(
+        (traced.length - at_t).abs() <= 1e-9 * at_t,
+        "{} vs {}",
+        traced.length,
+        at_t
+    );
+    (traced, query.path(t).unwrap())
+}
+
 #[test]
 fn paths_are_measured_and_straightened_the_way_they_are_travelled() {
     let wind = [0.5, -0.3];
@@ -213,18 +214,7 @@ fn paths_are_measured_and_straightened_the_way_they_are_travelled() {
             common::random_face_point(&mesh, &mut rng),
             common::random_face_point(&mesh, &mut rng),
         );
-        let field = solver.solve_from(&[Source::new(s)], &Stop::NONE).unwrap();
-        let query = solver.query(&field).unwrap();
-        let traced = query.trace(t).unwrap();
-        // The traced path's cost, segment by segment from the source, is the field's.
-        let at_t = query.distance_at(t).unwrap();
-        assert!(
-            (traced.length - at_t).abs() <= 1e-9 * at_t,
-            "{} vs {}",
-            traced.length,
-            at_t
-        );
-        let path = query.path(t).unwrap();
+        let (traced, path) = traced_and_straightened(&solver, s, t);
         let exact = randers_norm(t.position(&mesh) - s.position(&mesh), wind);
         // Straightened, it is the straight segment from s to t: its cost that way.
         assert!(
@@ -280,17 +270,7 @@ fn a_path_bends_where_travelling_it_costs_least() {
             }
         }
         let exact = through(0.5 * (lo + hi));
-        let field = solver.solve_from(&[Source::new(s)], &Stop::NONE).unwrap();
-        let query = solver.query(&field).unwrap();
-        let traced = query.trace(t).unwrap();
-        let at_t = query.distance_at(t).unwrap();
-        assert!(
-            (traced.length - at_t).abs() <= 1e-9 * at_t,
-            "{} vs {}",
-            traced.length,
-            at_t
-        );
-        let path = query.path(t).unwrap();
+        let (_, path) = traced_and_straightened(&solver, s, t);
         assert!(
             path.length >= exact - 1e-9,
             "{} below the exact {}",

@@ -6,7 +6,6 @@
 mod common;
 
 use common::{random_mesh, sphere, Rng};
-use geotracks::mesh::TriMesh;
 use geotracks::{
     distance_field, FacePoint, Method, Metric, Options, Solver, Source, SurfacePoint, Tensor,
     TensorField,
@@ -26,24 +25,6 @@ fn random_world(rng: &mut Rng, spread: f64) -> [f64; 6] {
         m(1, 2),
         1.0 + m(2, 2),
     ]
-}
-
-fn tracks_vs_graph<M: Metric>(mesh: &TriMesh, metric: &M, sources: &[u32], k: f64) -> f64 {
-    let options = Options::DEFAULT.with_k(k);
-    let graph = distance_field(mesh, metric, sources, &options.with_method(Method::Graph)).unwrap();
-    let tracks =
-        distance_field(mesh, metric, sources, &options.with_method(Method::Tracks)).unwrap();
-    assert_eq!(tracks.stats().method, Method::Tracks);
-    graph
-        .node_distances()
-        .iter()
-        .zip(tracks.node_distances())
-        .map(|(g, t)| match (g.is_finite(), t.is_finite()) {
-            (true, _) => (g - t).abs() / g.max(f64::MIN_POSITIVE),
-            (false, true) => f64::INFINITY,
-            (false, false) => 0.0,
-        })
-        .fold(0.0, f64::max)
 }
 
 #[test]
@@ -92,7 +73,7 @@ proptest! {
         // Fins and a far component can make a vertex's restriction singular: skip.
         let Ok(field) = TensorField::from_world(&mesh, &per_vertex) else { return Ok(()) };
         let sources: Vec<u32> = picks.iter().map(|p| p % mesh.vertex_count() as u32).collect();
-        let max = tracks_vs_graph(&mesh, &field, &sources, k as f64);
+        let max = common::tracks_vs_graph(&mesh, &field, &sources, k as f64);
         prop_assert!(max <= 1e-9, "relative deviation {}", max);
     }
 }

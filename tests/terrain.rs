@@ -7,7 +7,6 @@ mod common;
 
 use common::{random_mesh, Rng, DIJKSTRA, GRAPH, TRACKS};
 use geotracks::glam::DVec3;
-use geotracks::mesh::TriMesh;
 use geotracks::terrain::{
     incline_tensor, read_asc, read_geotiff, read_grid, slope_density, steeper_than, DirectedCost,
     DirectedModel, ElevationGrid, GridGeometry, Impassable, TerrainCost, TerrainError, TerrainMesh,
@@ -1018,23 +1017,6 @@ fn a_closed_wall_makes_the_target_unreachable() {
     }
 }
 
-/// Largest relative difference between the tracks engine and the graph, and whether
-/// both reach the same nodes.
-fn tracks_vs_graph<M: Metric>(mesh: &TriMesh, metric: &M, sources: &[u32], k: f64) -> f64 {
-    let options = TRACKS.with_k(k);
-    let graph = distance_field(mesh, metric, sources, &options.with_method(Method::Graph)).unwrap();
-    let tracks = distance_field(mesh, metric, sources, &options).unwrap();
-    let mut max: f64 = 0.0;
-    for (g, t) in graph.node_distances().iter().zip(tracks.node_distances()) {
-        assert!(!g.is_nan() && !t.is_nan());
-        assert_eq!(g.is_finite(), t.is_finite(), "reached by one engine only");
-        if g.is_finite() {
-            max = max.max((g - t).abs() / g.max(f64::MIN_POSITIVE));
-        }
-    }
-    max
-}
-
 proptest! {
     #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
 
@@ -1054,7 +1036,7 @@ proptest! {
         let cost = ["uphill:3", "naismith", "rwalk", "tobler", "tobler:offpath"][which];
         let metric = cost.parse::<TerrainCost>().unwrap().metric(&mesh).unwrap();
         let sources: Vec<u32> = picks.iter().map(|s| s % mesh.vertex_count() as u32).collect();
-        let max = tracks_vs_graph(&mesh, &metric, &sources, k as f64);
+        let max = common::tracks_vs_graph(&mesh, &metric, &sources, k as f64);
         prop_assert!(max <= 1e-9, "{}: relative deviation {}", cost, max);
     }
 
@@ -1065,19 +1047,19 @@ proptest! {
         let blocked: Vec<bool> = (0..mesh.face_count()).map(|_| rng.next() < p).collect();
         let sources: Vec<u32> = picks.iter().map(|s| s % mesh.vertex_count() as u32).collect();
         let walls = Impassable::new(&mesh, Euclidean, blocked.clone()).unwrap();
-        let max = tracks_vs_graph(&mesh, &walls, &sources, k as f64);
+        let max = common::tracks_vs_graph(&mesh, &walls, &sources, k as f64);
         prop_assert!(max <= 1e-9, "euclidean walls: relative deviation {}", max);
         let principal: Vec<(f64, f64, [f64; 3])> = (0..mesh.face_count())
             .map(|_| (0.2 + 4.0 * rng.next(), 0.2 + rng.next(), [rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5]))
             .collect();
         if let Ok(tensor) = Tensor::from_principal(&mesh, &principal) {
             let walls = Impassable::new(&mesh, tensor, blocked.clone()).unwrap();
-            let max = tracks_vs_graph(&mesh, &walls, &sources, k as f64);
+            let max = common::tracks_vs_graph(&mesh, &walls, &sources, k as f64);
             prop_assert!(max <= 1e-9, "tensor walls: relative deviation {}", max);
         }
         // A constant density is a norm on every face: exact too.
         let walls = Impassable::new(&mesh, Density::constant(&mesh, 1.7).unwrap(), blocked).unwrap();
-        let max = tracks_vs_graph(&mesh, &walls, &sources, k as f64);
+        let max = common::tracks_vs_graph(&mesh, &walls, &sources, k as f64);
         prop_assert!(max <= 1e-9, "density walls: relative deviation {}", max);
     }
 

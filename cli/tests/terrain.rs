@@ -441,37 +441,39 @@ fn routes_carry_the_grids_crs_and_tidy_coordinates() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("utm.tif");
     let data: Vec<f32> = (0..400).map(|i| 100.0 + 0.3 * (i % 20) as f32).collect();
-    let mut keys = vec![
-        1u16, 1, 0, 3, 1024, 0, 1, 1, 1025, 0, 1, 1, 3072, 0, 1, 32633,
-    ];
-    write_tiff::<Gray32Float>(
-        &path,
-        (20, 20),
-        &data,
-        Some([10.0, 10.0, 0.0]),
-        Some([0.0, 0.0, 0.0, 504900.1, 4600200.7, 0.0]),
-        Some(&keys),
-        None,
-    );
+    // A GeoKey directory naming the projected CRS `code`.
+    let write_utm = |code: u16| {
+        let keys = [
+            1u16, 1, 0, 3, 1024, 0, 1, 1, 1025, 0, 1, 1, 3072, 0, 1, code,
+        ];
+        write_tiff::<Gray32Float>(
+            &path,
+            (20, 20),
+            &data,
+            Some([10.0, 10.0, 0.0]),
+            Some([0.0, 0.0, 0.0, 504900.1, 4600200.7, 0.0]),
+            Some(&keys),
+            None,
+        );
+    };
     let (route, contours) = (dir.path().join("r.geojson"), dir.path().join("c.geojson"));
-    // Sample centres: x = 504905.1 + 10 i, y = 4600195.7 − 10 j.
-    geotracks_ok(&[
-        "terrain",
+    let (tif, r, c) = (
         path.to_str().unwrap(),
-        "--from",
-        "504905.1,4600195.7",
-        "--to",
-        "505085.1,4600025.7",
-        "--cost",
-        "tobler",
-        "-o",
         route.to_str().unwrap(),
-        "--contours",
         contours.to_str().unwrap(),
-    ]);
+    );
+    // Sample centres: x = 504905.1 + 10 i, y = 4600195.7 − 10 j.
+    let ends = ["--from", "504905.1,4600195.7", "--to", "505085.1,4600025.7"];
+    let read = |file: &Path| -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(file).unwrap()).unwrap()
+    };
+    write_utm(32633);
+    let mut args = vec!["terrain", tif];
+    args.extend(ends);
+    args.extend(["--cost", "tobler", "-o", r, "--contours", c]);
+    geotracks_ok(&args);
     for file in [&route, &contours] {
-        let text = std::fs::read_to_string(file).unwrap();
-        let json: serde_json::Value = serde_json::from_str(&text).unwrap();
+        let json = read(file);
         assert_eq!(
             json["crs"]["properties"]["name"],
             "urn:ogc:def:crs:EPSG::32633",
@@ -488,35 +490,16 @@ fn routes_carry_the_grids_crs_and_tidy_coordinates() {
             }
         }
     }
-    let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&route).unwrap()).unwrap();
-    let first = &json["features"][0]["geometry"]["coordinates"][0];
+    let first = &read(&route)["features"][0]["geometry"]["coordinates"][0];
     assert_eq!(first[0].to_string(), "504905.1");
     assert_eq!(first[1].to_string(), "4600195.7");
     // Without a code (user-defined CRS), no crs member.
-    keys[15] = 32767;
-    write_tiff::<Gray32Float>(
-        &path,
-        (20, 20),
-        &data,
-        Some([10.0, 10.0, 0.0]),
-        Some([0.0, 0.0, 0.0, 504900.1, 4600200.7, 0.0]),
-        Some(&keys),
-        None,
-    );
-    geotracks_ok(&[
-        "terrain",
-        path.to_str().unwrap(),
-        "--from",
-        "504905.1,4600195.7",
-        "--to",
-        "505085.1,4600025.7",
-        "-o",
-        route.to_str().unwrap(),
-    ]);
-    let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&route).unwrap()).unwrap();
-    assert!(json.get("crs").is_none());
+    write_utm(32767);
+    let mut args = vec!["terrain", tif];
+    args.extend(ends);
+    args.extend(["-o", r]);
+    geotracks_ok(&args);
+    assert!(read(&route).get("crs").is_none());
 }
 
 #[test]

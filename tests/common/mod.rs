@@ -2,7 +2,7 @@
 #![allow(dead_code)]
 
 use geotracks::mesh::TriMesh;
-use geotracks::{Method, Options};
+use geotracks::{distance_field, Method, Metric, Options};
 
 /// The naive Steiner graph, the oracle.
 pub const GRAPH: Options = Options::DEFAULT.with_method(Method::Graph).with_k(5.0);
@@ -800,4 +800,23 @@ pub fn torus(around: usize, across: usize, big: f64, small: f64) -> TriMesh {
     let id = |i: usize, j: usize| ((i % around) * across + j % across) as u32;
     let triangles = split_quads(around, across, id);
     TriMesh::new(positions, triangles).unwrap()
+}
+
+/// The largest relative difference between the tracks engine and the complete Steiner
+/// graph (the oracle) over every node, at mean k `k`, from `sources`; both engines must
+/// reach the same nodes.
+pub fn tracks_vs_graph<M: Metric>(mesh: &TriMesh, metric: &M, sources: &[u32], k: f64) -> f64 {
+    let options = TRACKS.with_k(k);
+    let graph = distance_field(mesh, metric, sources, &options.with_method(Method::Graph)).unwrap();
+    let tracks = distance_field(mesh, metric, sources, &options).unwrap();
+    assert_eq!(tracks.stats().method, Method::Tracks);
+    let mut max: f64 = 0.0;
+    for (g, t) in graph.node_distances().iter().zip(tracks.node_distances()) {
+        assert!(!g.is_nan() && !t.is_nan());
+        assert_eq!(g.is_finite(), t.is_finite(), "reached by one engine only");
+        if g.is_finite() {
+            max = max.max((g - t).abs() / g.max(f64::MIN_POSITIVE));
+        }
+    }
+    max
 }
