@@ -54,6 +54,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ("slope:4", 2.0),
         ("slope:4,max:30", 2.0),
         ("incline:8", 2.0),
+        ("uphill:8", 2.0),
+        ("naismith", 2.0),
+        ("tobler", 2.0),
         ("slope:4", 5.0),
     ] {
         let t0 = Instant::now();
