@@ -51,12 +51,16 @@ fn a_constant_field_is_the_constant_tensor() {
         let (a, b): (FacePoint, FacePoint) = (point(&mut rng), point(&mut rng));
         assert_eq!(field.cost(f, &a, &b), tensor.cost(f, &a, &b));
     }
-    // And so every distance, engine for engine.
-    let options = Options::DEFAULT.with_k(3.0).with_method(Method::Tracks);
-    let a = distance_field(&mesh, &field, &[0], &options).unwrap();
-    let b = distance_field(&mesh, &tensor, &[0], &options).unwrap();
-    for (x, y) in a.node_distances().iter().zip(b.node_distances()) {
-        assert!((x - y).abs() <= 1e-12 * y.max(1.0), "{x} vs {y}");
+    // And so every distance, engine for engine: constant on each face, the field is
+    // flat there and runs the wavefront engine by default, as the tensor does.
+    for method in [Method::Tracks, Method::Wave] {
+        let options = Options::DEFAULT.with_k(3.0).with_method(method);
+        let a = distance_field(&mesh, &field, &[0], &options).unwrap();
+        let b = distance_field(&mesh, &tensor, &[0], &options).unwrap();
+        assert_eq!(a.stats().method, method);
+        for (x, y) in a.node_distances().iter().zip(b.node_distances()) {
+            assert!((x - y).abs() <= 1e-12 * y.max(1.0), "{method}: {x} vs {y}");
+        }
     }
 }
 

@@ -1753,3 +1753,25 @@ fn traced_paths_are_as_long_as_their_values() {
         }
     }
 }
+
+/// A metric that gives every face's flattening runs the wavefront engine, which needs
+/// the cached steps along edges, even when it does not also say it is a norm (the
+/// flattening makes it one): the same distances as the Euclidean metric's.
+#[test]
+fn a_flattening_without_is_face_norm_still_runs_the_wave_exactly() {
+    struct FlatOnly;
+    impl geotracks::Metric for FlatOnly {
+        fn cost(&self, _: u32, a: &geotracks::FacePoint, b: &geotracks::FacePoint) -> f64 {
+            a.distance(b)
+        }
+        fn face_gram(&self, _: u32) -> Option<[f64; 3]> {
+            Some([1.0, 0.0, 1.0])
+        }
+    }
+    let mesh = common::sphere(2, 0.2, 9);
+    let options = geotracks::Options::DEFAULT;
+    let flat = geotracks::distance_field(&mesh, &FlatOnly, &[0], &options).unwrap();
+    let euclid = geotracks::distance_field(&mesh, &geotracks::Euclidean, &[0], &options).unwrap();
+    assert_eq!(flat.stats().method, geotracks::Method::Wave);
+    assert_eq!(flat.node_distances(), euclid.node_distances());
+}

@@ -24,7 +24,9 @@ use crate::{FaceGeometry, FacePoint, Metric, MetricError};
 /// `4 ε (1 + ε) / (1 − ε) · sqrt(λmax(Ḡ)) · diameter` ([`Metric::triangle_slack`]):
 /// the track pruning of geotracks accepts proofs only with that margin and stays exact.
 /// [`TensorField::with_pruning_tolerance`] prunes faces with `ε ≤ tolerance` without it,
-/// as [`crate::Density`] does.
+/// as [`crate::Density`] does. A field constant on every face (the same tensor at a
+/// face's three corners) is flat there ([`Metric::face_gram`]) and runs the wavefront
+/// engine, as [`crate::Tensor`] does; any other runs the track-pruned one.
 ///
 /// ```
 /// use geotracks_metrics::{FaceGeometry, FacePoint, Metric, Tensor, TensorField};
@@ -63,6 +65,8 @@ pub struct TensorField {
     /// (∞ from ε ≥ 1).
     slack: Vec<f64>,
     pruning_tolerance: f64,
+    /// Whether the field is constant on every face (a norm on each).
+    constant_per_face: bool,
 }
 
 impl TensorField {
@@ -104,11 +108,13 @@ impl TensorField {
             corners.push(g);
         }
         let (spread, slack) = corners.iter().map(spread_and_slack).unzip();
+        let constant_per_face = corners.iter().all(|g| g[0] == g[1] && g[1] == g[2]);
         Ok(TensorField {
             corners,
             spread,
             slack,
             pruning_tolerance: 0.0,
+            constant_per_face,
         })
     }
 
@@ -176,8 +182,17 @@ impl Metric for TensorField {
         // (2/3)(q_b^{3/2} − q_a^{3/2}) / (q_b − q_a), without the cancellation.
         (2.0 / 3.0) * (qa + ra * rb + qb) / (ra + rb)
     }
+    fn is_face_norm(&self) -> bool {
+        self.constant_per_face
+    }
     fn prunes_on(&self, face: u32) -> bool {
         self.spread[face as usize] < 1.0
+    }
+    // A face whose corners hold one tensor is flat under it; a field that is so on
+    // every face (constant per face) runs the wavefront engine, as `Tensor` does.
+    fn face_gram(&self, face: u32) -> Option<[f64; 3]> {
+        let g = &self.corners[face as usize];
+        (g[0] == g[1] && g[1] == g[2]).then_some(g[0])
     }
     #[inline]
     fn triangle_slack(&self, face: u32, diameter: f64) -> f64 {

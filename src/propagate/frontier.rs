@@ -308,13 +308,16 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
 /// `None` when the metric is not a norm on each face, or is directed (a step then costs
 /// what it costs in its direction). For a norm the cost of a piece of an edge is its
 /// fraction of the whole edge's cost, so one evaluation per (edge, face) serves every
-/// step; the evaluations are returned as the second value.
+/// step; the evaluations are returned as the second value. `flat`: every face has a
+/// flattening ([`Metric::face_gram`]), which makes the metric a norm on each face
+/// whatever `is_face_norm` says (the wavefront engine needs these steps).
 pub(super) fn edge_steps<M: Metric>(
     mesh: &TriMesh,
     metric: &M,
     layout: &SteinerLayout,
+    flat: bool,
 ) -> Option<(Vec<f64>, u64)> {
-    if !metric.is_face_norm() || !metric.is_symmetric() {
+    if !(metric.is_face_norm() || flat) || !metric.is_symmetric() {
         return None;
     }
     // Face by face, so that the mesh is read in order: each slot's whole edge, from the

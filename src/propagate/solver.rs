@@ -275,10 +275,11 @@ impl<'m, M: Metric> Solver<'m, M> {
             }
             SteinerLayout::with_counts(mesh, options.steiner, counts)?
         };
-        let (edge_steps, mut setup_tests) = match edge_steps(mesh, &metric, &layout) {
-            Some((steps, tests)) => (Some(steps), tests),
-            None => (None, 0),
-        };
+        let (edge_steps, mut setup_tests) =
+            match edge_steps(mesh, &metric, &layout, flat_frames.is_some()) {
+                Some((steps, tests)) => (Some(steps), tests),
+                None => (None, 0),
+            };
         // The cost between consecutive nodes of each edge: the cached steps, or the
         // metric asked once per edge (in its first face).
         let steps = match &edge_steps {
