@@ -136,7 +136,7 @@ class TensorField:
     interpolated linearly across each face (in each face's plane): a smooth Riemannian
     metric. A segment costs the exact integral of ``sqrt(vᵀ M v)`` along it; a field
     that is constant on a face costs what :class:`Tensor` does. Runs the ``"tracks"``
-    engine.
+    engine, or ``"wave"`` when the field is constant on every face.
 
     :param per_vertex: shape ``(n, 3, 3)``, symmetric, one matrix per vertex.
     """

@@ -144,12 +144,9 @@ impl MeshSolverCore {
             }
             (other, _) => return Err(error(format!("unknown metric '{other}'"))),
         };
-        // As on the command line: a density and a tensor field are the built-in
-        // metrics that are not face-flat.
-        let face_flat = !matches!(
-            metric,
-            BuiltinMetric::Density(_) | BuiltinMetric::TensorField(_)
-        );
+        // The wavefront engine's k where the metric flattens every face (Euclidean, a
+        // tensor, a tensor field constant on each face), the Steiner graph's elsewhere.
+        let face_flat = geotracks::Metric::is_face_norm(&metric);
         let k = k.unwrap_or(method.default_k(face_flat));
         let options = Options::DEFAULT.with_k(k).with_method(method);
         let cell =

@@ -86,16 +86,18 @@ def test_metrics():
     stretched = np.repeat(np.diag([9.0, 1.0, 1.0])[None], len(F), axis=0)
     d = geotracks.MeshSolver(V, F, metric=geotracks.Tensor(stretched)).distance(0)
     assert abs(d[6] - 3.0) < 1e-9
-    # A tensor per vertex: constant, it is the constant tensor (on the tracks engine);
-    # growing along x, the bottom row costs the integral of sqrt(1 + 8 x).
+    # A tensor per vertex: constant, it is the constant tensor (flat on every face, it
+    # runs the wavefront engine at its k); growing along x, it runs tracks, and the
+    # bottom row costs the integral of sqrt(1 + 8 x).
     constant = geotracks.TensorField(np.repeat(np.diag([9.0, 1.0, 1.0])[None], len(V), axis=0))
     field = geotracks.MeshSolver(V, F, metric=constant)
-    assert field.method == "tracks"
-    tracks = geotracks.MeshSolver(V, F, k=5, method="tracks", metric=geotracks.Tensor(stretched))
-    assert np.allclose(field.distance(0), tracks.distance(0), rtol=1e-12)
+    assert field.method == "wave"
+    tensor = geotracks.MeshSolver(V, F, metric=geotracks.Tensor(stretched))
+    assert np.allclose(field.distance(0), tensor.distance(0), rtol=1e-12)
     growing = np.array([np.diag([1.0 + 8.0 * x, 1.0, 1.0]) for x in V[:, 0]])
-    d = geotracks.MeshSolver(V, F, metric=geotracks.TensorField(growing)).distance(0)
-    assert abs(d[6] - 26.0 / 12.0) < 1e-12
+    varying = geotracks.MeshSolver(V, F, metric=geotracks.TensorField(growing))
+    assert varying.method == "tracks"
+    assert abs(varying.distance(0)[6] - 26.0 / 12.0) < 1e-12
     with pytest.raises(geotracks.GeotracksError, match="vertex 3"):
         bad = growing.copy()
         bad[3] = -np.eye(3)
