@@ -11,9 +11,9 @@ use std::path::PathBuf;
 /// Steiner points, engine and metric.
 #[derive(clap::Args)]
 pub struct MetricArgs {
-    /// Mean number of Steiner points per edge [default: 2, or 5 with --density or with
-    /// --method tracks or graph: the Steiner graph needs more points than the
-    /// wavefront engine for the same accuracy].
+    /// Mean number of Steiner points per edge [default: 2, or 5 with --density or
+    /// --tensor-field or with --method tracks or graph: the Steiner graph needs more
+    /// points than the wavefront engine for the same accuracy].
     #[arg(long)]
     pub k: Option<f64>,
     /// Propagation method: wave (Steiner points that carry their wavefront: exact on
