@@ -184,18 +184,20 @@ impl FaceField {
         best
     }
 
-    /// As [`FaceField::best`] (skipping none), but of the candidates within `tolerance`
-    /// of the least value, the one with the least `σ`: the farthest upstream. Where a
-    /// node lies on the straight line from a source (or another node) to `x`, both give
-    /// the same value, and the node is only a stop on the other's line; naming the
-    /// source keeps such exact ties from cutting slivers into a face's regions.
+    /// As [`FaceField::best`] (skipping none), but of the candidates within
+    /// `tolerance(least value)` of the least value, the one with the least `σ`: the
+    /// farthest upstream. Where a node lies on the straight line from a source (or
+    /// another node) to `x`, both give the same value, and the node is only a stop on
+    /// the other's line; naming the source keeps such exact ties from cutting slivers
+    /// into a face's regions.
     pub fn best_upstream<M: Metric>(
         &self,
         metric: &M,
         x: &FacePoint,
-        tolerance: f64,
+        tolerance: impl Fn(f64) -> f64,
     ) -> Option<(f64, usize)> {
         let (value, mut chosen) = self.best(metric, x, |_| false)?;
+        let tolerance = tolerance(value);
         let px = self.flat_point(x);
         for (i, c) in self.candidates.iter().enumerate() {
             if c.floor > value + tolerance {

@@ -410,8 +410,7 @@ impl<'f, 'q, 'a, M: Metric> LabelGrid<'f, 'q, 'a, M> {
     /// The candidate giving the value at `bary` (`None`: unreached).
     fn label_at(&self, bary: [f64; 3]) -> Option<usize> {
         let x = self.query.mesh.frame(self.field.face).point(bary);
-        let tolerance =
-            TIE * (self.scale + self.field.best(self.query.metric, &x, |_| false)?.0.abs());
+        let tolerance = |value: f64| TIE * (self.scale + value.abs());
         let (value, c) = self.field.best_upstream(self.query.metric, &x, tolerance)?;
         let c = self.same[c];
         let horizon = self.query.field.horizon;
