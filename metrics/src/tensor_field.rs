@@ -65,8 +65,12 @@ pub struct TensorField {
     /// (∞ from ε ≥ 1).
     slack: Vec<f64>,
     pruning_tolerance: f64,
-    /// Whether the field is constant on every face (a norm on each).
-    constant_per_face: bool,
+    /// Per face, whether its three corners hold one tensor (the field is constant, a
+    /// norm, there).
+    constant: Vec<bool>,
+    /// Whether `constant` holds on every face: kept, as the engine asks
+    /// [`Metric::is_face_norm`] in its inner loop.
+    constant_everywhere: bool,
 }
 
 impl TensorField {
@@ -107,14 +111,28 @@ impl TensorField {
             }
             corners.push(g);
         }
-        let (spread, slack) = corners.iter().map(spread_and_slack).unzip();
-        let constant_per_face = corners.iter().all(|g| g[0] == g[1] && g[1] == g[2]);
+        let constant: Vec<bool> = corners
+            .iter()
+            .map(|g| g[0] == g[1] && g[1] == g[2])
+            .collect();
+        let (spread, slack) = corners
+            .iter()
+            .zip(&constant)
+            .map(|(g, &constant)| {
+                if constant {
+                    (0.0, 0.0)
+                } else {
+                    spread_and_slack(g)
+                }
+            })
+            .unzip();
         Ok(TensorField {
             corners,
             spread,
             slack,
             pruning_tolerance: 0.0,
-            constant_per_face,
+            constant_everywhere: constant.iter().all(|&c| c),
+            constant,
         })
     }
 
@@ -134,11 +152,8 @@ impl TensorField {
     }
 }
 
-/// ε and the slack per unit diameter of a face with corner tensors `g`.
+/// ε and the slack per unit diameter of a face with corner tensors `g`, not all equal.
 fn spread_and_slack(g: &[[f64; 3]; 3]) -> (f64, f64) {
-    if g[0] == g[1] && g[1] == g[2] {
-        return (0.0, 0.0); // constant on the face: a norm
-    }
     let mean: [f64; 3] = std::array::from_fn(|k| (g[0][k] + g[1][k] + g[2][k]) / 3.0);
     let [a_, b_, c_] = mean;
     let det_mean = a_ * c_ - b_ * b_;
@@ -166,7 +181,7 @@ impl Metric for TensorField {
         let g = &self.corners[face as usize];
         let (x, y) = (b.uv[0] - a.uv[0], b.uv[1] - a.uv[1]);
         let q = |[m11, m12, m22]: [f64; 3]| m11 * x * x + 2.0 * m12 * x * y + m22 * y * y;
-        if g[0] == g[1] && g[1] == g[2] {
+        if self.constant[face as usize] {
             // Constant on the face: the constant tensor's cost, to the last bit.
             return q(g[0]).max(0.0).sqrt();
         }
@@ -183,7 +198,7 @@ impl Metric for TensorField {
         (2.0 / 3.0) * (qa + ra * rb + qb) / (ra + rb)
     }
     fn is_face_norm(&self) -> bool {
-        self.constant_per_face
+        self.constant_everywhere
     }
     fn prunes_on(&self, face: u32) -> bool {
         self.spread[face as usize] < 1.0
@@ -191,8 +206,8 @@ impl Metric for TensorField {
     // A face whose corners hold one tensor is flat under it; a field that is so on
     // every face (constant per face) runs the wavefront engine, as `Tensor` does.
     fn face_gram(&self, face: u32) -> Option<[f64; 3]> {
-        let g = &self.corners[face as usize];
-        (g[0] == g[1] && g[1] == g[2]).then_some(g[0])
+        let face = face as usize;
+        self.constant[face].then_some(self.corners[face][0])
     }
     #[inline]
     fn triangle_slack(&self, face: u32, diameter: f64) -> f64 {
