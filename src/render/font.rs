@@ -6,7 +6,7 @@ use super::Picture;
 
 /// Rows of a glyph, top first; bit 4 is the leftmost column. `None` for a character
 /// the font lacks (a space, say: drawn as a gap).
-pub(crate) fn glyph(c: char) -> Option<[u8; 7]> {
+fn glyph(c: char) -> Option<[u8; 7]> {
     Some(match c {
         '0' => [0x0E, 0x11, 0x13, 0x15, 0x19, 0x11, 0x0E],
         '1' => [0x04, 0x0C, 0x04, 0x04, 0x04, 0x04, 0x0E],
@@ -52,6 +52,20 @@ pub(crate) fn number(value: f64) -> String {
     }
 }
 
+/// The inked font pixels of `text` as `(column, row)`, from its top-left corner: each
+/// character 6 columns on from the last (5 of glyph, 1 of gap), 7 rows. Characters the
+/// font lacks leave a gap.
+pub(crate) fn cells(text: &str) -> impl Iterator<Item = (i64, i64)> + '_ {
+    text.chars().enumerate().flat_map(|(k, c)| {
+        let rows = glyph(c).unwrap_or([0; 7]);
+        (0..7i64).flat_map(move |r| {
+            (0..5i64)
+                .filter(move |col| rows[r as usize] & (0x10 >> col) != 0)
+                .map(move |col| (6 * k as i64 + col, r))
+        })
+    })
+}
+
 /// Writes `text` with its top-left corner at `(x, y)`, each font pixel `scale` pixels.
 /// Characters the font lacks are skipped.
 pub(super) fn draw(
@@ -62,23 +76,10 @@ pub(super) fn draw(
     scale: i64,
     colour: [f64; 3],
 ) {
-    for (k, c) in text.chars().enumerate() {
-        let Some(rows) = glyph(c) else { continue };
-        let left = x + k as i64 * 6 * scale;
-        for (r, bits) in rows.iter().enumerate() {
-            for col in 0..5 {
-                if bits & (0x10 >> col) != 0 {
-                    for dy in 0..scale {
-                        for dx in 0..scale {
-                            put(
-                                picture,
-                                left + col * scale + dx,
-                                y + r as i64 * scale + dy,
-                                colour,
-                            );
-                        }
-                    }
-                }
+    for (col, row) in cells(text) {
+        for dy in 0..scale {
+            for dx in 0..scale {
+                put(picture, x + col * scale + dx, y + row * scale + dy, colour);
             }
         }
     }

@@ -334,24 +334,13 @@ fn text(
     colour: [f64; 3],
 ) {
     let f = font as f64;
-    let cells = |c: char| {
-        let rows = crate::render::font::glyph(c).unwrap_or([0; 7]);
-        (0..7).flat_map(move |r| {
-            (0..5)
-                .filter(move |col| rows[r] & (0x10 >> col) != 0)
-                .map(move |col| (col, r))
-        })
-    };
     for (ink, grow) in [(HALO, f), (colour, 0.0)] {
-        for (k, c) in text.chars().enumerate() {
-            let left = x + (6 * k) as f64 * f;
-            for (col, r) in cells(c) {
-                let (x0, y0) = (left + col as f64 * f - grow, y + r as f64 * f - grow);
-                let (x1, y1) = (x0 + f + 2.0 * grow, y0 + f + 2.0 * grow);
-                for py in y0.max(0.0) as usize..(y1.max(0.0) as usize).min(h) {
-                    for px in x0.max(0.0) as usize..(x1.max(0.0) as usize).min(w) {
-                        put(rgba, w, px, py, ink, 1.0);
-                    }
+        for (col, row) in crate::render::font::cells(text) {
+            let (x0, y0) = (x + col as f64 * f - grow, y + row as f64 * f - grow);
+            let (x1, y1) = (x0 + f + 2.0 * grow, y0 + f + 2.0 * grow);
+            for py in y0.max(0.0) as usize..(y1.max(0.0) as usize).min(h) {
+                for px in x0.max(0.0) as usize..(x1.max(0.0) as usize).min(w) {
+                    put(rgba, w, px, py, ink, 1.0);
                 }
             }
         }
