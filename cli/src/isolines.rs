@@ -188,13 +188,27 @@ pub fn write_isolines(
             }
             Ok(())
         })?,
-        OutputFormat::GeoJson => outputs.write(file, |w| write_geojson(w, mesh, lines))?,
+        OutputFormat::GeoJson => outputs.write(file, |w| {
+            write_geojson(w, lines, &|p| p.position(mesh).to_array(), None)
+        })?,
     }
     Ok(())
 }
 
-fn write_geojson(w: &mut dyn Write, mesh: &TriMesh, lines: &[Isoline]) -> std::io::Result<()> {
-    writeln!(w, "{{\"type\": \"FeatureCollection\", \"features\": [")?;
+/// The isolines as a GeoJSON FeatureCollection: a LineString per line, with its `level`
+/// and whether it is `closed`; each point written as `position` gives it, and the
+/// collection's `crs` member if one is given.
+pub fn write_geojson(
+    w: &mut dyn Write,
+    lines: &[Isoline],
+    position: &dyn Fn(&SurfacePoint) -> [f64; 3],
+    crs: Option<&serde_json::Value>,
+) -> std::io::Result<()> {
+    write!(w, "{{\"type\": \"FeatureCollection\", ")?;
+    if let Some(crs) = crs {
+        write!(w, "\"crs\": {crs}, ")?;
+    }
+    writeln!(w, "\"features\": [")?;
     for (i, line) in lines.iter().enumerate() {
         write!(
             w,
@@ -203,9 +217,9 @@ fn write_geojson(w: &mut dyn Write, mesh: &TriMesh, lines: &[Isoline]) -> std::i
             line.level, line.closed
         )?;
         for (j, p) in line.points.iter().enumerate() {
-            let x = p.position(mesh);
+            let [x, y, z] = position(p);
             let sep = if j == 0 { "" } else { ", " };
-            write!(w, "{sep}[{}, {}, {}]", x.x, x.y, x.z)?;
+            write!(w, "{sep}[{x}, {y}, {z}]")?;
         }
         let sep = if i + 1 == lines.len() { "" } else { "," };
         writeln!(w, "]}}}}{sep}")?;

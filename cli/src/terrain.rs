@@ -162,7 +162,11 @@ pub fn run(args: &TerrainArgs) -> CliResult {
         outputs.write(path, |w| picture.write_png_to(w))?;
     }
     if let (Some(path), Some(lines)) = (&args.contours, &contours) {
-        write_contours(&mut outputs, path, &terrain.mesh, lines, &map_coordinates)?;
+        let (mesh, crs) = (&terrain.mesh, map_coordinates.crs());
+        outputs.write(path, |w| {
+            let position = |p: &geotracks::SurfacePoint| map_coordinates.point(p.position(mesh));
+            isolines::write_geojson(w, lines, &position, crs.as_ref())
+        })?;
     }
     outputs.commit()?;
 
@@ -273,14 +277,14 @@ impl MapCoordinates {
     /// The GeoJSON `crs` member that GDAL's GeoJSON driver (and so QGIS) reads and
     /// writes for a layer that is not WGS 84 (RFC 7946 dropped it, but for a projected
     /// grid it is what those tools understand; a `.prj` beside a GeoJSON file is
-    /// ignored by them). Added to a FeatureCollection when the grid's EPSG code is known.
-    fn add_crs(&self, collection: &mut serde_json::Value) {
-        if let Some(code) = self.epsg {
-            collection["crs"] = serde_json::json!({
+    /// ignored by them), when the grid's EPSG code is known.
+    fn crs(&self) -> Option<serde_json::Value> {
+        self.epsg.map(|code| {
+            serde_json::json!({
                 "type": "name",
                 "properties": { "name": format!("urn:ogc:def:crs:EPSG::{code}") }
-            });
-        }
+            })
+        })
     }
 }
 
@@ -315,42 +319,11 @@ fn write_geojson(
             }
         }]
     });
-    map.add_crs(&mut json);
+    if let Some(crs) = map.crs() {
+        json["crs"] = crs;
+    }
     outputs.write(&args.output, |w| {
         serde_json::to_writer_pretty(&mut *w, &json).map_err(std::io::Error::other)?;
-        writeln!(w)
-    })?;
-    Ok(())
-}
-
-/// The cost contours as GeoJSON: a LineString of `[x, y, z]` per contour, with its cost
-/// as `level` and whether it closes, in the grid's CRS.
-fn write_contours(
-    outputs: &mut Outputs,
-    path: &Path,
-    mesh: &geotracks::mesh::TriMesh,
-    lines: &[geotracks::trace::Isoline],
-    map: &MapCoordinates,
-) -> CliResult {
-    let features: Vec<serde_json::Value> = lines
-        .iter()
-        .map(|line| {
-            let coordinates: Vec<[f64; 3]> = line
-                .points
-                .iter()
-                .map(|p| map.point(p.position(mesh)))
-                .collect();
-            serde_json::json!({
-                "type": "Feature",
-                "properties": { "level": line.level, "closed": line.closed },
-                "geometry": { "type": "LineString", "coordinates": coordinates },
-            })
-        })
-        .collect();
-    let mut json = serde_json::json!({ "type": "FeatureCollection", "features": features });
-    map.add_crs(&mut json);
-    outputs.write(path, |w| {
-        serde_json::to_writer(&mut *w, &json).map_err(std::io::Error::other)?;
         writeln!(w)
     })?;
     Ok(())
