@@ -39,7 +39,7 @@ fn check_max_slope(degrees: f64) -> Result<(), TerrainError> {
 }
 
 /// The unnormalised normal of face `f` (twice its area long), turned to point up.
-fn face_normal_up(mesh: &TriMesh, f: u32) -> DVec3 {
+pub(super) fn face_normal_up(mesh: &TriMesh, f: u32) -> DVec3 {
     let [a, b, c] = mesh.face_vertices(f).map(|v| mesh.position(v));
     let n = (b - a).cross(c - a);
     if n.z < 0.0 {
@@ -51,7 +51,7 @@ fn face_normal_up(mesh: &TriMesh, f: u32) -> DVec3 {
 
 /// `tan²` of the angle between a normal and the vertical (infinite for a horizontal
 /// normal).
-fn tan2(n: DVec3) -> f64 {
+pub(super) fn tan2(n: DVec3) -> f64 {
     (n.x * n.x + n.y * n.y) / (n.z * n.z)
 }
 

@@ -29,6 +29,7 @@
 //!
 //! Lengths and elevations must be in metres for the time models' seconds.
 
+use super::cost::{face_normal_up, tan2};
 use super::TerrainError;
 use crate::mesh::TriMesh;
 use geotracks_metrics::{FaceGeometry, FacePoint, Metric};
@@ -232,7 +233,6 @@ pub struct DirectedCost {
     axes: Vec<[f64; 6]>,
     /// Per face, whether the cost is convex there (the engine prunes only there).
     convex: Vec<bool>,
-    convex_everywhere: bool,
 }
 
 impl DirectedCost {
@@ -250,19 +250,14 @@ impl DirectedCost {
                 [u[0], u[1], u[2], v[0], v[1], v[2]]
             })
             .collect();
-        let convex = axes
-            .iter()
-            .map(|&[ux, uy, uz, vx, vy, vz]| {
-                // The steepest tangent: the normal's tilt, |n_xy| / |n_z|.
-                let n = [uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx];
-                model.convex_at(n[0].hypot(n[1]) / n[2].abs())
-            })
+        // The steepest tangent of each face: its normal's tilt.
+        let convex = (0..faces)
+            .map(|f| model.convex_at(tan2(face_normal_up(mesh, f)).sqrt()))
             .collect();
         Ok(DirectedCost {
             model,
             axes,
             convex,
-            convex_everywhere: model.convex_everywhere(),
         })
     }
 
@@ -289,7 +284,7 @@ impl Metric for DirectedCost {
         false
     }
     fn is_face_norm(&self) -> bool {
-        self.convex_everywhere
+        self.model.convex_everywhere()
     }
     fn prunes_on(&self, face: u32) -> bool {
         self.convex[face as usize]
