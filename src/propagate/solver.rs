@@ -185,39 +185,43 @@ impl Workspace {
     /// local run costs what it reaches, not the mesh. Tracks are cleared whole: the
     /// tracks engine writes those of targets it does not reach.
     fn reset(&mut self, vertex_count: usize, nodes: usize, instances: usize, waves: usize) {
-        let few = self.recorded && self.touched.len() < nodes / 4;
-        if few && self.distance.len() == nodes && self.vertex_count == vertex_count {
+        let partial = self.recorded
+            && self.touched.len() < nodes / 4
+            && self.distance.len() == nodes
+            && self.vertex_count == vertex_count;
+        if partial {
             for &node in &self.touched {
                 let node = node as usize;
                 self.distance[node] = f64::INFINITY;
                 self.parent[node] = NONE;
                 self.parent_face[node] = NONE;
             }
-            if self.waves.len() != waves {
-                fill(&mut self.waves, waves, Wave::NONE);
-            } else if waves > 0 {
-                for &node in &self.touched {
-                    if let Some(w) = (node as usize).checked_sub(vertex_count) {
-                        self.waves[w] = Wave::NONE;
-                    }
+        } else {
+            fill(&mut self.distance, nodes, f64::INFINITY);
+            fill(&mut self.parent, nodes, NONE);
+            fill(&mut self.parent_face, nodes, NONE);
+        }
+        // Waves sit at node − vertex_count; none were kept if the last run had none.
+        if partial && waves > 0 && self.waves.len() == waves {
+            for &node in &self.touched {
+                if let Some(w) = (node as usize).checked_sub(vertex_count) {
+                    self.waves[w] = Wave::NONE;
                 }
             }
-            debug_assert!(
-                self.distance.iter().all(|d| *d == f64::INFINITY)
+        } else {
+            fill(&mut self.waves, waves, Wave::NONE);
+        }
+        debug_assert!(
+            !partial
+                || (self.distance.iter().all(|d| *d == f64::INFINITY)
                     && self
                         .parent
                         .iter()
                         .chain(&self.parent_face)
                         .all(|&p| p == NONE)
-                    && self.waves.iter().all(|w| !w.is_some()),
-                "a node the last run set was not recorded as touched"
-            );
-        } else {
-            fill(&mut self.distance, nodes, f64::INFINITY);
-            fill(&mut self.parent, nodes, NONE);
-            fill(&mut self.parent_face, nodes, NONE);
-            fill(&mut self.waves, waves, Wave::NONE);
-        }
+                    && self.waves.iter().all(|w| !w.is_some())),
+            "a node the last run set was not recorded as touched"
+        );
         self.touched.clear();
         self.vertex_count = vertex_count;
         fill(&mut self.tracks, instances, Track::NONE);
