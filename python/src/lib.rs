@@ -228,21 +228,17 @@ impl MeshSolverCore {
         sources: Vec<PointArg>,
         points: Vec<PointArg>,
     ) -> PyResult<(Vector<'py, f64>, Matrix<'py, f64>, Matrix<'py, f64>)> {
-        let sources = sources_of(&sources)?;
         let points = points
             .iter()
             .map(PointArg::point)
             .collect::<PyResult<Vec<_>>>()?;
-        let solver = self.cell.borrow_dependent();
         let n = points.len();
         let (mut d, mut g, mut t) = (
             vec![f64::INFINITY; n],
             Array2::from_elem((n, 3), f64::NAN),
             Array2::from_elem((n, 3), f64::NAN),
         );
-        py.detach(|| {
-            let field = solver.solve_from(&sources, &Stop::NONE)?;
-            let query = solver.query(&field)?;
+        self.on_field(py, &sources, |query| {
             for (i, &p) in points.iter().enumerate() {
                 d[i] = query.distance_at(p)?;
                 if let Some(gradient) = query.gradient_at(p)? {
@@ -252,9 +248,8 @@ impl MeshSolverCore {
                     }
                 }
             }
-            Ok::<_, geotracks::Error>(())
-        })
-        .map_err(error)?;
+            Ok(())
+        })?;
         Ok((d.into_pyarray(py), g.into_pyarray(py), t.into_pyarray(py)))
     }
 
@@ -270,18 +265,12 @@ impl MeshSolverCore {
         subdivisions: Option<u32>,
     ) -> PyResult<Vec<(f64, Matrix<'py, f64>, bool)>> {
         use geotracks::trace::IsolineOptions;
-        let sources = sources_of(&sources)?;
-        let (mesh, solver) = (self.cell.borrow_owner(), self.cell.borrow_dependent());
+        let mesh = self.cell.borrow_owner();
         let mut options = IsolineOptions::DEFAULT;
         if let Some(n) = subdivisions {
             options = options.with_subdivisions(n);
         }
-        let lines = py
-            .detach(|| {
-                let field = solver.solve_from(&sources, &Stop::NONE)?;
-                solver.query(&field)?.isolines(&levels, &options)
-            })
-            .map_err(error)?;
+        let lines = self.on_field(py, &sources, |query| query.isolines(&levels, &options))?;
         Ok(lines
             .into_iter()
             .map(|line| {
@@ -305,8 +294,7 @@ impl MeshSolverCore {
     ) -> PyResult<Vec<Bound<'py, pyo3::types::PyTuple>>> {
         use geotracks::trace::{ValueSource, DEFAULT_REGION_SUBDIVISIONS};
         use rayon::prelude::*;
-        let sources = sources_of(&sources)?;
-        let (mesh, solver) = (self.cell.borrow_owner(), self.cell.borrow_dependent());
+        let mesh = self.cell.borrow_owner();
         let faces: Vec<u32> = match faces {
             Some(ids) => ids
                 .as_array()
@@ -316,15 +304,11 @@ impl MeshSolverCore {
             None => (0..mesh.face_count() as u32).collect(),
         };
         let n = subdivisions.unwrap_or(DEFAULT_REGION_SUBDIVISIONS);
-        let regions = py
-            .detach(|| {
-                let field = solver.solve_from(&sources, &Stop::NONE)?;
-                let query = solver.query(&field)?;
-                let per_face: Result<Vec<_>, _> =
-                    faces.par_iter().map(|&f| query.regions(f, n)).collect();
-                Ok::<_, geotracks::Error>(per_face?.into_iter().flatten().collect::<Vec<_>>())
-            })
-            .map_err(error)?;
+        let regions = self.on_field(py, &sources, |query| {
+            let per_face: Result<Vec<_>, _> =
+                faces.par_iter().map(|&f| query.regions(f, n)).collect();
+            Ok(per_face?.into_iter().flatten().collect::<Vec<_>>())
+        })?;
         let position = |p: &SurfacePoint| p.position(mesh).to_array();
         regions
             .into_iter()
@@ -334,7 +318,8 @@ impl MeshSolverCore {
                     ValueSource::Source(id) => ("source", id),
                     ValueSource::Wave(id) => ("wave", id),
                     ValueSource::WaveBend(id) => ("wave_bend", id),
-                    // The enum is non-exhaustive: a kind added later still reaches Python.
+                    // The enum is non-exhaustive: a kind added later is refused by name
+                    // rather than mislabelled.
                     other => return Err(error(format!("unknown region source {other:?}"))),
                 };
                 let polygon = matrix3(&r.polygon, position).into_pyarray(py);
@@ -434,6 +419,19 @@ impl MeshSolverCore {
 }
 
 impl MeshSolverCore {
+    /// `work` on the query of a full run from `sources`, with the GIL released.
+    fn on_field<T: Send>(
+        &self,
+        py: Python<'_>,
+        sources: &[PointArg],
+        work: impl FnOnce(&geotracks::Query<'_, BuiltinMetric>) -> Result<T, geotracks::Error> + Send,
+    ) -> PyResult<T> {
+        let sources = sources_of(sources)?;
+        let solver = self.cell.borrow_dependent();
+        py.detach(|| work(&solver.query(&solver.solve_from(&sources, &Stop::NONE)?)?))
+            .map_err(error)
+    }
+
     /// One run from `sources`: vertex distances and, if asked, labels.
     fn field(
         &self,
