@@ -29,7 +29,8 @@ pub struct MetricArgs {
     #[arg(long, conflicts_with = "tensor_field")]
     pub tensor: Option<PathBuf>,
     /// Per-vertex tensor file: one line `xx xy xz yy yz zz` per vertex, interpolated
-    /// linearly across each face (a smooth Riemannian metric; runs tracks).
+    /// linearly across each face (a smooth Riemannian metric; runs tracks, unless the
+    /// field is constant on every face).
     #[arg(long)]
     pub tensor_field: Option<PathBuf>,
 }
