@@ -194,6 +194,39 @@ pub enum Error {
         /// The metric's name.
         metric: String,
     },
+    /// The metric's [`min_cost_per_length`](geotracks_metrics::Metric::min_cost_per_length)
+    /// promises more than an edge costs: goal-directed runs would stop with wrong
+    /// values.
+    #[error("metric '{metric}' says every unit of length costs at least {per_length:e}, but edge {edge} ({length:e} long) costs {cost:e} ({per_unit:e} per unit)")]
+    CostBelowBound {
+        /// The metric's name.
+        metric: String,
+        /// The bound the metric gave.
+        per_length: f64,
+        /// The edge that costs less.
+        edge: u32,
+        /// Its length.
+        length: f64,
+        /// Its cost (along it, in its cheapest face).
+        cost: f64,
+        /// Its cost per unit of length.
+        per_unit: f64,
+    },
+    /// A wire costs less than the metric's
+    /// [`min_cost_per_length`](geotracks_metrics::Metric::min_cost_per_length) promises.
+    #[error("metric '{metric}' says every unit of length costs at least {per_length:e}, but the wire from vertex {} to vertex {} ({length:e} long) costs {cost:e}", wire[0], wire[1])]
+    WireBelowBound {
+        /// The metric's name.
+        metric: String,
+        /// The bound the metric gave.
+        per_length: f64,
+        /// The wire's two vertices, in the direction that costs less.
+        wire: [u32; 2],
+        /// Its length.
+        length: f64,
+        /// Its cost.
+        cost: f64,
+    },
     /// A source's start value is so large that distances from it could leave the f64
     /// range (a start plus the mesh's total cost must stay below about 1.8e308).
     #[error("the start value of source {index} is {start:e}: with the mesh's costs (up to {cost_total:e} in all) distances could overflow; start values must stay below about 1.8e308 minus that")]

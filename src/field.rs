@@ -7,7 +7,7 @@
 //! the field ([`Solver::query`](crate::Solver::query)), which refuses a field made by
 //! another solver.
 
-use crate::mesh::NONE;
+use crate::mesh::{TriMesh, NONE};
 use crate::options::Method;
 use crate::steiner::SteinerLayout;
 use crate::surface::Source;
@@ -50,6 +50,79 @@ pub struct Stats {
     pub setup_distance_tests: u64,
     /// The run ended at its targets, before the queue ran out (see [`crate::Stop`]).
     pub stopped_early: bool,
+}
+
+/// A goal-directed run's estimate of what is left to a node (A*): `per_length` times
+/// its straight-line distance to the box around the targets. No path from the node to
+/// a target costs less (`per_length` is the metric's
+/// [`min_cost_per_length`](geotracks_metrics::Metric::min_cost_per_length)), and the
+/// estimate drops by at most what a step costs (the distance to a convex set is
+/// 1-Lipschitz): ordered by value plus estimate, nodes still settle with costs ≥ 0.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Goal {
+    /// The box around the targets.
+    pub lo: glam::DVec3,
+    pub hi: glam::DVec3,
+    pub per_length: f64,
+}
+
+impl Goal {
+    /// The estimate at world position `p`.
+    #[inline]
+    pub fn estimate(&self, p: glam::DVec3) -> f64 {
+        self.per_length * p.distance(p.clamp(self.lo, self.hi))
+    }
+}
+
+/// Where an early stop left a field: every node whose value in a full run is below
+/// [`Horizon::in_face`] of its faces has that value here, and every node the stop left
+/// unreached would have at least that.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Horizon {
+    /// The run's maximum distance.
+    pub max_distance: f64,
+    /// The queue's level when the run stopped at its targets, less the engine's lag
+    /// (`inf` when it did not): a node left queued or unreached has a key at least
+    /// this.
+    pub level: f64,
+    /// The estimate a goal-directed run added to values to make keys.
+    pub goal: Option<Goal>,
+}
+
+impl Default for Horizon {
+    fn default() -> Self {
+        Horizon::NONE
+    }
+}
+
+impl Horizon {
+    /// A full run's: nothing left unreached that could be reached.
+    pub const NONE: Horizon = Horizon {
+        max_distance: f64::INFINITY,
+        level: f64::INFINITY,
+        goal: None,
+    };
+
+    /// Whether the run stopped early (some nodes may be unreached).
+    #[inline]
+    pub fn is_bounded(&self) -> bool {
+        self.max_distance.min(self.level) < f64::INFINITY
+    }
+
+    /// The horizon of the nodes of face `f`: a key at least `level` is a value at least
+    /// `level` less the estimate, which is largest at a corner (it is convex).
+    pub fn in_face(&self, mesh: &TriMesh, f: u32) -> f64 {
+        let estimate = match self.goal {
+            Some(goal) if self.level < f64::INFINITY => {
+                let corners = mesh
+                    .face_vertices(f)
+                    .map(|v| goal.estimate(mesh.position(v)));
+                corners[0].max(corners[1]).max(corners[2])
+            }
+            _ => 0.0,
+        };
+        self.max_distance.min(self.level - estimate)
+    }
 }
 
 /// The identity of the [`Solver`](crate::Solver) that computed a field: unique per
@@ -97,7 +170,7 @@ pub struct GeodesicField {
     /// The run's [`Stop::max_distance`](crate::Stop::max_distance).
     max_distance: f64,
     /// See [`FieldView::horizon`].
-    horizon: f64,
+    horizon: Horizon,
     stats: Stats,
 }
 
@@ -119,9 +192,9 @@ pub(crate) struct FieldView<'a> {
     /// The run's [`Stop::max_distance`](crate::Stop::max_distance): a point farther is
     /// unreached, as a node is.
     pub max_distance: f64,
-    /// Every node whose value in a full run is below this has that value here; every
-    /// node the stop left unreached would have at least this. `inf` after a full run.
-    pub horizon: f64,
+    /// Where an early stop left the field: below it every value is the full run's,
+    /// beyond it nodes may be unreached.
+    pub horizon: Horizon,
 }
 
 impl<'a> FieldView<'a> {
@@ -145,7 +218,7 @@ impl GeodesicField {
         roots: Vec<Root>,
         waves: Vec<Wave>,
         max_distance: f64,
-        horizon: f64,
+        horizon: Horizon,
         stats: Stats,
     ) -> GeodesicField {
         debug_assert_eq!(distance.len(), layout.node_count());

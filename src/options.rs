@@ -162,6 +162,18 @@ pub struct Stop {
     /// point inside a face, or on an edge, depends on the nodes around it, so those are
     /// waited for). Default: none, run to the end.
     pub targets: Vec<SurfacePoint>,
+    /// With targets, settle nodes in the order of their value plus a bound on what is
+    /// left to the targets (A*): the metric's
+    /// [`min_cost_per_length`](geotracks_metrics::Metric::min_cost_per_length) times
+    /// the straight-line distance to the box around them. The targets' values are the
+    /// same; what is settled before they are final shrinks from a disc to a corridor
+    /// between sources and targets, the more so the closer the bound is to what paths
+    /// cost. Nodes off the corridor stay unreached. Default: `true`; it has no effect
+    /// without targets, for a metric that gives no bound, and for the wavefront engine
+    /// ([`Method::Wave`]), whose values depend on the order waves arrive in: settled
+    /// out of value order, a node can replace the wave through which it gave others
+    /// their values, and their paths can no longer be traced back exactly.
+    pub goal_directed: bool,
 }
 
 impl Stop {
@@ -169,6 +181,7 @@ impl Stop {
     pub const NONE: Stop = Stop {
         max_distance: f64::INFINITY,
         targets: Vec::new(),
+        goal_directed: true,
     };
 
     /// Stop at distance `max_distance`.
@@ -182,6 +195,14 @@ impl Stop {
     /// Stop once `targets` are final.
     pub fn with_targets(self, targets: Vec<SurfacePoint>) -> Stop {
         Stop { targets, ..self }
+    }
+
+    /// With targets, goal-directed or not (see [`Stop::goal_directed`]).
+    pub fn with_goal_directed(self, goal_directed: bool) -> Stop {
+        Stop {
+            goal_directed,
+            ..self
+        }
     }
 }
 

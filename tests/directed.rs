@@ -5,90 +5,14 @@
 
 mod common;
 
-use common::{random_book, random_mesh, sphere, Rng};
+use common::{random_book, random_mesh, random_randers, sphere, Randers, Rng};
 use geotracks::mesh::TriMesh;
-use geotracks::metrics::FaceGeometry;
 use geotracks::{
-    distance_field, Euclidean, FacePoint, Method, Metric, Options, Reversed, Solver, Source, Stop,
+    distance_field, Euclidean, Method, Metric, Options, Reversed, Solver, Source, Stop,
     SurfacePoint, Tensor,
 };
 use glam::DVec3;
 use proptest::prelude::*;
-
-/// A Randers metric: per face, a symmetric norm `sqrt(vᵀ G v)` (a tensor) plus a drift
-/// term `ω · v`, with `|ω|` under `G⁻¹` below 1 so that every direction costs > 0. The
-/// textbook asymmetric norm: convex, positively homogeneous, dearer along ω than
-/// against it.
-struct Randers {
-    tensor: Tensor,
-    /// Per face, ω in the face's (u, v) frame.
-    wind: Vec<[f64; 2]>,
-}
-
-impl Randers {
-    /// `wind(f)` (world) projected on each face, scaled so that its `G⁻¹` norm is
-    /// `strength` times what it was capped to (at most `strength` < 1).
-    fn new(mesh: &TriMesh, tensor: Tensor, strength: f64, wind: impl Fn(u32) -> DVec3) -> Self {
-        let wind = (0..mesh.face_count() as u32)
-            .map(|f| {
-                let [u, v] = mesh.face_axes(f);
-                let w = wind(f);
-                let omega = [w.dot(DVec3::from(u)), w.dot(DVec3::from(v))];
-                let [g11, g12, g22] = tensor.face_gram(f).expect("a tensor is face-flat");
-                // ωᵀ G⁻¹ ω, G⁻¹ = [g22, −g12; −g12, g11] / det.
-                let det = g11 * g22 - g12 * g12;
-                let dual = ((g22 * omega[0] * omega[0] - 2.0 * g12 * omega[0] * omega[1]
-                    + g11 * omega[1] * omega[1])
-                    / det)
-                    .sqrt();
-                let scale = if dual > 1.0 {
-                    strength / dual
-                } else {
-                    strength
-                };
-                [omega[0] * scale, omega[1] * scale]
-            })
-            .collect();
-        Randers { tensor, wind }
-    }
-}
-
-impl Metric for Randers {
-    fn cost(&self, face: u32, a: &FacePoint, b: &FacePoint) -> f64 {
-        let w = self.wind[face as usize];
-        let drift = w[0] * (b.uv[0] - a.uv[0]) + w[1] * (b.uv[1] - a.uv[1]);
-        // Never below 0 by rounding, for a zero-length segment.
-        (self.tensor.cost(face, a, b) + drift).max(0.0)
-    }
-    fn is_symmetric(&self) -> bool {
-        false
-    }
-    fn is_face_norm(&self) -> bool {
-        true
-    }
-    fn name(&self) -> &str {
-        "randers"
-    }
-}
-
-fn random_randers(mesh: &TriMesh, seed: u64, strength: f64) -> Randers {
-    let mut rng = Rng(seed | 1);
-    let principal: Vec<(f64, f64, [f64; 3])> = (0..mesh.face_count())
-        .map(|_| {
-            let r = |rng: &mut Rng| rng.next() - 0.5;
-            (
-                0.2 + rng.next(),
-                0.2 + rng.next(),
-                [r(&mut rng), r(&mut rng), r(&mut rng)],
-            )
-        })
-        .collect();
-    let tensor = Tensor::from_principal(mesh, &principal).unwrap();
-    let winds: Vec<DVec3> = (0..mesh.face_count())
-        .map(|_| DVec3::new(rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5) * 4.0)
-        .collect();
-    Randers::new(mesh, tensor, strength, |f| winds[f as usize])
-}
 
 fn pick(mesh: &TriMesh, picks: &[u32]) -> Vec<u32> {
     picks

@@ -1,7 +1,9 @@
 //! The stop rules at every surface point, not only at nodes: after a run stopped at a
 //! maximum distance or at its targets, the distance at any point is either `inf` or
 //! the value a full run gives there, and never beyond the maximum; the targets' values
-//! are final; and a point well inside the maximum is reached.
+//! are final; and a point well inside the maximum is reached. Goal-directed runs (the
+//! default with targets, for the Steiner-graph engines) settle in another order: the
+//! same values to rounding (1e-9 relative).
 
 mod common;
 
@@ -30,6 +32,14 @@ fn check(
     stop: &Stop,
     queries: &[SurfacePoint],
 ) -> Result<(), TestCaseError> {
+    // Values that may differ by rounding (a goal-directed run adds costs up along
+    // the same paths in another order, and may take another of two equal paths).
+    let rounding = if stop.goal_directed && !stop.targets.is_empty() {
+        1e-9
+    } else {
+        0.0
+    };
+    let same = |a: f64, b: f64| a == b || (a - b).abs() <= rounding * b.abs().max(1.0);
     let options = Options::DEFAULT.with_method(method).with_k(k);
     let solver = Solver::new(mesh, Euclidean, &options).unwrap();
     let full = solver.solve_from(sources, &Stop::NONE).unwrap();
@@ -47,7 +57,14 @@ fn check(
             full.distance_at(point).unwrap(),
         );
         if a.is_finite() {
-            prop_assert_eq!(a, b, "{:?} at {}: stopped {}, full {}", method, point, a, b);
+            prop_assert!(
+                same(a, b),
+                "{:?} at {}: stopped {}, full {}",
+                method,
+                point,
+                a,
+                b
+            );
             prop_assert!(
                 a <= stop.max_distance,
                 "{:?} at {}: {} beyond",
@@ -74,7 +91,14 @@ fn check(
         );
         // (A target whose faces reach beyond the maximum may need nodes beyond it.)
         if b <= stop.max_distance - 2.0 * longest {
-            prop_assert_eq!(a, b, "{:?}: target {} not final", method, target);
+            prop_assert!(
+                same(a, b),
+                "{:?}: target {} not final: {} against {}",
+                method,
+                target,
+                a,
+                b
+            );
         }
     }
     Ok(())
@@ -119,6 +143,8 @@ proptest! {
                 .with_targets(vec![random_point(&mesh, &mut rng)]),
         };
         for method in [Method::Wave, Method::Tracks, Method::Graph] {
+            let plain = stop.clone().with_goal_directed(false);
+            check(&mesh, method, k as f64, &sources, &plain, &queries)?;
             check(&mesh, method, k as f64, &sources, &stop, &queries)?;
         }
     }

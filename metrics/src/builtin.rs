@@ -79,6 +79,9 @@ macro_rules! metric_enum {
             fn wire_cost(&self, a: u32, b: u32, length: f64) -> f64 {
                 match self { $($name::$variant(m) => m.wire_cost(a, b, length)),+ }
             }
+            fn min_cost_per_length(&self) -> f64 {
+                match self { $($name::$variant(m) => m.min_cost_per_length()),+ }
+            }
             fn name(&self) -> &str {
                 match self { $($name::$variant(m) => m.name()),+ }
             }

@@ -134,6 +134,13 @@ impl Metric for Density {
         let (ra, rb) = (self.per_vertex[a as usize], self.per_vertex[b as usize]);
         (length * 0.5 * (ra + rb)).min(f64::MAX)
     }
+    /// The least density: a segment costs its length times the mean density along it.
+    fn min_cost_per_length(&self) -> f64 {
+        self.per_vertex
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min)
+    }
     fn name(&self) -> &str {
         "density"
     }

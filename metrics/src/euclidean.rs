@@ -23,6 +23,9 @@ impl Metric for Euclidean {
     fn face_gram(&self, _face: u32) -> Option<[f64; 3]> {
         Some([1.0, 0.0, 1.0])
     }
+    fn min_cost_per_length(&self) -> f64 {
+        1.0
+    }
     fn name(&self) -> &str {
         "euclidean"
     }

@@ -204,6 +204,22 @@ pub trait Metric: Sync {
         length
     }
 
+    /// A lower bound `m ≥ 0` on the cost per unit of Euclidean length: every segment
+    /// costs at least `m · |b − a|` (in each direction, for a directed metric), and
+    /// every wire at least `m` times its length. The default, 0, promises nothing.
+    ///
+    /// A positive bound makes runs that stop at targets *goal-directed* (A*): a node
+    /// is ordered by its value plus `m` times its straight-line distance to the
+    /// targets, which no path from it can undercut, so a route between two points
+    /// settles a corridor around it rather than a disc. The engine checks the bound on
+    /// every edge when a solver is built ([`Metric::cost`] of each edge against `m`
+    /// times its length); a bound that holds on edges but not inside faces gives wrong
+    /// early-stopped distances. `Euclidean` gives 1, `Density` its least density,
+    /// `Tensor` the square root of its least eigenvalue.
+    fn min_cost_per_length(&self) -> f64 {
+        0.0
+    }
+
     /// A short name for reports, e.g. `"euclidean"`.
     fn name(&self) -> &str {
         "custom"
@@ -236,6 +252,9 @@ impl<M: Metric + ?Sized> Metric for &M {
     fn wire_cost(&self, a: u32, b: u32, length: f64) -> f64 {
         (**self).wire_cost(a, b, length)
     }
+    fn min_cost_per_length(&self) -> f64 {
+        (**self).min_cost_per_length()
+    }
     fn name(&self) -> &str {
         (**self).name()
     }
@@ -266,6 +285,9 @@ impl<M: Metric + ?Sized> Metric for Box<M> {
     #[inline]
     fn wire_cost(&self, a: u32, b: u32, length: f64) -> f64 {
         (**self).wire_cost(a, b, length)
+    }
+    fn min_cost_per_length(&self) -> f64 {
+        (**self).min_cost_per_length()
     }
     fn name(&self) -> &str {
         (**self).name()
@@ -307,6 +329,9 @@ impl<M: Metric> Metric for Reversed<M> {
     }
     fn wire_cost(&self, a: u32, b: u32, length: f64) -> f64 {
         self.0.wire_cost(b, a, length)
+    }
+    fn min_cost_per_length(&self) -> f64 {
+        self.0.min_cost_per_length()
     }
     fn name(&self) -> &str {
         self.0.name()

@@ -171,6 +171,13 @@ fn check_count<G: FaceGeometry + ?Sized>(mesh: &G, found: usize) -> Result<(), M
     }
 }
 
+/// The least eigenvalue of the symmetric 2×2 matrix `[m11, m12, m22]` (SPD), as
+/// `det / λmax`: no cancellation when the two eigenvalues are far apart.
+pub(crate) fn least_eigenvalue([m11, m12, m22]: [f64; 3]) -> f64 {
+    let largest = 0.5 * (m11 + m22 + (m11 - m22).hypot(2.0 * m12));
+    ((m11 * m22 - m12 * m12) / largest).max(0.0)
+}
+
 pub(crate) fn check_spd(face: usize, [m11, m12, m22]: [f64; 3]) -> Result<(), MetricError> {
     if !(m11.is_finite() && m12.is_finite() && m22.is_finite()) {
         return Err(MetricError::NotFinite { face });
@@ -216,6 +223,14 @@ impl Metric for Tensor {
     fn face_gram(&self, face: u32) -> Option<[f64; 3]> {
         Some(self.local[face as usize])
     }
+    /// `sqrt(λmin)` over the faces: `vᵀ M v ≥ λmin |v|²`.
+    fn min_cost_per_length(&self) -> f64 {
+        self.local
+            .iter()
+            .map(|&m| least_eigenvalue(m))
+            .fold(f64::INFINITY, f64::min)
+            .sqrt()
+    }
     fn name(&self) -> &str {
         "tensor"
     }
@@ -224,6 +239,42 @@ impl Metric for Tensor {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `sqrt(λmin)` over the faces bounds every direction's cost per unit length, and
+    /// the least eigenvector attains it.
+    #[test]
+    fn the_least_cost_per_length_is_the_root_of_the_least_eigenvalue() {
+        // Eigenvalues 9 and 0.25 (at 30°), and a nearly isotropic one.
+        let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
+        let rotated = [
+            9.0 * c * c + 0.25 * s * s,
+            (9.0 - 0.25) * c * s,
+            9.0 * s * s + 0.25 * c * c,
+        ];
+        let t = Tensor::from_local(vec![rotated, [2.0, 0.1, 2.0]]).unwrap();
+        assert!((least_eigenvalue(rotated) - 0.25).abs() < 1e-12);
+        assert!((t.min_cost_per_length() - 0.5).abs() < 1e-12);
+        let origin = FacePoint {
+            uv: [0.0, 0.0],
+            bary: [1.0, 0.0, 0.0],
+        };
+        for i in 0..360 {
+            let a = (i as f64).to_radians();
+            let p = FacePoint {
+                uv: [a.cos(), a.sin()],
+                bary: [0.0, 1.0, 0.0],
+            };
+            for f in 0..2 {
+                assert!(t.cost(f, &origin, &p) >= 0.5 * (1.0 - 1e-12));
+            }
+        }
+        // Along the least eigenvector, (−sin 30°, cos 30°): exactly the bound.
+        let p = FacePoint {
+            uv: [-s, c],
+            bary: [0.0, 1.0, 0.0],
+        };
+        assert!((t.cost(0, &origin, &p) - 0.5).abs() < 1e-12);
+    }
 
     /// A NaN entry was reported as "not positive-definite … [NaN, …]".
     #[test]

@@ -217,6 +217,17 @@ impl Metric for TensorField {
             self.slack[face as usize] * diameter
         }
     }
+    /// `sqrt(λmin)` over the corner tensors: along a segment the tensor is a convex
+    /// combination of its face's corners, whose least eigenvalue is at least theirs
+    /// (λmin is concave).
+    fn min_cost_per_length(&self) -> f64 {
+        self.corners
+            .iter()
+            .flatten()
+            .map(|&m| crate::tensor::least_eigenvalue(m))
+            .fold(f64::INFINITY, f64::min)
+            .sqrt()
+    }
     fn name(&self) -> &str {
         "tensor field"
     }

@@ -1,37 +1,41 @@
 //! What every engine shares: per-node distances and parents, the work counters, the
 //! metric call with its sanity check, and relaxation along edges.
 
+use crate::field::Goal;
 use crate::mesh::{Csr, TriMesh, NONE};
 use crate::steiner::{NodeKind, SteinerLayout};
 use geotracks_metrics::{FacePoint, Metric};
 
-/// A priority queue of nodes keyed by their current distance.
+/// A priority queue of nodes by key: their current distance, or in a goal-directed run
+/// their distance plus their heuristic (see [`Goal`]).
 pub(super) trait Queue {
-    /// Queues `node` whose distance just dropped from `previous` to `value`; returns
-    /// whether an entry was added.
-    fn push(&mut self, node: u32, value: f64, previous: f64) -> bool;
-    /// The next node to settle, skipping stale entries (`distance` is the live state).
-    fn pop(&mut self, distance: &[f64]) -> Option<u32>;
-    /// Whether a node holding `value` now keeps it: nothing queued, or queued later,
-    /// can improve on it. Asked between a pop and the settling of the popped node.
-    fn is_final(&self, value: f64) -> bool;
-    /// The least value still queued, or a lower bound on it: settling what is queued
+    /// Queues `node` whose key just dropped from `previous` to `key`; returns whether
+    /// an entry was added.
+    fn push(&mut self, node: u32, key: f64, previous: f64) -> bool;
+    /// The next node to settle, skipping stale entries (`key` gives each node's live
+    /// key).
+    fn pop(&mut self, key: impl Fn(u32) -> f64 + Copy) -> Option<u32>;
+    /// Whether a node with key `key` now keeps its value: nothing queued, or queued
+    /// later, can improve on it. Asked between a pop and the settling of the popped
+    /// node.
+    fn is_final(&self, key: f64) -> bool;
+    /// The least key still queued, or a lower bound on it: settling what is queued
     /// offers nothing below it, less the engine's reach.
     fn level(&self) -> f64;
 }
 
 impl<Q: Queue> Queue for &mut Q {
     #[inline(always)]
-    fn push(&mut self, node: u32, value: f64, previous: f64) -> bool {
-        (**self).push(node, value, previous)
+    fn push(&mut self, node: u32, key: f64, previous: f64) -> bool {
+        (**self).push(node, key, previous)
     }
     #[inline]
-    fn pop(&mut self, distance: &[f64]) -> Option<u32> {
-        (**self).pop(distance)
+    fn pop(&mut self, key: impl Fn(u32) -> f64 + Copy) -> Option<u32> {
+        (**self).pop(key)
     }
     #[inline]
-    fn is_final(&self, value: f64) -> bool {
-        (**self).is_final(value)
+    fn is_final(&self, key: f64) -> bool {
+        (**self).is_final(key)
     }
     #[inline]
     fn level(&self) -> f64 {
@@ -65,6 +69,12 @@ pub(super) struct Frontier<'a, M, Q> {
     pub queue: Q,
     /// Values above this are not taken: their nodes stay unreached.
     pub max_distance: f64,
+    /// A goal-directed run's estimate: the queue orders nodes by value plus estimate
+    /// (their *key*); `None`: by value.
+    pub goal: Option<Goal>,
+    /// Per node, its goal estimate, written when the node is first reached (read only
+    /// for reached nodes, so never reset); empty without a goal.
+    pub estimate: &'a mut [f64],
     /// How far below a node's value an offer it makes can be (0 for the Steiner-graph
     /// engines, whose offers add a cost ≥ 0; the longest edge for the wavefront engine,
     /// whose straight offers come from a source behind the node: a node lies within an
@@ -103,10 +113,9 @@ pub(super) struct Outcome {
     pub bad_cost: Option<(u32, f64)>,
     /// The targets were all final before the queue ran out.
     pub stopped_early: bool,
-    /// Every node whose value in a full run is below this has it in this run; every
-    /// node left unreached would have at least this (the stop's maximum distance, or
-    /// less after a stop at the targets).
-    pub horizon: f64,
+    /// After a stop at the targets, the least key anything left could still get (see
+    /// [`Horizon`](crate::field::Horizon)); `inf` otherwise.
+    pub level: f64,
 }
 
 impl<'a, M: Metric> Frontier<'a, M, ()> {
@@ -132,6 +141,8 @@ impl<'a, M: Metric> Frontier<'a, M, ()> {
             records: self.records,
             queue,
             max_distance: self.max_distance,
+            goal: self.goal,
+            estimate: self.estimate,
             reach: self.reach,
             targets: self.targets,
             target_cursor: 0,
@@ -149,12 +160,13 @@ impl<'a, M: Metric> Frontier<'a, M, ()> {
             && search.bad_cost.is_none();
         let (reach, max) = (search.reach, search.max_distance);
         // After a stop at the targets, what is still queued (at `level` or later) offers
-        // nothing below `level - reach`, and a node is kept only if its value is below
-        // that too.
-        let horizon = if stopped_early {
-            max.min(search.queue.level() - reach)
+        // no key below `level - reach` (a goal-directed run is a Steiner-graph engine's,
+        // with no reach: its offers add at least what the estimate drops), and a node is
+        // kept only if its key is below that too.
+        let level = if stopped_early {
+            search.queue.level() - reach
         } else {
-            max
+            f64::INFINITY
         };
         // (With a margin, values up to `max + reach` were taken: only a finite maximum
         // leaves some to forget.)
@@ -162,12 +174,13 @@ impl<'a, M: Metric> Frontier<'a, M, ()> {
             // Only touched nodes hold values (and this run recorded them: it could
             // stop early): a local run pays for what it reached.
             for &node in search.touched.iter() {
+                let key = search.key(node);
                 let node = node as usize;
                 let d = &mut search.distance[node];
                 // Values beyond the maximum distance were only kept for the margin.
                 let beyond = d.is_finite() && *d > max;
                 let not_final =
-                    stopped_early && d.is_finite() && !search.queue.is_final(*d + reach);
+                    stopped_early && d.is_finite() && !search.queue.is_final(key + reach);
                 if beyond || not_final {
                     *d = f64::INFINITY;
                     search.parent[node] = NONE;
@@ -181,12 +194,23 @@ impl<'a, M: Metric> Frontier<'a, M, ()> {
             tests: search.tests,
             bad_cost: search.bad_cost,
             stopped_early,
-            horizon,
+            level,
         }
     }
 }
 
 impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
+    /// The key the queue orders `node` by: its value, plus its estimate in a
+    /// goal-directed run (`inf` for an unreached node).
+    #[inline(always)]
+    pub fn key(&self, node: u32) -> f64 {
+        let d = self.distance[node as usize];
+        match self.goal {
+            Some(_) if d < f64::INFINITY => d + self.estimate[node as usize],
+            _ => d,
+        }
+    }
+
     /// The next node to settle and its value; `None` when the run is over: the queue is
     /// empty, the metric returned a bad cost, or every target's value is final.
     ///
@@ -197,11 +221,18 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
         if self.bad_cost.is_some() {
             return None;
         }
-        let q = self.queue.pop(self.distance)?;
+        let distance = &*self.distance;
+        let q = if self.goal.is_some() {
+            let estimate = &*self.estimate;
+            self.queue
+                .pop(|q| distance[q as usize] + estimate[q as usize])?
+        } else {
+            self.queue.pop(|q| distance[q as usize])?
+        };
         self.settles += 1;
         if !self.targets.is_empty() {
             while let Some(&t) = self.targets.get(self.target_cursor) {
-                if !self.queue.is_final(self.distance[t as usize] + self.reach) {
+                if !self.queue.is_final(self.key(t) + self.reach) {
                     return Some((q, self.distance[q as usize]));
                 }
                 self.target_cursor += 1;
@@ -228,22 +259,35 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
     pub fn relax(&mut self, node: u32, value: f64, from: u32, face: u32) {
         let previous = self.distance[node as usize];
         if value < previous && value <= self.max_distance + self.reach {
-            if self.records && previous == f64::INFINITY {
-                self.touched.push(node);
+            if previous == f64::INFINITY {
+                if self.records {
+                    self.touched.push(node);
+                }
+                if let Some(goal) = &self.goal {
+                    let p = self.layout.position(self.mesh, node);
+                    self.estimate[node as usize] = goal.estimate(p);
+                }
             }
             self.distance[node as usize] = value;
             self.parent[node as usize] = from;
             self.parent_face[node as usize] = face;
-            self.pushes += self.queue.push(node, value, previous) as u64;
+            let (key, previous) = match self.goal {
+                None => (value, previous),
+                Some(_) => {
+                    let estimate = self.estimate[node as usize];
+                    (value + estimate, previous + estimate)
+                }
+            };
+            self.pushes += self.queue.push(node, key, previous) as u64;
         }
     }
 
-    /// Queues `node` again at its current value (its value stays, but what it offers
+    /// Queues `node` again at its current key (its value stays, but what it offers
     /// changed: the wavefront engine widened its window).
     #[inline]
     pub fn requeue(&mut self, node: u32) {
-        let value = self.distance[node as usize];
-        self.pushes += self.queue.push(node, value, value) as u64;
+        let key = self.key(node);
+        self.pushes += self.queue.push(node, key, key) as u64;
     }
 
     /// Relaxes the vertices at the other ends of vertex `v`'s wires (a vertex's node is

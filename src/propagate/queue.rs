@@ -47,9 +47,9 @@ impl Queue for HeapQueue {
     }
 
     #[inline]
-    fn pop(&mut self, distance: &[f64]) -> Option<u32> {
+    fn pop(&mut self, key: impl Fn(u32) -> f64 + Copy) -> Option<u32> {
         while let Some(Entry(d, q)) = self.heap.pop() {
-            if d <= distance[q as usize] {
+            if d <= key(q) {
                 self.floor = d;
                 return Some(q);
             }
@@ -244,9 +244,8 @@ impl BucketQueue {
 
     /// Restarts the window at the least live value waiting in the heap and moves every
     /// live entry that falls inside it there; returns whether anything is left.
-    fn refill(&mut self, distance: &[f64]) -> bool {
-        let live =
-            |pending: &[bool], Entry(v, q): Entry| pending[q as usize] && distance[q as usize] == v;
+    fn refill(&mut self, key: impl Fn(u32) -> f64) -> bool {
+        let live = |pending: &[bool], Entry(v, q): Entry| pending[q as usize] && key(q) == v;
         while let Some(&top) = self.far.peek() {
             if live(&self.pending, top) {
                 break;
@@ -286,12 +285,12 @@ impl BucketQueue {
 
     /// Switches the rest of the current bucket to exact order.
     #[cold]
-    fn go_exact(&mut self, distance: &[f64]) {
+    fn go_exact(&mut self, key: impl Fn(u32) -> f64) {
         let b = self.current;
         self.exact_slot = b;
         self.exact.clear();
         for &q in &self.buckets[b] {
-            let d = distance[q as usize];
+            let d = key(q);
             if self.pending[q as usize] && self.slot(d) <= b {
                 self.exact.push(Entry(d, q));
             }
@@ -339,16 +338,16 @@ impl Queue for BucketQueue {
     }
 
     #[inline]
-    fn pop(&mut self, distance: &[f64]) -> Option<u32> {
+    fn pop(&mut self, key: impl Fn(u32) -> f64 + Copy) -> Option<u32> {
         if self.far.len() > 2 * self.far_live + WINDOW {
             let pending = &self.pending;
             self.far
-                .retain(|&Entry(v, q)| pending[q as usize] && distance[q as usize] == v);
+                .retain(|&Entry(v, q)| pending[q as usize] && key(q) == v);
         }
         loop {
             if self.exact_slot != usize::MAX {
                 while let Some(Entry(d, q)) = self.exact.pop() {
-                    if self.pending[q as usize] && distance[q as usize] == d {
+                    if self.pending[q as usize] && key(q) == d {
                         self.pending[q as usize] = false;
                         return Some(q);
                     }
@@ -363,13 +362,13 @@ impl Queue for BucketQueue {
                         self.returns = 0;
                     }
                     if 2 * self.returns > self.pops + RETURN_SLACK {
-                        self.go_exact(distance);
+                        self.go_exact(key);
                         break;
                     }
                     let absolute = self.current;
                     while let Some(q) = self.buckets[absolute].pop() {
-                        // Live: queued, and filed where its distance belongs (or below).
-                        let d = distance[q as usize];
+                        // Live: queued, and filed where its key belongs (or below).
+                        let d = key(q);
                         let live = self.pending[q as usize] && self.slot(d) <= absolute;
                         if live {
                             self.pending[q as usize] = false;
@@ -383,7 +382,7 @@ impl Queue for BucketQueue {
                     continue;
                 }
             }
-            if !self.refill(distance) {
+            if !self.refill(key) {
                 return None;
             }
         }
@@ -405,7 +404,7 @@ mod tests {
 
     /// Pops everything, returning the nodes in order.
     fn drain(queue: &mut BucketQueue, distance: &[f64]) -> Vec<u32> {
-        std::iter::from_fn(|| queue.pop(distance)).collect()
+        std::iter::from_fn(|| queue.pop(|q| distance[q as usize])).collect()
     }
 
     #[test]
@@ -417,7 +416,7 @@ mod tests {
         // [b, b + 1) from then on.
         distance[4] = 0.0;
         queue.push(4, 0.0, f64::INFINITY);
-        assert_eq!(queue.pop(&distance), Some(4));
+        assert_eq!(queue.pop(|q| distance[q as usize]), Some(4));
         for (node, value) in [(0, 2.5), (1, 0.5), (2, 1.5), (3, 7.0)] {
             distance[node as usize] = value;
             assert!(queue.push(node, value, f64::INFINITY));
@@ -468,7 +467,7 @@ mod tests {
         let mut pops = 0;
         distance[0] = 0.0;
         queue.push(0, 0.0, f64::INFINITY);
-        while let Some(q) = queue.pop(&distance) {
+        while let Some(q) = queue.pop(|q| distance[q as usize]) {
             pops += 1;
             // Node q offers the next 49 nodes a cost that grows faster than the jump,
             // so the best path steps one node at a time, and LIFO order pops far
@@ -499,7 +498,7 @@ mod tests {
         let mut distance = vec![f64::INFINITY; 3];
         distance[0] = 5.5;
         queue.push(0, 5.5, f64::INFINITY);
-        assert_eq!(queue.pop(&distance), Some(0));
+        assert_eq!(queue.pop(|q| distance[q as usize]), Some(0));
         // Processing bucket 5 now; node 1 gets a value of bucket 2, then improves
         // within it: it must come out once, not be taken for stale.
         distance[1] = 2.5;
@@ -526,12 +525,12 @@ mod tests {
         let distance = [0.5, 2.5];
         queue.push(0, distance[0], f64::INFINITY);
         queue.push(1, distance[1], f64::INFINITY);
-        assert_eq!(queue.pop(&distance), Some(0));
+        assert_eq!(queue.pop(|q| distance[q as usize]), Some(0));
         assert!(
             !queue.is_final(0.5),
             "bucket 0 may still hold smaller values"
         );
-        assert_eq!(queue.pop(&distance), Some(1));
+        assert_eq!(queue.pop(|q| distance[q as usize]), Some(1));
         // The window starts at the least value (0.5), so bucket 2 is [2.5, 3.5).
         assert!(queue.is_final(0.5) && queue.is_final(2.49));
         assert!(!queue.is_final(2.5));
@@ -541,7 +540,7 @@ mod tests {
         heap.push(0, 0.5, f64::INFINITY);
         heap.push(1, 2.5, f64::INFINITY);
         assert!(!heap.is_final(0.0));
-        assert_eq!(heap.pop(&distance), Some(0));
+        assert_eq!(heap.pop(|q| distance[q as usize]), Some(0));
         assert!(heap.is_final(0.5) && !heap.is_final(0.6));
     }
 }

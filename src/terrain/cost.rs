@@ -290,6 +290,10 @@ impl<M: Metric> Metric for Impassable<M> {
     fn wire_cost(&self, a: u32, b: u32, length: f64) -> f64 {
         self.inner.wire_cost(a, b, length)
     }
+    // Walls cost more than anything.
+    fn min_cost_per_length(&self) -> f64 {
+        self.inner.min_cost_per_length()
+    }
     fn name(&self) -> &str {
         "impassable"
     }

@@ -193,6 +193,58 @@ impl DirectedModel {
         }
     }
 
+    /// The least cost per unit of 3D length on a face whose steepest tangent is `m`
+    /// (see [`Metric::min_cost_per_length`]).
+    ///
+    /// Along a direction of tangent `t` (rise per unit of run, `|t| ≤ m` on the face)
+    /// a unit of 3D length costs `cost(1, t) / sqrt(1 + t²)`. For the walking times
+    /// `cost(1, t)` is linear in `t` on each range of slopes, `α + β t` with `α > 0`,
+    /// whose one critical point divided by `sqrt(1 + t²)` is a maximum: the least
+    /// value lies at the ends of the ranges. Tobler's cost per unit falls towards
+    /// `t = −0.05` and rises beyond (its exponent's slope, 3.5, exceeds that of
+    /// `ln sqrt(1 + t²)`, at most ½).
+    fn min_cost_per_length(&self, m: f64) -> f64 {
+        // (α + β t) / sqrt(1 + t²), and its limit β·sign(t) at t = ±∞.
+        let per_length = |alpha: f64, beta: f64, t: f64| {
+            if t.is_infinite() {
+                beta * t.signum()
+            } else {
+                (alpha + beta * t) / t.hypot(1.0)
+            }
+        };
+        match *self {
+            DirectedModel::Uphill { .. } => 1.0,
+            DirectedModel::Walk {
+                a,
+                b,
+                c,
+                d,
+                slope_factor,
+            } => {
+                let mut least = a.min(per_length(a, b, m));
+                // Moderate descents, down to the slope factor or the face's steepest.
+                let moderate = slope_factor.max(-m);
+                least = least.min(per_length(a, c, moderate));
+                if -m < slope_factor {
+                    // Steep descents, from just beyond the slope factor to the steepest.
+                    least = least
+                        .min(per_length(a, d, slope_factor))
+                        .min(per_length(a, d, -m));
+                }
+                least.max(0.0)
+            }
+            DirectedModel::Tobler { off_path } => {
+                let t = (-0.05f64).max(-m);
+                let on_path = 0.6 * (3.5 * (t + 0.05).abs()).exp() / t.hypot(1.0);
+                if off_path {
+                    on_path / 0.6
+                } else {
+                    on_path
+                }
+            }
+        }
+    }
+
     /// Whether the cost is convex on every face, whatever its slope.
     fn convex_everywhere(&self) -> bool {
         match *self {
@@ -233,6 +285,8 @@ pub struct DirectedCost {
     axes: Vec<[f64; 6]>,
     /// Per face, whether the cost is convex there (the engine prunes only there).
     convex: Vec<bool>,
+    /// The least cost per unit of 3D length over the faces.
+    per_length: f64,
 }
 
 impl DirectedCost {
@@ -251,13 +305,19 @@ impl DirectedCost {
             })
             .collect();
         // The steepest tangent of each face: its normal's tilt.
-        let convex = (0..faces)
-            .map(|f| model.convex_at(tan2(face_normal_up(mesh, f)).sqrt()))
+        let steepest: Vec<f64> = (0..faces)
+            .map(|f| tan2(face_normal_up(mesh, f)).sqrt())
             .collect();
+        let convex = steepest.iter().map(|&m| model.convex_at(m)).collect();
+        let per_length = steepest
+            .iter()
+            .map(|&m| model.min_cost_per_length(m))
+            .fold(f64::INFINITY, f64::min);
         Ok(DirectedCost {
             model,
             axes,
             convex,
+            per_length,
         })
     }
 
@@ -289,12 +349,72 @@ impl Metric for DirectedCost {
     fn prunes_on(&self, face: u32) -> bool {
         self.convex[face as usize]
     }
+    fn min_cost_per_length(&self) -> f64 {
+        self.per_length
+    }
     fn name(&self) -> &str {
         match self.model {
             DirectedModel::Uphill { .. } => "uphill",
             DirectedModel::Walk { .. } if self.model == DirectedModel::NAISMITH => "naismith",
             DirectedModel::Walk { .. } => "rwalk",
             DirectedModel::Tobler { .. } => "tobler",
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::DirectedModel;
+
+    /// The least cost per unit of 3D length is a lower bound on every direction of a
+    /// face with the given steepest tangent, and a tight one (some direction costs
+    /// within 0.1 % of it).
+    #[test]
+    fn the_least_cost_per_length_bounds_every_direction_tightly() {
+        let models = [
+            DirectedModel::Uphill { b: 8.0 },
+            DirectedModel::NAISMITH,
+            DirectedModel::RWALK,
+            DirectedModel::Walk {
+                a: 0.5,
+                b: 3.0,
+                c: 1.0,
+                d: -0.5,
+                slope_factor: -0.3,
+            },
+            DirectedModel::Tobler { off_path: false },
+            DirectedModel::Tobler { off_path: true },
+        ];
+        for model in models {
+            for m in [0.0, 0.02, 0.1, 0.2125, 0.3, 1.0, 5.0, 1e3] {
+                let bound = model.min_cost_per_length(m);
+                let mut least = f64::INFINITY;
+                // Tangents from −m to m, the ends included, and where the models
+                // turn: r.walk's slope factors, Tobler's fastest slope.
+                let turns = [-0.2125, -0.3, -0.05]
+                    .into_iter()
+                    .filter(|t: &f64| t.abs() <= m);
+                let steps = (0..=20_000).map(|i| m * (2.0 * i as f64 / 20_000.0 - 1.0));
+                for t in steps.chain(turns) {
+                    let per_length = model.cost(1.0, t) / t.hypot(1.0);
+                    assert!(
+                        per_length >= bound * (1.0 - 1e-12),
+                        "{model:?}, m = {m}: {per_length} at tangent {t}, below {bound}"
+                    );
+                    least = least.min(per_length);
+                }
+                assert!(
+                    least <= bound * (1.0 + 1e-3) + 1e-12,
+                    "{model:?}, m = {m}: the bound {bound} is loose (least {least})"
+                );
+            }
+            // A vertical face: straight up or down costs the limit (or, for Tobler,
+            // nothing walks there).
+            let vertical = model.min_cost_per_length(f64::INFINITY);
+            assert!(
+                vertical >= 0.0 && vertical <= model.min_cost_per_length(1e3),
+                "{model:?}"
+            );
         }
     }
 }

@@ -325,7 +325,7 @@ impl<M: Metric> Query<'_, M> {
                     across: None,
                     floor: g,
                 });
-            } else if field.horizon < f64::INFINITY {
+            } else if field.horizon.is_bounded() {
                 unreached.push(to_site(&p));
             }
         }

@@ -237,8 +237,9 @@ impl<'a, M: Metric> Query<'a, M> {
         for &f in point.faces(mesh).iter() {
             let x = point.in_face(mesh, f).expect("the point lies on its faces");
             let face = cache.get(self, f);
-            if field.horizon < f64::INFINITY {
-                unsettled = unsettled.min(face.unsettled(metric, field.horizon, &x));
+            if field.horizon.is_bounded() {
+                let horizon = field.horizon.in_face(mesh, f);
+                unsettled = unsettled.min(face.unsettled(metric, horizon, &x));
             }
             if let Some((d, c)) = face.best(metric, &x, |_| false) {
                 if d < best.0 {

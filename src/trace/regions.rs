@@ -415,8 +415,10 @@ impl<'f, 'q, 'a, M: Metric> LabelGrid<'f, 'q, 'a, M> {
         let c = self.same[c];
         let horizon = self.query.field.horizon;
         let unreached = value > self.query.field.max_distance
-            || (horizon < f64::INFINITY
-                && value > self.field.unsettled(self.query.metric, horizon, &x));
+            || (horizon.is_bounded() && {
+                let horizon = horizon.in_face(self.query.mesh, self.field.face);
+                value > self.field.unsettled(self.query.metric, horizon, &x)
+            });
         (!unreached).then_some(c)
     }
 

@@ -1,0 +1,243 @@
+//! Goal-directed runs (A*): a run with targets orders nodes by their value plus the
+//! metric's least cost per unit length times their distance to the targets. The
+//! Steiner-graph engines must still give the targets the complete graph's values (the
+//! oracle, to 1e-9); the wavefront engine, whose values depend on the order waves
+//! arrive in, is never goal-directed.
+
+mod common;
+
+use common::{random_book, random_mesh, random_randers, sphere, Rng, GRAPH};
+use geotracks::mesh::TriMesh;
+use geotracks::{
+    Density, Error, Euclidean, FacePoint, Method, Metric, Options, Solver, Source, Stop,
+    SurfacePoint, Tensor,
+};
+use proptest::prelude::*;
+
+/// The value at `target` from `source` after a goal-directed run stopped there, with
+/// the run's settles.
+fn goal_directed<M: Metric>(
+    solver: &Solver<'_, M>,
+    source: SurfacePoint,
+    target: SurfacePoint,
+) -> (f64, u64) {
+    let stop = Stop::NONE.with_targets(vec![target]);
+    let field = solver.solve_from(&[Source::new(source)], &stop).unwrap();
+    let value = solver.query(&field).unwrap().distance_at(target).unwrap();
+    (value, field.stats().settles)
+}
+
+/// The complete Steiner graph's value at `target` from `source` (a full run).
+fn oracle<M: Metric>(
+    mesh: &TriMesh,
+    metric: &M,
+    k: f64,
+    source: SurfacePoint,
+    target: SurfacePoint,
+) -> f64 {
+    let solver = Solver::new(mesh, metric, &GRAPH.with_k(k)).unwrap();
+    let field = solver
+        .solve_from(&[Source::new(source)], &Stop::NONE)
+        .unwrap();
+    solver.query(&field).unwrap().distance_at(target).unwrap()
+}
+
+fn random_point(mesh: &TriMesh, rng: &mut Rng) -> SurfacePoint {
+    match rng.below(3) {
+        0 => SurfacePoint::Vertex(rng.below(mesh.vertex_count()) as u32),
+        _ => common::random_face_point(mesh, rng),
+    }
+}
+
+/// A random metric of each kind: Euclidean, a density, a tensor, a directed one.
+fn random_metric(mesh: &TriMesh, kind: u8, seed: u64) -> Box<dyn Metric> {
+    let mut rng = Rng(seed | 1);
+    match kind {
+        0 => Box::new(Euclidean),
+        1 => {
+            let rho: Vec<f64> = (0..mesh.vertex_count())
+                .map(|_| 0.2 + 3.0 * rng.next())
+                .collect();
+            Box::new(Density::new(mesh, rho).unwrap())
+        }
+        2 => {
+            let principal: Vec<(f64, f64, [f64; 3])> = (0..mesh.face_count())
+                .map(|_| {
+                    let mut r = || rng.next() - 0.5;
+                    (0.1 + r().abs() * 4.0, 0.1 + r().abs(), [r(), r(), r()])
+                })
+                .collect();
+            Box::new(Tensor::from_principal(mesh, &principal).unwrap())
+        }
+        _ => Box::new(random_randers(mesh, seed, 0.7)),
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
+
+    /// The oracle: a goal-directed run of the tracks engine and of the graph gives the
+    /// target the complete Steiner graph's value (a full run), under every kind of
+    /// metric, on meshes with holes, fins and non-manifold books.
+    #[test]
+    fn goal_directed_routes_cost_what_the_steiner_graph_gives(
+        seed in any::<u64>(),
+        shape in 0u8..3,
+        kind in 0u8..4,
+        k in 1u32..5,
+    ) {
+        let mesh = match shape {
+            0 => sphere(2, 0.2, seed),
+            1 => random_book(seed, 3, 4),
+            _ => match random_mesh(seed, 7) {
+                Ok(mesh) => mesh,
+                Err(_) => return Ok(()),
+            },
+        };
+        let metric = random_metric(&mesh, kind, seed);
+        let mut rng = Rng(seed ^ 0x90a1);
+        let (from, to) = (random_point(&mesh, &mut rng), random_point(&mesh, &mut rng));
+        let expected = oracle(&mesh, &metric, k as f64, from, to);
+        for method in [Method::Tracks, Method::Graph] {
+            let options = Options::DEFAULT.with_method(method).with_k(k as f64);
+            let solver = Solver::new(&mesh, &metric, &options).unwrap();
+            let (value, _) = goal_directed(&solver, from, to);
+            prop_assert!(
+                value == expected || (value - expected).abs() <= 1e-9 * expected,
+                "{:?} {}: {} against the graph's {}", method, metric.name(), value, expected
+            );
+        }
+    }
+
+    /// The wavefront engine is never goal-directed (its values depend on the order
+    /// waves arrive in): a stop asking for it gives what a plain stop gives, to the bit.
+    #[test]
+    fn wavefront_runs_ignore_goal_direction(seed in any::<u64>(), k in 1u32..4) {
+        let mesh = sphere(2, 0.2, seed);
+        let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT.with_k(k as f64)).unwrap();
+        prop_assert_eq!(solver.method(), Method::Wave);
+        let mut rng = Rng(seed | 1);
+        let (from, to) = (random_point(&mesh, &mut rng), random_point(&mesh, &mut rng));
+        let (value, settles) = goal_directed(&solver, from, to);
+        let plain = Stop::NONE.with_targets(vec![to]).with_goal_directed(false);
+        let field = solver.solve_from(&[Source::new(from)], &plain).unwrap();
+        prop_assert_eq!(value, solver.query(&field).unwrap().distance_at(to).unwrap());
+        prop_assert_eq!(settles, field.stats().settles);
+    }
+}
+
+/// On a terrain-like grid (hills, a route corner to corner) the goal-directed tracks
+/// engine settles a fraction of what a plain early stop settles, for the same value.
+#[test]
+fn goal_direction_settles_a_corridor() {
+    let n = 60;
+    let mesh = common::grid_with(n, n as f64, |x, y| {
+        [x, y, (0.3 * x).sin() * (0.2 * y).cos()]
+    });
+    let solver = Solver::new(
+        &mesh,
+        Euclidean,
+        &Options::DEFAULT.with_method(Method::Tracks).with_k(2.0),
+    )
+    .unwrap();
+    let (from, to) = (
+        SurfacePoint::Vertex(0),
+        SurfacePoint::Vertex((n * (n + 1) + n) as u32),
+    );
+    let (value, settles) = goal_directed(&solver, from, to);
+    let plain = Stop::NONE.with_targets(vec![to]).with_goal_directed(false);
+    let field = solver.solve_from(&[Source::new(from)], &plain).unwrap();
+    let expected = solver.query(&field).unwrap().distance_at(to).unwrap();
+    println!(
+        "{n} × {n} hills, corner to corner: {settles} settles against {}",
+        field.stats().settles
+    );
+    assert!(
+        (value - expected).abs() <= 1e-9 * expected,
+        "{value} {expected}"
+    );
+    assert!(3 * settles < field.stats().settles);
+}
+
+/// A metric whose promised least cost per unit length exceeds what an edge costs is
+/// refused when the solver is built, naming the edge.
+#[test]
+fn a_metric_that_promises_too_much_is_refused() {
+    struct Boastful;
+    impl Metric for Boastful {
+        fn cost(&self, _face: u32, a: &FacePoint, b: &FacePoint) -> f64 {
+            a.distance(b)
+        }
+        fn min_cost_per_length(&self) -> f64 {
+            1.5
+        }
+    }
+    let mesh = common::grid(2, 2.0);
+    let error = Solver::new(&mesh, Boastful, &Options::DEFAULT)
+        .err()
+        .expect("refused");
+    assert!(
+        matches!(error, Error::CostBelowBound { per_length, .. } if per_length == 1.5),
+        "{error}"
+    );
+    assert!(error.to_string().contains("edge"), "{error}");
+
+    // A wire too: the bound holds on faces, but the wire charges its length / 2.
+    struct CheapWires;
+    impl Metric for CheapWires {
+        fn cost(&self, _face: u32, a: &FacePoint, b: &FacePoint) -> f64 {
+            a.distance(b)
+        }
+        fn wire_cost(&self, _a: u32, _b: u32, length: f64) -> f64 {
+            0.5 * length
+        }
+        fn min_cost_per_length(&self) -> f64 {
+            1.0
+        }
+    }
+    let mesh = TriMesh::with_line_elements(
+        vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 3.0, 0.0],
+        ],
+        vec![[0, 1, 2]],
+        vec![[2, 3]],
+    )
+    .unwrap();
+    let error = Solver::new(&mesh, CheapWires, &Options::DEFAULT)
+        .err()
+        .expect("refused");
+    assert!(matches!(error, Error::WireBelowBound { .. }), "{error}");
+}
+
+/// A bound that is not a positive finite number promises nothing: the run is plain.
+#[test]
+fn no_bound_no_goal_direction() {
+    struct Unsure;
+    impl Metric for Unsure {
+        fn cost(&self, _face: u32, a: &FacePoint, b: &FacePoint) -> f64 {
+            a.distance(b)
+        }
+        fn is_face_norm(&self) -> bool {
+            true
+        }
+        fn min_cost_per_length(&self) -> f64 {
+            f64::NAN
+        }
+    }
+    let mesh = common::grid(20, 20.0);
+    let target = SurfacePoint::Vertex(22);
+    let unsure = Solver::new(&mesh, Unsure, &Options::DEFAULT.with_method(Method::Tracks)).unwrap();
+    let sure = Solver::new(
+        &mesh,
+        Euclidean,
+        &Options::DEFAULT.with_method(Method::Tracks),
+    )
+    .unwrap();
+    let (a, unsure_settles) = goal_directed(&unsure, SurfacePoint::Vertex(0), target);
+    let (b, sure_settles) = goal_directed(&sure, SurfacePoint::Vertex(0), target);
+    assert!((a - b).abs() < 1e-12, "{a} {b}");
+    assert!(sure_settles < unsure_settles);
+}
