@@ -206,18 +206,20 @@ impl SteinerLayout {
         scheme: SteinerScheme,
         counts: Vec<u32>,
     ) -> Result<SteinerLayout, Error> {
-        let midpoints: Vec<glam::DVec3> = (0..mesh.edge_count() as u32)
-            .map(|e| {
-                let [a, b] = mesh.edge_vertices(e);
-                (mesh.position(a) + mesh.position(b)) * 0.5
-            })
-            .collect();
-        Self::from_counts(
-            mesh.vertex_count(),
-            &counts,
-            morton_order(&midpoints),
-            scheme,
-        )
+        // Blocks in a spatial order, so that a wavefront finds its nodes close in
+        // memory: the mesh's own where it has one (a grid's rows), else along a curve.
+        let order = if mesh.is_spatially_ordered() {
+            (0..mesh.edge_count() as u32).collect()
+        } else {
+            let midpoints: Vec<glam::DVec3> = (0..mesh.edge_count() as u32)
+                .map(|e| {
+                    let [a, b] = mesh.edge_vertices(e);
+                    (mesh.position(a) + mesh.position(b)) * 0.5
+                })
+                .collect();
+            morton_order(&midpoints)
+        };
+        Self::from_counts(mesh.vertex_count(), &counts, order, scheme)
     }
 
     /// No Steiner points at all: the nodes are the vertices.

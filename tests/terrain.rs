@@ -7,6 +7,7 @@ mod common;
 
 use common::{random_mesh, Rng, DIJKSTRA, GRAPH, TRACKS};
 use geotracks::glam::DVec3;
+use geotracks::mesh::TriMesh;
 use geotracks::terrain::{
     incline_tensor, read_asc, read_geotiff, read_grid, slope_density, steeper_than, DirectedCost,
     DirectedModel, ElevationGrid, GridGeometry, Impassable, TerrainCost, TerrainError, TerrainMesh,
@@ -123,6 +124,41 @@ fn nodata_holes_and_islands_are_kept() {
     for f in 0..mesh.face_count() as u32 {
         let [a, b, c] = mesh.face_vertices(f).map(|v| mesh.position(v));
         assert!((b - a).cross(c - a).z > 0.0);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+    /// A grid's mesh numbers its edges without sorting them (its own table, row by
+    /// row): the same table as the general mesh builder's, with NODATA holes, ragged
+    /// borders and single-triangle cells.
+    #[test]
+    fn a_grids_edge_table_is_the_general_builders(seed in any::<u64>(), ncols in 2usize..9, nrows in 2usize..9, holes in 0.0f64..0.4) {
+        let mut rng = Rng(seed | 1);
+        let values: Vec<Option<f64>> = (0..ncols * nrows)
+            .map(|_| (rng.next() >= holes).then(|| 3.0 * rng.next()))
+            .collect();
+        let g = geometry(ncols, nrows, [0.0, 0.0], 1.0);
+        let grid = ElevationGrid::from_fn(g, |x, y| values[(nrows - 1 - y as usize) * ncols + x as usize]).unwrap();
+        let Ok(terrain) = grid.to_mesh() else {
+            return Ok(());
+        };
+        let mesh = &terrain.mesh;
+        let positions = mesh.positions().iter().map(|p| p.to_array()).collect();
+        let general = TriMesh::new(positions, mesh.triangles().to_vec()).unwrap();
+        prop_assert_eq!(mesh.edge_count(), general.edge_count());
+        for e in 0..mesh.edge_count() as u32 {
+            prop_assert_eq!(mesh.edge_vertices(e), general.edge_vertices(e));
+            prop_assert_eq!(mesh.edge_faces(e), general.edge_faces(e));
+        }
+        for f in 0..mesh.face_count() as u32 {
+            prop_assert_eq!(mesh.face_edges(f), general.face_edges(f));
+        }
+        for v in 0..mesh.vertex_count() as u32 {
+            prop_assert_eq!(mesh.vertex_edges(v), general.vertex_edges(v));
+            prop_assert_eq!(mesh.vertex_faces(v), general.vertex_faces(v));
+        }
     }
 }
 

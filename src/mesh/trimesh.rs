@@ -137,6 +137,9 @@ pub struct TriMesh {
     vertex_wires: Csr,
     input_faces: Vec<u32>,
     dropped: Vec<DroppedFace>,
+    /// Faces and edges are numbered in a spatially coherent order (see
+    /// [`TriMesh::with_edge_table`]).
+    spatially_ordered: bool,
 }
 
 impl TriMesh {
@@ -164,99 +167,48 @@ impl TriMesh {
         triangles: Vec<[u32; 3]>,
         line_edges: Vec<[u32; 2]>,
     ) -> Result<Self, MeshError> {
-        let n = positions.len();
-        if let Some((vertex, p)) = positions
-            .iter()
-            .enumerate()
-            .find(|(_, p)| !p.iter().all(|c| c.is_finite()))
-        {
-            return Err(MeshError::NonFiniteVertex {
-                vertex,
-                position: *p,
-            });
-        }
-        if let Some((vertex, p)) = positions
-            .iter()
-            .enumerate()
-            .find(|(_, p)| p.iter().any(|c| c.abs() > MAX_COORDINATE))
-        {
-            return Err(MeshError::CoordinateOutOfRange {
-                vertex,
-                position: *p,
-                limit: MAX_COORDINATE,
-            });
-        }
-        for (face, t) in triangles.iter().enumerate() {
-            if let Some(&v) = t.iter().find(|&&v| v as usize >= n) {
-                return Err(MeshError::IndexOutOfRange {
-                    face,
-                    vertex: v as i64,
-                    vertex_count: n,
-                });
-            }
-        }
-        check_line_edges(&line_edges, n)?;
-        let positions: Vec<DVec3> = positions.into_iter().map(DVec3::from_array).collect();
-
-        let input_count = triangles.len();
-        let mut kept = Vec::with_capacity(input_count);
-        let mut frames = Vec::with_capacity(input_count);
-        let mut input_faces = Vec::with_capacity(input_count);
-        let mut dropped = Vec::new();
-        for (i, t) in triangles.into_iter().enumerate() {
-            let repeated_vertex = t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
-            match (!repeated_vertex)
-                .then(|| frame_of(t.map(|v| positions[v as usize])))
-                .flatten()
-            {
-                Some(frame) => {
-                    kept.push(t);
-                    frames.push(frame);
-                    input_faces.push(i as u32);
-                }
-                None => dropped.push(DroppedFace {
-                    input_index: i,
-                    repeated_vertex,
-                }),
-            }
-        }
-        if kept.is_empty() {
-            return Err(MeshError::NoUsableFace {
-                faces: input_count,
-                degenerate: dropped.len(),
-            });
-        }
-
-        let (face_edges, edge_vertices, edge_faces) = build_edges(&kept);
-        let vertex_faces = Csr::from_pairs(
-            n,
-            kept.iter()
-                .enumerate()
-                .flat_map(|(f, t)| t.iter().map(move |&v| (v, f as u32))),
-        );
-        let vertex_edges = Csr::from_pairs(
-            n,
-            edge_vertices
-                .iter()
-                .enumerate()
-                .flat_map(|(e, ev)| ev.iter().map(move |&v| (v, e as u32))),
-        );
-        let mut mesh = TriMesh {
-            positions,
-            triangles: kept,
-            frames,
-            face_edges,
-            edge_vertices,
-            edge_faces,
-            vertex_faces,
-            vertex_edges,
-            line_edges: Vec::new(),
-            vertex_wires: Csr::from_pairs(n, std::iter::empty()),
-            input_faces,
-            dropped,
-        };
+        let faces = Faces::new(positions, triangles)?;
+        check_line_edges(&line_edges, faces.positions.len())?;
+        let (face_edges, edge_vertices) = build_edges(&faces.kept);
+        let mut mesh = faces.assemble(face_edges, edge_vertices, false);
         mesh.set_line_elements(line_edges)?;
         Ok(mesh)
+    }
+
+    /// As [`TriMesh::new`], with the edge table given, for meshes whose structure is
+    /// known (an elevation grid): `edge_vertices` lists every edge of the faces once,
+    /// lower vertex first, sorted, as [`TriMesh::new`] numbers them, and
+    /// `face_edges[f][i]` is the edge from corner `i` of face `f` to corner `i + 1`.
+    /// This skips the sort that numbers edges. `spatially_ordered`: faces and edges
+    /// are numbered in a spatially coherent order already (a grid's rows), so solvers
+    /// keep that order instead of sorting them along a space-filling curve.
+    ///
+    /// A face that turns out degenerate would renumber the faces after it: the edges
+    /// are then numbered as [`TriMesh::new`] does.
+    ///
+    /// # Errors
+    /// As [`TriMesh::new`].
+    pub(crate) fn with_edge_table(
+        positions: Vec<[f64; 3]>,
+        triangles: Vec<[u32; 3]>,
+        face_edges: Vec<[u32; 3]>,
+        edge_vertices: Vec<[u32; 2]>,
+        spatially_ordered: bool,
+    ) -> Result<Self, MeshError> {
+        let faces = Faces::new(positions, triangles)?;
+        if !faces.dropped.is_empty() {
+            // A degenerate face renumbers the faces after it: the table no longer fits.
+            let (face_edges, edge_vertices) = build_edges(&faces.kept);
+            return Ok(faces.assemble(face_edges, edge_vertices, false));
+        }
+        debug_assert!(
+            {
+                let (expected_faces, expected_edges) = build_edges(&faces.kept);
+                expected_faces == face_edges && expected_edges == edge_vertices
+            },
+            "an edge table that is not the one TriMesh::new builds"
+        );
+        Ok(faces.assemble(face_edges, edge_vertices, spatially_ordered))
     }
 
     /// Replaces the line elements (see [`TriMesh::with_line_elements`]); useful when which
@@ -314,6 +266,12 @@ impl TriMesh {
                 .filter(move |&&b| a < b)
                 .map(move |&b| [a, b])
         })
+    }
+
+    /// Whether faces and edges are numbered in a spatially coherent order already (a
+    /// grid's rows; see [`TriMesh::with_edge_table`]): solvers then keep it.
+    pub(crate) fn is_spatially_ordered(&self) -> bool {
+        self.spatially_ordered
     }
 
     /// Vertex positions.
@@ -480,9 +438,144 @@ fn frame_of([p0, p1, p2]: [DVec3; 3]) -> Option<FaceFrame> {
     })
 }
 
-/// Numbers the undirected edges of the faces (sorted by their vertex pair) and lists the
-/// faces around each, in face order.
-fn build_edges(triangles: &[[u32; 3]]) -> (Vec<[u32; 3]>, Vec<[u32; 2]>, Csr) {
+/// Validated positions and the faces kept (degenerate ones dropped), with their
+/// frames: what both ways of building a mesh share.
+struct Faces {
+    positions: Vec<DVec3>,
+    kept: Vec<[u32; 3]>,
+    frames: Vec<FaceFrame>,
+    input_faces: Vec<u32>,
+    dropped: Vec<DroppedFace>,
+}
+
+impl Faces {
+    /// Checks the input and drops degenerate faces.
+    ///
+    /// # Errors
+    /// As [`TriMesh::new`].
+    fn new(positions: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>) -> Result<Faces, MeshError> {
+        let n = positions.len();
+        if let Some((vertex, p)) = positions
+            .iter()
+            .enumerate()
+            .find(|(_, p)| !p.iter().all(|c| c.is_finite()))
+        {
+            return Err(MeshError::NonFiniteVertex {
+                vertex,
+                position: *p,
+            });
+        }
+        if let Some((vertex, p)) = positions
+            .iter()
+            .enumerate()
+            .find(|(_, p)| p.iter().any(|c| c.abs() > MAX_COORDINATE))
+        {
+            return Err(MeshError::CoordinateOutOfRange {
+                vertex,
+                position: *p,
+                limit: MAX_COORDINATE,
+            });
+        }
+        for (face, t) in triangles.iter().enumerate() {
+            if let Some(&v) = t.iter().find(|&&v| v as usize >= n) {
+                return Err(MeshError::IndexOutOfRange {
+                    face,
+                    vertex: v as i64,
+                    vertex_count: n,
+                });
+            }
+        }
+        let positions: Vec<DVec3> = positions.into_iter().map(DVec3::from_array).collect();
+
+        let input_count = triangles.len();
+        let mut kept = Vec::with_capacity(input_count);
+        let mut frames = Vec::with_capacity(input_count);
+        let mut input_faces = Vec::with_capacity(input_count);
+        let mut dropped = Vec::new();
+        for (i, t) in triangles.into_iter().enumerate() {
+            let repeated_vertex = t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
+            match (!repeated_vertex)
+                .then(|| frame_of(t.map(|v| positions[v as usize])))
+                .flatten()
+            {
+                Some(frame) => {
+                    kept.push(t);
+                    frames.push(frame);
+                    input_faces.push(i as u32);
+                }
+                None => dropped.push(DroppedFace {
+                    input_index: i,
+                    repeated_vertex,
+                }),
+            }
+        }
+        if kept.is_empty() {
+            return Err(MeshError::NoUsableFace {
+                faces: input_count,
+                degenerate: dropped.len(),
+            });
+        }
+
+        Ok(Faces {
+            positions,
+            kept,
+            frames,
+            input_faces,
+            dropped,
+        })
+    }
+
+    /// The mesh of these faces with their edge table (see [`TriMesh::with_edge_table`]),
+    /// and no line elements.
+    fn assemble(
+        self,
+        face_edges: Vec<[u32; 3]>,
+        edge_vertices: Vec<[u32; 2]>,
+        spatially_ordered: bool,
+    ) -> TriMesh {
+        let n = self.positions.len();
+        let edge_faces = Csr::from_pairs(
+            edge_vertices.len(),
+            face_edges
+                .iter()
+                .enumerate()
+                .flat_map(|(f, es)| es.iter().map(move |&e| (e, f as u32))),
+        );
+        let vertex_faces = Csr::from_pairs(
+            n,
+            self.kept
+                .iter()
+                .enumerate()
+                .flat_map(|(f, t)| t.iter().map(move |&v| (v, f as u32))),
+        );
+        let vertex_edges = Csr::from_pairs(
+            n,
+            edge_vertices
+                .iter()
+                .enumerate()
+                .flat_map(|(e, ev)| ev.iter().map(move |&v| (v, e as u32))),
+        );
+        TriMesh {
+            positions: self.positions,
+            triangles: self.kept,
+            frames: self.frames,
+            face_edges,
+            edge_vertices,
+            edge_faces,
+            vertex_faces,
+            vertex_edges,
+            line_edges: Vec::new(),
+            vertex_wires: Csr::from_pairs(n, std::iter::empty()),
+            input_faces: self.input_faces,
+            dropped: self.dropped,
+            spatially_ordered,
+        }
+    }
+}
+
+/// Numbers the undirected edges of the faces (sorted by their vertex pair): each face's
+/// edges, and each edge's vertices.
+fn build_edges(triangles: &[[u32; 3]]) -> (Vec<[u32; 3]>, Vec<[u32; 2]>) {
     let key = |a: u32, b: u32| ((a.min(b) as u64) << 32) | a.max(b) as u64;
     let mut slots: Vec<(u64, u32)> = triangles
         .iter()
@@ -501,14 +594,7 @@ fn build_edges(triangles: &[[u32; 3]]) -> (Vec<[u32; 3]>, Vec<[u32; 2]>, Csr) {
         }
         face_edges[slot as usize / 3][slot as usize % 3] = edge_vertices.len() as u32 - 1;
     }
-    let edge_faces = Csr::from_pairs(
-        edge_vertices.len(),
-        face_edges
-            .iter()
-            .enumerate()
-            .flat_map(|(f, es)| es.iter().map(move |&e| (e, f as u32))),
-    );
-    (face_edges, edge_vertices, edge_faces)
+    (face_edges, edge_vertices)
 }
 
 /// The connectivity the engine needs, and nothing more: no half-edges, so an edge may

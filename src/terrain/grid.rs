@@ -255,56 +255,54 @@ impl ElevationGrid {
             });
         }
         let mut sample_vertex = vec![NONE; ncols * nrows];
+        let mut vertex_sample = Vec::with_capacity(ncols * nrows);
         let mut positions = Vec::with_capacity(ncols * nrows);
-        for row in 0..nrows {
-            for col in 0..ncols {
-                let z = self.values[row * ncols + col];
-                if !z.is_nan() {
-                    sample_vertex[row * ncols + col] = positions.len() as u32;
-                    let [x, y] = g.position(col, row);
-                    positions.push([x, y, z]);
-                }
+        for (col, row) in tiled(ncols, nrows) {
+            let z = self.values[row * ncols + col];
+            if !z.is_nan() {
+                sample_vertex[row * ncols + col] = positions.len() as u32;
+                vertex_sample.push((row * ncols + col) as u32);
+                let [x, y] = g.position(col, row);
+                positions.push([x, y, z]);
             }
         }
         let cells = (ncols - 1) * (nrows - 1);
         let mut cell_faces = vec![[NONE; 2]; cells];
         let mut triangles = Vec::with_capacity(2 * cells);
-        for row in 0..nrows - 1 {
-            for col in 0..ncols - 1 {
-                let at = |c: usize, r: usize| sample_vertex[r * ncols + c];
-                let z = |c: usize, r: usize| self.values[r * ncols + c];
-                let (nw, ne, sw, se) = (
-                    at(col, row),
-                    at(col + 1, row),
-                    at(col, row + 1),
-                    at(col + 1, row + 1),
-                );
-                // Counter-clockwise from above, for either diagonal.
-                let split_nw_se = [[sw, se, nw], [se, ne, nw]];
-                let split_ne_sw = [[sw, se, ne], [sw, ne, nw]];
-                let pair = match [nw, ne, sw, se].iter().filter(|&&v| v != NONE).count() {
-                    4 => {
-                        let along_nw_se = (z(col, row) - z(col + 1, row + 1)).abs();
-                        let along_ne_sw = (z(col + 1, row) - z(col, row + 1)).abs();
-                        if along_ne_sw < along_nw_se {
-                            [Some(split_ne_sw[0]), Some(split_ne_sw[1])]
-                        } else {
-                            [Some(split_nw_se[0]), Some(split_nw_se[1])]
-                        }
+        for (col, row) in tiled(ncols - 1, nrows - 1) {
+            let at = |c: usize, r: usize| sample_vertex[r * ncols + c];
+            let z = |c: usize, r: usize| self.values[r * ncols + c];
+            let (nw, ne, sw, se) = (
+                at(col, row),
+                at(col + 1, row),
+                at(col, row + 1),
+                at(col + 1, row + 1),
+            );
+            // Counter-clockwise from above, for either diagonal.
+            let split_nw_se = [[sw, se, nw], [se, ne, nw]];
+            let split_ne_sw = [[sw, se, ne], [sw, ne, nw]];
+            let pair = match [nw, ne, sw, se].iter().filter(|&&v| v != NONE).count() {
+                4 => {
+                    let along_nw_se = (z(col, row) - z(col + 1, row + 1)).abs();
+                    let along_ne_sw = (z(col + 1, row) - z(col, row + 1)).abs();
+                    if along_ne_sw < along_nw_se {
+                        [Some(split_ne_sw[0]), Some(split_ne_sw[1])]
+                    } else {
+                        [Some(split_nw_se[0]), Some(split_nw_se[1])]
                     }
-                    // The one triangle of three valid samples: the diagonal that avoids
-                    // the missing corner.
-                    3 if nw == NONE => [Some(split_ne_sw[0]), None],
-                    3 if se == NONE => [None, Some(split_ne_sw[1])],
-                    3 if ne == NONE => [Some(split_nw_se[0]), None],
-                    3 => [None, Some(split_nw_se[1])],
-                    _ => [None, None],
-                };
-                for (k, t) in pair.into_iter().enumerate() {
-                    if let Some(t) = t {
-                        cell_faces[row * (ncols - 1) + col][k] = triangles.len() as u32;
-                        triangles.push(t);
-                    }
+                }
+                // The one triangle of three valid samples: the diagonal that avoids
+                // the missing corner.
+                3 if nw == NONE => [Some(split_ne_sw[0]), None],
+                3 if se == NONE => [None, Some(split_ne_sw[1])],
+                3 if ne == NONE => [Some(split_nw_se[0]), None],
+                3 => [None, Some(split_nw_se[1])],
+                _ => [None, None],
+            };
+            for (k, t) in pair.into_iter().enumerate() {
+                if let Some(t) = t {
+                    cell_faces[row * (ncols - 1) + col][k] = triangles.len() as u32;
+                    triangles.push(t);
                 }
             }
         }
@@ -312,7 +310,9 @@ impl ElevationGrid {
             return Err(too_small());
         }
         let input_faces = triangles.len();
-        let mesh = TriMesh::new(positions, triangles)?;
+        let (face_edges, edge_vertices) =
+            grid_edges(ncols, &sample_vertex, &vertex_sample, &triangles);
+        let mesh = TriMesh::with_edge_table(positions, triangles, face_edges, edge_vertices, true)?;
         if mesh.face_count() != input_faces {
             // Not expected (grid cells have area), but a dropped face renumbers the rest.
             let mut kept = vec![NONE; input_faces];
@@ -332,6 +332,89 @@ impl ElevationGrid {
             cell_faces,
         })
     }
+}
+
+/// Samples and cells are numbered tile by tile (`TILE` × `TILE` blocks, the blocks row
+/// by row, and row by row inside each), so that what a wavefront settles together lies
+/// close in memory (row by row, the sample below is a whole grid row away). On the
+/// 1000 × 1000 benchmark grid, row-major numbering made a route's propagation 40 %
+/// slower than a Morton order sorted along a curve; tiles cost no sort.
+const TILE: usize = 32;
+
+/// `(col, row)` over a `ncols` × `nrows` grid in tiled order (see [`TILE`]).
+fn tiled(ncols: usize, nrows: usize) -> impl Iterator<Item = (usize, usize)> {
+    (0..nrows.div_ceil(TILE)).flat_map(move |tile_row| {
+        (0..ncols.div_ceil(TILE)).flat_map(move |tile_col| {
+            let rows = tile_row * TILE..((tile_row + 1) * TILE).min(nrows);
+            let cols = tile_col * TILE..((tile_col + 1) * TILE).min(ncols);
+            rows.flat_map(move |row| cols.clone().map(move |col| (col, row)))
+        })
+    })
+}
+
+/// The edge table of a grid's faces, numbered as [`TriMesh::new`] numbers edges (by
+/// lower vertex, then higher) without sorting them: each face edge joins two
+/// neighbouring samples, so it is one of eight directions at its lower vertex; a table
+/// of eight slots per vertex marks the edges used, and numbering a vertex's edges only
+/// orders its (at most eight) higher neighbours.
+fn grid_edges(
+    ncols: usize,
+    sample_vertex: &[u32],
+    vertex_sample: &[u32],
+    triangles: &[[u32; 3]],
+) -> (Vec<[u32; 3]>, Vec<[u32; 2]>) {
+    // The neighbour in direction `d` (0..8: columns −1, 0, 1 by rows −1, 0, 1, the
+    // sample itself left out) of sample `s`, as an offset in samples.
+    let offset = |d: usize| -> isize {
+        let d = if d >= 4 { d + 1 } else { d };
+        (d / 3) as isize * ncols as isize - ncols as isize + (d % 3) as isize - 1
+    };
+    let slot = |a: u32, b: u32| -> usize {
+        let (lo, hi) = (a.min(b), a.max(b));
+        let (s, t) = (
+            vertex_sample[lo as usize] as isize,
+            vertex_sample[hi as usize] as isize,
+        );
+        // The rows and columns apart (each −1, 0 or 1), as `offset` numbers them.
+        let delta = t - s;
+        let rows = if delta > 1 {
+            1
+        } else if delta < -1 {
+            -1
+        } else {
+            0
+        };
+        let cols = delta - rows * ncols as isize;
+        let d = ((rows + 1) * 3 + cols + 1) as usize;
+        let direction = d - (d > 4) as usize;
+        debug_assert!(cols.abs() <= 1 && d != 4 && s + offset(direction) == t);
+        8 * lo as usize + direction
+    };
+    let mut edge_of = vec![NONE; 8 * vertex_sample.len()];
+    for t in triangles {
+        for i in 0..3 {
+            edge_of[slot(t[i], t[(i + 1) % 3])] = 0;
+        }
+    }
+    let mut edge_vertices = Vec::new();
+    for (v, &s) in vertex_sample.iter().enumerate() {
+        let mut higher = [(NONE, 0); 8];
+        let mut count = 0;
+        for d in (0..8).filter(|&d| edge_of[8 * v + d] != NONE) {
+            higher[count] = (sample_vertex[(s as isize + offset(d)) as usize], d);
+            count += 1;
+        }
+        higher[..count].sort_unstable();
+        for &(w, d) in &higher[..count] {
+            edge_of[8 * v + d] = edge_vertices.len() as u32;
+            edge_vertices.push([v as u32, w]);
+        }
+    }
+    let face_edges = triangles
+        .iter()
+        .map(|t| std::array::from_fn(|i| edge_of[slot(t[i], t[(i + 1) % 3])]))
+        .collect();
+    (face_edges, edge_vertices)
 }
 
 /// The triangle mesh of an [`ElevationGrid`] ([`ElevationGrid::to_mesh`]), with the

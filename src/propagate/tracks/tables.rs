@@ -204,10 +204,15 @@ impl TrackTables {
                 count: mesh.face_count() as u64,
             });
         }
-        let centroids: Vec<glam::DVec3> = (0..mesh.face_count() as u32)
-            .map(|f| mesh.point(f, [1.0 / 3.0; 3]))
-            .collect();
-        let face_order = morton_order(&centroids);
+        // (As the layout orders edges: the mesh's order where it is spatial already.)
+        let face_order = if mesh.is_spatially_ordered() {
+            (0..mesh.face_count() as u32).collect()
+        } else {
+            let centroids: Vec<glam::DVec3> = (0..mesh.face_count() as u32)
+                .map(|f| mesh.point(f, [1.0 / 3.0; 3]))
+                .collect();
+            morton_order(&centroids)
+        };
         let mut record_of = vec![0u32; mesh.face_count()];
         for (r, &f) in face_order.iter().enumerate() {
             record_of[f as usize] = r as u32;
