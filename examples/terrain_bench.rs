@@ -6,17 +6,20 @@
 //!
 //! Writes a synthetic N × N ESRI ASCII grid (default 1000; 10 m cells, Gaussian hills on
 //! rolling sines, deterministic) to DIR (default: a temporary directory, removed after),
-//! then for each cost and k times what `geotracks terrain` does: read, mesh, build the
-//! metric, set up the solver, propagate until the target is final, trace and
-//! straighten the route. The route runs corner to corner, so nearly the whole grid is
-//! propagated. Peak memory is the process's high-water mark (Linux).
+//! then for each cost, method and k times what `geotracks terrain --method M --k K`
+//! does: read, mesh, build the metric, set up the solver, propagate until the target
+//! is final, trace and straighten the route. Two routes: corner to corner (a plain
+//! run propagates nearly the whole grid before the end is final) and across a quarter
+//! of the grid. The Steiner-graph engine (tracks) runs goal-directed (A*); the
+//! wavefront engine does not (see `Stop::goal_directed`). Peak memory is the process's
+//! high-water mark so far (Linux): rows run one after another in one process.
 //!
 //! `--routes` measures accuracy instead: four routes across the grid, three costs, each
 //! straightened at k = 1 and 2 and compared with the same route at k = 6 (a finer graph
 //! finds a better corridor; there is no exact reference on a hilly grid). Minutes.
 
 use geotracks::terrain::{read_terrain, route, TerrainCost};
-use geotracks::{mesh::TriMesh, Options, Solver, SurfacePoint};
+use geotracks::{mesh::TriMesh, Method, Options, Solver, SurfacePoint};
 use std::io::Write;
 use std::time::Instant;
 
@@ -39,45 +42,58 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if routes {
         return route_accuracy(&path, extent);
     }
-    let (from, to) = (
-        [0.05 * extent, 0.05 * extent],
-        [0.95 * extent, 0.93 * extent],
-    );
-    println!(
-        "route from ({}, {}) to ({}, {})",
-        from[0], from[1], to[0], to[1]
-    );
-    println!("| cost | k | read | mesh | metric | setup | propagate | path | total | cost | peak memory |");
-    println!("|---|---|---|---|---|---|---|---|---|---|---|");
-    for (cost, k) in [
-        ("none", 2.0),
-        ("slope:4", 2.0),
-        ("slope:4,max:30", 2.0),
-        ("incline:8", 2.0),
-        ("uphill:8", 2.0),
-        ("naismith", 2.0),
-        ("tobler", 2.0),
-        ("slope:4", 5.0),
-    ] {
-        let t0 = Instant::now();
-        let grid = geotracks::terrain::read_grid(&path)?;
-        let read = t0.elapsed().as_secs_f64();
-        let t = Instant::now();
-        let terrain = grid.to_mesh()?;
-        let mesh = t.elapsed().as_secs_f64();
-        let a = terrain.locate(from[0], from[1])?;
-        let b = terrain.locate(to[0], to[1])?;
-        let times = time_route(&terrain.mesh, cost.parse()?, a, b, k)?;
-        let total = t0.elapsed().as_secs_f64();
-        println!(
-            "| {cost} | {k} | {read:.2} s | {mesh:.2} s | {:.2} s | {:.2} s | {:.2} s | {:.2} s | {total:.2} s | {:.1} | {} |",
-            times.metric,
-            times.setup,
-            times.propagate,
-            times.path,
-            times.cost,
-            peak_memory().unwrap_or_else(|| "n/a".into())
+    // Corner to corner (nearly the whole grid lies within the route's cost of the
+    // start), and across a quarter of the grid (one quadrant, corner to corner).
+    let routes = [
+        ("corner to corner", [0.05, 0.05], [0.95, 0.93]),
+        ("a quarter", [0.05, 0.05], [0.5, 0.47]),
+    ];
+    println!("| route | cost | method | k | read | mesh | metric | setup | propagate | settles | path | total | route cost | peak memory |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    for (name, a, b) in routes {
+        let (from, to) = (
+            [a[0] * extent, a[1] * extent],
+            [b[0] * extent, b[1] * extent],
         );
+        let quarter = name == "a quarter";
+        for (cost, method, k) in [
+            ("none", Method::Wave, 2.0),
+            ("none", Method::Tracks, 2.0),
+            ("none", Method::Tracks, 4.0),
+            ("slope:4", Method::Tracks, 2.0),
+            ("slope:4,max:30", Method::Tracks, 2.0),
+            ("incline:8", Method::Wave, 2.0),
+            ("incline:8", Method::Tracks, 4.0),
+            ("uphill:8", Method::Tracks, 2.0),
+            ("naismith", Method::Tracks, 2.0),
+            ("tobler", Method::Tracks, 2.0),
+            ("slope:4", Method::Tracks, 5.0),
+        ] {
+            if quarter && !matches!(cost, "none" | "slope:4") {
+                continue;
+            }
+            let t0 = Instant::now();
+            let grid = geotracks::terrain::read_grid(&path)?;
+            let read = t0.elapsed().as_secs_f64();
+            let t = Instant::now();
+            let terrain = grid.to_mesh()?;
+            let mesh = t.elapsed().as_secs_f64();
+            let a = terrain.locate(from[0], from[1])?;
+            let b = terrain.locate(to[0], to[1])?;
+            let times = time_route(&terrain.mesh, cost.parse()?, a, b, method, k)?;
+            let total = t0.elapsed().as_secs_f64();
+            println!(
+                "| {name} | {cost} | {} | {k} | {read:.2} s | {mesh:.2} s | {:.2} s | {:.2} s | {:.2} s | {:.2} M | {:.2} s | {total:.2} s | {:.1} | {} |",
+                times.method.name(),
+                times.metric,
+                times.setup,
+                times.propagate,
+                times.settles as f64 / 1e6,
+                times.path,
+                times.cost,
+                peak_memory().unwrap_or_else(|| "n/a".into())
+            );
+        }
     }
     // Checks the file reads the same way the CLI reads it.
     let _ = read_terrain(&path)?;
@@ -101,7 +117,7 @@ fn route_accuracy(path: &std::path::Path, extent: f64) -> Result<(), Box<dyn std
             let cost_model: TerrainCost = cost.parse()?;
             let mut costs = [0.0; 3];
             for (i, k) in [6.0, 1.0, 2.0].into_iter().enumerate() {
-                costs[i] = time_route(&terrain.mesh, cost_model, from, to, k)?.cost;
+                costs[i] = time_route(&terrain.mesh, cost_model, from, to, Method::Wave, k)?.cost;
             }
             let excess = |c: f64| format!("{:+.2} %", 100.0 * (c - costs[0]) / costs[0]);
             println!(
@@ -120,9 +136,12 @@ fn route_accuracy(path: &std::path::Path, extent: f64) -> Result<(), Box<dyn std
 }
 
 struct Times {
+    /// The engine that ran (a metric that is not face-flat runs tracks).
+    method: Method,
     metric: f64,
     setup: f64,
     propagate: f64,
+    settles: u64,
     path: f64,
     cost: f64,
 }
@@ -133,21 +152,28 @@ fn time_route(
     cost: TerrainCost,
     from: SurfacePoint,
     to: SurfacePoint,
+    method: Method,
     k: f64,
 ) -> Result<Times, Box<dyn std::error::Error>> {
     let t = Instant::now();
     let metric = cost.metric(mesh)?;
     let metric_time = t.elapsed().as_secs_f64();
     let t = Instant::now();
-    let solver = Solver::new(mesh, &metric, &Options::DEFAULT.with_k(k))?;
+    let solver = Solver::new(
+        mesh,
+        &metric,
+        &Options::DEFAULT.with_k(k).with_method(method),
+    )?;
     let setup = t.elapsed().as_secs_f64();
     let t = Instant::now();
     let r = route(&solver, from, to, false)?;
     let total = t.elapsed().as_secs_f64();
     Ok(Times {
+        method: solver.method(),
         metric: metric_time,
         setup,
         propagate: total - r.path_seconds,
+        settles: r.stats.settles,
         path: r.path_seconds,
         cost: r.cost(),
     })

@@ -183,6 +183,24 @@ fn cli_costs_order_as_expected_and_max_slope_walls_off() {
     };
     let none = run("none");
     assert!(none >= 280.0);
+    // The Steiner graph, goal-directed, at a k where it routes as well: the same route
+    // to within its straightening.
+    let out = geotracks_ok(&[
+        "terrain",
+        dem,
+        "--from",
+        "1010,5100",
+        "--to",
+        "1290,5100",
+        "--method",
+        "tracks",
+        "--k",
+        "4",
+        "-o",
+        out_path.to_str().unwrap(),
+    ]);
+    let tracks = last_value(&out);
+    assert!(relative(tracks, none) < 5e-3, "{tracks} against {none}");
     assert!(run("slope:2") > none);
     assert!(run("incline:5") > none);
     assert!(run("uphill:5") > none);

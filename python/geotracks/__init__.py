@@ -343,7 +343,9 @@ class Route(NamedTuple):
     cost: float
 
 
-def terrain_route(dem, start, end, cost: str = "none", k: float = 2.0) -> Route:
+def terrain_route(
+    dem, start, end, cost: str = "none", k: float = 2.0, method: str = "wave"
+) -> Route:
     """The least-cost route across an elevation grid (ESRI ASCII ``.asc`` or GeoTIFF)
     between two map points ``(x, y)``, straightened.
 
@@ -354,14 +356,21 @@ def terrain_route(dem, start, end, cost: str = "none", k: float = 2.0) -> Route:
         B per metre climbed), ``"naismith"``, ``"rwalk[:a,b,c,d[,sf]]"`` (GRASS
         r.walk's walking time, seconds), ``"tobler[:offpath]"`` (Tobler's hiking
         function, seconds); as ``geotracks terrain --cost``.
+    :param method: ``"wave"`` (the best route at a given k; ``"none"`` and
+        ``"incline:B"`` run it, the other costs the Steiner graph) or ``"tracks"``
+        (the Steiner graph, goal-directed: it settles a corridor around the route;
+        ``"none"`` at ``k=4`` routes as well as ``"wave"`` at ``k=2``, faster), as
+        ``geotracks terrain --method``.
     :raises GeotracksError: for an unreadable grid, a point off the grid or on NODATA,
-        a bad cost, or no route.
+        a bad cost, a bad method, or no route.
     """
     start = tuple(float(c) for c in start)
     end = tuple(float(c) for c in end)
     if len(start) != 2 or len(end) != 2:
         raise ValueError("start and end are map points (x, y)")
-    points, cumulative, total = _terrain_route(str(dem), start, end, str(cost), float(k))
+    points, cumulative, total = _terrain_route(
+        str(dem), start, end, str(cost), float(k), str(method)
+    )
     return Route(points, cumulative, total)
 
 

@@ -82,6 +82,7 @@ def terrain_route(
     end: tuple[float, float],
     cost: str = "none",
     k: float = 2.0,
+    method: str = "wave",
 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], float]: ...
 def skeleton(
     axis: str, prune: str = "7%", burn: str = "boundary", k: float = 5.0

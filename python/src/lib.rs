@@ -488,7 +488,7 @@ fn read_mesh<'py>(
 /// from `start`):
 /// `(points (p, 3) map x, y and elevation, cumulative cost (p,), cost)`.
 #[pyfunction]
-#[pyo3(signature = (dem, start, end, cost="none", k=2.0))]
+#[pyo3(signature = (dem, start, end, cost="none", k=2.0, method="wave"))]
 fn terrain_route<'py>(
     py: Python<'py>,
     dem: std::path::PathBuf,
@@ -496,9 +496,11 @@ fn terrain_route<'py>(
     end: [f64; 2],
     cost: &str,
     k: f64,
+    method: &str,
 ) -> PyResult<(Matrix<'py, f64>, Vector<'py, f64>, f64)> {
     use geotracks::terrain::{read_terrain, route, TerrainCost};
     let cost: TerrainCost = cost.parse().map_err(error)?;
+    let method: geotracks::Method = method.parse().map_err(error)?;
     let route = py
         .detach(|| {
             let (_, terrain) = read_terrain(&dem).map_err(|e| e.to_string())?;
@@ -509,7 +511,7 @@ fn terrain_route<'py>(
             };
             let (from, to) = (locate("start", start)?, locate("end", end)?);
             let metric = cost.metric(&terrain.mesh).map_err(|e| e.to_string())?;
-            let options = Options::DEFAULT.with_k(k);
+            let options = Options::DEFAULT.with_k(k).with_method(method);
             let solver = Solver::new(&terrain.mesh, metric, &options).map_err(|e| e.to_string())?;
             route(&solver, from, to, false).map_err(|e| match e {
                 geotracks::Error::Unreachable { .. } => "no route: the end cannot be reached \

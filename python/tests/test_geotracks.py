@@ -262,6 +262,9 @@ def test_terrain_route_on_a_plane(tmp_path):
     assert abs(route.cost - straight) < 1e-6 * straight
     assert np.allclose(route.points[0][:2], [2.5, 2.5]) and np.allclose(route.points[-1][:2], [17.5, 10.5])
     assert route.cumulative_cost[0] == 0.0 and route.cumulative_cost[-1] == route.cost
+    # The Steiner graph, goal-directed: on a plane, the same straight line.
+    tracks = geotracks.terrain_route(dem, (2.5, 2.5), (17.5, 10.5), method="tracks")
+    assert abs(tracks.cost - straight) < 1e-6 * straight
     steeper = geotracks.terrain_route(dem, (2.5, 2.5), (17.5, 10.5), cost="slope:4")
     assert steeper.cost > route.cost
     # Naismith's rule is directed: 0.72 s per map metre, and 6 s per metre climbed.
@@ -273,6 +276,8 @@ def test_terrain_route_on_a_plane(tmp_path):
         geotracks.terrain_route(dem, (-50, 2), (10, 10))
     with pytest.raises(geotracks.GeotracksError):
         geotracks.terrain_route(dem, (2, 2), (10, 10), cost="steep")
+    with pytest.raises(geotracks.GeotracksError, match="method"):
+        geotracks.terrain_route(dem, (2, 2), (10, 10), method="fast")
 
 
 def test_skeleton_of_a_medial_axis():
