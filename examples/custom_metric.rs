@@ -62,6 +62,13 @@ impl Metric for Tobler {
         false // uphill and downhill differ
     }
 
+    /// Nobody walks faster than 6 km/h: a metre takes at least 1/6000 h. With this
+    /// bound, a run that stops at a target is goal-directed (A*): it settles a corridor
+    /// towards the target, not a disc around the start.
+    fn min_cost_per_length(&self) -> f64 {
+        1.0 / 6000.0
+    }
+
     fn name(&self) -> &str {
         "tobler"
     }
