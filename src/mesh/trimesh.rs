@@ -1,7 +1,7 @@
 use super::{Csr, MeshError, MeshReport};
 use geotracks_metrics::{FaceGeometry, FacePoint};
 use glam::DVec3;
-use rayon::slice::ParallelSliceMut;
+use rayon::prelude::*;
 
 /// A face's local 2D frame: corner 0 at the origin, corner 1 at `(l01, 0)`, corner 2 at
 /// `(x2, y2)` with `y2 > 0`. Segment costs are computed in this frame.
@@ -488,16 +488,24 @@ impl Faces {
         let positions: Vec<DVec3> = positions.into_iter().map(DVec3::from_array).collect();
 
         let input_count = triangles.len();
+        let repeats = |t: &[u32; 3]| t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
+        // The frames on all cores (a square root and a division or two per face, the
+        // most of the work here), kept in face order.
+        let all_frames: Vec<Option<FaceFrame>> = triangles
+            .par_iter()
+            .map(|t| {
+                (!repeats(t))
+                    .then(|| frame_of(t.map(|v| positions[v as usize])))
+                    .flatten()
+            })
+            .collect();
         let mut kept = Vec::with_capacity(input_count);
         let mut frames = Vec::with_capacity(input_count);
         let mut input_faces = Vec::with_capacity(input_count);
         let mut dropped = Vec::new();
-        for (i, t) in triangles.into_iter().enumerate() {
-            let repeated_vertex = t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
-            match (!repeated_vertex)
-                .then(|| frame_of(t.map(|v| positions[v as usize])))
-                .flatten()
-            {
+        for (i, (t, frame)) in triangles.into_iter().zip(all_frames).enumerate() {
+            let repeated_vertex = repeats(&t);
+            match frame {
                 Some(frame) => {
                     kept.push(t);
                     frames.push(frame);

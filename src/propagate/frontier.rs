@@ -5,6 +5,7 @@ use crate::field::Goal;
 use crate::mesh::{Csr, TriMesh, NONE};
 use crate::steiner::{NodeKind, SteinerLayout};
 use geotracks_metrics::{FacePoint, Metric};
+use rayon::prelude::*;
 
 /// A priority queue of nodes by key: their current distance, or in a goal-directed run
 /// their distance plus their heuristic (see [`Goal`]).
@@ -364,19 +365,27 @@ pub(super) fn edge_steps<M: Metric>(
     if !(metric.is_face_norm() || flat) || !metric.is_symmetric() {
         return None;
     }
-    // Face by face, so that the mesh is read in order: each slot's whole edge, from the
-    // edge's lower vertex to its higher one as a node-by-node walk would measure it.
+    // Face by face (on all cores, kept in face order), so that the mesh is read in
+    // order: each slot's whole edge, from the edge's lower vertex to its higher one as
+    // a node-by-node walk would measure it; then the least per edge.
+    let slots: Vec<[f64; 3]> = (0..mesh.face_count() as u32)
+        .into_par_iter()
+        .map(|f| {
+            let frame = mesh.frame(f);
+            std::array::from_fn(|s| {
+                let (from, to) = (frame.corner(s), frame.corner((s + 1) % 3));
+                if mesh.slot_is_reversed(f, s) {
+                    metric.cost(f, &to, &from)
+                } else {
+                    metric.cost(f, &from, &to)
+                }
+            })
+        })
+        .collect();
     let mut whole = vec![f64::INFINITY; mesh.edge_count()];
-    for f in 0..mesh.face_count() as u32 {
-        let frame = mesh.frame(f);
-        for (s, e) in mesh.face_edges(f).into_iter().enumerate() {
-            let (from, to) = (frame.corner(s), frame.corner((s + 1) % 3));
-            let cost = if mesh.slot_is_reversed(f, s) {
-                metric.cost(f, &to, &from)
-            } else {
-                metric.cost(f, &from, &to)
-            };
-            whole[e as usize] = whole[e as usize].min(cost);
+    for (f, costs) in slots.iter().enumerate() {
+        for (e, cost) in mesh.face_edges(f as u32).into_iter().zip(costs) {
+            whole[e as usize] = whole[e as usize].min(*cost);
         }
     }
     let steps = whole

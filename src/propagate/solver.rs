@@ -15,6 +15,7 @@ use crate::surface::{PointError, Source, SurfacePoint};
 use crate::trace::Query;
 use crate::{Error, PointRole, ValueRole};
 use geotracks_metrics::Metric;
+use rayon::prelude::*;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -942,6 +943,7 @@ fn flat_frames<M: Metric>(mesh: &TriMesh, metric: &M) -> Option<Vec<FaceFrame>> 
 fn edge_lengths(mesh: &TriMesh, flat_frames: Option<&[FaceFrame]>) -> Vec<f64> {
     let Some(frames) = flat_frames else {
         return (0..mesh.edge_count() as u32)
+            .into_par_iter()
             .map(|e| mesh.edge_length(e))
             .collect();
     };
@@ -1027,20 +1029,21 @@ fn check_per_length<M: Metric>(
         return Ok(0.0);
     }
     let tolerance = 1.0 - 1e-9;
-    for (e, &step) in steps.iter().enumerate() {
-        let e = e as u32;
+    // Each edge's cost and length (the first edge below the bound, on all cores).
+    let below = (0..steps.len() as u32).into_par_iter().find_map_first(|e| {
         let length = mesh.edge_length(e);
-        let cost = step * (layout.count(e) + 1) as f64;
-        if cost < per_length * length * tolerance {
-            return Err(Error::CostBelowBound {
-                metric: metric.name().to_string(),
-                per_length,
-                edge: e,
-                length,
-                cost,
-                per_unit: cost / length,
-            });
-        }
+        let cost = steps[e as usize] * (layout.count(e) + 1) as f64;
+        (cost < per_length * length * tolerance).then_some((e, length, cost))
+    });
+    if let Some((e, length, cost)) = below {
+        return Err(Error::CostBelowBound {
+            metric: metric.name().to_string(),
+            per_length,
+            edge: e,
+            length,
+            cost,
+            per_unit: cost / length,
+        });
     }
     for a in 0..wires.rows() as u32 {
         for &(b, cost) in wires.row(a) {

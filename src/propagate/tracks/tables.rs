@@ -12,6 +12,7 @@ use crate::mesh::{morton_order, Csr, FaceFrame, TriMesh, NONE};
 use crate::steiner::{SlotPoints, SteinerLayout};
 use crate::Error;
 use geotracks_metrics::FacePoint;
+use rayon::prelude::*;
 
 /// Everything the engine reads about one face.
 ///
@@ -218,33 +219,48 @@ impl TrackTables {
             record_of[f as usize] = r as u32;
         }
 
-        // Faces and edges are read in the mesh's order and written in the records' order.
-        let mut faces = vec![FaceRecord::EMPTY; mesh.face_count()];
-        for f in 0..mesh.face_count() as u32 {
-            let vertex = mesh.face_vertices(f);
+        if let Some(c) = (0..mesh.edge_count() as u32)
+            .map(|e| layout.count(e))
+            .find(|&c| c > u16::MAX as u32)
+        {
+            return Err(Error::TooLarge {
+                what: "Steiner points on one edge",
+                count: c as u64,
+            });
+        }
+        // Faces are read in the mesh's order (on all cores) and written in the records'.
+        let record = |f: u32| {
             let edges = mesh.face_edges(f);
-            let mut count = [0u16; 3];
             let mut reversed = 0u8;
             for s in 0..3 {
-                let c = layout.count(edges[s]);
-                count[s] = u16::try_from(c).map_err(|_| Error::TooLarge {
-                    what: "Steiner points on one edge",
-                    count: c as u64,
-                })?;
                 if mesh.slot_is_reversed(f, s) {
                     reversed |= 1 << s;
                 }
             }
-            faces[record_of[f as usize] as usize] = FaceRecord {
+            FaceRecord {
                 frame: flat_frames.map_or(*mesh.frame(f), |frames| frames[f as usize]),
                 lo: edges.map(|e| layout.edge_nodes(e).start),
-                vertex,
+                vertex: mesh.face_vertices(f),
                 base: 0,
                 face: f,
-                count,
+                // (At most 65535: checked above.)
+                count: edges.map(|e| layout.count(e) as u16),
                 reversed,
-            };
-        }
+            }
+        };
+        let in_face_order: Vec<FaceRecord> = (0..mesh.face_count() as u32)
+            .into_par_iter()
+            .map(record)
+            .collect();
+        let mut faces = if mesh.is_spatially_ordered() {
+            in_face_order
+        } else {
+            let mut faces = vec![FaceRecord::EMPTY; mesh.face_count()];
+            for (f, r) in in_face_order.into_iter().enumerate() {
+                faces[record_of[f] as usize] = r;
+            }
+            faces
+        };
         let mut total: u64 = 0;
         for r in &mut faces {
             r.base = total as u32;
