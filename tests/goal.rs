@@ -241,3 +241,31 @@ fn no_bound_no_goal_direction() {
     assert!((a - b).abs() < 1e-12, "{a} {b}");
     assert!(sure_settles < unsure_settles);
 }
+
+/// Targets spread over most of the mesh leave the estimate zero nearly everywhere: the
+/// run is plain, settling what a plain run settles.
+#[test]
+fn targets_all_over_the_mesh_run_plain() {
+    let n = 30;
+    let mesh = common::grid(n, n as f64);
+    let solver = Solver::new(
+        &mesh,
+        Euclidean,
+        &Options::DEFAULT.with_method(Method::Tracks),
+    )
+    .unwrap();
+    let corners = vec![
+        SurfacePoint::Vertex(n as u32),
+        SurfacePoint::Vertex((n * (n + 1)) as u32),
+    ];
+    let source = [Source::new((n / 2) as u32)];
+    let settles = |stop: Stop| solver.solve_from(&source, &stop).unwrap().stats().settles;
+    let spread = Stop::NONE.with_targets(corners);
+    assert_eq!(
+        settles(spread.clone()),
+        settles(spread.with_goal_directed(false))
+    );
+    // One of them alone is goal-directed.
+    let one = Stop::NONE.with_targets(vec![SurfacePoint::Vertex(n as u32)]);
+    assert!(settles(one.clone()) < settles(one.with_goal_directed(false)));
+}

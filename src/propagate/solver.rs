@@ -67,6 +67,8 @@ pub struct Solver<'m, M> {
     /// The metric's least cost per unit of length, checked on the edges and wires
     /// (0: runs are never goal-directed).
     per_length: f64,
+    /// The diagonal of the vertices' bounding box.
+    extent: f64,
     /// Per vertex, its wires: the vertex at the other end and the wire's cost.
     wires: Csr<(u32, f64)>,
     setup_seconds: f64,
@@ -339,6 +341,14 @@ impl<'m, M: Metric> Solver<'m, M> {
             bucket_width,
             cost_total,
             per_length,
+            extent: {
+                let positions = mesh.positions().iter();
+                let (lo, hi) = positions.fold(
+                    (glam::DVec3::INFINITY, glam::DVec3::NEG_INFINITY),
+                    |(lo, hi), &p| (lo.min(p), hi.max(p)),
+                );
+                (hi - lo).length()
+            },
             wires,
             setup_seconds: start.elapsed().as_secs_f64(),
         })
@@ -684,7 +694,8 @@ impl<'m, M: Metric> Solver<'m, M> {
     /// The estimate a run stopping at `targets` (nodes) orders nodes by: the metric's
     /// least cost per unit length times the distance to the box around them; `None`
     /// for a run without targets, a metric that gives no bound, a stop that asks for
-    /// no goal direction, or the wavefront engine.
+    /// no goal direction, targets spread over more than half the mesh's extent, or the
+    /// wavefront engine.
     ///
     /// Why not the wavefront engine: its values depend on the order waves arrive in.
     /// A node that improves after it offered keeps its new wave only, and a value it
@@ -703,6 +714,13 @@ impl<'m, M: Metric> Solver<'m, M> {
             let p = self.layout.position(self.mesh, t);
             lo = lo.min(p);
             hi = hi.max(p);
+        }
+        // Targets spread over much of the mesh leave the estimate zero nearly
+        // everywhere: it would cost without saving (on the bunny, 20 runs to 10
+        // scattered targets took 3.2-3.3 s goal-directed against 2.8 s plain, for the
+        // same nodes settled; to one target, 0.34 s against 2.1-2.4 s).
+        if (hi - lo).length() > 0.5 * self.extent {
+            return None;
         }
         Some(Goal {
             lo,
