@@ -166,44 +166,23 @@ fn cli_costs_order_as_expected_and_max_slope_walls_off() {
     let dem = hill_asc(dir.path());
     let dem = dem.to_str().unwrap();
     let out_path = dir.path().join("r.json");
-    let run = |cost: &str| {
-        let out = geotracks_ok(&[
-            "terrain",
-            dem,
-            "--from",
-            "1010,5100",
-            "--to",
-            "1290,5100",
-            "--cost",
-            cost,
-            "-o",
-            out_path.to_str().unwrap(),
-        ]);
-        last_value(&out)
+    let out = out_path.to_str().unwrap();
+    let run = |options: &[&str]| {
+        let mut args = vec!["terrain", dem, "--from", "1010,5100", "--to", "1290,5100"];
+        args.extend_from_slice(options);
+        args.extend_from_slice(&["-o", out]);
+        last_value(&geotracks_ok(&args))
     };
-    let none = run("none");
+    let cost = |cost: &str| run(&["--cost", cost]);
+    let none = cost("none");
     assert!(none >= 280.0);
+    assert!(cost("slope:2") > none);
+    assert!(cost("incline:5") > none);
+    assert!(cost("uphill:5") > none);
     // The Steiner graph, goal-directed, at a k where it routes as well: the same route
     // to within its straightening.
-    let out = geotracks_ok(&[
-        "terrain",
-        dem,
-        "--from",
-        "1010,5100",
-        "--to",
-        "1290,5100",
-        "--method",
-        "tracks",
-        "--k",
-        "4",
-        "-o",
-        out_path.to_str().unwrap(),
-    ]);
-    let tracks = last_value(&out);
+    let tracks = run(&["--method", "tracks", "--k", "4"]);
     assert!(relative(tracks, none) < 5e-3, "{tracks} against {none}");
-    assert!(run("slope:2") > none);
-    assert!(run("incline:5") > none);
-    assert!(run("uphill:5") > none);
     // The hill's flanks reach about 25°: a 5° limit walls the route off.
     let walled = dir.path().join("walled.json");
     assert_fails(
