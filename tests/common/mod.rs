@@ -165,6 +165,11 @@ pub fn random_mesh(seed: u64, n: usize) -> Result<TriMesh, geotracks::mesh::Mesh
             }
         }
     }
+    // Never all holes (a 2 × 2 grid is, one time in 25 000): the first cell stays.
+    if triangles.is_empty() {
+        triangles.push([id(0, 0), id(1, 0), id(1, 1)]);
+        triangles.push([id(0, 0), id(1, 1), id(0, 1)]);
+    }
     // Fins: new faces on existing edges, making them non-manifold.
     for _ in 0..rng.below(4) + 1 {
         // Two fins on one edge: it then has at least three faces.
