@@ -205,10 +205,16 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
     /// goal-directed run (`inf` for an unreached node).
     #[inline(always)]
     pub fn key(&self, node: u32) -> f64 {
-        let d = self.distance[node as usize];
+        self.distance[node as usize] + self.estimate_of(node)
+    }
+
+    /// `node`'s goal estimate (0 without a goal). An unreached node's may be stale from
+    /// an earlier run, but is finite: its key stays `inf`.
+    #[inline(always)]
+    fn estimate_of(&self, node: u32) -> f64 {
         match self.goal {
-            Some(_) if d < f64::INFINITY => d + self.estimate[node as usize],
-            _ => d,
+            Some(_) => self.estimate[node as usize],
+            None => 0.0,
         }
     }
 
@@ -272,14 +278,8 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
             self.distance[node as usize] = value;
             self.parent[node as usize] = from;
             self.parent_face[node as usize] = face;
-            let (key, previous) = match self.goal {
-                None => (value, previous),
-                Some(_) => {
-                    let estimate = self.estimate[node as usize];
-                    (value + estimate, previous + estimate)
-                }
-            };
-            self.pushes += self.queue.push(node, key, previous) as u64;
+            let estimate = self.estimate_of(node);
+            self.pushes += self.queue.push(node, value + estimate, previous + estimate) as u64;
         }
     }
 
