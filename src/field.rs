@@ -79,7 +79,8 @@ impl Goal {
 /// unreached would have at least that.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Horizon {
-    /// The run's maximum distance.
+    /// The run's [`Stop::max_distance`](crate::Stop::max_distance): a point farther is
+    /// unreached, as a node is.
     pub max_distance: f64,
     /// The queue's level when the run stopped at its targets, less the engine's lag
     /// (`inf` when it did not): a node left queued or unreached has a key at least
@@ -167,8 +168,6 @@ pub struct GeodesicField {
     roots: Vec<Root>,
     /// Per Steiner node, the wave it carries (wavefront engine; empty otherwise).
     waves: Vec<Wave>,
-    /// The run's [`Stop::max_distance`](crate::Stop::max_distance).
-    max_distance: f64,
     /// See [`FieldView::horizon`].
     horizon: Horizon,
     stats: Stats,
@@ -189,11 +188,8 @@ pub(crate) struct FieldView<'a> {
     pub waves: &'a [Wave],
     /// The engine that ran.
     pub method: Method,
-    /// The run's [`Stop::max_distance`](crate::Stop::max_distance): a point farther is
-    /// unreached, as a node is.
-    pub max_distance: f64,
     /// Where an early stop left the field: below it every value is the full run's,
-    /// beyond it nodes may be unreached.
+    /// beyond it nodes may be unreached; it holds the run's maximum distance.
     pub horizon: Horizon,
 }
 
@@ -217,7 +213,6 @@ impl GeodesicField {
         sources: Vec<Source>,
         roots: Vec<Root>,
         waves: Vec<Wave>,
-        max_distance: f64,
         horizon: Horizon,
         stats: Stats,
     ) -> GeodesicField {
@@ -231,7 +226,6 @@ impl GeodesicField {
             sources,
             roots,
             waves,
-            max_distance,
             horizon,
             stats,
         }
@@ -253,7 +247,6 @@ impl GeodesicField {
             roots: &self.roots,
             waves: &self.waves,
             method: self.stats.method,
-            max_distance: self.max_distance,
             horizon: self.horizon,
         }
     }

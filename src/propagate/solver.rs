@@ -108,8 +108,6 @@ pub struct Workspace {
     solver: Option<SolverId>,
     /// The engine of the last run.
     method: Option<Method>,
-    /// The last run's [`Stop::max_distance`]: points farther are unreached.
-    max_distance: f64,
     /// The last run's horizon (see [`FieldView::horizon`]).
     horizon: Horizon,
 }
@@ -178,7 +176,6 @@ impl Workspace {
             roots: &self.roots,
             waves: &self.waves,
             method: self.method.unwrap_or(Method::Wave),
-            max_distance: self.max_distance,
             horizon: self.horizon,
         }
     }
@@ -506,7 +503,6 @@ impl<'m, M: Metric> Solver<'m, M> {
             });
         }
         self.validate_sources(&mut workspace.sources)?;
-        workspace.max_distance = stop.max_distance;
         workspace.targets.clear();
         for (i, target) in stop.targets.iter().enumerate() {
             let point = target
@@ -933,7 +929,6 @@ impl<'m, M: Metric> Solver<'m, M> {
             ws.sources,
             ws.roots,
             ws.waves,
-            stop.max_distance,
             ws.horizon,
             stats,
         ))

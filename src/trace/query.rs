@@ -262,7 +262,7 @@ impl<'a, M: Metric> Query<'a, M> {
         // nodes around it may lie within the maximum while the point does not. So is a
         // point that a node the stop left unreached might give less: a finite value
         // after an early stop is always the value a full run gives.
-        if best.0 > field.max_distance || best.0 > unsettled {
+        if best.0 > field.horizon.max_distance || best.0 > unsettled {
             best = (f64::INFINITY, None);
         }
         Ok(best)

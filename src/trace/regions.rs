@@ -414,7 +414,7 @@ impl<'f, 'q, 'a, M: Metric> LabelGrid<'f, 'q, 'a, M> {
         let (value, c) = self.field.best_upstream(self.query.metric, &x, tolerance)?;
         let c = self.same[c];
         let horizon = self.query.field.horizon;
-        let unreached = value > self.query.field.max_distance
+        let unreached = value > self.query.field.horizon.max_distance
             || (horizon.is_bounded() && {
                 let horizon = horizon.in_face(self.query.mesh, self.field.face);
                 value > self.field.unsettled(self.query.metric, horizon, &x)
