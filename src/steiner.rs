@@ -8,7 +8,7 @@
 //! Points are implicit: a node is an edge and an index, and its position in a face is
 //! computed when needed, never stored per face.
 
-use crate::mesh::{morton_order, EdgeLine, TriMesh, NONE};
+use crate::mesh::{EdgeLine, TriMesh, NONE};
 use crate::surface::SurfacePoint;
 use crate::Error;
 use geotracks_metrics::FacePoint;
@@ -206,19 +206,8 @@ impl SteinerLayout {
         scheme: SteinerScheme,
         counts: Vec<u32>,
     ) -> Result<SteinerLayout, Error> {
-        // Blocks in a spatial order, so that a wavefront finds its nodes close in
-        // memory: the mesh's own where it has one (a grid's rows), else along a curve.
-        let order = if mesh.is_spatially_ordered() {
-            (0..mesh.edge_count() as u32).collect()
-        } else {
-            let midpoints: Vec<glam::DVec3> = (0..mesh.edge_count() as u32)
-                .map(|e| {
-                    let [a, b] = mesh.edge_vertices(e);
-                    (mesh.position(a) + mesh.position(b)) * 0.5
-                })
-                .collect();
-            morton_order(&midpoints)
-        };
+        // Blocks in a spatial order, so that a wavefront finds its nodes close in memory.
+        let order = mesh.spatial_edge_order();
         Self::from_counts(mesh.vertex_count(), &counts, order, scheme)
     }
 

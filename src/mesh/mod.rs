@@ -15,7 +15,6 @@ pub use csr::Csr;
 pub use error::MeshError;
 pub use homology::{graph_betti_numbers, Betti};
 pub(crate) use homology::{unique_edges, CycleSheets};
-pub(crate) use order::morton_order;
 pub(crate) use report::bounding_box;
 pub use report::{MeshReport, SurfaceReport};
 pub(crate) use sets::DisjointSets;

@@ -8,7 +8,7 @@ use rayon::slice::ParallelSliceMut;
 /// The indices `0..points.len()` sorted along a Morton curve through the points' bounding
 /// box, on a 1024³ grid (ties keep index order). Key and index share one `u64`, so the
 /// sort compares plain integers.
-pub(crate) fn morton_order(points: &[DVec3]) -> Vec<u32> {
+fn morton_order(points: &[DVec3]) -> Vec<u32> {
     let (lo, hi) = points.iter().fold(
         (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
         |(lo, hi), p| (lo.min(*p), hi.max(*p)),
@@ -31,6 +31,34 @@ pub(crate) fn morton_order(points: &[DVec3]) -> Vec<u32> {
     // Keys are distinct (the index is in them), so the parallel sort is deterministic.
     keyed.par_sort_unstable();
     keyed.into_iter().map(|k| k as u32).collect()
+}
+
+impl super::TriMesh {
+    /// The edges in a spatial order (see the module docs): as numbered where the
+    /// mesh's numbering is spatial already (a grid's tiles, see
+    /// [`TriMesh::is_spatially_ordered`](super::TriMesh::is_spatially_ordered)), else
+    /// along a Morton curve through their midpoints.
+    pub(crate) fn spatial_edge_order(&self) -> Vec<u32> {
+        self.spatial_order(self.edge_count(), |e| {
+            let [a, b] = self.edge_vertices(e);
+            (self.position(a) + self.position(b)) * 0.5
+        })
+    }
+
+    /// The faces in a spatial order, as [`TriMesh::spatial_edge_order`] orders edges
+    /// (through their centroids).
+    pub(crate) fn spatial_face_order(&self) -> Vec<u32> {
+        self.spatial_order(self.face_count(), |f| self.point(f, [1.0 / 3.0; 3]))
+    }
+
+    fn spatial_order(&self, count: usize, point: impl Fn(u32) -> DVec3) -> Vec<u32> {
+        if self.is_spatially_ordered() {
+            (0..count as u32).collect()
+        } else {
+            let points: Vec<DVec3> = (0..count as u32).map(point).collect();
+            morton_order(&points)
+        }
+    }
 }
 
 /// Cells per axis of the grid the curve runs through.

@@ -8,7 +8,7 @@
 //! is close together whatever order the input file had. Incidences name faces by their
 //! record index; the record holds the mesh's face id for the metric and the results.
 
-use crate::mesh::{morton_order, Csr, FaceFrame, TriMesh, NONE};
+use crate::mesh::{Csr, FaceFrame, TriMesh, NONE};
 use crate::steiner::{SlotPoints, SteinerLayout};
 use crate::Error;
 use geotracks_metrics::FacePoint;
@@ -40,21 +40,6 @@ pub(in crate::propagate) struct FaceRecord {
 const _: () = assert!(std::mem::size_of::<FaceRecord>() <= 64);
 
 impl FaceRecord {
-    /// A placeholder, overwritten while the tables are built.
-    const EMPTY: FaceRecord = FaceRecord {
-        frame: FaceFrame {
-            l01: 0.0,
-            x2: 0.0,
-            y2: 0.0,
-        },
-        lo: [0; 3],
-        vertex: [0; 3],
-        base: 0,
-        face: 0,
-        count: [0; 3],
-        reversed: 0,
-    };
-
     /// Points on slot `s`.
     #[inline]
     pub fn count(&self, s: usize) -> u32 {
@@ -205,15 +190,7 @@ impl TrackTables {
                 count: mesh.face_count() as u64,
             });
         }
-        // (As the layout orders edges: the mesh's order where it is spatial already.)
-        let face_order = if mesh.is_spatially_ordered() {
-            (0..mesh.face_count() as u32).collect()
-        } else {
-            let centroids: Vec<glam::DVec3> = (0..mesh.face_count() as u32)
-                .map(|f| mesh.point(f, [1.0 / 3.0; 3]))
-                .collect();
-            morton_order(&centroids)
-        };
+        let face_order = mesh.spatial_face_order();
         let mut record_of = vec![0u32; mesh.face_count()];
         for (r, &f) in face_order.iter().enumerate() {
             record_of[f as usize] = r as u32;
@@ -228,7 +205,7 @@ impl TrackTables {
                 count: c as u64,
             });
         }
-        // Faces are read in the mesh's order (on all cores) and written in the records'.
+        // Record `r` is face `face_order[r]`: made in record order, on all cores.
         let record = |f: u32| {
             let edges = mesh.face_edges(f);
             let mut reversed = 0u8;
@@ -248,19 +225,7 @@ impl TrackTables {
                 reversed,
             }
         };
-        let in_face_order: Vec<FaceRecord> = (0..mesh.face_count() as u32)
-            .into_par_iter()
-            .map(record)
-            .collect();
-        let mut faces = if mesh.is_spatially_ordered() {
-            in_face_order
-        } else {
-            let mut faces = vec![FaceRecord::EMPTY; mesh.face_count()];
-            for (f, r) in in_face_order.into_iter().enumerate() {
-                faces[record_of[f] as usize] = r;
-            }
-            faces
-        };
+        let mut faces: Vec<FaceRecord> = face_order.par_iter().map(|&f| record(f)).collect();
         let mut total: u64 = 0;
         for r in &mut faces {
             r.base = total as u32;
