@@ -171,7 +171,8 @@ pub struct Stop {
     /// cost. Nodes off the corridor stay unreached. Default: `true`; it has no effect
     /// without targets, for a metric that gives no bound, for targets spread over more
     /// than half the mesh (their box's diagonal against the mesh's: the estimate would
-    /// be zero nearly everywhere, and computing it costs about 15 %), and for the
+    /// be zero nearly everywhere, and computing it cost time for nothing; the README's
+    /// Library section has the figures), and for the
     /// wavefront engine ([`Method::Wave`]), whose values depend on the order waves
     /// arrive in: settled out of value order, a node can replace the wave through
     /// which it gave others their values, and their paths can no longer be traced back

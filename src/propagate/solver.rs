@@ -704,9 +704,7 @@ impl<'m, M: Metric> Solver<'m, M> {
         let positions = targets.iter().map(|&t| self.layout.position(self.mesh, t));
         let [lo, hi] = bounding_box(positions.map(|p| p.to_array())).map(glam::DVec3::from);
         // Targets spread over much of the mesh leave the estimate zero nearly
-        // everywhere: it would cost without saving (on the bunny, 20 runs to 10
-        // scattered targets took 3.2-3.3 s goal-directed against 2.8 s plain, for the
-        // same nodes settled; to one target, 0.34 s against 2.1-2.4 s).
+        // everywhere: it would cost without saving (README, Library: `goal_bench`).
         if (hi - lo).length() > 0.5 * self.extent {
             return None;
         }
