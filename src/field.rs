@@ -82,7 +82,7 @@ pub(crate) struct Horizon {
     /// The run's [`Stop::max_distance`](crate::Stop::max_distance): a point farther is
     /// unreached, as a node is.
     pub max_distance: f64,
-    /// The queue's level when the run stopped at its targets, less the engine's lag
+    /// The queue's level when the run stopped at its targets, less the engine's reach
     /// (`inf` when it did not): a node left queued or unreached has a key at least
     /// this.
     pub level: f64,
