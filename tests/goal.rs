@@ -159,21 +159,38 @@ fn goal_direction_settles_a_corridor() {
     assert!(3 * settles < field.stats().settles);
 }
 
+/// The length, with a chosen least cost per unit length and wires at a chosen fraction
+/// of their length: a metric that keeps or breaks its promise.
+struct Claimed {
+    per_length: f64,
+    wire_fraction: f64,
+}
+
+impl Metric for Claimed {
+    fn cost(&self, _face: u32, a: &FacePoint, b: &FacePoint) -> f64 {
+        a.distance(b)
+    }
+    fn is_face_norm(&self) -> bool {
+        true
+    }
+    fn wire_cost(&self, _a: u32, _b: u32, length: f64) -> f64 {
+        self.wire_fraction * length
+    }
+    fn min_cost_per_length(&self) -> f64 {
+        self.per_length
+    }
+}
+
 /// A metric whose promised least cost per unit length exceeds what an edge costs is
 /// refused when the solver is built, naming the edge.
 #[test]
 fn a_metric_that_promises_too_much_is_refused() {
-    struct Boastful;
-    impl Metric for Boastful {
-        fn cost(&self, _face: u32, a: &FacePoint, b: &FacePoint) -> f64 {
-            a.distance(b)
-        }
-        fn min_cost_per_length(&self) -> f64 {
-            1.5
-        }
-    }
+    let boastful = Claimed {
+        per_length: 1.5,
+        wire_fraction: 1.0,
+    };
     let mesh = common::grid(2, 2.0);
-    let error = Solver::new(&mesh, Boastful, &Options::DEFAULT)
+    let error = Solver::new(&mesh, boastful, &Options::DEFAULT)
         .err()
         .expect("refused");
     assert!(
@@ -183,18 +200,10 @@ fn a_metric_that_promises_too_much_is_refused() {
     assert!(error.to_string().contains("edge"), "{error}");
 
     // A wire too: the bound holds on faces, but the wire charges its length / 2.
-    struct CheapWires;
-    impl Metric for CheapWires {
-        fn cost(&self, _face: u32, a: &FacePoint, b: &FacePoint) -> f64 {
-            a.distance(b)
-        }
-        fn wire_cost(&self, _a: u32, _b: u32, length: f64) -> f64 {
-            0.5 * length
-        }
-        fn min_cost_per_length(&self) -> f64 {
-            1.0
-        }
-    }
+    let cheap_wires = Claimed {
+        per_length: 1.0,
+        wire_fraction: 0.5,
+    };
     let mesh = TriMesh::with_line_elements(
         vec![
             [0.0, 0.0, 0.0],
@@ -206,7 +215,7 @@ fn a_metric_that_promises_too_much_is_refused() {
         vec![[2, 3]],
     )
     .unwrap();
-    let error = Solver::new(&mesh, CheapWires, &Options::DEFAULT)
+    let error = Solver::new(&mesh, cheap_wires, &Options::DEFAULT)
         .err()
         .expect("refused");
     assert!(matches!(error, Error::WireBelowBound { .. }), "{error}");
@@ -215,21 +224,13 @@ fn a_metric_that_promises_too_much_is_refused() {
 /// A bound that is not a positive finite number promises nothing: the run is plain.
 #[test]
 fn no_bound_no_goal_direction() {
-    struct Unsure;
-    impl Metric for Unsure {
-        fn cost(&self, _face: u32, a: &FacePoint, b: &FacePoint) -> f64 {
-            a.distance(b)
-        }
-        fn is_face_norm(&self) -> bool {
-            true
-        }
-        fn min_cost_per_length(&self) -> f64 {
-            f64::NAN
-        }
-    }
+    let unsure = Claimed {
+        per_length: f64::NAN,
+        wire_fraction: 1.0,
+    };
     let mesh = common::grid(20, 20.0);
     let target = SurfacePoint::Vertex(22);
-    let unsure = Solver::new(&mesh, Unsure, &Options::DEFAULT.with_method(Method::Tracks)).unwrap();
+    let unsure = Solver::new(&mesh, unsure, &Options::DEFAULT.with_method(Method::Tracks)).unwrap();
     let sure = Solver::new(
         &mesh,
         Euclidean,
