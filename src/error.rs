@@ -64,6 +64,10 @@ pub enum Error {
     /// A metric could not be built from its data.
     #[error(transparent)]
     Metric(#[from] MetricError),
+    /// An elevation grid could not be meshed, a point of it located, or a terrain cost
+    /// built ([`route_on_grid`](crate::terrain::route_on_grid)).
+    #[error(transparent)]
+    Terrain(#[from] crate::terrain::TerrainError),
     /// No source was given.
     #[error("no source given: at least one source vertex is needed")]
     NoSource,
@@ -163,6 +167,15 @@ pub enum Error {
     InvalidK {
         /// The k asked for.
         k: f64,
+    },
+    /// [`Options::mean_edge_length`](crate::Options::mean_edge_length) is not a finite
+    /// length > 0.
+    #[error(
+        "invalid mean edge length for the Steiner spacing: {length} (it must be finite and > 0)"
+    )]
+    InvalidMeanEdgeLength {
+        /// The length given.
+        length: f64,
     },
     /// A metric returned a NaN or negative cost. Metrics must return costs ≥ 0
     /// (`+inf` is allowed and means the segment cannot be crossed).

@@ -110,11 +110,13 @@ impl Horizon {
         self.max_distance.min(self.level) < f64::INFINITY
     }
 
-    /// The horizon of the nodes of face `f`: a key at least `level` is a value at least
-    /// `level` less the estimate, which is largest at a corner (it is convex).
+    /// The horizon of the nodes of face `f`: a key at least `level` (or beyond the
+    /// maximum distance, which a goal-directed run cuts keys at) is a value at least
+    /// that less the estimate, which is largest at a corner (it is convex).
     pub fn in_face(&self, mesh: &TriMesh, f: u32) -> f64 {
+        let limit = self.max_distance.min(self.level);
         let estimate = match self.goal {
-            Some(goal) if self.level < f64::INFINITY => {
+            Some(goal) if limit < f64::INFINITY => {
                 let corners = mesh
                     .face_vertices(f)
                     .map(|v| goal.estimate(mesh.position(v)));
@@ -122,7 +124,7 @@ impl Horizon {
             }
             _ => 0.0,
         };
-        self.max_distance.min(self.level - estimate)
+        limit - estimate
     }
 }
 

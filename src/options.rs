@@ -100,6 +100,13 @@ pub struct Options {
     ///
     /// [`Error::KTooLarge`]: crate::Error::KTooLarge
     pub memory_limit: Option<u64>,
+    /// The edge length the interval scheme's `k` is relative to: edges are cut every
+    /// `mean_edge_length / k` (in the lengths the points are spaced by: 3D lengths, or
+    /// the metric's for the wavefront engine). `None` (the default): the mean over the
+    /// mesh's edges. Give the whole mesh's mean to run on a part of it with the points
+    /// the whole would have (as terrain routes do on their window, see
+    /// [`route_on_grid`](crate::terrain::route_on_grid)).
+    pub mean_edge_length: Option<f64>,
 }
 
 impl Options {
@@ -108,6 +115,7 @@ impl Options {
         steiner: SteinerScheme::Interval { k: 2.0 },
         method: Method::Wave,
         memory_limit: None,
+        mean_edge_length: None,
     };
 
     /// Interval scheme with a mean of `k` points per edge.
@@ -125,6 +133,12 @@ impl Options {
     /// The memory budget in bytes (see [`Options::memory_limit`]).
     pub const fn with_memory_limit(mut self, bytes: u64) -> Self {
         self.memory_limit = Some(bytes);
+        self
+    }
+
+    /// The edge length `k` is relative to (see [`Options::mean_edge_length`]).
+    pub const fn with_mean_edge_length(mut self, length: f64) -> Self {
+        self.mean_edge_length = Some(length);
         self
     }
 
@@ -156,7 +170,10 @@ impl Options {
 #[non_exhaustive]
 pub struct Stop {
     /// Nodes farther than this stay unreached (`inf`); the propagation ends when nothing
-    /// closer is left. Default: `inf`.
+    /// closer is left. A goal-directed run (see [`goal_directed`](Self::goal_directed))
+    /// also leaves unreached the nodes through which no target lies within it (their
+    /// value plus the estimate exceeds it): targets farther than it are unreached, and
+    /// finding that out costs the corridor, not the disc. Default: `inf`.
     pub max_distance: f64,
     /// Stop as soon as the value at each of these points is final (the distance at a
     /// point inside a face, or on an edge, depends on the nodes around it, so those are

@@ -52,12 +52,19 @@ impl SteinerScheme {
     /// How many points edges of the given `lengths` get (in any unit: a metric's
     /// lengths place points evenly in the metric), at least `min` each.
     pub fn counts_for(&self, lengths: &[f64], min: u32) -> Vec<u32> {
+        self.counts_relative_to(lengths, min, None)
+    }
+
+    /// As [`counts_for`](Self::counts_for), with the interval scheme's spacing taken
+    /// from `mean` (`mean / k`) instead of the mean of `lengths` when it is given: a
+    /// part of a mesh then gets the points the whole mesh would.
+    pub fn counts_relative_to(&self, lengths: &[f64], min: u32, mean: Option<f64>) -> Vec<u32> {
         match *self {
             SteinerScheme::Fixed { count } => vec![count.max(min); lengths.len()],
             SteinerScheme::Interval { k } => {
                 // Each length divided first, so that no sum of lengths overflows.
                 let n = lengths.len().max(1) as f64;
-                let mean: f64 = lengths.iter().map(|l| l / n).sum();
+                let mean = mean.unwrap_or_else(|| lengths.iter().map(|l| l / n).sum());
                 let h = mean / k;
                 lengths
                     .iter()

@@ -3,7 +3,7 @@
 use crate::isolines;
 use crate::output::Outputs;
 use crate::{ui, CliResult, Value};
-use geotracks::terrain::{self, map, Route, TerrainCost};
+use geotracks::terrain::{self, map, Route, TerrainCost, TerrainError};
 use geotracks::trace::IsolineOptions;
 use geotracks::{Error, Method, Options, Solver};
 use std::path::{Path, PathBuf};
@@ -116,39 +116,51 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     outputs.declare_some(args.png.as_ref())?;
     outputs.declare_some(args.contours.as_ref())?;
     let spinner = ui::Spinner::start("reading the grid and routing");
-    let (grid, terrain) = terrain::read_terrain(&args.dem)?;
-    let locate = |arg: &str, [x, y]: [f64; 2]| {
-        terrain
-            .locate(x, y)
-            .map_err(|e| format!("--{arg} {x},{y}: {e}"))
-    };
-    let from = locate("from", args.from)?;
-    let to = locate("to", args.to)?;
-    let metric = args.cost.metric(&terrain.mesh)?;
-    let options = Options::DEFAULT.with_k(args.k).with_method(args.method);
-    let solver = Solver::new(&terrain.mesh, metric, &options)?;
-    // Contours need the whole field; a route alone stops at its end.
-    let routed = if args.contours.is_some() {
-        terrain::route_and_field(&solver, from, to).map(|(r, f)| (r, Some(f)))
+    let grid = terrain::read_grid(&args.dem)?;
+    let mut options = Options::DEFAULT.with_k(args.k).with_method(args.method);
+    match grid.mean_edge_length() {
+        // Points spaced as on the whole grid, whatever part of it is meshed.
+        Some(mean) => options = options.with_mean_edge_length(mean),
+        // No triangle: the meshing error, naming the file.
+        None => drop(grid.to_mesh_named(Some(&args.dem))?),
+    }
+    let routed = if args.png.is_none() && args.contours.is_none() {
+        // A route alone: on the window of the grid it needs.
+        whole_grid_error(
+            terrain::route_on_grid(&grid, &args.cost, &options, args.from, args.to)
+                .map(|r| (r.route, r.mesh, None, Some(r.window))),
+            args,
+        )?
     } else {
-        terrain::route(&solver, from, to, args.png.is_some()).map(|r| (r, None))
+        // The map and the contours need the whole field.
+        let terrain = grid.to_mesh_named(Some(&args.dem))?;
+        let locate = |arg: &str, [x, y]: [f64; 2]| {
+            terrain
+                .locate(x, y)
+                .map_err(|e| format!("--{arg} {x},{y}: {e}"))
+        };
+        let from = locate("from", args.from)?;
+        let to = locate("to", args.to)?;
+        let metric = args.cost.metric(&terrain.mesh)?;
+        let solver = Solver::new(&terrain.mesh, metric, &options)?;
+        let routed = if args.contours.is_some() {
+            terrain::route_and_field(&solver, from, to).map(|(r, f)| (r, Some(f)))
+        } else {
+            terrain::route(&solver, from, to, true).map(|r| (r, None))
+        };
+        let (route, field) = whole_grid_error(routed, args)?;
+        let contours = match &field {
+            Some(field) => {
+                let query = solver.query(field)?;
+                let levels = isolines::levels_of(&query, args.contour_levels, &args.contour_at);
+                Some(query.isolines(&levels, &IsolineOptions::DEFAULT)?)
+            }
+            None => None,
+        };
+        drop(solver);
+        (route, terrain, contours, None)
     };
-    let (route, field) = match routed {
-        Err(Error::Unreachable { .. }) => {
-            return Err("no route: --to cannot be reached from --from (impassable \
-                        faces or NODATA separate them)"
-                .into())
-        }
-        other => other?,
-    };
-    let contours = match &field {
-        Some(field) => {
-            let query = solver.query(field)?;
-            let levels = isolines::levels_of(&query, args.contour_levels, &args.contour_at);
-            Some(query.isolines(&levels, &IsolineOptions::DEFAULT)?)
-        }
-        None => None,
-    };
+    let (route, terrain, contours, window) = routed;
     let picture = args.png.as_ref().map(|_| {
         let xy: Vec<[f64; 2]> = route.points.iter().map(|p| [p.x, p.y]).collect();
         map::render(
@@ -179,11 +191,13 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     }
     outputs.commit()?;
 
+    let elevation = |p: Option<&geotracks::glam::DVec3>| p.map_or(f64::NAN, |p| p.z);
+    let (first, last) = (route.points.first(), route.points.last());
     let [x0, y0] = args.from;
     let [x1, y1] = args.to;
     let mut summary = vec![
-        format!("from: {x0},{y0} ({from})"),
-        format!("to: {x1},{y1} ({to})"),
+        format!("from: {x0},{y0} (elevation {})", Value(elevation(first))),
+        format!("to: {x1},{y1} (elevation {})", Value(elevation(last))),
         format!("cost model: {}", args.cost),
         format!("points: {}", route.points.len()),
         format!("length: {} (3D), {} (map)", Value(length), Value(length_2d)),
@@ -215,11 +229,19 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     let s = &route.stats;
     let g = grid.geometry();
     ui::info!(
-        "{}: {} × {} samples, {} faces, {}; wrote {}{}",
+        "{}: {} × {} samples, {} faces{}, {}; wrote {}{}",
         args.dem.display(),
         g.ncols,
         g.nrows,
         s.faces,
+        window
+            .map(|w| format!(
+                " (a window of {:.0} % of the cells, {} run{})",
+                100.0 * w.cells as f64 / w.grid_cells.max(1) as f64,
+                w.runs,
+                if w.runs == 1 { "" } else { "s" }
+            ))
+            .unwrap_or_default(),
         crate::run_summary(s),
         crate::shown(&args.output),
         match (&args.png, &picture) {
@@ -237,6 +259,27 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     );
     crate::report_stats(s);
     Ok(())
+}
+
+/// A routing error in the command line's words: which end lies off the grid or on
+/// NODATA, or that no route joins them.
+fn whole_grid_error<T>(routed: Result<T, Error>, args: &TerrainArgs) -> Result<T, String> {
+    let end = |x: f64, y: f64| {
+        if [x, y] == args.from {
+            "--from"
+        } else {
+            "--to"
+        }
+    };
+    routed.map_err(|e| match e {
+        Error::Unreachable { .. } => "no route: --to cannot be reached from --from \
+                                      (impassable faces or NODATA separate them)"
+            .to_string(),
+        Error::Terrain(
+            ref t @ (TerrainError::Outside { x, y, .. } | TerrainError::NoData { x, y }),
+        ) => format!("{} {x},{y}: {t}", end(x, y)),
+        e => e.to_string(),
+    })
 }
 
 /// How map coordinates are written: rounded to a fixed number of decimals (so that a

@@ -154,7 +154,14 @@ fn cli_writes_geojson_csv_and_png() {
     assert_eq!(rows.len(), coords.len());
     let end = &rows[rows.len() - 1];
     assert!((end[3] - cost).abs() <= 1e-9 * cost, "{} vs {cost}", end[3]);
-    assert!((end[4] - length).abs() <= 1e-9 * length);
+    // Without the map the route is found on a window of the grid (goal-directed): it
+    // costs the same, and straightens to the same length within the straightener's
+    // tolerance (measured: 3e-8).
+    assert!(
+        (end[4] - length).abs() <= 1e-6 * length,
+        "{} vs {length}",
+        end[4]
+    );
     assert!(rows.windows(2).all(|w| w[1][3] >= w[0][3]));
     // Without the map the run stops at the target: the same cost.
     assert!((last_value(&out) - cost).abs() <= 1e-9 * cost);

@@ -498,27 +498,31 @@ fn terrain_route<'py>(
     k: f64,
     method: &str,
 ) -> PyResult<(Matrix<'py, f64>, Vector<'py, f64>, f64)> {
-    use geotracks::terrain::{read_terrain, route, TerrainCost};
+    use geotracks::terrain::{read_grid, route_on_grid, TerrainCost, TerrainError};
     let cost: TerrainCost = cost.parse().map_err(error)?;
     let method: geotracks::Method = method.parse().map_err(error)?;
     let route = py
         .detach(|| {
-            let (_, terrain) = read_terrain(&dem).map_err(|e| e.to_string())?;
-            let locate = |which: &str, [x, y]: [f64; 2]| {
-                terrain
-                    .locate(x, y)
-                    .map_err(|e| format!("{which} ({x}, {y}): {e}"))
-            };
-            let (from, to) = (locate("start", start)?, locate("end", end)?);
-            let metric = cost.metric(&terrain.mesh).map_err(|e| e.to_string())?;
+            let grid = read_grid(&dem).map_err(|e| e.to_string())?;
             let options = Options::DEFAULT.with_k(k).with_method(method);
-            let solver = Solver::new(&terrain.mesh, metric, &options).map_err(|e| e.to_string())?;
-            route(&solver, from, to, false).map_err(|e| match e {
-                geotracks::Error::Unreachable { .. } => "no route: the end cannot be reached \
-                    from the start (impassable faces or NODATA separate them)"
-                    .to_string(),
-                e => e.to_string(),
-            })
+            // Only the window of the grid the route needs is meshed.
+            route_on_grid(&grid, &cost, &options, start, end)
+                .map(|r| r.route)
+                .map_err(|e| match e {
+                    geotracks::Error::Unreachable { .. } => {
+                        "no route: the end cannot be reached from the start (impassable \
+                         faces or NODATA separate them)"
+                            .to_string()
+                    }
+                    geotracks::Error::Terrain(
+                        ref
+                        t @ (TerrainError::Outside { x, y, .. } | TerrainError::NoData { x, y }),
+                    ) => {
+                        let which = if [x, y] == start { "start" } else { "end" };
+                        format!("{which} ({x}, {y}): {t}")
+                    }
+                    e => e.to_string(),
+                })
         })
         .map_err(error)?;
     let points = matrix3(&route.points, |p| p.to_array());

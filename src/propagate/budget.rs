@@ -19,6 +19,8 @@ pub(super) const MAX_POINTS_PER_EDGE: u64 = u16::MAX as u64;
 pub(super) struct Spacing<'a> {
     pub lengths: &'a [f64],
     pub min: u32,
+    /// The length the interval scheme's k is relative to (`None`: the lengths' mean).
+    pub mean: Option<f64>,
 }
 
 /// Checks `scheme` on `mesh` for `method` against the limits; `memory` is the budget in
@@ -71,7 +73,7 @@ fn breaks(
         // Below any point at all: nothing to lay out, nothing to break.
         return None;
     }
-    let counts = scheme.counts_for(spacing.lengths, spacing.min);
+    let counts = scheme.counts_relative_to(spacing.lengths, spacing.min, spacing.mean);
     if matches!(method, Method::Tracks | Method::Wave) {
         let (edge, &points) = counts.iter().enumerate().max_by_key(|(_, &c)| c)?;
         if points as u64 > MAX_POINTS_PER_EDGE {

@@ -178,8 +178,9 @@ impl<'a, M: Metric> Frontier<'a, M, ()> {
                 let key = search.key(node);
                 let node = node as usize;
                 let d = &mut search.distance[node];
-                // Values beyond the maximum distance were only kept for the margin.
-                let beyond = d.is_finite() && *d > max;
+                // Values beyond the maximum distance were only kept for the margin
+                // (keys: a goal-directed run keeps none whose key is beyond).
+                let beyond = d.is_finite() && key > max;
                 let not_final =
                     stopped_early && d.is_finite() && !search.queue.is_final(key + reach);
                 if beyond || not_final {
@@ -265,15 +266,20 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
     #[inline(always)]
     pub fn relax(&mut self, node: u32, value: f64, from: u32, face: u32) {
         let previous = self.distance[node as usize];
-        if value < previous && value <= self.max_distance + self.reach {
-            if previous == f64::INFINITY {
-                if self.records {
-                    self.touched.push(node);
-                }
-                if let Some(goal) = &self.goal {
-                    let p = self.layout.position(self.mesh, node);
-                    self.estimate[node as usize] = goal.estimate(p);
-                }
+        if value >= previous {
+            return;
+        }
+        if previous == f64::INFINITY {
+            if let Some(goal) = &self.goal {
+                let p = self.layout.position(self.mesh, node);
+                self.estimate[node as usize] = goal.estimate(p);
+            }
+        }
+        // A goal-directed run takes no node whose key is beyond the maximum distance:
+        // no target lies within it through that node.
+        if value + self.estimate_of(node) <= self.max_distance + self.reach {
+            if previous == f64::INFINITY && self.records {
+                self.touched.push(node);
             }
             self.distance[node as usize] = value;
             self.parent[node as usize] = from;

@@ -241,7 +241,8 @@ impl<'m, M: Metric> Solver<'m, M> {
     /// Prepares `mesh` for queries under `metric` with `options`.
     ///
     /// # Errors
-    /// [`Error::InvalidK`] for a scheme with no points; [`Error::KTooLarge`] when an edge
+    /// [`Error::InvalidK`] for a scheme with no points, [`Error::InvalidMeanEdgeLength`]
+    /// for a mean edge length that is not a length; [`Error::KTooLarge`] when an edge
     /// would carry more than 65535 points (tracks), the nodes would exceed 32-bit ids,
     /// or the run would not fit [`Options::memory_limit`] (checked before allocating,
     /// with the largest k that fits); [`Error::TooLarge`] when the tracks engine's
@@ -267,6 +268,11 @@ impl<'m, M: Metric> Solver<'m, M> {
                     k: options.steiner.k(),
                 });
             }
+            if let Some(length) = options.mean_edge_length {
+                if !(length.is_finite() && length > 0.0) {
+                    return Err(Error::InvalidMeanEdgeLength { length });
+                }
+            }
             // The wavefront engine spaces points by the metric's lengths, and puts at
             // least one on every edge: a wave crosses an edge only through its points.
             let lengths = edge_lengths(mesh, flat_frames.as_deref());
@@ -274,10 +280,14 @@ impl<'m, M: Metric> Solver<'m, M> {
             let spacing = budget::Spacing {
                 lengths: &lengths,
                 min,
+                mean: options.mean_edge_length,
             };
             let memory = options.memory_limit.or_else(budget::available_memory);
             budget::check(mesh, options.steiner, spacing, options.method, memory)?;
-            let counts = options.steiner.counts_for(&lengths, min);
+            let counts =
+                options
+                    .steiner
+                    .counts_relative_to(&lengths, min, options.mean_edge_length);
             if options.method == Method::Wave {
                 reach = lengths.iter().fold(0.0f64, |m, &l| m.max(l));
             }

@@ -5,7 +5,7 @@
 //! They work on any terrain-like mesh (z up), not only on grids.
 
 use super::TerrainError;
-use super::{DirectedCost, DirectedModel};
+use super::{DirectedCost, DirectedModel, ElevationGrid, TerrainMesh};
 use crate::mesh::TriMesh;
 use geotracks_metrics::{Density, FacePoint, Metric, Tensor};
 use glam::DVec3;
@@ -82,6 +82,50 @@ pub fn vertex_slope_tan2(mesh: &TriMesh) -> Vec<f64> {
         .collect()
 }
 
+/// [`vertex_slope_tan2`] of the vertices of `terrain`, a mesh of `grid` or of a window
+/// of it ([`ElevationGrid::to_mesh_within`]), from all the grid's triangles around each
+/// vertex: a window's vertices on its border get the slope they have on the whole grid
+/// (to rounding), not that of the faces the window kept.
+fn grid_vertex_slope_tan2(grid: &ElevationGrid, terrain: &TerrainMesh) -> Vec<f64> {
+    let g = grid.geometry();
+    let point = |s: usize| {
+        let [x, y] = g.position(s % g.ncols, s / g.ncols);
+        DVec3::new(x, y, grid.values()[s])
+    };
+    terrain
+        .vertex_samples()
+        .into_iter()
+        .map(|s| {
+            let (col, row) = (s % g.ncols, s / g.ncols);
+            let mut n = DVec3::ZERO;
+            for (c, r) in [
+                (col, row),
+                (col.wrapping_sub(1), row),
+                (col, row.wrapping_sub(1)),
+            ]
+            .into_iter()
+            .chain([(col.wrapping_sub(1), row.wrapping_sub(1))])
+            {
+                if c >= g.ncols - 1 || r >= g.nrows - 1 {
+                    continue;
+                }
+                for t in grid.cell_triangles(c, r).into_iter().flatten() {
+                    if t.contains(&s) {
+                        let [a, b, c] = t.map(point);
+                        let m = (b - a).cross(c - a);
+                        n += if m.z < 0.0 { -m } else { m };
+                    }
+                }
+            }
+            if n == DVec3::ZERO {
+                0.0
+            } else {
+                tan2(n)
+            }
+        })
+        .collect()
+}
+
 /// The slope density `ρ = 1 + a·tan²(slope)` per vertex (see [`vertex_slope_tan2`]): a
 /// route pays more where the ground is steep, whichever way it goes there. `a = 0` is
 /// the 3D length.
@@ -98,8 +142,13 @@ pub fn vertex_slope_tan2(mesh: &TriMesh) -> Vec<f64> {
 /// [`TerrainError::Parameter`] unless `a` is finite and ≥ 0; [`TerrainError::Vertical`]
 /// for a vertex whose normal is horizontal.
 pub fn slope_density(mesh: &TriMesh, a: f64) -> Result<Density, TerrainError> {
+    slope_density_from(mesh, a, vertex_slope_tan2(mesh))
+}
+
+/// [`slope_density`] from the vertices' `tan²(slope)`.
+fn slope_density_from(mesh: &TriMesh, a: f64, tan2: Vec<f64>) -> Result<Density, TerrainError> {
     check_factor("the slope factor a", a)?;
-    let rho = vertex_slope_tan2(mesh)
+    let rho = tan2
         .into_iter()
         .enumerate()
         .map(|(v, t)| {
@@ -467,6 +516,30 @@ impl TerrainCost {
         matches!(self, TerrainCost::Directed(_))
     }
 
+    /// What a route costs at least per unit of 3D length, anywhere on `grid`'s mesh and
+    /// in any direction: the least of [`Metric::min_cost_per_length`] over the
+    /// metrics [`metric`](Self::metric) would build on any part of the grid, known
+    /// from the grid without meshing it. A route through a point `x` then costs at
+    /// least this times `|s − x| + |x − t|` (3D distances to its ends), which is what
+    /// [`route_on_grid`](super::route_on_grid) cuts its window by.
+    ///
+    /// 1 for `none`, `slope` (a density ≥ 1) and `incline` (whose least eigenvalue is
+    /// 1); for a directed cost, the model's bound at the grid's steepest triangle
+    /// ([`ElevationGrid::steepest_tangent`], which gives the least bound of all its
+    /// faces). Shaded by 1e-9 against rounding (a face's computed bound can come out
+    /// an ulp below the exact one).
+    ///
+    /// [`Metric::min_cost_per_length`]: geotracks_metrics::Metric::min_cost_per_length
+    pub fn least_cost_per_length(&self, grid: &ElevationGrid) -> f64 {
+        let exact = match self {
+            TerrainCost::None | TerrainCost::Slope { .. } | TerrainCost::Incline { .. } => 1.0,
+            TerrainCost::Directed(model) => {
+                model.min_cost_per_length(grid.steepest_tangent() * (1.0 + 1e-9))
+            }
+        };
+        (exact * (1.0 - 1e-9)).max(0.0)
+    }
+
     /// The unit of the cost for a grid in metres: `"s"` for the walking times
     /// (`naismith`, `rwalk`, `tobler`), `"m"` (of the cost's length) otherwise.
     pub fn unit(&self) -> &'static str {
@@ -492,17 +565,41 @@ impl TerrainCost {
     /// What building the metric returns ([`TerrainError::Parameter`] for a parameter
     /// out of range).
     pub fn metric(&self, mesh: &TriMesh) -> Result<TerrainMetric, TerrainError> {
+        self.metric_with(mesh, vertex_slope_tan2)
+    }
+
+    /// As [`metric`](Self::metric) on `terrain`, a mesh of `grid` or of a window of it
+    /// ([`ElevationGrid::to_mesh_within`]), with each vertex's slope (which the slope
+    /// density uses) taken from all the grid's triangles around it: a window's metric
+    /// is then the whole grid's, on the faces it kept (to rounding).
+    ///
+    /// # Errors
+    /// As [`metric`](Self::metric).
+    pub fn metric_on_grid(
+        &self,
+        grid: &ElevationGrid,
+        terrain: &TerrainMesh,
+    ) -> Result<TerrainMetric, TerrainError> {
+        self.metric_with(&terrain.mesh, |_| grid_vertex_slope_tan2(grid, terrain))
+    }
+
+    /// The metric, with the vertices' `tan²(slope)` from `slopes`.
+    fn metric_with(
+        &self,
+        mesh: &TriMesh,
+        slopes: impl FnOnce(&TriMesh) -> Vec<f64>,
+    ) -> Result<TerrainMetric, TerrainError> {
         Ok(match *self {
             TerrainCost::None => TerrainMetric::Length(geotracks_metrics::Euclidean),
             TerrainCost::Slope {
                 a,
                 max_degrees: None,
-            } => TerrainMetric::Slope(slope_density(mesh, a)?),
+            } => TerrainMetric::Slope(slope_density_from(mesh, a, slopes(mesh))?),
             TerrainCost::Slope {
                 a,
                 max_degrees: Some(m),
             } => {
-                let density = slope_density(mesh, a)?;
+                let density = slope_density_from(mesh, a, slopes(mesh))?;
                 TerrainMetric::WalledSlope(Impassable::new(mesh, density, steeper_than(mesh, m)?)?)
             }
             TerrainCost::Incline { b } => TerrainMetric::Incline(incline_tensor(mesh, b)?),

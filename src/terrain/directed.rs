@@ -203,7 +203,7 @@ impl DirectedModel {
     /// value lies at the ends of the ranges. Tobler's cost per unit falls towards
     /// `t = −0.05` and rises beyond (its exponent's slope, 3.5, exceeds that of
     /// `ln sqrt(1 + t²)`, at most ½).
-    fn min_cost_per_length(&self, m: f64) -> f64 {
+    pub(crate) fn min_cost_per_length(&self, m: f64) -> f64 {
         // (α + β t) / sqrt(1 + t²), and its limit β·sign(t) at t = ±∞.
         let per_length = |alpha: f64, beta: f64, t: f64| {
             if t.is_infinite() {

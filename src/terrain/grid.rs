@@ -5,6 +5,10 @@ use super::TerrainError;
 use crate::mesh::{TriMesh, NONE};
 use crate::surface::SurfacePoint;
 
+/// How far beyond the outermost sample centres, in cells, a map point still counts as on
+/// the grid (rounding in the caller's coordinates).
+const INSIDE: f64 = 1e-9;
+
 /// Where a grid's samples are: how many, where the first one is and how far apart.
 ///
 /// Rows run from north to south (row 0 is the northernmost, as in image files and ESRI
@@ -59,6 +63,29 @@ impl GridGeometry {
             (x - self.lower_left[0]) / self.spacing[0],
             (y_max - y) / self.spacing[1],
         )
+    }
+
+    /// Map point `(x, y)` in fractional columns and rows ([`to_grid`](Self::to_grid)),
+    /// when it lies within the outermost sample centres (to 1e-9 of a
+    /// cell).
+    ///
+    /// # Errors
+    /// [`TerrainError::Outside`] beyond them.
+    pub fn inside(&self, x: f64, y: f64) -> Result<(f64, f64), TerrainError> {
+        let (fc, fr) = self.to_grid(x, y);
+        let (last_c, last_r) = ((self.ncols - 1) as f64, (self.nrows - 1) as f64);
+        if fc >= -INSIDE && fc <= last_c + INSIDE && fr >= -INSIDE && fr <= last_r + INSIDE {
+            return Ok((fc, fr));
+        }
+        let [x_min, y_min, x_max, y_max] = self.bounds();
+        Err(TerrainError::Outside {
+            x,
+            y,
+            x_min,
+            x_max,
+            y_min,
+            y_max,
+        })
     }
 
     fn check(&self, path: Option<&std::path::Path>) -> Result<(), TerrainError> {
@@ -234,9 +261,140 @@ impl ElevationGrid {
         self.to_mesh_named(None)
     }
 
-    pub(crate) fn to_mesh_named(
+    /// As [`to_mesh`](Self::to_mesh), with errors naming the file the grid came from.
+    ///
+    /// # Errors
+    /// As [`to_mesh`](Self::to_mesh).
+    pub fn to_mesh_named(
         &self,
         path: Option<&std::path::Path>,
+    ) -> Result<TerrainMesh, TerrainError> {
+        self.mesh_cells(path, None)
+    }
+
+    /// The mesh of the cells `keep(col, row)` holds only (with their samples as its
+    /// vertices): a window of the grid, as [`to_mesh`](Self::to_mesh) meshes those
+    /// cells (same triangles, same positions). Cells and samples outside it get no
+    /// faces and no vertices ([`TerrainMesh::cell_faces`] and
+    /// [`TerrainMesh::sample_vertex`] say none), so [`TerrainMesh::locate`] finds only
+    /// points inside it.
+    ///
+    /// # Errors
+    /// [`TerrainError::TooSmall`] when no kept cell has three valid samples.
+    pub fn to_mesh_within(
+        &self,
+        keep: impl Fn(usize, usize) -> bool,
+    ) -> Result<TerrainMesh, TerrainError> {
+        self.mesh_cells(None, Some(&keep))
+    }
+
+    /// The triangles of cell `(col, row)` (the cell whose north-west sample is
+    /// `(col, row)`), as sample indices, counter-clockwise from above: two for four
+    /// valid samples, split along the diagonal whose ends differ less in elevation (the
+    /// north-west–south-east one on a tie), the one that avoids the missing corner for
+    /// three, none for fewer.
+    pub(crate) fn cell_triangles(&self, col: usize, row: usize) -> [Option<[usize; 3]>; 2] {
+        let ncols = self.geometry.ncols;
+        let (nw, ne, sw, se) = (
+            row * ncols + col,
+            row * ncols + col + 1,
+            (row + 1) * ncols + col,
+            (row + 1) * ncols + col + 1,
+        );
+        let z = |s: usize| self.values[s];
+        let split_nw_se = [[sw, se, nw], [se, ne, nw]];
+        let split_ne_sw = [[sw, se, ne], [sw, ne, nw]];
+        let missing = |s: usize| z(s).is_nan();
+        match [nw, ne, sw, se].iter().filter(|&&s| !missing(s)).count() {
+            4 => {
+                let along_nw_se = (z(nw) - z(se)).abs();
+                let along_ne_sw = (z(ne) - z(sw)).abs();
+                if along_ne_sw < along_nw_se {
+                    [Some(split_ne_sw[0]), Some(split_ne_sw[1])]
+                } else {
+                    [Some(split_nw_se[0]), Some(split_nw_se[1])]
+                }
+            }
+            3 if missing(nw) => [Some(split_ne_sw[0]), None],
+            3 if missing(se) => [None, Some(split_ne_sw[1])],
+            3 if missing(ne) => [Some(split_nw_se[0]), None],
+            3 => [None, Some(split_nw_se[1])],
+            _ => [None, None],
+        }
+    }
+
+    /// The mean 3D length of the edges of [`to_mesh`](Self::to_mesh)'s mesh, found from
+    /// the samples without meshing: what the interval Steiner scheme's `k` is relative
+    /// to on the whole grid, which a window of it ([`to_mesh_within`](Self::to_mesh_within))
+    /// must be given to get the same points ([`Options::mean_edge_length`]). `None`
+    /// when the grid has no triangle.
+    ///
+    /// [`Options::mean_edge_length`]: crate::Options::mean_edge_length
+    pub fn mean_edge_length(&self) -> Option<f64> {
+        let g = self.geometry;
+        let ncols = g.ncols;
+        if ncols < 2 || g.nrows < 2 {
+            return None;
+        }
+        // Each edge once: at its lower sample, one bit per direction to the higher one
+        // (east; south-west, south, south-east: the next row).
+        let mut seen = vec![0u8; ncols * g.nrows];
+        let (mut sum, mut count) = (0.0f64, 0u64);
+        let point = |s: usize| {
+            let [x, y] = g.position(s % ncols, s / ncols);
+            glam::DVec3::new(x, y, self.values[s])
+        };
+        for row in 0..g.nrows - 1 {
+            for col in 0..ncols - 1 {
+                for t in self.cell_triangles(col, row).into_iter().flatten() {
+                    for i in 0..3 {
+                        let (a, b) = (t[i].min(t[(i + 1) % 3]), t[i].max(t[(i + 1) % 3]));
+                        let bit = if b / ncols == a / ncols {
+                            0
+                        } else {
+                            1 + (b % ncols + 1 - a % ncols)
+                        };
+                        if seen[a] & (1 << bit) == 0 {
+                            seen[a] |= 1 << bit;
+                            sum += point(a).distance(point(b));
+                            count += 1;
+                        }
+                    }
+                }
+            }
+        }
+        (count > 0).then(|| sum / count as f64)
+    }
+
+    /// The steepest slope of any triangle of [`to_mesh`](Self::to_mesh)'s mesh, as a
+    /// tangent (rise per unit of run; `inf` for a vertical one), found from the
+    /// samples; 0 when the grid has no triangle.
+    pub fn steepest_tangent(&self) -> f64 {
+        let g = self.geometry;
+        if g.ncols < 2 || g.nrows < 2 {
+            return 0.0;
+        }
+        let point = |s: usize| {
+            let [x, y] = g.position(s % g.ncols, s / g.ncols);
+            glam::DVec3::new(x, y, self.values[s])
+        };
+        let mut steepest = 0.0f64;
+        for row in 0..g.nrows - 1 {
+            for col in 0..g.ncols - 1 {
+                for [a, b, c] in self.cell_triangles(col, row).into_iter().flatten() {
+                    let n = (point(b) - point(a)).cross(point(c) - point(a));
+                    steepest = steepest.max(n.x.hypot(n.y) / n.z.abs());
+                }
+            }
+        }
+        steepest
+    }
+
+    /// The mesh of the kept cells (`None`: all, and every valid sample a vertex).
+    fn mesh_cells(
+        &self,
+        path: Option<&std::path::Path>,
+        keep: Option<&dyn Fn(usize, usize) -> bool>,
     ) -> Result<TerrainMesh, TerrainError> {
         let g = self.geometry;
         let (ncols, nrows) = (g.ncols, g.nrows);
@@ -254,55 +412,43 @@ impl ElevationGrid {
                 message: format!("{ncols} × {nrows} samples exceed the 32-bit vertex ids"),
             });
         }
+        // The samples that become vertices: every valid one for the whole grid, the
+        // corners of the kept cells' triangles for a window.
+        let used = keep.map(|keep| {
+            let mut used = vec![false; ncols * nrows];
+            for (col, row) in tiled(ncols - 1, nrows - 1).filter(|&(c, r)| keep(c, r)) {
+                for t in self.cell_triangles(col, row).into_iter().flatten() {
+                    for s in t {
+                        used[s] = true;
+                    }
+                }
+            }
+            used
+        });
         let mut sample_vertex = vec![NONE; ncols * nrows];
-        let mut vertex_sample = Vec::with_capacity(ncols * nrows);
-        let mut positions = Vec::with_capacity(ncols * nrows);
+        let mut vertex_sample = Vec::new();
+        let mut positions = Vec::new();
         for (col, row) in tiled(ncols, nrows) {
-            let z = self.values[row * ncols + col];
-            if !z.is_nan() {
-                sample_vertex[row * ncols + col] = positions.len() as u32;
-                vertex_sample.push((row * ncols + col) as u32);
+            let s = row * ncols + col;
+            let z = self.values[s];
+            if !z.is_nan() && used.as_ref().is_none_or(|u| u[s]) {
+                sample_vertex[s] = positions.len() as u32;
+                vertex_sample.push(s as u32);
                 let [x, y] = g.position(col, row);
                 positions.push([x, y, z]);
             }
         }
         let cells = (ncols - 1) * (nrows - 1);
         let mut cell_faces = vec![[NONE; 2]; cells];
-        let mut triangles = Vec::with_capacity(2 * cells);
+        let mut triangles = Vec::with_capacity(if keep.is_none() { 2 * cells } else { 0 });
         for (col, row) in tiled(ncols - 1, nrows - 1) {
-            let at = |c: usize, r: usize| sample_vertex[r * ncols + c];
-            let z = |c: usize, r: usize| self.values[r * ncols + c];
-            let (nw, ne, sw, se) = (
-                at(col, row),
-                at(col + 1, row),
-                at(col, row + 1),
-                at(col + 1, row + 1),
-            );
-            // Counter-clockwise from above, for either diagonal.
-            let split_nw_se = [[sw, se, nw], [se, ne, nw]];
-            let split_ne_sw = [[sw, se, ne], [sw, ne, nw]];
-            let pair = match [nw, ne, sw, se].iter().filter(|&&v| v != NONE).count() {
-                4 => {
-                    let along_nw_se = (z(col, row) - z(col + 1, row + 1)).abs();
-                    let along_ne_sw = (z(col + 1, row) - z(col, row + 1)).abs();
-                    if along_ne_sw < along_nw_se {
-                        [Some(split_ne_sw[0]), Some(split_ne_sw[1])]
-                    } else {
-                        [Some(split_nw_se[0]), Some(split_nw_se[1])]
-                    }
-                }
-                // The one triangle of three valid samples: the diagonal that avoids
-                // the missing corner.
-                3 if nw == NONE => [Some(split_ne_sw[0]), None],
-                3 if se == NONE => [None, Some(split_ne_sw[1])],
-                3 if ne == NONE => [Some(split_nw_se[0]), None],
-                3 => [None, Some(split_nw_se[1])],
-                _ => [None, None],
-            };
-            for (k, t) in pair.into_iter().enumerate() {
+            if keep.is_some_and(|keep| !keep(col, row)) {
+                continue;
+            }
+            for (k, t) in self.cell_triangles(col, row).into_iter().enumerate() {
                 if let Some(t) = t {
                     cell_faces[row * (ncols - 1) + col][k] = triangles.len() as u32;
-                    triangles.push(t);
+                    triangles.push(t.map(|s| sample_vertex[s]));
                 }
             }
         }
@@ -436,6 +582,17 @@ impl TerrainMesh {
         &self.geometry
     }
 
+    /// Per vertex, its sample (row-major index from the north).
+    pub(crate) fn vertex_samples(&self) -> Vec<usize> {
+        let mut samples = vec![0; self.mesh.vertex_count()];
+        for (s, &v) in self.sample_vertex.iter().enumerate() {
+            if v != NONE {
+                samples[v as usize] = s;
+            }
+        }
+        samples
+    }
+
     /// The vertex of sample `(col, row)`, if the sample is valid.
     #[inline]
     pub fn sample_vertex(&self, col: usize, row: usize) -> Option<u32> {
@@ -464,20 +621,8 @@ impl TerrainMesh {
     /// 1e-9 of a cell), [`TerrainError::NoData`] where no triangle covers the point.
     pub fn locate(&self, x: f64, y: f64) -> Result<SurfacePoint, TerrainError> {
         let g = &self.geometry;
-        let (fc, fr) = g.to_grid(x, y);
-        const EPS: f64 = 1e-9;
+        let (fc, fr) = g.inside(x, y)?;
         let (last_c, last_r) = ((g.ncols - 1) as f64, (g.nrows - 1) as f64);
-        if !(fc >= -EPS && fc <= last_c + EPS && fr >= -EPS && fr <= last_r + EPS) {
-            let [x_min, y_min, x_max, y_max] = g.bounds();
-            return Err(TerrainError::Outside {
-                x,
-                y,
-                x_min,
-                x_max,
-                y_min,
-                y_max,
-            });
-        }
         let c0 = (fc.clamp(0.0, last_c).floor() as usize).min(g.ncols - 2);
         let r0 = (fr.clamp(0.0, last_r).floor() as usize).min(g.nrows - 2);
         // The cell the point falls in first; its neighbours only for a point on a
@@ -500,7 +645,7 @@ impl TerrainMesh {
             }
             for f in self.cell_faces(c as usize, r as usize) {
                 let bary = self.bary_2d(f, x, y);
-                if bary.iter().all(|&b| b >= -EPS) {
+                if bary.iter().all(|&b| b >= -INSIDE) {
                     let clamped = bary.map(|b| b.max(0.0));
                     let sum: f64 = clamped.iter().sum();
                     let point = SurfacePoint::Face {

@@ -1,8 +1,9 @@
 //! [`route`]: the cheapest route between two points of a terrain, start first, with its
 //! cumulative cost and lengths.
 
+use super::{ElevationGrid, TerrainCost, TerrainMesh};
 use crate::field::{GeodesicField, Stats};
-use crate::options::Stop;
+use crate::options::{Options, Stop};
 use crate::propagate::Solver;
 use crate::surface::{Source, SurfacePoint};
 use crate::Error;
@@ -90,6 +91,21 @@ pub fn route<M: Metric>(
     route_in(solver, &field, to, whole_field)
 }
 
+/// As [`route`] (stopping at the end), going no farther than `max_cost`:
+/// [`Error::Unreachable`] when the route would cost more.
+fn route_within<M: Metric>(
+    solver: &Solver<'_, M>,
+    from: SurfacePoint,
+    to: SurfacePoint,
+    max_cost: f64,
+) -> Result<Route, Error> {
+    let stop = Stop::NONE
+        .with_targets(vec![to])
+        .with_max_distance(max_cost);
+    let field = solver.solve_from(&[Source::new(from)], &stop)?;
+    route_in(solver, &field, to, false)
+}
+
 /// As [`route`] over the whole surface, also handing back the field (the cost from
 /// `from` everywhere): for queries on it, such as cost contours with
 /// [`Query::isolines`](crate::Query::isolines).
@@ -137,4 +153,219 @@ fn route_in<M: Metric>(
         stats: field.stats().clone(),
         path_seconds: start.elapsed().as_secs_f64(),
     })
+}
+
+/// A route found on a window of an elevation grid ([`route_on_grid`]).
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub struct GridRoute {
+    /// The route. Its [`surface_points`](Route::surface_points) lie on
+    /// [`mesh`](Self::mesh), the window's mesh (its points, costs and lengths are the
+    /// grid's).
+    pub route: Route,
+    /// The mesh of the window the route was found on.
+    pub mesh: TerrainMesh,
+    /// How the window was cut.
+    pub window: RouteWindow,
+}
+
+/// The part of the grid a route was found on ([`route_on_grid`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct RouteWindow {
+    /// Cells meshed for the last run.
+    pub cells: usize,
+    /// Cells of the whole grid.
+    pub grid_cells: usize,
+    /// Runs: 1 when the first window held the route, more when it had to be widened.
+    pub runs: u32,
+    /// The cost the last window was cut for: every cell left out lies where a route
+    /// through it costs more.
+    pub bound: f64,
+    /// The least cost per unit of 3D length it was cut with
+    /// ([`TerrainCost::least_cost_per_length`]).
+    pub per_length: f64,
+    /// Seconds spent meshing the windows and building the metrics and solvers (all
+    /// runs); the propagation's are in the route's [`stats`](Route::stats) (last run).
+    pub setup_seconds: f64,
+}
+
+/// How much dearer than the straight line between its ends, at the least cost per
+/// unit length, the first window lets a route be. Measured on the README's 1000 × 1000
+/// grid: routes at k = 2 cost 1–8 % more than that bound (3D length at the Steiner
+/// graph's accuracy, and slope costs). A route that does not fit costs another run, on
+/// a window three times as slack (0.3, then 0.9), or the whole grid.
+const FIRST_WINDOW_SLACK: f64 = 0.1;
+
+/// A window of more than this fraction of the grid's cells is not cut: the whole grid
+/// runs instead (meshing it costs little more, and it needs no second run).
+const WHOLE_GRID_ABOVE: f64 = 0.75;
+
+/// The cheapest route from map point `from` to map point `to` of `grid` under `cost`,
+/// meshing only the window of cells a route as cheap could cross, rather than the whole
+/// grid: the route is the one [`route`] finds on the whole grid's mesh, in a fraction
+/// of the time and memory.
+///
+/// A route through a point `x` costs at least `m · (|s − x| + |x − t|)`, with `s`, `t`
+/// its ends and `m` the cost's least cost per unit of 3D length
+/// ([`TerrainCost::least_cost_per_length`]). The window holds the cells whose 3D
+/// bounding box lies within that of a bound `C`, and the run on it goes no farther
+/// than `C` (goal-directed, it settles a corridor): a route found costs at most `C`,
+/// and no route that leaves the window is cheaper. The first window has `C` 10 %
+/// above `m · |s − t|`; when no route fits, the next is three times as slack (30 %,
+/// then 90 %), and a window that would hold more than three quarters of the grid is the
+/// whole grid (which also says whether there is a route at all). Steiner points are
+/// spaced as on the whole grid ([`ElevationGrid::mean_edge_length`],
+/// [`Options::mean_edge_length`]), so for the Steiner-graph engines (tracks, graph) the
+/// window's graph is the grid's, cut down to the window, and the route costs the same
+/// (tests: `tests/terrain_window.rs`). The wavefront engine's values depend on which
+/// waves meet first, so its route may differ in the last digits.
+///
+/// `options` as for a [`Solver`]; its `mean_edge_length` is replaced by the grid's.
+/// Maps and cost contours need the whole field: use [`route_and_field`] on the
+/// whole grid's mesh for those.
+///
+/// ```
+/// use geotracks::terrain::{route_on_grid, ElevationGrid, GridGeometry, TerrainCost};
+/// use geotracks::Options;
+/// let geometry = GridGeometry { ncols: 101, nrows: 101, lower_left: [0.0, 0.0], spacing: [1.0, 1.0] };
+/// let grid = ElevationGrid::from_fn(geometry, |_, _| Some(0.0))?;
+/// let options = Options::DEFAULT.with_k(2.0);
+/// let r = route_on_grid(&grid, &TerrainCost::None, &options, [10.0, 10.0], [40.0, 50.0])?;
+/// assert!((r.route.cost() - 50.0).abs() < 1e-6); // flat: the straight line
+/// assert!(r.window.cells < r.window.grid_cells / 4);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+/// [`Error::Terrain`] when a point lies outside the grid or on NODATA, or the cost
+/// cannot be built; [`Error::Unreachable`] when no route joins the two points; as
+/// [`Solver::new`] and [`route`] otherwise.
+pub fn route_on_grid(
+    grid: &ElevationGrid,
+    cost: &TerrainCost,
+    options: &Options,
+    from: [f64; 2],
+    to: [f64; 2],
+) -> Result<GridRoute, Error> {
+    let g = *grid.geometry();
+    let grid_cells = g.ncols.saturating_sub(1) * g.nrows.saturating_sub(1);
+    let options = match grid.mean_edge_length() {
+        Some(mean) => options.with_mean_edge_length(mean),
+        None => *options,
+    };
+    let per_length = cost.least_cost_per_length(grid);
+    // The ends on the surface (the grid's errors for points off it, or on NODATA).
+    let (s, t) = (
+        surface_position(grid, from[0], from[1])?,
+        surface_position(grid, to[0], to[1])?,
+    );
+    let straight = per_length * s.distance(t);
+    let mut bound = straight * (1.0 + FIRST_WINDOW_SLACK);
+    // Whether `bound` is the cost of a route found (on a narrower window).
+    let mut found = false;
+    let mut runs = 0;
+    let mut setup_seconds = 0.0;
+    loop {
+        runs += 1;
+        let setup = Instant::now();
+        // The cells a route within the bound may cross; all of them where the window
+        // would hold most of the grid anyway (or the bound cuts nothing): that run
+        // costs little more than the window's, and needs no other.
+        let mut window: Vec<bool> = (0..grid_cells)
+            .map(|c| {
+                let (col, row) = (c % (g.ncols - 1), c / (g.ncols - 1));
+                per_length * ends_distance(grid, col, row, s, t) <= bound
+            })
+            .collect();
+        let mut cells = window.iter().filter(|&&k| k).count();
+        let whole = !(bound.is_finite() && per_length > 0.0)
+            || cells as f64 > WHOLE_GRID_ABOVE * grid_cells as f64;
+        if whole {
+            window.fill(true);
+            cells = grid_cells;
+        }
+        let mesh = grid.to_mesh_within(|col, row| window[row * (g.ncols - 1) + col])?;
+        let (a, b) = (mesh.locate(from[0], from[1])?, mesh.locate(to[0], to[1])?);
+        let metric = cost.metric_on_grid(grid, &mesh)?;
+        let solver = Solver::new(&mesh.mesh, metric, &options)?;
+        setup_seconds += setup.elapsed().as_secs_f64();
+        // A run within the bound: a goal-directed one that finds no route as cheap
+        // stops as soon as it knows, having settled a corridor.
+        let routed = route_within(&solver, a, b, if whole { f64::INFINITY } else { bound });
+        match routed {
+            // No route that leaves the window is cheaper: every cell left out costs
+            // more than the bound. When the bound is a route's cost, the best route
+            // costs no more, so lies inside.
+            Ok(route) if whole || found || route.traced_cost <= bound => {
+                return Ok(GridRoute {
+                    route,
+                    mesh,
+                    window: RouteWindow {
+                        cells,
+                        grid_cells,
+                        runs,
+                        bound,
+                        per_length,
+                        setup_seconds,
+                    },
+                })
+            }
+            // (The wavefront engine takes values up to an edge beyond the bound.)
+            Ok(route) => {
+                bound = route.traced_cost;
+                found = true;
+            }
+            // None within the bound: a wider window (the whole grid, in the end, which
+            // says whether there is a route at all).
+            Err(Error::Unreachable { .. }) if !whole => {
+                bound = straight * (1.0 + FIRST_WINDOW_SLACK * 3f64.powi(runs as i32));
+            }
+            Err(e) => return Err(e),
+        }
+    }
+}
+
+/// The 3D point of the grid's surface under map point `(x, y)`, as
+/// [`TerrainMesh::locate`] finds it, from the cells around it alone: the grid's errors
+/// for a point outside it or on NODATA.
+fn surface_position(grid: &ElevationGrid, x: f64, y: f64) -> Result<DVec3, Error> {
+    let (fc, fr) = grid.geometry().inside(x, y)?;
+    // The cells around it: a point on a cell's border may lie in a neighbour's
+    // triangle only.
+    let near = |c: usize, r: usize| (c as f64 - fc).abs() <= 2.0 && (r as f64 - fr).abs() <= 2.0;
+    let mesh = grid
+        .to_mesh_within(near)
+        .map_err(|_| super::TerrainError::NoData { x, y })?;
+    Ok(mesh.locate(x, y)?.position(&mesh.mesh))
+}
+
+/// The 3D distance from `s` to the bounding box of cell `(col, row)` (its four
+/// samples' map square, and their elevations' range) plus that from `t`: a lower bound
+/// on the length of any path from `s` to `t` through the cell's triangles, which lie
+/// in the box. Infinite for a cell with no valid sample.
+fn ends_distance(grid: &ElevationGrid, col: usize, row: usize, s: DVec3, t: DVec3) -> f64 {
+    let g = grid.geometry();
+    let ([x0, y0], [x1, y1]) = (g.position(col, row + 1), g.position(col + 1, row));
+    let (mut z0, mut z1) = (f64::INFINITY, f64::NEG_INFINITY);
+    for (c, r) in [
+        (col, row),
+        (col + 1, row),
+        (col, row + 1),
+        (col + 1, row + 1),
+    ] {
+        if let Some(z) = grid.elevation(c, r) {
+            z0 = z0.min(z);
+            z1 = z1.max(z);
+        }
+    }
+    if z0 > z1 {
+        return f64::INFINITY;
+    }
+    let (lo, hi) = (
+        DVec3::new(x0.min(x1), y0.min(y1), z0),
+        DVec3::new(x0.max(x1), y0.max(y1), z1),
+    );
+    let to_box = |p: DVec3| p.distance(p.clamp(lo, hi));
+    to_box(s) + to_box(t)
 }
