@@ -620,6 +620,14 @@ impl TerrainMesh {
     /// [`TerrainError::Outside`] beyond the outermost sample centres (to a relative
     /// 1e-9 of a cell), [`TerrainError::NoData`] where no triangle covers the point.
     pub fn locate(&self, x: f64, y: f64) -> Result<SurfacePoint, TerrainError> {
+        let (face, bary) = self.covering(x, y)?;
+        let point = SurfacePoint::Face { face, bary };
+        Ok(point.validated(&self.mesh).unwrap_or(point))
+    }
+
+    /// The face that covers map point `(x, y)` and the point's barycentric coordinates
+    /// in it (in the map plane, clamped to the face), as [`locate`](Self::locate).
+    pub(crate) fn covering(&self, x: f64, y: f64) -> Result<(u32, [f64; 3]), TerrainError> {
         let g = &self.geometry;
         let (fc, fr) = g.inside(x, y)?;
         let (last_c, last_r) = ((g.ncols - 1) as f64, (g.nrows - 1) as f64);
@@ -648,11 +656,7 @@ impl TerrainMesh {
                 if bary.iter().all(|&b| b >= -INSIDE) {
                     let clamped = bary.map(|b| b.max(0.0));
                     let sum: f64 = clamped.iter().sum();
-                    let point = SurfacePoint::Face {
-                        face: f,
-                        bary: clamped.map(|b| b / sum),
-                    };
-                    return Ok(point.validated(&self.mesh).unwrap_or(point));
+                    return Ok((f, clamped.map(|b| b / sum)));
                 }
             }
         }
@@ -660,7 +664,7 @@ impl TerrainMesh {
     }
 
     /// Barycentric coordinates of map point `(x, y)` in face `f`, in the map plane.
-    fn bary_2d(&self, f: u32, x: f64, y: f64) -> [f64; 3] {
+    pub(crate) fn bary_2d(&self, f: u32, x: f64, y: f64) -> [f64; 3] {
         let [a, b, c] = self.mesh.face_vertices(f).map(|v| self.mesh.position(v));
         let det = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
         let l1 = ((x - a.x) * (c.y - a.y) - (c.x - a.x) * (y - a.y)) / det;

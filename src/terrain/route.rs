@@ -190,12 +190,12 @@ pub struct RouteWindow {
     pub setup_seconds: f64,
 }
 
-/// How much dearer than the straight line between its ends, at the least cost per
-/// unit length, the first window lets a route be. Measured on the README's 1000 × 1000
-/// grid: routes at k = 2 cost 1–8 % more than that bound (3D length at the Steiner
-/// graph's accuracy, and slope costs). A route that does not fit costs another run, on
-/// a window three times as slack (0.3, then 0.9), or the whole grid.
-const FIRST_WINDOW_SLACK: f64 = 0.1;
+/// How much dearer than the straight line between its ends (what it costs on the
+/// terrain) the first window lets a route be: the Steiner graph's values lie up to a
+/// few percent above the continuous cost at k = 2 (the README's Accuracy section). A
+/// route that does not fit costs another run, on a window three times as slack above
+/// the least cost, or the whole grid.
+const FIRST_WINDOW_SLACK: f64 = 0.05;
 
 /// A window of more than this fraction of the grid's cells is not cut: the whole grid
 /// runs instead (meshing it costs little more, and it needs no second run).
@@ -211,10 +211,12 @@ const WHOLE_GRID_ABOVE: f64 = 0.75;
 /// ([`TerrainCost::least_cost_per_length`]). The window holds the cells whose 3D
 /// bounding box lies within that of a bound `C`, and the run on it goes no farther
 /// than `C` (goal-directed, it settles a corridor): a route found costs at most `C`,
-/// and no route that leaves the window is cheaper. The first window has `C` 10 %
-/// above `m · |s − t|`; when no route fits, the next is three times as slack (30 %,
-/// then 90 %), and a window that would hold more than three quarters of the grid is the
-/// whole grid (which also says whether there is a route at all). Steiner points are
+/// and no route that leaves the window is cheaper. The first window has `C` 5 %
+/// above what the straight line between the ends costs on the terrain (a guess at the
+/// route's cost; 20 % above `m · |s − t|` where the line is blocked); when no route
+/// fits, the next is three times as far above `m · |s − t|`, and a window that would
+/// hold more than three quarters of the grid is the whole grid (which also says whether
+/// there is a route at all). Steiner points are
 /// spaced as on the whole grid ([`ElevationGrid::mean_edge_length`],
 /// [`Options::mean_edge_length`]), so for the Steiner-graph engines (tracks, graph) the
 /// window's graph is the grid's, cut down to the window, and the route costs the same
@@ -261,7 +263,12 @@ pub fn route_on_grid(
         surface_position(grid, to[0], to[1])?,
     );
     let straight = per_length * s.distance(t);
-    let mut bound = straight * (1.0 + FIRST_WINDOW_SLACK);
+    // The first window: for what the straight line costs, with the Steiner graph's
+    // slack; 10 % above the least cost where the line is blocked.
+    let mut bound = match straight_line_cost(grid, cost, from, to) {
+        Some(line) => line.max(straight) * (1.0 + FIRST_WINDOW_SLACK),
+        None => straight * (1.0 + 2.0 * FIRST_WINDOW_SLACK),
+    };
     // Whether `bound` is the cost of a route found (on a narrower window).
     let mut found = false;
     let mut runs = 0;
@@ -319,11 +326,60 @@ pub fn route_on_grid(
             // None within the bound: a wider window (the whole grid, in the end, which
             // says whether there is a route at all).
             Err(Error::Unreachable { .. }) if !whole => {
-                bound = straight * (1.0 + FIRST_WINDOW_SLACK * 3f64.powi(runs as i32));
+                bound = straight + 3.0 * (bound - straight);
             }
             Err(e) => return Err(e),
         }
     }
+}
+
+/// What the straight line (in the map) from `from` to `to` costs on the terrain, in
+/// steps of a quarter cell: a guess at what a route costs, which sizes the first
+/// window (the window is cut by a bound, whatever the guess). `None` where the line
+/// crosses NODATA or walls.
+fn straight_line_cost(
+    grid: &ElevationGrid,
+    cost: &TerrainCost,
+    from: [f64; 2],
+    to: [f64; 2],
+) -> Option<f64> {
+    let g = grid.geometry();
+    let (a, b) = (g.to_grid(from[0], from[1]), g.to_grid(to[0], to[1]));
+    let (dc, dr) = (b.0 - a.0, b.1 - a.1);
+    let cells = dc.hypot(dr);
+    // The cells within two of the line (in cells).
+    let near = |col: usize, row: usize| {
+        let (pc, pr) = (col as f64 + 0.5 - a.0, row as f64 + 0.5 - a.1);
+        let t = if cells > 0.0 {
+            ((pc * dc + pr * dr) / (cells * cells)).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        (pc - t * dc).hypot(pr - t * dr) <= 2.0
+    };
+    let terrain = grid.to_mesh_within(near).ok()?;
+    let metric = cost.metric_on_grid(grid, &terrain).ok()?;
+    let steps = (4.0 * cells).ceil().max(1.0) as usize;
+    let at = |i: usize| {
+        let t = i as f64 / steps as f64;
+        [
+            from[0] + t * (to[0] - from[0]),
+            from[1] + t * (to[1] - from[1]),
+        ]
+    };
+    let mut total = 0.0;
+    for i in 0..steps {
+        let (p, q) = (at(i), at(i + 1));
+        // Each step in the face under its middle (a step that crosses an edge is
+        // costed in one of its faces: a guess).
+        let (face, _) = terrain
+            .covering(0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1]))
+            .ok()?;
+        let frame = terrain.mesh.frame(face);
+        let point = |[x, y]: [f64; 2]| frame.point(terrain.bary_2d(face, x, y));
+        total += metric.cost(face, &point(p), &point(q));
+    }
+    total.is_finite().then_some(total)
 }
 
 /// The 3D point of the grid's surface under map point `(x, y)`, as
