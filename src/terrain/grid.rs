@@ -4,6 +4,8 @@
 use super::TerrainError;
 use crate::mesh::{TriMesh, NONE};
 use crate::surface::SurfacePoint;
+use rayon::prelude::*;
+use std::ops::Range;
 
 /// How far beyond the outermost sample centres, in cells, a map point still counts as on
 /// the grid (rounding in the caller's coordinates).
@@ -279,13 +281,22 @@ impl ElevationGrid {
     /// [`TerrainMesh::sample_vertex`] say none), so [`TerrainMesh::locate`] finds only
     /// points inside it.
     ///
+    /// Only cells in columns `cols` and rows `rows` are asked (the ranges are clipped to
+    /// the grid), so a small window costs what it holds, not the grid.
+    ///
     /// # Errors
     /// [`TerrainError::TooSmall`] when no kept cell has three valid samples.
     pub fn to_mesh_within(
         &self,
+        cols: Range<usize>,
+        rows: Range<usize>,
         keep: impl Fn(usize, usize) -> bool,
     ) -> Result<TerrainMesh, TerrainError> {
-        self.mesh_cells(None, Some(&keep))
+        let g = self.geometry;
+        let (last_col, last_row) = (g.ncols.saturating_sub(1), g.nrows.saturating_sub(1));
+        let cols = cols.start.min(last_col)..cols.end.min(last_col);
+        let rows = rows.start.min(last_row)..rows.end.min(last_row);
+        self.mesh_cells(None, Some((cols, rows, &keep)))
     }
 
     /// The triangles of cell `(col, row)` (the cell whose north-west sample is
@@ -332,37 +343,88 @@ impl ElevationGrid {
     /// [`Options::mean_edge_length`]: crate::Options::mean_edge_length
     pub fn mean_edge_length(&self) -> Option<f64> {
         let g = self.geometry;
-        let ncols = g.ncols;
-        if ncols < 2 || g.nrows < 2 {
+        let (ncols, nrows) = (g.ncols, g.nrows);
+        if ncols < 2 || nrows < 2 {
             return None;
         }
-        // Each edge once: at its lower sample, one bit per direction to the higher one
-        // (east; south-west, south, south-east: the next row).
-        let mut seen = vec![0u8; ncols * g.nrows];
-        let (mut sum, mut count) = (0.0f64, 0u64);
-        let point = |s: usize| {
-            let [x, y] = g.position(s % ncols, s / ncols);
-            glam::DVec3::new(x, y, self.values[s])
+        // Per cell, the sides its triangles use (bits: north, south, west, east, the
+        // north-west–south-east diagonal, the other one); each edge is then counted
+        // once, by the row of its northern (or only) sample.
+        const N: u8 = 1;
+        const S: u8 = 2;
+        const W: u8 = 4;
+        const E: u8 = 8;
+        const NW_SE: u8 = 16;
+        const NE_SW: u8 = 32;
+        let sides: Vec<u8> = (0..nrows - 1)
+            .into_par_iter()
+            .flat_map_iter(|row| {
+                (0..ncols - 1).map(move |col| {
+                    let mut bits = 0;
+                    for t in self.cell_triangles(col, row).into_iter().flatten() {
+                        for i in 0..3 {
+                            let (a, b) = (t[i], t[(i + 1) % 3]);
+                            let (ca, ra) = (a % ncols, a / ncols);
+                            let (cb, rb) = (b % ncols, b / ncols);
+                            bits |= match (ra == rb, ca == cb) {
+                                (true, _) if ra == row => N,
+                                (true, _) => S,
+                                (_, true) if ca == col => W,
+                                (_, true) => E,
+                                // A diagonal: north-west–south-east when the northern
+                                // end is the western one.
+                                _ if (ra < rb) == (ca < cb) => NW_SE,
+                                _ => NE_SW,
+                            };
+                        }
+                    }
+                    bits
+                })
+            })
+            .collect();
+        let cell = |col: usize, row: usize| sides[row * (ncols - 1) + col];
+        let point = |col: usize, row: usize| {
+            let [x, y] = g.position(col, row);
+            glam::DVec3::new(x, y, self.values[row * ncols + col])
         };
-        for row in 0..g.nrows - 1 {
-            for col in 0..ncols - 1 {
-                for t in self.cell_triangles(col, row).into_iter().flatten() {
-                    for i in 0..3 {
-                        let (a, b) = (t[i].min(t[(i + 1) % 3]), t[i].max(t[(i + 1) % 3]));
-                        let bit = if b / ncols == a / ncols {
-                            0
-                        } else {
-                            1 + (b % ncols + 1 - a % ncols)
-                        };
-                        if seen[a] & (1 << bit) == 0 {
-                            seen[a] |= 1 << bit;
-                            sum += point(a).distance(point(b));
-                            count += 1;
+        // Per row of samples (in order, so that the sum does not depend on threads).
+        let rows: Vec<(f64, u64)> = (0..nrows)
+            .into_par_iter()
+            .map(|row| {
+                let (mut sum, mut count) = (0.0, 0);
+                let mut add = |a: glam::DVec3, b: glam::DVec3| {
+                    sum += a.distance(b);
+                    count += 1;
+                };
+                for col in 0..ncols {
+                    let below = row + 1 < nrows;
+                    if col + 1 < ncols
+                        && ((below && cell(col, row) & N != 0)
+                            || (row > 0 && cell(col, row - 1) & S != 0))
+                    {
+                        add(point(col, row), point(col + 1, row));
+                    }
+                    if below
+                        && ((col + 1 < ncols && cell(col, row) & W != 0)
+                            || (col > 0 && cell(col - 1, row) & E != 0))
+                    {
+                        add(point(col, row), point(col, row + 1));
+                    }
+                    if below && col + 1 < ncols {
+                        if cell(col, row) & NW_SE != 0 {
+                            add(point(col, row), point(col + 1, row + 1));
+                        }
+                        if cell(col, row) & NE_SW != 0 {
+                            add(point(col + 1, row), point(col, row + 1));
                         }
                     }
                 }
-            }
-        }
+                (sum, count)
+            })
+            .collect();
+        let (sum, count) = rows
+            .iter()
+            .fold((0.0, 0), |(s, n), &(rs, rn)| (s + rs, n + rn));
         (count > 0).then(|| sum / count as f64)
     }
 
@@ -391,10 +453,11 @@ impl ElevationGrid {
     }
 
     /// The mesh of the kept cells (`None`: all, and every valid sample a vertex).
+    #[allow(clippy::type_complexity)] // the window: its cells' ranges and the filter
     fn mesh_cells(
         &self,
         path: Option<&std::path::Path>,
-        keep: Option<&dyn Fn(usize, usize) -> bool>,
+        window: Option<(Range<usize>, Range<usize>, &dyn Fn(usize, usize) -> bool)>,
     ) -> Result<TerrainMesh, TerrainError> {
         let g = self.geometry;
         let (ncols, nrows) = (g.ncols, g.nrows);
@@ -412,11 +475,18 @@ impl ElevationGrid {
                 message: format!("{ncols} × {nrows} samples exceed the 32-bit vertex ids"),
             });
         }
+        // The cells asked, and the samples at their corners.
+        let (cols, rows) = match &window {
+            Some((cols, rows, _)) => (cols.clone(), rows.clone()),
+            None => (0..ncols - 1, 0..nrows - 1),
+        };
+        let keep = window.as_ref().map(|w| w.2);
+        let sample_range = (cols.start..cols.end + 1, rows.start..rows.end + 1);
         // The samples that become vertices: every valid one for the whole grid, the
         // corners of the kept cells' triangles for a window.
         let used = keep.map(|keep| {
             let mut used = vec![false; ncols * nrows];
-            for (col, row) in tiled(ncols - 1, nrows - 1).filter(|&(c, r)| keep(c, r)) {
+            for (col, row) in tiled(cols.clone(), rows.clone()).filter(|&(c, r)| keep(c, r)) {
                 for t in self.cell_triangles(col, row).into_iter().flatten() {
                     for s in t {
                         used[s] = true;
@@ -428,7 +498,7 @@ impl ElevationGrid {
         let mut sample_vertex = vec![NONE; ncols * nrows];
         let mut vertex_sample = Vec::new();
         let mut positions = Vec::new();
-        for (col, row) in tiled(ncols, nrows) {
+        for (col, row) in tiled(sample_range.0, sample_range.1) {
             let s = row * ncols + col;
             let z = self.values[s];
             if !z.is_nan() && used.as_ref().is_none_or(|u| u[s]) {
@@ -441,7 +511,7 @@ impl ElevationGrid {
         let cells = (ncols - 1) * (nrows - 1);
         let mut cell_faces = vec![[NONE; 2]; cells];
         let mut triangles = Vec::with_capacity(if keep.is_none() { 2 * cells } else { 0 });
-        for (col, row) in tiled(ncols - 1, nrows - 1) {
+        for (col, row) in tiled(cols, rows) {
             if keep.is_some_and(|keep| !keep(col, row)) {
                 continue;
             }
@@ -487,12 +557,15 @@ impl ElevationGrid {
 /// the three orders that chose it.
 const TILE: usize = 32;
 
-/// `(col, row)` over a `ncols` × `nrows` grid in tiled order (see [`TILE`]).
-fn tiled(ncols: usize, nrows: usize) -> impl Iterator<Item = (usize, usize)> {
+/// `(col, row)` over columns `cols` and rows `rows` in tiled order (see [`TILE`]; tiles
+/// start at the ranges' starts).
+fn tiled(cols: Range<usize>, rows: Range<usize>) -> impl Iterator<Item = (usize, usize)> {
+    let (c0, r0) = (cols.start, rows.start);
+    let (ncols, nrows) = (cols.len(), rows.len());
     (0..nrows.div_ceil(TILE)).flat_map(move |tile_row| {
         (0..ncols.div_ceil(TILE)).flat_map(move |tile_col| {
-            let rows = tile_row * TILE..((tile_row + 1) * TILE).min(nrows);
-            let cols = tile_col * TILE..((tile_col + 1) * TILE).min(ncols);
+            let rows = r0 + tile_row * TILE..r0 + ((tile_row + 1) * TILE).min(nrows);
+            let cols = c0 + tile_col * TILE..c0 + ((tile_col + 1) * TILE).min(ncols);
             rows.flat_map(move |row| cols.clone().map(move |col| (col, row)))
         })
     })

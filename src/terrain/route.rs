@@ -3,7 +3,7 @@
 
 use super::{ElevationGrid, TerrainCost, TerrainMesh};
 use crate::field::{GeodesicField, Stats};
-use crate::options::{Options, Stop};
+use crate::options::{Method, Options, Stop};
 use crate::propagate::Solver;
 use crate::surface::{Source, SurfacePoint};
 use crate::Error;
@@ -197,6 +197,11 @@ pub struct RouteWindow {
 /// the least cost, or the whole grid.
 const FIRST_WINDOW_SLACK: f64 = 0.05;
 
+/// The same for the wavefront engine, whose values lie within 0.1 % of the continuous
+/// cost on the README's grids: a route never costs much more than the straight line's
+/// cost but where the line climbs what the route goes round.
+const FIRST_WINDOW_SLACK_WAVE: f64 = 0.01;
+
 /// A window of more than this fraction of the grid's cells is not cut: the whole grid
 /// runs instead (meshing it costs little more, and it needs no second run).
 const WHOLE_GRID_ABOVE: f64 = 0.75;
@@ -265,9 +270,17 @@ pub fn route_on_grid(
     let straight = per_length * s.distance(t);
     // The first window: for what the straight line costs, with the Steiner graph's
     // slack; 10 % above the least cost where the line is blocked.
+    // (The wavefront engine runs for the face-flat costs.)
+    let wave = options.method == Method::Wave
+        && matches!(cost, TerrainCost::None | TerrainCost::Incline { .. });
+    let slack = if wave {
+        FIRST_WINDOW_SLACK_WAVE
+    } else {
+        FIRST_WINDOW_SLACK
+    };
     let mut bound = match straight_line_cost(grid, cost, from, to) {
-        Some(line) => line.max(straight) * (1.0 + FIRST_WINDOW_SLACK),
-        None => straight * (1.0 + 2.0 * FIRST_WINDOW_SLACK),
+        Some(line) => line.max(straight) * (1.0 + slack),
+        None => straight * (1.0 + 4.0 * slack),
     };
     // Whether `bound` is the cost of a route found (on a narrower window).
     let mut found = false;
@@ -279,20 +292,30 @@ pub fn route_on_grid(
         // The cells a route within the bound may cross; all of them where the window
         // would hold most of the grid anyway (or the bound cuts nothing): that run
         // costs little more than the window's, and needs no other.
-        let mut window: Vec<bool> = (0..grid_cells)
-            .map(|c| {
-                let (col, row) = (c % (g.ncols - 1), c / (g.ncols - 1));
-                per_length * ends_distance(grid, col, row, s, t) <= bound
-            })
+        let cuts = bound.is_finite() && per_length > 0.0;
+        let (cols, rows) = if cuts {
+            ellipse_cells(&g, s, t, bound / per_length)
+        } else {
+            (0..g.ncols - 1, 0..g.nrows - 1)
+        };
+        let width = cols.len();
+        let mut window: Vec<bool> = rows
+            .clone()
+            .flat_map(|row| cols.clone().map(move |col| (col, row)))
+            .map(|(col, row)| per_length * ends_distance(grid, col, row, s, t) <= bound)
             .collect();
         let mut cells = window.iter().filter(|&&k| k).count();
-        let whole = !(bound.is_finite() && per_length > 0.0)
-            || cells as f64 > WHOLE_GRID_ABOVE * grid_cells as f64;
-        if whole {
-            window.fill(true);
+        let whole = !cuts || cells as f64 > WHOLE_GRID_ABOVE * grid_cells as f64;
+        let mesh = if whole {
             cells = grid_cells;
-        }
-        let mesh = grid.to_mesh_within(|col, row| window[row * (g.ncols - 1) + col])?;
+            window.clear();
+            grid.to_mesh()?
+        } else {
+            let (c0, r0) = (cols.start, rows.start);
+            grid.to_mesh_within(cols, rows, |col, row| {
+                window[(row - r0) * width + (col - c0)]
+            })?
+        };
         let (a, b) = (mesh.locate(from[0], from[1])?, mesh.locate(to[0], to[1])?);
         let metric = cost.metric_on_grid(grid, &mesh)?;
         let solver = Solver::new(&mesh.mesh, metric, &options)?;
@@ -357,7 +380,13 @@ fn straight_line_cost(
         };
         (pc - t * dc).hypot(pr - t * dr) <= 2.0
     };
-    let terrain = grid.to_mesh_within(near).ok()?;
+    let range = |x: f64, y: f64, cells: usize| {
+        let lo = (x.min(y).floor() - 3.0).clamp(0.0, cells as f64) as usize;
+        lo..((x.max(y).ceil() + 3.0).clamp(0.0, cells as f64) as usize).max(lo)
+    };
+    let cols = range(a.0, b.0, g.ncols - 1);
+    let rows = range(a.1, b.1, g.nrows - 1);
+    let terrain = grid.to_mesh_within(cols, rows, near).ok()?;
     let metric = cost.metric_on_grid(grid, &terrain).ok()?;
     let steps = (4.0 * cells).ceil().max(1.0) as usize;
     let at = |i: usize| {
@@ -389,11 +418,41 @@ fn surface_position(grid: &ElevationGrid, x: f64, y: f64) -> Result<DVec3, Error
     let (fc, fr) = grid.geometry().inside(x, y)?;
     // The cells around it: a point on a cell's border may lie in a neighbour's
     // triangle only.
-    let near = |c: usize, r: usize| (c as f64 - fc).abs() <= 2.0 && (r as f64 - fr).abs() <= 2.0;
+    let around = |f: f64| (f.floor().max(2.0) - 2.0) as usize..(f.ceil() + 2.0) as usize;
     let mesh = grid
-        .to_mesh_within(near)
+        .to_mesh_within(around(fc), around(fr), |_, _| true)
         .map_err(|_| super::TerrainError::NoData { x, y })?;
     Ok(mesh.locate(x, y)?.position(&mesh.mesh))
+}
+
+/// The columns and rows of the cells that meet the ellipse of the map points `x` with
+/// `|x − s| + |x − t| ≤ length` (horizontal distances, which are at most the 3D ones:
+/// every cell whose box lies within `length` of both ends in 3D meets it), a cell more
+/// on each side against rounding; clipped to the grid.
+fn ellipse_cells(
+    g: &super::GridGeometry,
+    s: DVec3,
+    t: DVec3,
+    length: f64,
+) -> (std::ops::Range<usize>, std::ops::Range<usize>) {
+    let (s, t) = (s.truncate(), t.truncate());
+    let (a, c) = (0.5 * length, 0.5 * s.distance(t));
+    let b = (a * a - c * c).max(0.0).sqrt();
+    let u = (t - s).try_normalize().unwrap_or(glam::DVec2::X);
+    let centre = 0.5 * (s + t);
+    let half = glam::DVec2::new(
+        (a * a * u.x * u.x + b * b * u.y * u.y).sqrt(),
+        (a * a * u.y * u.y + b * b * u.x * u.x).sqrt(),
+    );
+    // Rows count from the north: the box's top is its least row.
+    let (c0, r0) = g.to_grid(centre.x - half.x, centre.y + half.y);
+    let (c1, r1) = g.to_grid(centre.x + half.x, centre.y - half.y);
+    let clip = |lo: f64, hi: f64, cells: usize| {
+        let lo = (lo.floor() - 1.0).clamp(0.0, cells as f64) as usize;
+        let hi = (hi.ceil() + 1.0).clamp(0.0, cells as f64) as usize;
+        lo..hi.max(lo)
+    };
+    (clip(c0, c1, g.ncols - 1), clip(r0, r1, g.nrows - 1))
 }
 
 /// The 3D distance from `s` to the bounding box of cell `(col, row)` (its four
