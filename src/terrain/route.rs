@@ -216,9 +216,10 @@ const WHOLE_GRID_ABOVE: f64 = 0.75;
 /// ([`TerrainCost::least_cost_per_length`]). The window holds the cells whose 3D
 /// bounding box lies within that of a bound `C`, and the run on it goes no farther
 /// than `C` (goal-directed, it settles a corridor): a route found costs at most `C`,
-/// and no route that leaves the window is cheaper. The first window has `C` 5 %
-/// above what the straight line between the ends costs on the terrain (a guess at the
-/// route's cost; 20 % above `m · |s − t|` where the line is blocked); when no route
+/// and no route that leaves the window is cheaper. The first window has `C` 5 % (1 %
+/// for the wavefront engine) above what the straight line between the ends costs on
+/// the terrain (a guess at the route's cost; four times that above `m · |s − t|` where
+/// the line is blocked); when no route
 /// fits, the next is three times as far above `m · |s − t|`, and a window that would
 /// hold more than three quarters of the grid is the whole grid (which also says whether
 /// there is a route at all). Steiner points are
@@ -268,9 +269,9 @@ pub fn route_on_grid(
         surface_position(grid, to[0], to[1])?,
     );
     let straight = per_length * s.distance(t);
-    // The first window: for what the straight line costs, with the Steiner graph's
-    // slack; 10 % above the least cost where the line is blocked.
-    // (The wavefront engine runs for the face-flat costs.)
+    // The first window: for what the straight line costs, with the engine's slack;
+    // four times that above the least cost where the line is blocked. (The wavefront
+    // engine runs for the face-flat costs.)
     let wave = options.method == Method::Wave
         && matches!(cost, TerrainCost::None | TerrainCost::Incline { .. });
     let slack = if wave {
@@ -349,7 +350,9 @@ pub fn route_on_grid(
             // None within the bound: a wider window (the whole grid, in the end, which
             // says whether there is a route at all).
             Err(Error::Unreachable { .. }) if !whole => {
-                bound = straight + 3.0 * (bound - straight);
+                let wider = straight + 3.0 * (bound - straight);
+                // (A bound that would not grow, at a zero straight cost: the whole.)
+                bound = if wider > bound { wider } else { f64::INFINITY };
             }
             Err(e) => return Err(e),
         }
