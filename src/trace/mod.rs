@@ -219,10 +219,14 @@ impl<M: Metric> Query<'_, M> {
     /// The face around the edge that holds `a` and `b` (two points of one edge, such as
     /// a node and its parent along it) in which the segment from `b` to `a` (as a path
     /// travels it, from the source) costs least; [`NONE`] for two vertices that share
-    /// no face edge: the engines join such vertices only along a wire.
+    /// no face edge: the engines join such vertices only along a wire. A segment with a
+    /// point inside a face (a source there) lies in that face.
     pub(super) fn cheapest_face(&self, a: SurfacePoint, b: SurfacePoint) -> u32 {
         let (mesh, metric) = (self.mesh, self.metric);
         let edge = match (a, b) {
+            (SurfacePoint::Face { face, .. }, _) | (_, SurfacePoint::Face { face, .. }) => {
+                return face
+            }
             (SurfacePoint::Edge { edge, .. }, _) | (_, SurfacePoint::Edge { edge, .. }) => edge,
             (SurfacePoint::Vertex(u), SurfacePoint::Vertex(v)) => match mesh
                 .vertex_edges(u)
@@ -233,7 +237,6 @@ impl<M: Metric> Query<'_, M> {
                 Some(e) => e,
                 None => return NONE,
             },
-            _ => 0,
         };
         let faces = mesh.edge_faces(edge);
         faces
@@ -261,4 +264,43 @@ fn finish<M: Metric>(
     path.length = path.metric_length(mesh, metric);
     path.traced_length = path.length;
     path
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::mesh::{TriMesh, NONE};
+    use crate::{Euclidean, Options, Solver, SurfacePoint};
+
+    /// Two points of one edge go in the cheaper face around it; a point inside a face
+    /// keeps its segment there; two vertices without a shared edge have none (a wire).
+    #[test]
+    fn the_face_of_a_segment_is_one_that_holds_both_ends() {
+        // A unit square split along 0–2, and a vertex (4) off it.
+        let mesh = TriMesh::new(
+            vec![
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [1.0, 1.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [3.0, 3.0, 0.0],
+            ],
+            vec![[0, 1, 2], [0, 2, 3], [2, 4, 3]],
+        )
+        .unwrap();
+        let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
+        let field = solver.solve(&[0]).unwrap();
+        let query = solver.query(&field).unwrap();
+        let inside = SurfacePoint::Face {
+            face: 1,
+            bary: [0.2, 0.3, 0.5],
+        };
+        assert_eq!(query.cheapest_face(inside, SurfacePoint::Vertex(3)), 1);
+        assert_eq!(query.cheapest_face(SurfacePoint::Vertex(0), inside), 1);
+        let f = query.cheapest_face(SurfacePoint::Vertex(0), SurfacePoint::Vertex(2));
+        assert!(f == 0 || f == 1, "{f}");
+        assert_eq!(
+            query.cheapest_face(SurfacePoint::Vertex(1), SurfacePoint::Vertex(3)),
+            NONE
+        );
+    }
 }
