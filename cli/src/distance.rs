@@ -90,7 +90,8 @@ pub fn run(args: &DistanceArgs) -> CliResult {
     let sources = points::sources(&mesh, &args.sources)?;
     let stop = Stop::NONE.with_max_distance(max_distance);
     let metric = args.metric.metric(&mesh)?;
-    let solver = Solver::new(&mesh, metric, &args.metric.options())?;
+    let options = args.metric.options(&metric);
+    let solver = Solver::new(&mesh, metric, &options)?;
     let field = compute(&solver, &sources, &stop)?;
     let labels = match args.voronoi {
         Some(_) => Some(solver.query(&field)?.vertex_labels()),

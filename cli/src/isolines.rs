@@ -80,7 +80,9 @@ pub fn run(args: &IsolinesArgs) -> CliResult {
     let spinner = ui::Spinner::start("reading the mesh, propagating and drawing isolines");
     let mesh = load_mesh(&args.mesh, args.weld)?;
     let sources = points::sources(&mesh, &args.sources)?;
-    let solver = Solver::new(&mesh, args.metric.metric(&mesh)?, &args.metric.options())?;
+    let metric = args.metric.metric(&mesh)?;
+    let run = args.metric.options(&metric);
+    let solver = Solver::new(&mesh, metric, &run)?;
     let field = solver.solve_from(&sources, &Stop::NONE)?;
     let query = solver.query(&field)?;
     let levels = levels_of(&query, args.levels, &args.at);

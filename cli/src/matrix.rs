@@ -48,7 +48,9 @@ pub fn run(args: &MatrixArgs) -> CliResult {
         None => None,
     };
     let start = std::time::Instant::now();
-    let solver = Solver::new(&mesh, args.metric.metric(&mesh)?, &args.metric.options())?;
+    let metric = args.metric.metric(&mesh)?;
+    let options = args.metric.options(&metric);
+    let solver = Solver::new(&mesh, metric, &options)?;
     // With targets, each row stops once they are final.
     let rows = solver.distance_rows_with_stats(&sources, targets.as_deref())?;
     let stopped = rows.iter().filter(|(_, s)| s.stopped_early).count();

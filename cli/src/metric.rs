@@ -11,9 +11,10 @@ use std::path::PathBuf;
 /// Steiner points, engine and metric.
 #[derive(clap::Args)]
 pub struct MetricArgs {
-    /// Mean number of Steiner points per edge [default: 2, or 5 with --density or
-    /// --tensor-field or with --method tracks or graph: the Steiner graph needs more
-    /// points than the wavefront engine for the same accuracy].
+    /// Mean number of Steiner points per edge [default: 2, or 5 with --density, with a
+    /// --tensor-field that varies across a face, or with --method tracks or graph: the
+    /// Steiner graph needs more points than the wavefront engine for the same
+    /// accuracy].
     #[arg(long)]
     pub k: Option<f64>,
     /// Propagation method: wave (Steiner points that carry their wavefront: exact on
@@ -36,17 +37,19 @@ pub struct MetricArgs {
 }
 
 impl MetricArgs {
-    /// The k to run with: as given, else 2 for the wavefront engine, 5 where the
-    /// Steiner graph runs (a density, or `--method tracks|graph`).
-    pub fn k(&self) -> f64 {
-        // A density and a tensor field are the metrics here that are not face-flat.
-        let face_flat = self.density.is_none() && self.tensor_field.is_none();
+    /// The k to run `metric` with: as given, else 2 for the wavefront engine, 5 where
+    /// the Steiner graph runs (a density, a tensor field that varies across a face, or
+    /// `--method tracks|graph`). As Python's `MeshSolver` decides it.
+    pub fn k(&self, metric: &BuiltinMetric) -> f64 {
+        let face_flat = geotracks::Metric::is_face_norm(metric);
         self.k.unwrap_or(self.method.default_k(face_flat))
     }
 
-    /// The run options.
-    pub fn options(&self) -> Options {
-        Options::DEFAULT.with_k(self.k()).with_method(self.method)
+    /// The run options for `metric`.
+    pub fn options(&self, metric: &BuiltinMetric) -> Options {
+        Options::DEFAULT
+            .with_k(self.k(metric))
+            .with_method(self.method)
     }
 
     /// The files the metric reads (none, or its density or tensor file): inputs that no

@@ -56,7 +56,9 @@ pub fn run(args: &PathArgs) -> CliResult {
     let mesh = load_mesh(&args.mesh, args.weld)?;
     let sources = points::sources(&mesh, &args.sources)?;
     let target = points::check(&mesh, "target", args.target)?;
-    let solver = Solver::new(&mesh, args.metric.metric(&mesh)?, &args.metric.options())?;
+    let metric = args.metric.metric(&mesh)?;
+    let options = args.metric.options(&metric);
+    let solver = Solver::new(&mesh, metric, &options)?;
     // The run stops once the target's value is final.
     let field = solver.solve_from(&sources, &Stop::NONE.with_targets(vec![target]))?;
     let path = solver.query(&field)?.path(target)?;

@@ -214,6 +214,33 @@ fn density_and_tensor_files() {
     // Along the bottom edge: ∫₀¹ sqrt(1 + 8t) dt = 26 / 12.
     assert!((d[1] - 26.0 / 12.0).abs() < 1e-12, "{d:?}");
     assert!((d[3] - 1.0).abs() < 1e-12, "{d:?}"); // along the left edge: 1
+
+    // A field that is constant on every face flattens them: the wavefront engine runs,
+    // at its default k (as Python's MeshSolver picks it); one that varies, the
+    // Steiner graph at its own.
+    let constant = dir.path().join("c.txt");
+    std::fs::write(&constant, "4 0 0 1 0 1\n".repeat(4)).unwrap();
+    for (file, expected) in [(&constant, "method wave"), (&field, "method tracks")] {
+        let out = geotracks_ok(&[
+            "distance",
+            mesh,
+            "--source",
+            "0",
+            "--tensor-field",
+            file.to_str().unwrap(),
+            "-o",
+            out_path.to_str().unwrap(),
+            "-v",
+        ]);
+        let text = String::from_utf8_lossy(&out.stderr).to_string()
+            + &String::from_utf8_lossy(&out.stdout);
+        let k = if expected == "method wave" {
+            "k = 2;"
+        } else {
+            "k = 5;"
+        };
+        assert!(text.contains(expected) && text.contains(k), "{text}");
+    }
 }
 
 #[test]
