@@ -41,11 +41,27 @@ fn check_max_slope(degrees: f64) -> Result<(), TerrainError> {
 /// The unnormalised normal of face `f` (twice its area long), turned to point up.
 pub(super) fn face_normal_up(mesh: &TriMesh, f: u32) -> DVec3 {
     let [a, b, c] = mesh.face_vertices(f).map(|v| mesh.position(v));
+    normal_up(a, b, c)
+}
+
+/// The unnormalised normal of triangle `a b c` (twice its area long), turned to point
+/// up.
+pub(super) fn normal_up(a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
     let n = (b - a).cross(c - a);
     if n.z < 0.0 {
         -n
     } else {
         n
+    }
+}
+
+/// `tan²(slope)` of a vertex whose faces' upward normals sum to `n`; 0 for a vertex of
+/// no face.
+fn vertex_tan2(n: DVec3) -> f64 {
+    if n == DVec3::ZERO {
+        0.0
+    } else {
+        tan2(n)
     }
 }
 
@@ -76,10 +92,7 @@ pub fn vertex_slope_tan2(mesh: &TriMesh) -> Vec<f64> {
             normals[v as usize] += n;
         }
     }
-    normals
-        .into_iter()
-        .map(|n| if n == DVec3::ZERO { 0.0 } else { tan2(n) })
-        .collect()
+    normals.into_iter().map(vertex_tan2).collect()
 }
 
 /// [`vertex_slope_tan2`] of the vertices of `terrain`, a mesh of `grid` or of a window
@@ -88,40 +101,27 @@ pub fn vertex_slope_tan2(mesh: &TriMesh) -> Vec<f64> {
 /// (to rounding), not that of the faces the window kept.
 fn grid_vertex_slope_tan2(grid: &ElevationGrid, terrain: &TerrainMesh) -> Vec<f64> {
     let g = grid.geometry();
-    let point = |s: usize| {
-        let [x, y] = g.position(s % g.ncols, s / g.ncols);
-        DVec3::new(x, y, grid.values()[s])
-    };
+    let last = (g.ncols - 1, g.nrows - 1);
     terrain
         .vertex_samples()
         .into_iter()
         .map(|s| {
             let (col, row) = (s % g.ncols, s / g.ncols);
+            // The (up to) four cells around the sample.
             let mut n = DVec3::ZERO;
-            for (c, r) in [
-                (col, row),
-                (col.wrapping_sub(1), row),
-                (col, row.wrapping_sub(1)),
-            ]
-            .into_iter()
-            .chain([(col.wrapping_sub(1), row.wrapping_sub(1))])
-            {
-                if c >= g.ncols - 1 || r >= g.nrows - 1 {
+            for (dc, dr) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                let (c, r) = (col.wrapping_sub(dc), row.wrapping_sub(dr));
+                if c >= last.0 || r >= last.1 {
                     continue;
                 }
                 for t in grid.cell_triangles(c, r).into_iter().flatten() {
                     if t.contains(&s) {
-                        let [a, b, c] = t.map(point);
-                        let m = (b - a).cross(c - a);
-                        n += if m.z < 0.0 { -m } else { m };
+                        let [a, b, c] = t.map(|s| grid.sample_point(s));
+                        n += normal_up(a, b, c);
                     }
                 }
             }
-            if n == DVec3::ZERO {
-                0.0
-            } else {
-                tan2(n)
-            }
+            vertex_tan2(n)
         })
         .collect()
 }

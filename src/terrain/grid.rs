@@ -1,6 +1,7 @@
 //! [`ElevationGrid`]: samples on a regular grid, and the triangle mesh made from them
 //! ([`TerrainMesh`]), which also finds the triangle under any map point in O(1).
 
+use super::cost::{normal_up, tan2};
 use super::TerrainError;
 use crate::mesh::{TriMesh, NONE};
 use crate::surface::SurfacePoint;
@@ -299,6 +300,13 @@ impl ElevationGrid {
         self.mesh_cells(None, Some((cols, rows, &keep)))
     }
 
+    /// The map position and elevation of sample `s` (row-major index from the north).
+    pub(crate) fn sample_point(&self, s: usize) -> glam::DVec3 {
+        let g = &self.geometry;
+        let [x, y] = g.position(s % g.ncols, s / g.ncols);
+        glam::DVec3::new(x, y, self.values[s])
+    }
+
     /// The triangles of cell `(col, row)` (the cell whose north-west sample is
     /// `(col, row)`), as sample indices, counter-clockwise from above: two for four
     /// valid samples, split along the diagonal whose ends differ less in elevation (the
@@ -383,10 +391,7 @@ impl ElevationGrid {
             })
             .collect();
         let cell = |col: usize, row: usize| sides[row * (ncols - 1) + col];
-        let point = |col: usize, row: usize| {
-            let [x, y] = g.position(col, row);
-            glam::DVec3::new(x, y, self.values[row * ncols + col])
-        };
+        let point = |col: usize, row: usize| self.sample_point(row * ncols + col);
         // Per row of samples (in order, so that the sum does not depend on threads).
         let rows: Vec<(f64, u64)> = (0..nrows)
             .into_par_iter()
@@ -436,16 +441,13 @@ impl ElevationGrid {
         if g.ncols < 2 || g.nrows < 2 {
             return 0.0;
         }
-        let point = |s: usize| {
-            let [x, y] = g.position(s % g.ncols, s / g.ncols);
-            glam::DVec3::new(x, y, self.values[s])
-        };
         let mut steepest = 0.0f64;
         for row in 0..g.nrows - 1 {
             for col in 0..g.ncols - 1 {
-                for [a, b, c] in self.cell_triangles(col, row).into_iter().flatten() {
-                    let n = (point(b) - point(a)).cross(point(c) - point(a));
-                    steepest = steepest.max(n.x.hypot(n.y) / n.z.abs());
+                for t in self.cell_triangles(col, row).into_iter().flatten() {
+                    // As `DirectedCost` measures its faces.
+                    let [a, b, c] = t.map(|s| self.sample_point(s));
+                    steepest = steepest.max(tan2(normal_up(a, b, c)).sqrt());
                 }
             }
         }
