@@ -82,17 +82,15 @@ pub fn route<M: Metric>(
     to: SurfacePoint,
     whole_field: bool,
 ) -> Result<Route, Error> {
-    let stop = if whole_field {
-        Stop::NONE
-    } else {
-        Stop::NONE.with_targets(vec![to])
-    };
-    let field = solver.solve_from(&[Source::new(from)], &stop)?;
-    route_in(solver, &field, to, whole_field)
+    if !whole_field {
+        return route_within(solver, from, to, f64::INFINITY);
+    }
+    let field = solver.solve_from(&[Source::new(from)], &Stop::NONE)?;
+    route_in(solver, &field, to, true)
 }
 
-/// As [`route`] (stopping at the end), going no farther than `max_cost`:
-/// [`Error::Unreachable`] when the route would cost more.
+/// As [`route`] stopping at the end, going no farther than `max_cost` (`inf`: no
+/// limit): [`Error::Unreachable`] when the route would cost more.
 fn route_within<M: Metric>(
     solver: &Solver<'_, M>,
     from: SurfacePoint,
@@ -383,12 +381,8 @@ fn straight_line_cost(
         };
         (pc - t * dc).hypot(pr - t * dr) <= 2.0
     };
-    let range = |x: f64, y: f64, cells: usize| {
-        let lo = (x.min(y).floor() - 3.0).clamp(0.0, cells as f64) as usize;
-        lo..((x.max(y).ceil() + 3.0).clamp(0.0, cells as f64) as usize).max(lo)
-    };
-    let cols = range(a.0, b.0, g.ncols - 1);
-    let rows = range(a.1, b.1, g.nrows - 1);
+    let cols = cell_span(a.0.min(b.0), a.0.max(b.0), 3.0, g.ncols - 1);
+    let rows = cell_span(a.1.min(b.1), a.1.max(b.1), 3.0, g.nrows - 1);
     let terrain = grid.to_mesh_within(cols, rows, near).ok()?;
     let metric = cost.metric_on_grid(grid, &terrain).ok()?;
     let steps = (4.0 * cells).ceil().max(1.0) as usize;
@@ -418,12 +412,16 @@ fn straight_line_cost(
 /// [`TerrainMesh::locate`] finds it, from the cells around it alone: the grid's errors
 /// for a point outside it or on NODATA.
 fn surface_position(grid: &ElevationGrid, x: f64, y: f64) -> Result<DVec3, Error> {
-    let (fc, fr) = grid.geometry().inside(x, y)?;
+    let g = grid.geometry();
+    let (fc, fr) = g.inside(x, y)?;
     // The cells around it: a point on a cell's border may lie in a neighbour's
     // triangle only.
-    let around = |f: f64| (f.floor().max(2.0) - 2.0) as usize..(f.ceil() + 2.0) as usize;
+    let (cols, rows) = (
+        cell_span(fc, fc, 2.0, g.ncols - 1),
+        cell_span(fr, fr, 2.0, g.nrows - 1),
+    );
     let mesh = grid
-        .to_mesh_within(around(fc), around(fr), |_, _| true)
+        .to_mesh_within(cols, rows, |_, _| true)
         .map_err(|_| super::TerrainError::NoData { x, y })?;
     Ok(mesh.locate(x, y)?.position(&mesh.mesh))
 }
@@ -450,12 +448,18 @@ fn ellipse_cells(
     // Rows count from the north: the box's top is its least row.
     let (c0, r0) = g.to_grid(centre.x - half.x, centre.y + half.y);
     let (c1, r1) = g.to_grid(centre.x + half.x, centre.y - half.y);
-    let clip = |lo: f64, hi: f64, cells: usize| {
-        let lo = (lo.floor() - 1.0).clamp(0.0, cells as f64) as usize;
-        let hi = (hi.ceil() + 1.0).clamp(0.0, cells as f64) as usize;
-        lo..hi.max(lo)
-    };
-    (clip(c0, c1, g.ncols - 1), clip(r0, r1, g.nrows - 1))
+    (
+        cell_span(c0, c1, 1.0, g.ncols - 1),
+        cell_span(r0, r1, 1.0, g.nrows - 1),
+    )
+}
+
+/// The cells (columns or rows, of `cells`) from fractional position `lo` to `hi`,
+/// `pad` more on each side, clipped to the grid.
+fn cell_span(lo: f64, hi: f64, pad: f64, cells: usize) -> std::ops::Range<usize> {
+    let clip = |x: f64| x.clamp(0.0, cells as f64) as usize;
+    let lo = clip(lo.floor() - pad);
+    lo..clip(hi.ceil() + pad).max(lo)
 }
 
 /// The 3D distance from `s` to the bounding box of cell `(col, row)` (its four
