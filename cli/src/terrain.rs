@@ -126,7 +126,7 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     }
     let routed = if args.png.is_none() && args.contours.is_none() {
         // A route alone: on the window of the grid it needs.
-        whole_grid_error(
+        routing_error(
             terrain::route_on_grid(&grid, &args.cost, &options, args.from, args.to)
                 .map(|r| (r.route, r.mesh, None, Some(r.window))),
             args,
@@ -134,13 +134,9 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     } else {
         // The map and the contours need the whole field.
         let terrain = grid.to_mesh_named(Some(&args.dem))?;
-        let locate = |arg: &str, [x, y]: [f64; 2]| {
-            terrain
-                .locate(x, y)
-                .map_err(|e| format!("--{arg} {x},{y}: {e}"))
-        };
-        let from = locate("from", args.from)?;
-        let to = locate("to", args.to)?;
+        let locate =
+            |[x, y]: [f64; 2]| routing_error(terrain.locate(x, y).map_err(Error::from), args);
+        let (from, to) = (locate(args.from)?, locate(args.to)?);
         let metric = args.cost.metric(&terrain.mesh)?;
         let solver = Solver::new(&terrain.mesh, metric, &options)?;
         let routed = if args.contours.is_some() {
@@ -148,7 +144,7 @@ pub fn run(args: &TerrainArgs) -> CliResult {
         } else {
             terrain::route(&solver, from, to, true).map(|r| (r, None))
         };
-        let (route, field) = whole_grid_error(routed, args)?;
+        let (route, field) = routing_error(routed, args)?;
         let contours = match &field {
             Some(field) => {
                 let query = solver.query(field)?;
@@ -263,7 +259,7 @@ pub fn run(args: &TerrainArgs) -> CliResult {
 
 /// A routing error in the command line's words: which end lies off the grid or on
 /// NODATA, or that no route joins them.
-fn whole_grid_error<T>(routed: Result<T, Error>, args: &TerrainArgs) -> Result<T, String> {
+fn routing_error<T>(routed: Result<T, Error>, args: &TerrainArgs) -> Result<T, String> {
     let end = |x: f64, y: f64| {
         if [x, y] == args.from {
             "--from"
