@@ -269,22 +269,24 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
         if value >= previous {
             return;
         }
-        if previous == f64::INFINITY {
-            if let Some(goal) = &self.goal {
-                let p = self.layout.position(self.mesh, node);
-                self.estimate[node as usize] = goal.estimate(p);
+        // The estimate, worked out when the node is first reached.
+        let estimate = match &self.goal {
+            Some(goal) if previous == f64::INFINITY => {
+                let e = goal.estimate(self.layout.position(self.mesh, node));
+                self.estimate[node as usize] = e;
+                e
             }
-        }
+            _ => self.estimate_of(node),
+        };
         // A goal-directed run takes no node whose key is beyond the maximum distance:
         // no target lies within it through that node.
-        if value + self.estimate_of(node) <= self.max_distance + self.reach {
+        if value + estimate <= self.max_distance + self.reach {
             if previous == f64::INFINITY && self.records {
                 self.touched.push(node);
             }
             self.distance[node as usize] = value;
             self.parent[node as usize] = from;
             self.parent_face[node as usize] = face;
-            let estimate = self.estimate_of(node);
             self.pushes += self.queue.push(node, value + estimate, previous + estimate) as u64;
         }
     }
