@@ -180,7 +180,7 @@ impl TriMesh {
     /// lower vertex first, sorted, as [`TriMesh::new`] numbers them, and
     /// `face_edges[f][i]` is the edge from corner `i` of face `f` to corner `i + 1`.
     /// This skips the sort that numbers edges. `spatially_ordered`: faces and edges
-    /// are numbered in a spatially coherent order already (a grid's rows), so solvers
+    /// are numbered in a spatially coherent order already (a grid's tiles), so solvers
     /// keep that order instead of sorting them along a space-filling curve.
     ///
     /// A face that turns out degenerate would renumber the faces after it: the edges
@@ -269,7 +269,7 @@ impl TriMesh {
     }
 
     /// Whether faces and edges are numbered in a spatially coherent order already (a
-    /// grid's rows; see [`TriMesh::with_edge_table`]): solvers then keep it.
+    /// grid's tiles; see [`TriMesh::with_edge_table`]): solvers then keep it.
     pub(crate) fn is_spatially_ordered(&self) -> bool {
         self.spatially_ordered
     }
