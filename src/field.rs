@@ -50,6 +50,9 @@ pub struct Stats {
     pub setup_distance_tests: u64,
     /// The run ended at its targets, before the queue ran out (see [`crate::Stop`]).
     pub stopped_early: bool,
+    /// The run was a path's search from both ends ([`crate::Stop::both_ends`]): the
+    /// counters are the two sides' sums, `propagate_seconds` the time both took.
+    pub both_ends: bool,
 }
 
 /// A goal-directed run's estimate of what is left to a node (A*): `per_length` times
@@ -58,19 +61,84 @@ pub struct Stats {
 /// [`min_cost_per_length`](geotracks_metrics::Metric::min_cost_per_length)), and the
 /// estimate drops by at most what a step costs (the distance to a convex set is
 /// 1-Lipschitz): ordered by value plus estimate, nodes still settle with costs ≥ 0.
+///
+/// One side of a search between two points from both ends (`away`: the other
+/// side's target, this side's source) takes the *average* of the two ends' estimates
+/// instead, `(h_to(p) − h_from(p) + offset) / 2` with `offset = per_length · |to −
+/// from|`: the two sides' estimates then add up to `offset` everywhere, so that a
+/// node's two keys add up to the cost of the path through it plus `offset`, and each
+/// side settles about half of what one A* would (Ikeda et al. 1994; Goldberg and
+/// Harrelson 2005). It is still ≥ 0 and at most `h_to` (triangle inequality), and
+/// drops by at most what a step costs (each half is half as steep), so the engine
+/// treats it as any estimate.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Goal {
     /// The box around the targets.
     pub lo: glam::DVec3,
     pub hi: glam::DVec3,
     pub per_length: f64,
+    /// The source, for one side of a search from both ends (the box is then its
+    /// target, a point).
+    pub away: Option<glam::DVec3>,
+    /// `per_length · |to − from|` for one side of a search from both ends; 0 without
+    /// `away`.
+    pub offset: f64,
 }
 
 impl Goal {
+    /// The estimate towards the targets at `[lo, hi]`, with `per_length`.
+    pub fn toward(lo: glam::DVec3, hi: glam::DVec3, per_length: f64) -> Goal {
+        Goal {
+            lo,
+            hi,
+            per_length,
+            away: None,
+            offset: 0.0,
+        }
+    }
+
+    /// One side of a search from both ends: from `from`, towards `to`.
+    pub fn between(from: glam::DVec3, to: glam::DVec3, per_length: f64) -> Goal {
+        Goal {
+            lo: to,
+            hi: to,
+            per_length,
+            away: Some(from),
+            offset: per_length * from.distance(to),
+        }
+    }
+
     /// The estimate at world position `p`.
     #[inline]
     pub fn estimate(&self, p: glam::DVec3) -> f64 {
-        self.per_length * p.distance(p.clamp(self.lo, self.hi))
+        let to = self.per_length * p.distance(p.clamp(self.lo, self.hi));
+        match self.away {
+            None => to,
+            Some(source) => {
+                let from = self.per_length * p.distance(source);
+                // (≥ 0 but for rounding: the clamp keeps it an estimate.)
+                (0.5 * (to - from + self.offset)).max(0.0)
+            }
+        }
+    }
+
+    /// The most the estimate reaches on face `f`: at a corner for the distance to a
+    /// box (convex); for the average of two ends' (not convex), at most a corner's
+    /// plus `per_length` times the face's longest edge (it is `per_length`-Lipschitz).
+    fn max_in_face(&self, mesh: &TriMesh, f: u32) -> f64 {
+        let corners = mesh.face_vertices(f).map(|v| mesh.position(v));
+        let at = corners.map(|p| self.estimate(p));
+        let most = at[0].max(at[1]).max(at[2]);
+        match self.away {
+            None => most,
+            Some(_) => {
+                let longest = corners[0]
+                    .distance(corners[1])
+                    .max(corners[1].distance(corners[2]))
+                    .max(corners[2].distance(corners[0]));
+                most + self.per_length * longest
+            }
+        }
     }
 }
 
@@ -112,16 +180,11 @@ impl Horizon {
 
     /// The horizon of the nodes of face `f`: a key at least `level` (or beyond the
     /// maximum distance, which a goal-directed run cuts keys at) is a value at least
-    /// that less the estimate, which is largest at a corner (it is convex).
+    /// that less the estimate's most on the face (see `Goal::max_in_face`).
     pub fn in_face(&self, mesh: &TriMesh, f: u32) -> f64 {
         let limit = self.max_distance.min(self.level);
         let estimate = match self.goal {
-            Some(goal) if limit < f64::INFINITY => {
-                let corners = mesh
-                    .face_vertices(f)
-                    .map(|v| goal.estimate(mesh.position(v)));
-                corners[0].max(corners[1]).max(corners[2])
-            }
+            Some(goal) if limit < f64::INFINITY => goal.max_in_face(mesh, f),
             _ => 0.0,
         };
         limit - estimate

@@ -195,6 +195,19 @@ pub struct Stop {
     /// which it gave others their values, and their paths can no longer be traced back
     /// exactly.
     pub goal_directed: bool,
+    /// For a path between two points ([`Solver::shortest_path_with`] from one source):
+    /// search from both ends at once, on two threads, and stop where the two searches
+    /// meet. Each side settles about half of what a one-ended goal-directed run would,
+    /// and the path is the same (the Steiner graph's cheapest; the sides work in lock
+    /// step, so the result does not depend on how the threads ran). Default: `true`;
+    /// it takes effect for the Steiner-graph engines (not [`Method::Wave`], which is
+    /// not goal-directed), a symmetric metric, [`goal_directed`](Self::goal_directed)
+    /// runs, and when rayon's pool has two threads or more. Fields
+    /// ([`Solver::solve_from`]) come from their sources alone whatever this says.
+    ///
+    /// [`Solver::shortest_path_with`]: crate::Solver::shortest_path_with
+    /// [`Solver::solve_from`]: crate::Solver::solve_from
+    pub both_ends: bool,
 }
 
 impl Stop {
@@ -203,6 +216,7 @@ impl Stop {
         max_distance: f64::INFINITY,
         targets: Vec::new(),
         goal_directed: true,
+        both_ends: true,
     };
 
     /// Stop at distance `max_distance`.
@@ -216,6 +230,12 @@ impl Stop {
     /// Stop once `targets` are final.
     pub fn with_targets(self, targets: Vec<SurfacePoint>) -> Stop {
         Stop { targets, ..self }
+    }
+
+    /// For a path between two points, searched from both ends or not (see
+    /// [`Stop::both_ends`]).
+    pub fn with_both_ends(self, both_ends: bool) -> Stop {
+        Stop { both_ends, ..self }
     }
 
     /// With targets, goal-directed or not (see [`Stop::goal_directed`]).

@@ -6,11 +6,10 @@
 
 mod common;
 
-use common::{random_book, random_mesh, random_randers, sphere, Rng, GRAPH};
+use common::{oracle, random_book, random_mesh, random_metric, sphere, Rng};
 use geotracks::mesh::TriMesh;
 use geotracks::{
-    Density, Error, Euclidean, FacePoint, Method, Metric, Options, Solver, Source, Stop,
-    SurfacePoint, Tensor,
+    Error, Euclidean, FacePoint, Method, Metric, Options, Solver, Source, Stop, SurfacePoint,
 };
 use proptest::prelude::*;
 
@@ -27,49 +26,10 @@ fn goal_directed<M: Metric>(
     (value, field.stats().settles)
 }
 
-/// The complete Steiner graph's value at `target` from `source` (a full run).
-fn oracle<M: Metric>(
-    mesh: &TriMesh,
-    metric: &M,
-    k: f64,
-    source: SurfacePoint,
-    target: SurfacePoint,
-) -> f64 {
-    let solver = Solver::new(mesh, metric, &GRAPH.with_k(k)).unwrap();
-    let field = solver
-        .solve_from(&[Source::new(source)], &Stop::NONE)
-        .unwrap();
-    solver.query(&field).unwrap().distance_at(target).unwrap()
-}
-
 fn random_point(mesh: &TriMesh, rng: &mut Rng) -> SurfacePoint {
     match rng.below(3) {
         0 => SurfacePoint::Vertex(rng.below(mesh.vertex_count()) as u32),
         _ => common::random_face_point(mesh, rng),
-    }
-}
-
-/// A random metric of each kind: Euclidean, a density, a tensor, a directed one.
-fn random_metric(mesh: &TriMesh, kind: u8, seed: u64) -> Box<dyn Metric> {
-    let mut rng = Rng(seed | 1);
-    match kind {
-        0 => Box::new(Euclidean),
-        1 => {
-            let rho: Vec<f64> = (0..mesh.vertex_count())
-                .map(|_| 0.2 + 3.0 * rng.next())
-                .collect();
-            Box::new(Density::new(mesh, rho).unwrap())
-        }
-        2 => {
-            let principal: Vec<(f64, f64, [f64; 3])> = (0..mesh.face_count())
-                .map(|_| {
-                    let mut r = || rng.next() - 0.5;
-                    (0.1 + r().abs() * 4.0, 0.1 + r().abs(), [r(), r(), r()])
-                })
-                .collect();
-            Box::new(Tensor::from_principal(mesh, &principal).unwrap())
-        }
-        _ => Box::new(random_randers(mesh, seed, 0.7)),
     }
 }
 

@@ -7,21 +7,10 @@
 
 mod common;
 
-use common::{random_face_point, random_mesh, sphere, Rng};
+use common::{random_mesh, random_surface_point, sphere, Rng};
 use geotracks::mesh::TriMesh;
 use geotracks::{Euclidean, Method, Options, Solver, Source, Stop, SurfacePoint};
 use proptest::prelude::*;
-
-fn random_point(mesh: &TriMesh, rng: &mut Rng) -> SurfacePoint {
-    match rng.below(4) {
-        0 => SurfacePoint::Vertex(rng.below(mesh.vertex_count()) as u32),
-        1 => SurfacePoint::Edge {
-            edge: rng.below(mesh.edge_count()) as u32,
-            t: rng.next(),
-        },
-        _ => random_face_point(mesh, rng),
-    }
-}
 
 /// Runs `sources` on `mesh` with a full run and with `stop`, and checks `queries`.
 fn check(
@@ -123,9 +112,9 @@ proptest! {
             },
         };
         let sources: Vec<Source> = (0..1 + rng.below(2))
-            .map(|_| Source::new(random_point(&mesh, &mut rng)).with_start(rng.next() - 0.5))
+            .map(|_| Source::new(random_surface_point(&mesh, &mut rng)).with_start(rng.next() - 0.5))
             .collect();
-        let queries: Vec<SurfacePoint> = (0..60).map(|_| random_point(&mesh, &mut rng)).collect();
+        let queries: Vec<SurfacePoint> = (0..60).map(|_| random_surface_point(&mesh, &mut rng)).collect();
         let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
         let far = solver
             .solve_from(&sources, &Stop::NONE)
@@ -137,15 +126,15 @@ proptest! {
             .fold(0.0, f64::max);
         let stop = match stop {
             0 => Stop::NONE.with_max_distance(rng.next() * far),
-            1 => Stop::NONE.with_targets((0..1 + rng.below(3)).map(|_| random_point(&mesh, &mut rng)).collect()),
+            1 => Stop::NONE.with_targets((0..1 + rng.below(3)).map(|_| random_surface_point(&mesh, &mut rng)).collect()),
             2 => Stop::NONE
                 .with_max_distance((0.5 + rng.next()) * far)
-                .with_targets(vec![random_point(&mesh, &mut rng)]),
+                .with_targets(vec![random_surface_point(&mesh, &mut rng)]),
             // Targets that may lie beyond the maximum: a goal-directed run leaves out
             // the nodes whose key (value plus estimate) is beyond it.
             _ => Stop::NONE
                 .with_max_distance(rng.next() * far)
-                .with_targets((0..1 + rng.below(2)).map(|_| random_point(&mesh, &mut rng)).collect()),
+                .with_targets((0..1 + rng.below(2)).map(|_| random_surface_point(&mesh, &mut rng)).collect()),
         };
         for method in [Method::Wave, Method::Tracks, Method::Graph] {
             let plain = stop.clone().with_goal_directed(false);

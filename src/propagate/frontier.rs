@@ -1,6 +1,7 @@
 //! What every engine shares: per-node distances and parents, the work counters, the
 //! metric call with its sanity check, and relaxation along edges.
 
+use super::meet::Side;
 use crate::field::Goal;
 use crate::mesh::{Csr, TriMesh, NONE};
 use crate::steiner::{NodeKind, SteinerLayout};
@@ -86,6 +87,9 @@ pub(super) struct Frontier<'a, M, Q> {
     pub targets: &'a [u32],
     /// `targets[..target_cursor]` are known final.
     pub target_cursor: usize,
+    /// For one side of a search from both ends: its part in the meeting, which ends
+    /// the run (see `meet`).
+    pub meet: Option<Side<'a>>,
     pub pushes: u64,
     /// Nodes popped from the queue to be settled (a node may settle more than once).
     pub settles: u64,
@@ -147,6 +151,7 @@ impl<'a, M: Metric> Frontier<'a, M, ()> {
             reach: self.reach,
             targets: self.targets,
             target_cursor: 0,
+            meet: self.meet,
             pushes: 0,
             settles: 0,
             tests: self.tests,
@@ -227,17 +232,28 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
     #[inline]
     pub fn next(&mut self) -> Option<(u32, f64)> {
         if self.bad_cost.is_some() {
-            return None;
+            return self.over();
         }
         let distance = &*self.distance;
-        let q = if self.goal.is_some() {
+        let popped = if self.goal.is_some() {
             let estimate = &*self.estimate;
             self.queue
-                .pop(|q| distance[q as usize] + estimate[q as usize])?
+                .pop(|q| distance[q as usize] + estimate[q as usize])
         } else {
-            self.queue.pop(|q| distance[q as usize])?
+            self.queue.pop(|q| distance[q as usize])
+        };
+        let Some(q) = popped else {
+            return self.over();
         };
         self.settles += 1;
+        if let Some(side) = &mut self.meet {
+            // Everything below the level is settled; `q` is not yet.
+            let level = self.queue.level();
+            if side.round_over() && side.end_round(level) {
+                return None;
+            }
+            side.settle(q, self.distance[q as usize]);
+        }
         if !self.targets.is_empty() {
             while let Some(&t) = self.targets.get(self.target_cursor) {
                 if !self.queue.is_final(self.key(t) + self.reach) {
@@ -248,6 +264,16 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
             return None;
         }
         Some((q, self.distance[q as usize]))
+    }
+
+    /// The end of the run: for one side of a search from both ends, once the other
+    /// side agrees (it takes part in rounds with nothing left to settle).
+    #[cold]
+    fn over(&mut self) -> Option<(u32, f64)> {
+        if let Some(side) = &mut self.meet {
+            side.finish();
+        }
+        None
     }
 
     /// The metric's cost of a segment in face `face`, counted as one distance test.

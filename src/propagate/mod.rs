@@ -13,10 +13,15 @@
 //!   (`cargo test --release --test solver -- --nocapture` prints both).
 //!
 //! All are generic over the [`Metric`] (monomorphised: no dynamic dispatch in the loop).
+//!
+//! A path between two points ([`Solver::shortest_path_with`]) runs a Steiner-graph
+//! engine from both ends at once, on two threads, until the two searches meet
+//! (`meet`).
 
 mod budget;
 mod frontier;
 mod graph;
+mod meet;
 mod queue;
 mod solver;
 mod tracks;

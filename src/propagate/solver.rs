@@ -3,6 +3,7 @@
 
 use super::budget;
 use super::frontier::{edge_steps, Frontier, Seed};
+use super::meet::{Meeting, Side};
 use super::queue::{BucketQueue, HeapQueue};
 use super::tracks::{Track, TrackTables};
 use super::wave;
@@ -312,9 +313,11 @@ impl<'m, M: Metric> Solver<'m, M> {
         let cost_total = check_cost_range(&metric, &layout, &steps, &wires)?;
         let per_length = check_per_length(mesh, &metric, &layout, &steps, &wires)?;
         // Only the tracks engine uses a bucket queue (the baselines keep a heap).
+        // (The graph engines' heaps need no width; a search from both ends paces
+        // its rounds by it.)
+        let width = bucket_width(&steps);
         let (tables, bucket_width) = match options.method {
             Method::Tracks | Method::Wave => {
-                let width = bucket_width(&steps);
                 let mut tables =
                     TrackTables::new(mesh, &layout, edge_steps.as_deref(), flat_frames.as_deref())?;
                 if options.method == Method::Wave {
@@ -322,7 +325,7 @@ impl<'m, M: Metric> Solver<'m, M> {
                 }
                 (Some(tables), width)
             }
-            _ => (None, 1.0),
+            _ => (None, width),
         };
         let isometric = match (&tables, options.method) {
             (Some(tables), Method::Wave) => wave::isometric_edges(mesh, &layout, tables),
@@ -500,6 +503,17 @@ impl<'m, M: Metric> Solver<'m, M> {
 
     /// Runs from `workspace.sources`.
     fn execute(&self, workspace: &mut Workspace, stop: &Stop) -> Result<Stats, Error> {
+        self.execute_side(workspace, stop, None)
+    }
+
+    /// Runs from `workspace.sources`; with `both`, as one side of a search from both
+    /// ends (its goal replaces the targets', and the meeting ends the run).
+    fn execute_side(
+        &self,
+        workspace: &mut Workspace,
+        stop: &Stop,
+        both: Option<(Option<Goal>, Side<'_>)>,
+    ) -> Result<Stats, Error> {
         let start = Instant::now();
         let mesh = self.mesh;
         workspace.solver = None;
@@ -548,7 +562,10 @@ impl<'m, M: Metric> Solver<'m, M> {
         }
         workspace.targets.sort_unstable();
         workspace.targets.dedup();
-        let goal = self.goal(&workspace.targets, stop);
+        let (goal, meet) = match both {
+            Some((goal, side)) => (goal, Some(side)),
+            None => (self.goal(&workspace.targets, stop), None),
+        };
         if goal.is_some() {
             // Written when a node is first reached, before it is read: never cleared.
             workspace.estimate.resize(self.layout.node_count(), 0.0);
@@ -570,7 +587,10 @@ impl<'m, M: Metric> Solver<'m, M> {
             waves,
         );
         // Only a run that may stop early can reach little (see `Frontier::records`).
-        workspace.recorded = stop.max_distance < f64::INFINITY || !workspace.targets.is_empty();
+        // (A side of a search from both ends stops early too, and the touched nodes
+        // are where the two sides' values are compared.)
+        workspace.recorded =
+            stop.max_distance < f64::INFINITY || !workspace.targets.is_empty() || meet.is_some();
         let seed_tests = self.seed(workspace)?;
         let reset_seconds = start.elapsed().as_secs_f64();
         let propagate_start = Instant::now();
@@ -612,6 +632,7 @@ impl<'m, M: Metric> Solver<'m, M> {
             reach: self.reach,
             targets,
             target_cursor: 0,
+            meet,
             pushes: 0,
             settles: 0,
             tests: seed_tests,
@@ -690,6 +711,7 @@ impl<'m, M: Metric> Solver<'m, M> {
             distance_tests: outcome.tests,
             setup_distance_tests: self.setup_tests,
             stopped_early: outcome.stopped_early,
+            both_ends: false,
         })
     }
 
@@ -718,11 +740,7 @@ impl<'m, M: Metric> Solver<'m, M> {
         if (hi - lo).length() > 0.5 * self.extent {
             return None;
         }
-        Some(Goal {
-            lo,
-            hi,
-            per_length: self.per_length,
-        })
+        Some(Goal::toward(lo, hi, self.per_length))
     }
 
     /// Checks the sources against the mesh and puts their points in canonical form.
@@ -1110,7 +1128,8 @@ fn wire_costs<M: Metric>(mesh: &TriMesh, metric: &M) -> Result<Csr<(u32, f64)>, 
 
 impl<M: Metric> Solver<'_, M> {
     /// The straightened path from `target` to the nearest of `sources`, in one call: a
-    /// run that stops once the target's value is final, then [`Query::path`].
+    /// run that stops once the target's value is final, then [`Query::path`]; from one
+    /// source, a search from both ends at once where it can ([`Stop::both_ends`]).
     ///
     /// ```
     /// use geotracks::{mesh::TriMesh, Euclidean, Options, Solver, Source, SurfacePoint};
@@ -1132,10 +1151,178 @@ impl<M: Metric> Solver<'_, M> {
         sources: &[Source],
         target: SurfacePoint,
     ) -> Result<crate::GeodesicPath, Error> {
-        let field = self.solve_from(sources, &Stop::NONE.with_targets(vec![target]))?;
-        self.query(&field)?.path(target)
+        Ok(self.shortest_path_with(sources, target, &Stop::NONE)?.0)
+    }
+
+    /// As [`Solver::shortest_path`], stopping as `stop` says (its maximum distance: a
+    /// target farther is [`Error::Unreachable`]; its targets are replaced by `target`),
+    /// with the run's counters.
+    ///
+    /// From one source, with [`Stop::both_ends`] (the default), a Steiner-graph engine
+    /// and a symmetric metric, and two threads or more in rayon's pool, the search runs
+    /// from both ends at once (`Stats::both_ends`): the path's traced cost is the
+    /// Steiner graph's, as a one-ended run's, to rounding.
+    ///
+    /// ```
+    /// use geotracks::{mesh::TriMesh, Euclidean, Method, Options, Solver, Source, Stop, SurfacePoint};
+    /// // A strip of 20 unit squares.
+    /// let positions = (0..42).map(|i| [(i / 2) as f64, (i % 2) as f64, 0.0]).collect();
+    /// let faces = (0..20u32).flat_map(|i| [[2 * i, 2 * i + 2, 2 * i + 3], [2 * i, 2 * i + 3, 2 * i + 1]]).collect();
+    /// let mesh = TriMesh::new(positions, faces)?;
+    /// let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT.with_method(Method::Tracks))?;
+    /// let (both, _) = solver.shortest_path_with(&[Source::new(0)], SurfacePoint::Vertex(41), &Stop::NONE)?;
+    /// let one_end = Stop::NONE.with_both_ends(false);
+    /// let (one, _) = solver.shortest_path_with(&[Source::new(0)], SurfacePoint::Vertex(41), &one_end)?;
+    /// assert!((both.traced_length - one.traced_length).abs() < 1e-9);
+    /// assert!((both.length - 401f64.sqrt()).abs() < 1e-6); // straightened: the diagonal
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`Solver::shortest_path`].
+    pub fn shortest_path_with(
+        &self,
+        sources: &[Source],
+        target: SurfacePoint,
+        stop: &Stop,
+    ) -> Result<(crate::GeodesicPath, Stats), Error> {
+        let both_ends = stop.both_ends
+            && stop.goal_directed
+            && sources.len() == 1
+            && self.method != Method::Wave
+            && self.metric.is_symmetric()
+            && rayon::current_num_threads() >= 2;
+        if both_ends {
+            return self.path_from_both_ends(sources[0], target, stop.max_distance);
+        }
+        let field = self.solve_from(sources, &stop.clone().with_targets(vec![target]))?;
+        let path = self.query(&field)?.path(target)?;
+        Ok((path, field.stats().clone()))
+    }
+
+    /// The path from `target` to `source` no costlier than `max_distance`, searched
+    /// from both ends at once on two threads (see `meet`).
+    fn path_from_both_ends(
+        &self,
+        source: Source,
+        target: SurfacePoint,
+        max_distance: f64,
+    ) -> Result<(crate::GeodesicPath, Stats), Error> {
+        let (mesh, layout) = (self.mesh, &*self.layout);
+        let target = target
+            .validated(mesh)
+            .map_err(|error| Error::InvalidPoint {
+                which: PointRole::Target(0),
+                error,
+            })?;
+        let mut sources = [source];
+        self.validate_sources(&mut sources)?;
+        let [source] = sources;
+        let start = Instant::now();
+        let (from, to) = (source.point.position(mesh), target.position(mesh));
+        let (forward_goal, backward_goal, offset) = if self.per_length > 0.0 {
+            let forward = Goal::between(from, to, self.per_length);
+            let backward = Goal::between(to, from, self.per_length);
+            (Some(forward), Some(backward), forward.offset)
+        } else {
+            (None, None, 0.0)
+        };
+        let round = (layout.node_count() / ROUNDS_PER_MESH).clamp(ROUND_LEAST, ROUND_MOST);
+        let meeting = Meeting::new(layout.node_count(), offset, round);
+        let (mut forward, mut backward) = (self.workspace(), self.workspace());
+        forward.sources = vec![source];
+        backward.sources = vec![Source::new(target)];
+        let stop = Stop::NONE.with_max_distance(max_distance);
+        let (forward_stats, backward_stats) = std::thread::scope(|scope| {
+            let back = scope.spawn(|| {
+                self.execute_side(&mut backward, &stop, Some((backward_goal, meeting.side(1))))
+            });
+            let ahead =
+                self.execute_side(&mut forward, &stop, Some((forward_goal, meeting.side(0))));
+            let back = back
+                .join()
+                .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+            (ahead, back)
+        });
+        let (forward_stats, backward_stats) = (forward_stats?, backward_stats?);
+        let propagate_seconds = start.elapsed().as_secs_f64();
+        // Where the two sides' values add up to least: the path goes through it (see
+        // `meet`). In the order the forward side reached them, the first such node.
+        let (mut cost, mut meet) = (f64::INFINITY, NONE);
+        for &node in &forward.touched {
+            let sum = forward.distance[node as usize] + backward.distance[node as usize];
+            if sum < cost {
+                (cost, meet) = (sum, node);
+            }
+        }
+        // Ends in one face: also the straight segment between them there, which is
+        // no path through nodes (as a query at the target takes it from a source in
+        // its face).
+        let direct = target
+            .faces(mesh)
+            .iter()
+            .filter(|&&f| source.point.bary_in(mesh, f).is_some())
+            .map(|&f| {
+                let cost = crate::trace::segment_cost(mesh, &self.metric, f, source.point, target);
+                (source.start + cost, f)
+            })
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        let stats = Stats {
+            setup_seconds: forward_stats.setup_seconds,
+            propagate_seconds,
+            pushes: forward_stats.pushes + backward_stats.pushes,
+            settles: forward_stats.settles + backward_stats.settles,
+            distance_tests: forward_stats.distance_tests + backward_stats.distance_tests,
+            stopped_early: true,
+            both_ends: true,
+            ..forward_stats
+        };
+        if let Some((straight, f)) = direct.filter(|&(straight, _)| straight < cost) {
+            if straight > max_distance {
+                return Err(Error::Unreachable { point: target });
+            }
+            let path =
+                crate::trace::finish(mesh, &self.metric, vec![target, source.point], vec![f], 0);
+            return Ok((path, stats));
+        }
+        if meet == NONE || cost > max_distance {
+            return Err(Error::Unreachable { point: target });
+        }
+        // From the target to the meeting node along the backward side's parents, then
+        // on to the source along the forward side's.
+        let chain = |workspace: &Workspace| {
+            let mut points = vec![layout.surface_point(meet)];
+            let mut faces = Vec::new();
+            let source = self
+                .query_workspace(workspace)?
+                .follow_parents(meet, &mut points, &mut faces)
+                .ok_or(Error::ParentCycle { point: target })?;
+            Ok::<_, Error>((points, faces, source))
+        };
+        let (mut points, mut faces, _) = chain(&backward)?;
+        let (ahead_points, ahead_faces, source) = chain(&forward)?;
+        points.reverse();
+        faces.reverse();
+        points.extend_from_slice(&ahead_points[1..]);
+        faces.extend(ahead_faces);
+        let mut path = crate::trace::finish(mesh, &self.metric, points, faces, source);
+        crate::trace::straighten(&mut path, mesh, &self.metric);
+        Ok((path, stats))
     }
 }
+
+/// How many nodes each side of a search from both ends settles in a round (see
+/// `meet`): the mesh's nodes over this, within [`ROUND_LEAST`] and [`ROUND_MOST`].
+/// The same work on both sides, so that neither waits long for the other; enough
+/// that the rounds' rendezvous cost nothing next to their work, few enough that a side
+/// settles little beyond where the search could have stopped.
+const ROUNDS_PER_MESH: usize = 256;
+/// See [`ROUNDS_PER_MESH`].
+const ROUND_LEAST: usize = 32;
+/// See [`ROUNDS_PER_MESH`]: on the 1000 × 1000 terrain bench's corner route (1.9 M
+/// settles a side) about 120 rounds, which waited for each other a few percent of
+/// the time.
+const ROUND_MOST: usize = 1 << 14;
 
 /// The bucket queue's width: a low quantile of the cost between consecutive nodes on an
 /// edge. Nodes in one bucket are settled in no particular order, so a bucket much wider

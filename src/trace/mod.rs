@@ -124,7 +124,7 @@ impl<M: Metric> Query<'_, M> {
         let mut points = vec![point.validated(mesh).expect("checked by origin")];
         let mut faces = Vec::new();
         let mut origin = origin;
-        let mut node = loop {
+        let node = loop {
             match origin {
                 Origin::Node(v) => break v,
                 Origin::NodeInFace(n, f) => {
@@ -169,6 +169,22 @@ impl<M: Metric> Query<'_, M> {
                 .ok_or(Error::ParentCycle { point })?;
             return Ok(finish(mesh, metric, points, faces, source));
         }
+        let source = self
+            .follow_parents(node, &mut points, &mut faces)
+            .ok_or(Error::ParentCycle { point })?;
+        Ok(finish(mesh, metric, points, faces, source))
+    }
+
+    /// Follows parents from `node` (whose point ends `points`) to the source that
+    /// reached it, adding each parent's point and the face of each segment; returns
+    /// the source (`None` on a cycle).
+    pub(crate) fn follow_parents(
+        &self,
+        mut node: u32,
+        points: &mut Vec<SurfacePoint>,
+        faces: &mut Vec<u32>,
+    ) -> Option<u32> {
+        let field = &self.field;
         // Parents have lower values, so the walk ends at a root; the cap guards against
         // a metric that returns zero costs between distinct points.
         for _ in 0..field.distance.len() {
@@ -184,7 +200,7 @@ impl<M: Metric> Query<'_, M> {
                     points.push(field.sources[s as usize].point);
                     faces.push(pf);
                 }
-                return Ok(finish(mesh, metric, points, faces, s));
+                return Some(s);
             }
             let (from, to) = (
                 field.layout.surface_point(node),
@@ -198,7 +214,7 @@ impl<M: Metric> Query<'_, M> {
             });
             node = p;
         }
-        Err(Error::ParentCycle { point })
+        None
     }
 
     /// The traced path from `point`, straightened ([`straighten`]): the path users
@@ -247,7 +263,7 @@ impl<M: Metric> Query<'_, M> {
     }
 }
 
-fn finish<M: Metric>(
+pub(crate) fn finish<M: Metric>(
     mesh: &TriMesh,
     metric: &M,
     points: Vec<SurfacePoint>,

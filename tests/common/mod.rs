@@ -912,3 +912,56 @@ pub fn random_randers(mesh: &TriMesh, seed: u64, strength: f64) -> Randers {
         .collect();
     Randers::new(mesh, tensor, strength, |f| winds[f as usize])
 }
+
+/// The complete Steiner graph's value at `target` from `source` (a full run): the
+/// oracle for paths between two points.
+pub fn oracle<M: Metric>(
+    mesh: &TriMesh,
+    metric: &M,
+    k: f64,
+    source: geotracks::SurfacePoint,
+    target: geotracks::SurfacePoint,
+) -> f64 {
+    let solver = geotracks::Solver::new(mesh, metric, &GRAPH.with_k(k)).unwrap();
+    let field = solver
+        .solve_from(&[geotracks::Source::new(source)], &geotracks::Stop::NONE)
+        .unwrap();
+    solver.query(&field).unwrap().distance_at(target).unwrap()
+}
+
+/// A random point of `mesh`: a vertex, an edge point or a face point.
+pub fn random_surface_point(mesh: &TriMesh, rng: &mut Rng) -> geotracks::SurfacePoint {
+    match rng.below(4) {
+        0 => geotracks::SurfacePoint::Vertex(rng.below(mesh.vertex_count()) as u32),
+        1 => geotracks::SurfacePoint::Edge {
+            edge: rng.below(mesh.edge_count()) as u32,
+            t: rng.next(),
+        },
+        _ => random_face_point(mesh, rng),
+    }
+}
+
+/// A random metric of each kind: Euclidean (0), a density (1), a tensor (2), a
+/// directed one (3: [`random_randers`]).
+pub fn random_metric(mesh: &TriMesh, kind: u8, seed: u64) -> Box<dyn Metric> {
+    let mut rng = Rng(seed | 1);
+    match kind {
+        0 => Box::new(geotracks::Euclidean),
+        1 => {
+            let rho: Vec<f64> = (0..mesh.vertex_count())
+                .map(|_| 0.2 + 3.0 * rng.next())
+                .collect();
+            Box::new(geotracks::Density::new(mesh, rho).unwrap())
+        }
+        2 => {
+            let principal: Vec<(f64, f64, [f64; 3])> = (0..mesh.face_count())
+                .map(|_| {
+                    let mut r = || rng.next() - 0.5;
+                    (0.1 + r().abs() * 4.0, 0.1 + r().abs(), [r(), r(), r()])
+                })
+                .collect();
+            Box::new(Tensor::from_principal(mesh, &principal).unwrap())
+        }
+        _ => Box::new(random_randers(mesh, seed, 0.7)),
+    }
+}

@@ -1,0 +1,228 @@
+//! Paths searched from both ends at once (`Stop::both_ends`, the default for a path
+//! between two points under a symmetric metric with the Steiner-graph engines): the
+//! path's traced cost is the complete Steiner graph's value at the target (the
+//! oracle, a full run, to 1e-9), whatever the points, metric, mesh and k; a maximum
+//! leaves the same targets unreached as a one-ended run; the same query gives the same
+//! path every time; and one thread, or a directed metric, searches from one end.
+
+mod common;
+
+use common::{
+    oracle, random_book, random_mesh, random_metric, random_randers, random_surface_point, sphere,
+    Rng,
+};
+use geotracks::mesh::TriMesh;
+use geotracks::{Error, Euclidean, Method, Metric, Options, Solver, Source, Stop, SurfacePoint};
+use proptest::prelude::*;
+
+/// Whether searches from both ends can run here (two threads in rayon's pool).
+fn two_threads() -> bool {
+    rayon::current_num_threads() >= 2
+}
+
+/// A hilly grid of `n` × `n` unit cells.
+fn hills(n: usize) -> TriMesh {
+    common::grid_with(n, n as f64, |x, y| {
+        [x, y, 2.0 * (0.3 * x).sin() * (0.2 * y).cos()]
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
+
+    /// The oracle: from both ends, the tracks engine and the graph trace the path the
+    /// complete Steiner graph gives the target, under every kind of symmetric metric,
+    /// between vertices, edge points and face points, on meshes with holes, fins and
+    /// non-manifold books. The small meshes run rounds of a few dozen settles, so the
+    /// searches meet after many rounds.
+    #[test]
+    fn both_ends_trace_what_the_steiner_graph_gives(
+        seed in any::<u64>(),
+        shape in 0u8..3,
+        kind in 0u8..3,
+        k in 1u32..5,
+    ) {
+        let mesh = match shape {
+            0 => sphere(2, 0.2, seed),
+            1 => random_book(seed, 3, 4),
+            _ => match random_mesh(seed, 7) {
+                Ok(mesh) => mesh,
+                Err(_) => return Ok(()),
+            },
+        };
+        let metric = random_metric(&mesh, kind, seed);
+        let mut rng = Rng(seed ^ 0xb07e);
+        let (from, to) = (random_surface_point(&mesh, &mut rng), random_surface_point(&mesh, &mut rng));
+        let expected = oracle(&mesh, &metric, k as f64, from, to);
+        for method in [Method::Tracks, Method::Graph] {
+            let options = Options::DEFAULT.with_method(method).with_k(k as f64);
+            let solver = Solver::new(&mesh, &metric, &options).unwrap();
+            match solver.shortest_path_with(&[Source::new(from)], to, &Stop::NONE) {
+                Ok((path, stats)) => {
+                    prop_assert_eq!(stats.both_ends, two_threads());
+                    let traced = path.traced_length;
+                    prop_assert!(
+                        (traced - expected).abs() <= 1e-9 * expected.max(1e-12),
+                        "{:?} {} {} → {}: {} against the graph's {}",
+                        method, metric.name(), from, to, traced, expected
+                    );
+                    prop_assert!(path.length <= traced * (1.0 + 1e-12));
+                    prop_assert_eq!(path.points[0], to.validated(&mesh).unwrap());
+                }
+                Err(Error::Unreachable { .. }) => prop_assert!(expected.is_infinite()),
+                Err(e) => prop_assert!(false, "{e}"),
+            }
+        }
+    }
+
+    /// A maximum distance: a target beyond it is unreached, one within it is found.
+    /// (A one-ended run may also leave unreached a point inside a face whose nodes
+    /// around lie beyond the maximum, as its early stop cannot tell what they would
+    /// give it; from both ends the two sides' values say.)
+    #[test]
+    fn both_ends_keep_to_the_maximum(seed in any::<u64>(), k in 1u32..4) {
+        let mesh = sphere(2, 0.2, seed);
+        let mut rng = Rng(seed | 1);
+        let (from, to) = (random_surface_point(&mesh, &mut rng), random_surface_point(&mesh, &mut rng));
+        let expected = oracle(&mesh, &Euclidean, k as f64, from, to);
+        let options = Options::DEFAULT.with_method(Method::Tracks).with_k(k as f64);
+        let solver = Solver::new(&mesh, Euclidean, &options).unwrap();
+        for max in [0.999 * expected, 1.001 * expected + 1e-12] {
+            let stop = Stop::NONE.with_max_distance(max);
+            match solver.shortest_path_with(&[Source::new(from)], to, &stop) {
+                Ok((path, _)) => {
+                    prop_assert!(max >= expected, "{} found beyond {}", path.traced_length, max);
+                    prop_assert!((path.traced_length - expected).abs() <= 1e-9 * expected);
+                }
+                Err(Error::Unreachable { .. }) => prop_assert!(max < expected),
+                Err(e) => prop_assert!(false, "{e}"),
+            }
+        }
+    }
+}
+
+/// The sides work in lock step, so the path does not depend on how the threads ran:
+/// the same query gives the same path, to the bit, every time (a route across hills
+/// with some thousand settles a round).
+#[test]
+fn the_same_query_gives_the_same_path() {
+    let mesh = hills(80);
+    let options = Options::DEFAULT.with_method(Method::Tracks).with_k(3.0);
+    let solver = Solver::new(&mesh, Euclidean, &options).unwrap();
+    let (from, to) = (SurfacePoint::Vertex(0), SurfacePoint::Vertex(80 * 81 + 57));
+    let first = solver
+        .shortest_path_with(&[Source::new(from)], to, &Stop::NONE)
+        .unwrap();
+    for _ in 0..6 {
+        let again = solver
+            .shortest_path_with(&[Source::new(from)], to, &Stop::NONE)
+            .unwrap();
+        assert_eq!(again.0.points, first.0.points);
+        assert_eq!(again.1.settles, first.1.settles);
+    }
+    let expected = oracle(&mesh, &Euclidean, 3.0, from, to);
+    assert!((first.0.traced_length - expected).abs() <= 1e-9 * expected);
+}
+
+/// Each side settles about half of what one goal-directed run settles: together about
+/// as much (the average of the two ends' estimates is weaker than one end's).
+#[test]
+fn together_the_sides_settle_about_what_one_run_settles() {
+    if !two_threads() {
+        return;
+    }
+    let mesh = hills(80);
+    let options = Options::DEFAULT.with_method(Method::Tracks).with_k(3.0);
+    let solver = Solver::new(&mesh, Euclidean, &options).unwrap();
+    let (from, to) = (SurfacePoint::Vertex(0), SurfacePoint::Vertex(80 * 81 + 57));
+    let source = [Source::new(from)];
+    let (both, both_stats) = solver.shortest_path_with(&source, to, &Stop::NONE).unwrap();
+    let one_end = Stop::NONE.with_both_ends(false);
+    let (one, one_stats) = solver.shortest_path_with(&source, to, &one_end).unwrap();
+    assert!(both_stats.both_ends && !one_stats.both_ends);
+    assert!((both.traced_length - one.traced_length).abs() <= 1e-9 * one.traced_length);
+    let ratio = both_stats.settles as f64 / one_stats.settles as f64;
+    assert!((0.8..1.4).contains(&ratio), "{ratio}");
+}
+
+/// One thread in rayon's pool, or a directed metric (whose backward side would need
+/// the reversed metric), or several sources: a one-ended run, for the same path.
+#[test]
+fn one_thread_a_directed_metric_or_sources_search_from_one_end() {
+    let mesh = hills(30);
+    let options = Options::DEFAULT.with_method(Method::Tracks).with_k(2.0);
+    let solver = Solver::new(&mesh, Euclidean, &options).unwrap();
+    let (from, to) = (SurfacePoint::Vertex(3), SurfacePoint::Vertex(30 * 31 + 20));
+    let expected = oracle(&mesh, &Euclidean, 2.0, from, to);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let (path, stats) = pool
+        .install(|| solver.shortest_path_with(&[Source::new(from)], to, &Stop::NONE))
+        .unwrap();
+    assert!(!stats.both_ends);
+    assert!((path.traced_length - expected).abs() <= 1e-9 * expected);
+
+    let sources = [Source::new(from), Source::new(SurfacePoint::Vertex(500))];
+    let (_, stats) = solver
+        .shortest_path_with(&sources, to, &Stop::NONE)
+        .unwrap();
+    assert!(!stats.both_ends);
+
+    let wind = random_randers(&mesh, 7, 0.5);
+    let solver = Solver::new(&mesh, &wind, &options).unwrap();
+    let (path, stats) = solver
+        .shortest_path_with(&[Source::new(from)], to, &Stop::NONE)
+        .unwrap();
+    assert!(!stats.both_ends);
+    let expected = oracle(&mesh, &wind, 2.0, from, to);
+    assert!((path.traced_length - expected).abs() <= 1e-9 * expected);
+}
+
+/// Two islands: no path, from both ends as from one; and a path from a point to
+/// itself, or across one face, is the point or the straight segment.
+#[test]
+fn islands_and_short_paths() {
+    let mesh = TriMesh::new(
+        vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [5.0, 0.0, 0.0],
+            [6.0, 0.0, 0.0],
+            [5.0, 1.0, 0.0],
+        ],
+        vec![[0, 1, 2], [3, 4, 5]],
+    )
+    .unwrap();
+    let options = Options::DEFAULT.with_method(Method::Tracks).with_k(2.0);
+    let solver = Solver::new(&mesh, Euclidean, &options).unwrap();
+    let far = solver.shortest_path_with(&[Source::new(0)], SurfacePoint::Vertex(4), &Stop::NONE);
+    assert!(matches!(far, Err(Error::Unreachable { .. })), "{far:?}");
+    let nan = Stop::NONE.with_max_distance(f64::NAN);
+    let refused = solver.shortest_path_with(&[Source::new(0)], SurfacePoint::Vertex(1), &nan);
+    assert!(
+        matches!(refused, Err(Error::InvalidValue { .. })),
+        "{refused:?}"
+    );
+    let (same, _) = solver
+        .shortest_path_with(&[Source::new(1)], SurfacePoint::Vertex(1), &Stop::NONE)
+        .unwrap();
+    assert_eq!(same.points, [SurfacePoint::Vertex(1)]);
+    let (a, b) = (
+        SurfacePoint::Face {
+            face: 0,
+            bary: [0.6, 0.2, 0.2],
+        },
+        SurfacePoint::Face {
+            face: 0,
+            bary: [0.2, 0.2, 0.6],
+        },
+    );
+    let (straight, _) = solver
+        .shortest_path_with(&[Source::new(a)], b, &Stop::NONE)
+        .unwrap();
+    assert_eq!(straight.points, [b, a]);
+    assert!((straight.length - 0.4).abs() < 1e-12);
+}
