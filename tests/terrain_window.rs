@@ -36,7 +36,8 @@ fn hilly(n: usize, seed: u64, relief: f64, holes: f64) -> ElevationGrid {
     .unwrap()
 }
 
-/// The route's Steiner-graph cost on the whole grid's mesh, with the grid's spacing.
+/// The route's Steiner-graph cost on the whole grid's mesh, with the grid's spacing: a
+/// full run from the start (one-ended, whatever the window's run does).
 fn whole_grid_cost(
     grid: &ElevationGrid,
     cost: &TerrainCost,
@@ -52,7 +53,7 @@ fn whole_grid_cost(
         terrain.locate(from[0], from[1])?,
         terrain.locate(to[0], to[1])?,
     );
-    Ok(route(&solver, a, b, false)?.traced_cost)
+    Ok(route(&solver, a, b, true)?.traced_cost)
 }
 
 const COSTS: [&str; 8] = [

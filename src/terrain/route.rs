@@ -54,10 +54,11 @@ impl Route {
     }
 }
 
-/// The cheapest route from `from` to `to` under the solver's metric: a run from `from`
-/// that stops once `to` is final (or, with `whole_field`, covers the whole surface and
-/// keeps every vertex's cost), then the straightened path, reversed so that it starts
-/// at `from`.
+/// The cheapest route from `from` to `to` under the solver's metric, as a path query
+/// finds it ([`Solver::shortest_path_with`]: from both ends at once where it can, else
+/// a run from `from` that stops once `to` is final; with `whole_field`, a run from
+/// `from` over the whole surface that keeps every vertex's cost), straightened and
+/// reversed so that it starts at `from`.
 ///
 /// ```
 /// use geotracks::terrain::{route, ElevationGrid, GridGeometry, TerrainCost};
@@ -97,11 +98,16 @@ fn route_within<M: Metric>(
     to: SurfacePoint,
     max_cost: f64,
 ) -> Result<Route, Error> {
-    let stop = Stop::NONE
-        .with_targets(vec![to])
-        .with_max_distance(max_cost);
-    let field = solver.solve_from(&[Source::new(from)], &stop)?;
-    route_in(solver, &field, to, false)
+    let started = Instant::now();
+    let (path, stats) = solver.shortest_path_with(
+        &[Source::new(from)],
+        to,
+        &Stop::NONE.with_max_distance(max_cost),
+    )?;
+    let mut route = path_route(solver, path, stats, None, started);
+    // (The path was traced and straightened after the propagation, in the call.)
+    route.path_seconds = (route.path_seconds - route.stats.propagate_seconds).max(0.0);
+    Ok(route)
 }
 
 /// As [`route`] over the whole surface, also handing back the field (the cost from
@@ -130,6 +136,25 @@ fn route_in<M: Metric>(
 ) -> Result<Route, Error> {
     let start = Instant::now();
     let path = solver.query(field)?.path(to)?;
+    let costs = keep_costs.then(|| field.vertex_distances().to_vec());
+    Ok(path_route(
+        solver,
+        path,
+        field.stats().clone(),
+        costs,
+        start,
+    ))
+}
+
+/// `path` (from the end back to the start) as a route from the start, with the run's
+/// `stats` and the vertex costs; the path's seconds counted from `start`.
+fn path_route<M: Metric>(
+    solver: &Solver<'_, M>,
+    path: crate::GeodesicPath,
+    stats: Stats,
+    vertex_costs: Option<Vec<f64>>,
+    start: Instant,
+) -> Route {
     let (mesh, metric) = (solver.mesh(), solver.metric());
     let mut points = path.positions(mesh);
     points.reverse();
@@ -142,15 +167,15 @@ fn route_in<M: Metric>(
     for c in costs {
         cumulative_cost.push(cumulative_cost[cumulative_cost.len() - 1] + c);
     }
-    Ok(Route {
+    Route {
         points,
         surface_points,
         cumulative_cost,
         traced_cost: path.traced_length,
-        vertex_costs: keep_costs.then(|| field.vertex_distances().to_vec()),
-        stats: field.stats().clone(),
+        vertex_costs,
+        stats,
         path_seconds: start.elapsed().as_secs_f64(),
-    })
+    }
 }
 
 /// A route found on a window of an elevation grid ([`route_on_grid`]).
@@ -213,7 +238,8 @@ const WHOLE_GRID_ABOVE: f64 = 0.75;
 /// its ends and `m` the cost's least cost per unit of 3D length
 /// ([`TerrainCost::least_cost_per_length`]). The window holds the cells whose 3D
 /// bounding box lies within that of a bound `C`, and the run on it goes no farther
-/// than `C` (goal-directed, it settles a corridor): a route found costs at most `C`,
+/// than `C` (goal-directed, and from both ends, it settles a corridor): a route found
+/// costs at most `C`,
 /// and no route that leaves the window is cheaper. The first window has `C` 5 % (1 %
 /// for the wavefront engine) above what the straight line between the ends costs on
 /// the terrain (a guess at the route's cost; four times that above `m · |s − t|` where
