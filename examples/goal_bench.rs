@@ -8,6 +8,10 @@
 //! With one target, a goal-directed run settles a corridor instead of a disc. With
 //! targets spread over the mesh the estimate is zero nearly everywhere: such runs are
 //! plain (`Stop::goal_directed` says when), and the two rows should match.
+//!
+//! Then the same 20 paths to the one target, traced and straightened
+//! (`Solver::shortest_path_with`), searched from both ends at once (two threads) and
+//! from one end.
 
 use geotracks::mesh::io::read_mesh;
 use geotracks::{Euclidean, Method, Options, Solver, Source, Stop, SurfacePoint};
@@ -47,6 +51,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let seconds = start.elapsed().as_secs_f64();
             println!("| {count} | {goal_directed} | {seconds:.3} | {settles} |");
         }
+    }
+    println!();
+    println!("| paths to one target | both ends | seconds | settles | total cost |");
+    println!("|---|---|---:|---:|---:|");
+    let target = SurfacePoint::Vertex(11 % n);
+    for both_ends in [true, false] {
+        let stop = Stop::NONE.with_both_ends(both_ends);
+        let (start, mut settles, mut cost) = (Instant::now(), 0, 0.0);
+        for &s in &sources {
+            let (path, stats) = solver.shortest_path_with(&[Source::new(s)], target, &stop)?;
+            settles += stats.settles;
+            cost += path.length;
+        }
+        let seconds = start.elapsed().as_secs_f64();
+        println!("| 20 | {both_ends} | {seconds:.3} | {settles} | {cost:.6} |");
     }
     Ok(())
 }

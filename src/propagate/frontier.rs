@@ -249,7 +249,7 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
         if let Some(side) = &mut self.meet {
             // Everything below the level is settled; `q` is not yet.
             let level = self.queue.level();
-            if side.round_over() && side.end_round(level) {
+            if side.round_over() && side.end_round(level, self.distance) {
                 return None;
             }
             side.settle(q, self.distance[q as usize]);
@@ -271,7 +271,7 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
     #[cold]
     fn over(&mut self) -> Option<(u32, f64)> {
         if let Some(side) = &mut self.meet {
-            side.finish();
+            side.finish(self.distance);
         }
         None
     }

@@ -10,7 +10,8 @@
 //! its offers.
 //!
 //! # When the search is over
-//! Let `μ` be the least `forward(v) + backward(v)` over the nodes both sides settled.
+//! Let `μ` be the least `forward(v) + backward(v)` found so far (over the nodes one
+//! side settled, with the other side's values then, each the cost of a path).
 //! Once the two levels add up to at least `μ + offset`, no path is cheaper than `μ`.
 //! Along a cheaper path `P`, every node's two keys add up to `cost(P) + offset`, less
 //! than the two levels: so the forward side settled the path up to some node `u`,
@@ -23,8 +24,9 @@
 //! # Lock step
 //! The sides run in rounds of the same number of settles (or until a side has
 //! nothing left to settle: its level is then `inf`). At a round's end both sides wait
-//! for each other, check the nodes they settled in the round against the other side's
-//! values, wait again, and take the same decision from the same numbers. What each
+//! for each other, each checks the nodes the other settled in the round (handed over
+//! as a list, with their values) against its own values, they wait again, and take
+//! the same decision from the same numbers. What each
 //! side does in a round depends only on its own run, so the result does not depend on
 //! how the threads were scheduled: the same query gives the same path, every time.
 //! Equal work per round keeps either side from waiting long for the other; the side
@@ -33,11 +35,14 @@
 //! [`Goal::between`]: crate::field::Goal::between
 
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::Mutex;
 
 /// What the two sides of a search from both ends share.
 pub(super) struct Meeting {
-    /// Per node, the value each side last settled it with (`f64` bits; `inf`: never).
-    settled: Vec<[AtomicU64; 2]>,
+    /// Per side, the nodes it settled in its last round, with their values: the other
+    /// side adds its own values to them. (Lists, not a per-node array: a search costs
+    /// what it settles, not the mesh.)
+    settled: [Mutex<Vec<(u32, f64)>>; 2],
     /// Per round parity and side: the side's level at the round's end (parity, so that
     /// a side that starts its next round cannot overwrite what the other still reads).
     level: [[AtomicU64; 2]; 2],
@@ -55,15 +60,13 @@ pub(super) struct Meeting {
 }
 
 impl Meeting {
-    /// A meeting over `nodes` nodes, whose sides' estimates add up to `offset`, in
-    /// rounds of `round` settles.
-    pub fn new(nodes: usize, offset: f64, round: usize) -> Meeting {
+    /// A meeting whose sides' estimates add up to `offset`, in rounds of `round`
+    /// settles.
+    pub fn new(offset: f64, round: usize) -> Meeting {
         let unset = f64::INFINITY.to_bits();
         let pair = || [AtomicU64::new(unset), AtomicU64::new(unset)];
         Meeting {
-            settled: (0..nodes)
-                .map(|_| [AtomicU64::new(unset), AtomicU64::new(unset)])
-                .collect(),
+            settled: [Mutex::new(Vec::new()), Mutex::new(Vec::new())],
             level: [pair(), pair()],
             best: [pair(), pair()],
             arrived: AtomicU64::new(0),
@@ -113,8 +116,8 @@ pub(super) struct Side<'a> {
     meeting: &'a Meeting,
     side: usize,
     rounds: usize,
-    /// The nodes it settled this round.
-    settled: Vec<u32>,
+    /// The nodes it settled this round, with their values.
+    settled: Vec<(u32, f64)>,
     /// The least sum of the two values it found so far.
     best: f64,
     /// The sides decided that the search is over.
@@ -125,8 +128,7 @@ impl Side<'_> {
     /// Records that `node` settled with `value`.
     #[inline]
     pub fn settle(&mut self, node: u32, value: f64) {
-        self.meeting.settled[node as usize][self.side].store(value.to_bits(), Ordering::Relaxed);
-        self.settled.push(node);
+        self.settled.push((node, value));
     }
 
     /// Whether the side is done with its round.
@@ -135,9 +137,10 @@ impl Side<'_> {
         self.settled.len() >= self.meeting.round
     }
 
-    /// Ends the side's round at `level` (`inf`: nothing left to settle), and returns
-    /// whether the search is over (as the other side's call returns the same).
-    pub fn end_round(&mut self, level: f64) -> bool {
+    /// Ends the side's round at `level` (`inf`: nothing left to settle), with its
+    /// values `distance`, and returns whether the search is over (as the other side's
+    /// call returns the same).
+    pub fn end_round(&mut self, level: f64, distance: &[f64]) -> bool {
         if self.over {
             return true;
         }
@@ -145,18 +148,21 @@ impl Side<'_> {
         let parity = self.rounds % 2;
         self.rounds += 1;
         m.level[parity][self.side].store(level.to_bits(), Ordering::Relaxed);
+        {
+            // The other side reads the list only between the next two rendezvous.
+            let mut mine = lock(&m.settled[self.side]);
+            std::mem::swap(&mut *mine, &mut self.settled);
+        }
+        self.settled.clear();
         if !m.rendezvous() {
             self.over = true;
             return true;
         }
-        // Both sides wait: the values are still.
-        for &node in &self.settled {
-            let [a, b] = &m.settled[node as usize];
-            let sum = f64::from_bits(a.load(Ordering::Relaxed))
-                + f64::from_bits(b.load(Ordering::Relaxed));
-            self.best = self.best.min(sum);
+        // Both sides wait: what the other settled this round, against this side's
+        // values (final or not, each is the cost of a path).
+        for &(node, value) in lock(&m.settled[1 - self.side]).iter() {
+            self.best = self.best.min(value + distance[node as usize]);
         }
-        self.settled.clear();
         m.best[parity][self.side].store(self.best.to_bits(), Ordering::Relaxed);
         if !m.rendezvous() {
             self.over = true;
@@ -172,9 +178,17 @@ impl Side<'_> {
     }
 
     /// Takes part in rounds, with nothing left to settle, until the search is over.
-    pub fn finish(&mut self) {
-        while !self.end_round(f64::INFINITY) {}
+    pub fn finish(&mut self, distance: &[f64]) {
+        while !self.end_round(f64::INFINITY, distance) {}
     }
+}
+
+/// The list behind `mutex`: a side that panicked holding it left nothing the other
+/// could misread (it swaps whole lists).
+fn lock<T>(mutex: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
+    mutex
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
 }
 
 /// A side dropped before the search was over (its run failed before it began, or

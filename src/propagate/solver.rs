@@ -1228,7 +1228,7 @@ impl<M: Metric> Solver<'_, M> {
             (None, None, 0.0)
         };
         let round = (layout.node_count() / ROUNDS_PER_MESH).clamp(ROUND_LEAST, ROUND_MOST);
-        let meeting = Meeting::new(layout.node_count(), offset, round);
+        let meeting = Meeting::new(offset, round);
         let (mut forward, mut backward) = (self.workspace(), self.workspace());
         forward.sources = vec![source];
         backward.sources = vec![Source::new(target)];
