@@ -73,6 +73,10 @@ pub struct Solver<'m, M> {
     /// Per vertex, its wires: the vertex at the other end and the wire's cost.
     wires: Csr<(u32, f64)>,
     setup_seconds: f64,
+    /// Workspaces path queries ran in, kept for the next ones (at most two): a path's
+    /// run records what it touched, so the next one clears only that, instead of
+    /// allocating and clearing buffers the size of the mesh.
+    path_workspaces: std::sync::Mutex<Vec<Workspace>>,
 }
 
 /// The per-run buffers of a [`Solver`]: per-node distances and parents, per-instance
@@ -357,6 +361,7 @@ impl<'m, M: Metric> Solver<'m, M> {
             },
             wires,
             setup_seconds: start.elapsed().as_secs_f64(),
+            path_workspaces: std::sync::Mutex::default(),
         })
     }
 
@@ -1158,6 +1163,11 @@ impl<M: Metric> Solver<'_, M> {
     /// target farther is [`Error::Unreachable`]; its targets are replaced by `target`),
     /// with the run's counters.
     ///
+    /// The solver keeps the (up to two) workspaces a path query ran in for the next
+    /// one, which then clears only what the last one touched: many paths on one mesh
+    /// cost what they settle, not the mesh each (memory: two workspaces' buffers, held
+    /// as long as the solver).
+    ///
     /// From one source, with [`Stop::both_ends`] (the default), a Steiner-graph engine
     /// and a symmetric metric, and two threads or more in rayon's pool, the search runs
     /// from both ends at once (`Stats::both_ends`): the path's traced cost is the
@@ -1193,17 +1203,53 @@ impl<M: Metric> Solver<'_, M> {
             && self.metric.is_symmetric()
             && rayon::current_num_threads() >= 2;
         if both_ends {
-            return self.path_from_both_ends(sources[0], target, stop.max_distance);
+            let mut workspaces = [self.path_workspace(), self.path_workspace()];
+            let found =
+                self.path_from_both_ends(&mut workspaces, sources[0], target, stop.max_distance);
+            for workspace in workspaces {
+                self.keep_path_workspace(workspace);
+            }
+            return found;
         }
-        let field = self.solve_from(sources, &stop.clone().with_targets(vec![target]))?;
-        let path = self.query(&field)?.path(target)?;
-        Ok((path, field.stats().clone()))
+        let mut workspace = self.path_workspace();
+        let found = self
+            .run_from(
+                &mut workspace,
+                sources,
+                &stop.clone().with_targets(vec![target]),
+            )
+            .and_then(|stats| {
+                let path = self.query_workspace(&workspace)?.path(target)?;
+                Ok((path, stats))
+            });
+        self.keep_path_workspace(workspace);
+        found
+    }
+
+    /// A workspace for a path query: one a path query ran in before, or a new one.
+    fn path_workspace(&self) -> Workspace {
+        let kept = self
+            .path_workspaces
+            .lock()
+            .map(|mut kept| kept.pop())
+            .unwrap_or_default();
+        kept.unwrap_or_else(|| self.workspace())
+    }
+
+    /// Keeps `workspace` for the next path query (two at most).
+    fn keep_path_workspace(&self, workspace: Workspace) {
+        if let Ok(mut kept) = self.path_workspaces.lock() {
+            if kept.len() < 2 {
+                kept.push(workspace);
+            }
+        }
     }
 
     /// The path from `target` to `source` no costlier than `max_distance`, searched
     /// from both ends at once on two threads (see `meet`).
     fn path_from_both_ends(
         &self,
+        [forward, backward]: &mut [Workspace; 2],
         source: Source,
         target: SurfacePoint,
         max_distance: f64,
@@ -1229,16 +1275,16 @@ impl<M: Metric> Solver<'_, M> {
         };
         let round = (layout.node_count() / ROUNDS_PER_MESH).clamp(ROUND_LEAST, ROUND_MOST);
         let meeting = Meeting::new(offset, round);
-        let (mut forward, mut backward) = (self.workspace(), self.workspace());
-        forward.sources = vec![source];
-        backward.sources = vec![Source::new(target)];
+        forward.sources.clear();
+        forward.sources.push(source);
+        backward.sources.clear();
+        backward.sources.push(Source::new(target));
         let stop = Stop::NONE.with_max_distance(max_distance);
         let (forward_stats, backward_stats) = std::thread::scope(|scope| {
             let back = scope.spawn(|| {
-                self.execute_side(&mut backward, &stop, Some((backward_goal, meeting.side(1))))
+                self.execute_side(backward, &stop, Some((backward_goal, meeting.side(1))))
             });
-            let ahead =
-                self.execute_side(&mut forward, &stop, Some((forward_goal, meeting.side(0))));
+            let ahead = self.execute_side(forward, &stop, Some((forward_goal, meeting.side(0))));
             let back = back
                 .join()
                 .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
@@ -1299,8 +1345,8 @@ impl<M: Metric> Solver<'_, M> {
                 .ok_or(Error::ParentCycle { point: target })?;
             Ok::<_, Error>((points, faces, source))
         };
-        let (mut points, mut faces, _) = chain(&backward)?;
-        let (ahead_points, ahead_faces, source) = chain(&forward)?;
+        let (mut points, mut faces, _) = chain(backward)?;
+        let (ahead_points, ahead_faces, source) = chain(forward)?;
         points.reverse();
         faces.reverse();
         points.extend_from_slice(&ahead_points[1..]);
