@@ -199,11 +199,13 @@ pub struct Stop {
     /// search from both ends at once, on two threads, and stop where the two searches
     /// meet. Each side settles about half of what a one-ended goal-directed run would,
     /// and the path is the same (the Steiner graph's cheapest; the sides work in lock
-    /// step, so the result does not depend on how the threads ran). Default: `true`;
-    /// it takes effect for the Steiner-graph engines (not [`Method::Wave`], which is
-    /// not goal-directed), a symmetric metric, [`goal_directed`](Self::goal_directed)
-    /// runs, and when rayon's pool has two threads or more. Fields
-    /// ([`Solver::solve_from`]) come from their sources alone whatever this says.
+    /// step, so the result does not depend on how the threads ran). Under a directed
+    /// metric the backward side runs the reversed metric ([`crate::Reversed`]) on a
+    /// solver built for the query (its setup is the price). Default: `true`; it takes
+    /// effect for the Steiner-graph engines (not [`Method::Wave`], which is not
+    /// goal-directed), [`goal_directed`](Self::goal_directed) runs, and when rayon's
+    /// pool has two threads or more. Fields ([`Solver::solve_from`]) come from their
+    /// sources alone whatever this says.
     ///
     /// [`Solver::shortest_path_with`]: crate::Solver::shortest_path_with
     /// [`Solver::solve_from`]: crate::Solver::solve_from

@@ -1,8 +1,9 @@
 //! A path between two points searched from both ends at once, on two threads: what
 //! the two searches share, and how they decide, in lock step, that they have met.
 //!
-//! Each side is an ordinary goal-directed run (the forward one from the path's start,
-//! the backward one from its end, under the same symmetric metric), ordered by its
+//! Each side is an ordinary goal-directed run (the forward one from the path's start
+//! under the metric, the backward one from its end under the metric reversed: the
+//! same metric when it is symmetric), ordered by its
 //! value plus the average of the two ends' estimates ([`Goal::between`]): a node's
 //! two keys add up to the cost of the best path through it plus `offset`. Each side
 //! settles nodes in key order, so every node whose key is below its side's *level*

@@ -16,6 +16,7 @@ use crate::surface::{PointError, Source, SurfacePoint};
 use crate::trace::Query;
 use crate::{Error, PointRole, ValueRole};
 use geotracks_metrics::Metric;
+use geotracks_metrics::Reversed;
 use rayon::prelude::*;
 use std::sync::Arc;
 use std::time::Instant;
@@ -56,7 +57,7 @@ pub struct Solver<'m, M> {
     layout: Arc<SteinerLayout>,
     edge_steps: Option<Vec<f64>>,
     setup_tests: u64,
-    tables: Option<TrackTables>,
+    tables: Option<Arc<TrackTables>>,
     /// Per edge block, for the wavefront engine: whether its faces glue isometrically.
     isometric: Vec<bool>,
     /// How far below a node's value its offers can reach (see `Frontier::reach`).
@@ -327,7 +328,7 @@ impl<'m, M: Metric> Solver<'m, M> {
                 if options.method == Method::Wave {
                     tables = tables.with_vertex_rows(mesh, &layout);
                 }
-                (Some(tables), width)
+                (Some(Arc::new(tables)), width)
             }
             _ => (None, width),
         };
@@ -359,6 +360,41 @@ impl<'m, M: Metric> Solver<'m, M> {
                 let [lo, hi] = bounding_box(mesh.positions().iter().map(|p| p.to_array()));
                 glam::DVec3::from(hi).distance(glam::DVec3::from(lo))
             },
+            wires,
+            setup_seconds: start.elapsed().as_secs_f64(),
+            path_workspaces: std::sync::Mutex::default(),
+        })
+    }
+
+    /// This solver under the metric reversed, on the same Steiner points and tables:
+    /// the backward side of a path searched from both ends under a directed metric.
+    /// Only what depends on the metric's direction is worked out again (the steps
+    /// along edges, the wires, the checks); the tables do not depend on it for a
+    /// directed metric, which has no cached steps.
+    fn reversed(&self) -> Result<Solver<'m, Reversed<&M>>, Error> {
+        let start = Instant::now();
+        let (mesh, metric) = (self.mesh, Reversed(&self.metric));
+        debug_assert!(self.edge_steps.is_none() && self.isometric.is_empty());
+        let steps = first_face_steps(mesh, &metric, &self.layout);
+        let wires = wire_costs(mesh, &metric)?;
+        let cost_total = check_cost_range(&metric, &self.layout, &steps, &wires)?;
+        let per_length = check_per_length(mesh, &metric, &self.layout, &steps, &wires)?;
+        Ok(Solver {
+            id: SolverId::fresh(),
+            mesh,
+            metric,
+            method: self.method,
+            k: self.k,
+            layout: Arc::clone(&self.layout),
+            edge_steps: None,
+            setup_tests: (mesh.edge_count() + wires.len() / 2) as u64,
+            tables: self.tables.clone(),
+            isometric: Vec::new(),
+            reach: self.reach,
+            bucket_width: bucket_width(&steps),
+            cost_total,
+            per_length,
+            extent: self.extent,
             wires,
             setup_seconds: start.elapsed().as_secs_f64(),
             path_workspaces: std::sync::Mutex::default(),
@@ -1169,9 +1205,10 @@ impl<M: Metric> Solver<'_, M> {
     /// as long as the solver).
     ///
     /// From one source, with [`Stop::both_ends`] (the default), a Steiner-graph engine
-    /// and a symmetric metric, and two threads or more in rayon's pool, the search runs
-    /// from both ends at once (`Stats::both_ends`): the path's traced cost is the
-    /// Steiner graph's, as a one-ended run's, to rounding.
+    /// and two threads or more in rayon's pool, the search runs from both ends at once
+    /// (`Stats::both_ends`; a directed metric's backward side on a reversed-metric
+    /// solver built for the query): the path's traced cost is the Steiner graph's, as a
+    /// one-ended run's, to rounding.
     ///
     /// ```
     /// use geotracks::{mesh::TriMesh, Euclidean, Method, Options, Solver, Source, Stop, SurfacePoint};
@@ -1200,12 +1237,23 @@ impl<M: Metric> Solver<'_, M> {
             && stop.goal_directed
             && sources.len() == 1
             && self.method != Method::Wave
-            && self.metric.is_symmetric()
             && rayon::current_num_threads() >= 2;
         if both_ends {
             let mut workspaces = [self.path_workspace(), self.path_workspace()];
-            let found =
-                self.path_from_both_ends(&mut workspaces, sources[0], target, stop.max_distance);
+            let (source, max) = (sources[0], stop.max_distance);
+            let found = if self.metric.is_symmetric() {
+                self.path_from_both_ends(self, &mut workspaces, source, target, max)
+            } else {
+                // The backward side travels against the metric: the reversed metric's
+                // solver, on the same Steiner points and tables.
+                self.reversed().and_then(|back| {
+                    let (path, mut stats) =
+                        self.path_from_both_ends(&back, &mut workspaces, source, target, max)?;
+                    // (Its setup is this query's.)
+                    stats.setup_seconds += back.setup_seconds;
+                    Ok((path, stats))
+                })
+            };
             for workspace in workspaces {
                 self.keep_path_workspace(workspace);
             }
@@ -1246,9 +1294,12 @@ impl<M: Metric> Solver<'_, M> {
     }
 
     /// The path from `target` to `source` no costlier than `max_distance`, searched
-    /// from both ends at once on two threads (see `meet`).
-    fn path_from_both_ends(
+    /// from both ends at once on two threads (see `meet`): forward with this solver,
+    /// backward with `back` (this solver for a symmetric metric, else the reversed
+    /// metric's, on the same Steiner points).
+    fn path_from_both_ends<B: Metric>(
         &self,
+        back: &Solver<'_, B>,
         [forward, backward]: &mut [Workspace; 2],
         source: Source,
         target: SurfacePoint,
@@ -1282,7 +1333,7 @@ impl<M: Metric> Solver<'_, M> {
         let stop = Stop::NONE.with_max_distance(max_distance);
         let (forward_stats, backward_stats) = std::thread::scope(|scope| {
             let back = scope.spawn(|| {
-                self.execute_side(backward, &stop, Some((backward_goal, meeting.side(1))))
+                back.execute_side(backward, &stop, Some((backward_goal, meeting.side(1))))
             });
             let ahead = self.execute_side(forward, &stop, Some((forward_goal, meeting.side(0))));
             let back = back
@@ -1336,17 +1387,11 @@ impl<M: Metric> Solver<'_, M> {
         }
         // From the target to the meeting node along the backward side's parents, then
         // on to the source along the forward side's.
-        let chain = |workspace: &Workspace| {
-            let mut points = vec![layout.surface_point(meet)];
-            let mut faces = Vec::new();
-            let source = self
-                .query_workspace(workspace)?
-                .follow_parents(meet, &mut points, &mut faces)
-                .ok_or(Error::ParentCycle { point: target })?;
-            Ok::<_, Error>((points, faces, source))
-        };
-        let (mut points, mut faces, _) = chain(backward)?;
-        let (ahead_points, ahead_faces, source) = chain(forward)?;
+        let cycle = || Error::ParentCycle { point: target };
+        let (mut points, mut faces, _) =
+            chain(&back.query_workspace(backward)?, meet).ok_or_else(cycle)?;
+        let (ahead_points, ahead_faces, source) =
+            chain(&self.query_workspace(forward)?, meet).ok_or_else(cycle)?;
         points.reverse();
         faces.reverse();
         points.extend_from_slice(&ahead_points[1..]);
@@ -1355,6 +1400,18 @@ impl<M: Metric> Solver<'_, M> {
         crate::trace::straighten(&mut path, mesh, &self.metric);
         Ok((path, stats))
     }
+}
+
+/// The points and faces from `node` back to its source along `query`'s parents, and
+/// the source (`None` on a cycle).
+fn chain<M: Metric>(
+    query: &crate::trace::Query<'_, M>,
+    node: u32,
+) -> Option<(Vec<SurfacePoint>, Vec<u32>, u32)> {
+    let mut points = vec![query.layout().surface_point(node)];
+    let mut faces = Vec::new();
+    let source = query.follow_parents(node, &mut points, &mut faces)?;
+    Some((points, faces, source))
 }
 
 /// How many nodes each side of a search from both ends settles in a round (see
