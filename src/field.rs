@@ -51,7 +51,9 @@ pub struct Stats {
     /// The run ended at its targets, before the queue ran out (see [`crate::Stop`]).
     pub stopped_early: bool,
     /// The run was a path's search from both ends ([`crate::Stop::both_ends`]): the
-    /// counters are the two sides' sums, `propagate_seconds` the time both took.
+    /// counters are the two sides' sums, `propagate_seconds` the longer side's (waits
+    /// for the other included), `setup_seconds` the forward side's (and the reversed
+    /// metric's setup, for a directed metric).
     pub both_ends: bool,
 }
 

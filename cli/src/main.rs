@@ -210,16 +210,16 @@ impl std::fmt::Display for Short {
 pub(crate) type CliResult<T = ()> = Result<T, Box<dyn std::error::Error>>;
 
 /// The end of a run's summary line: Steiner points, seconds, and whether it stopped at
-/// its target.
+/// its target (or met it, searched from both ends).
 pub(crate) fn run_summary(s: &geotracks::Stats) -> String {
     format!(
         "{} Steiner points, {:.3} s{}",
         s.steiner_points,
         s.setup_seconds + s.propagate_seconds,
-        if s.stopped_early {
-            ", stopped at the target"
-        } else {
-            ""
+        match (s.stopped_early, s.both_ends) {
+            (true, true) => ", searched from both ends",
+            (true, false) => ", stopped at the target",
+            _ => "",
         }
     )
 }

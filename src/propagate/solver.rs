@@ -75,8 +75,8 @@ pub struct Solver<'m, M> {
     wires: Csr<(u32, f64)>,
     setup_seconds: f64,
     /// Workspaces path queries ran in, kept for the next ones (at most two): a path's
-    /// run records what it touched, so the next one clears only that, instead of
-    /// allocating and clearing buffers the size of the mesh.
+    /// run records the nodes it touched, so the next one clears only those (and the
+    /// track table), instead of allocating buffers the size of the mesh.
     path_workspaces: std::sync::Mutex<Vec<Workspace>>,
 }
 
@@ -1200,9 +1200,9 @@ impl<M: Metric> Solver<'_, M> {
     /// with the run's counters.
     ///
     /// The solver keeps the (up to two) workspaces a path query ran in for the next
-    /// one, which then clears only what the last one touched: many paths on one mesh
-    /// cost what they settle, not the mesh each (memory: two workspaces' buffers, held
-    /// as long as the solver).
+    /// one, which then clears only the nodes the last one touched (and the tracks
+    /// engine's track table, whole) instead of allocating buffers the size of the mesh
+    /// (memory: two workspaces' buffers, held as long as the solver).
     ///
     /// From one source, with [`Stop::both_ends`] (the default), a Steiner-graph engine
     /// and two threads or more in rayon's pool, the search runs from both ends at once
@@ -1315,7 +1315,6 @@ impl<M: Metric> Solver<'_, M> {
         let mut sources = [source];
         self.validate_sources(&mut sources)?;
         let [source] = sources;
-        let start = Instant::now();
         let (from, to) = (source.point.position(mesh), target.position(mesh));
         let (forward_goal, backward_goal, offset) = if self.per_length > 0.0 {
             let forward = Goal::between(from, to, self.per_length);
@@ -1342,7 +1341,6 @@ impl<M: Metric> Solver<'_, M> {
             (ahead, back)
         });
         let (forward_stats, backward_stats) = (forward_stats?, backward_stats?);
-        let propagate_seconds = start.elapsed().as_secs_f64();
         // Where the two sides' values add up to least: the path goes through it (see
         // `meet`). In the order the forward side reached them, the first such node.
         let (mut cost, mut meet) = (f64::INFINITY, NONE);
@@ -1366,7 +1364,10 @@ impl<M: Metric> Solver<'_, M> {
             .min_by(|a, b| a.0.total_cmp(&b.0));
         let stats = Stats {
             setup_seconds: forward_stats.setup_seconds,
-            propagate_seconds,
+            // (Each side's includes its waits for the other: the longer is the search's.)
+            propagate_seconds: forward_stats
+                .propagate_seconds
+                .max(backward_stats.propagate_seconds),
             pushes: forward_stats.pushes + backward_stats.pushes,
             settles: forward_stats.settles + backward_stats.settles,
             distance_tests: forward_stats.distance_tests + backward_stats.distance_tests,
