@@ -205,7 +205,8 @@ pub struct Stop {
     /// effect for the Steiner-graph engines (not [`Method::Wave`], which is not
     /// goal-directed), [`goal_directed`](Self::goal_directed) runs, and when rayon's
     /// pool has two threads or more. Fields ([`Solver::solve_from`]) come from their
-    /// sources alone whatever this says.
+    /// sources alone whatever this says. The backward side runs on a thread of its
+    /// own: paths already run in parallel (one per core) are better one-ended.
     ///
     /// [`Solver::shortest_path_with`]: crate::Solver::shortest_path_with
     /// [`Solver::solve_from`]: crate::Solver::solve_from

@@ -9,6 +9,7 @@ use super::{DirectedCost, DirectedModel, ElevationGrid, TerrainMesh};
 use crate::mesh::TriMesh;
 use geotracks_metrics::{Density, FacePoint, Metric, Tensor};
 use glam::DVec3;
+use rayon::prelude::*;
 use std::fmt;
 use std::str::FromStr;
 
@@ -102,9 +103,10 @@ pub fn vertex_slope_tan2(mesh: &TriMesh) -> Vec<f64> {
 fn grid_vertex_slope_tan2(grid: &ElevationGrid, terrain: &TerrainMesh) -> Vec<f64> {
     let g = grid.geometry();
     let last = (g.ncols - 1, g.nrows - 1);
+    // (On all cores: a vertex's slope reads only the grid; collected in vertex order.)
     terrain
         .vertex_samples()
-        .into_iter()
+        .into_par_iter()
         .map(|s| {
             let (col, row) = (s % g.ncols, s / g.ncols);
             // The (up to) four cells around the sample.
