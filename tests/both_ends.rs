@@ -8,8 +8,7 @@
 mod common;
 
 use common::{
-    oracle, random_book, random_mesh, random_metric, random_randers, random_surface_point, sphere,
-    Rng,
+    oracle, oracle_mesh, random_metric, random_randers, random_surface_point, sphere, Rng,
 };
 use geotracks::mesh::TriMesh;
 use geotracks::{Error, Euclidean, Method, Metric, Options, Solver, Source, Stop, SurfacePoint};
@@ -43,13 +42,8 @@ proptest! {
         kind in 0u8..4,
         k in 1u32..5,
     ) {
-        let mesh = match shape {
-            0 => sphere(2, 0.2, seed),
-            1 => random_book(seed, 3, 4),
-            _ => match random_mesh(seed, 7) {
-                Ok(mesh) => mesh,
-                Err(_) => return Ok(()),
-            },
+        let Some(mesh) = oracle_mesh(shape, seed) else {
+            return Ok(());
         };
         let metric = random_metric(&mesh, kind, seed);
         let mut rng = Rng(seed ^ 0xb07e);
@@ -199,18 +193,7 @@ fn one_thread_or_sources_search_from_one_end() {
 /// itself, or across one face, is the point or the straight segment.
 #[test]
 fn islands_and_short_paths() {
-    let mesh = TriMesh::new(
-        vec![
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [5.0, 0.0, 0.0],
-            [6.0, 0.0, 0.0],
-            [5.0, 1.0, 0.0],
-        ],
-        vec![[0, 1, 2], [3, 4, 5]],
-    )
-    .unwrap();
+    let mesh = common::two_islands();
     let options = Options::DEFAULT.with_method(Method::Tracks).with_k(2.0);
     let solver = Solver::new(&mesh, Euclidean, &options).unwrap();
     let far = solver.shortest_path_with(&[Source::new(0)], SurfacePoint::Vertex(4), &Stop::NONE);

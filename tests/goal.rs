@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{oracle, random_book, random_mesh, random_metric, sphere, Rng};
+use common::{oracle, oracle_mesh, random_metric, sphere, Rng};
 use geotracks::mesh::TriMesh;
 use geotracks::{
     Error, Euclidean, FacePoint, Method, Metric, Options, Solver, Source, Stop, SurfacePoint,
@@ -46,13 +46,8 @@ proptest! {
         kind in 0u8..4,
         k in 1u32..5,
     ) {
-        let mesh = match shape {
-            0 => sphere(2, 0.2, seed),
-            1 => random_book(seed, 3, 4),
-            _ => match random_mesh(seed, 7) {
-                Ok(mesh) => mesh,
-                Err(_) => return Ok(()),
-            },
+        let Some(mesh) = oracle_mesh(shape, seed) else {
+            return Ok(());
         };
         let metric = random_metric(&mesh, kind, seed);
         let mut rng = Rng(seed ^ 0x90a1);

@@ -500,18 +500,7 @@ fn bad_points_and_unreachable_targets_are_errors() {
     ));
 
     // Two components: the second is unreachable, by distance and by path.
-    let two = TriMesh::new(
-        vec![
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [5.0, 0.0, 0.0],
-            [6.0, 0.0, 0.0],
-            [5.0, 1.0, 0.0],
-        ],
-        vec![[0, 1, 2], [3, 4, 5]],
-    )
-    .unwrap();
+    let two = common::two_islands();
     let two_solver = Solver::new(&two, Euclidean, &Options::DEFAULT).unwrap();
     let field = two_solver.solve(&[0]).unwrap();
     let query = two_solver.query(&field).unwrap();

@@ -965,3 +965,30 @@ pub fn random_metric(mesh: &TriMesh, kind: u8, seed: u64) -> Box<dyn Metric> {
         _ => Box::new(random_randers(mesh, seed, 0.7)),
     }
 }
+
+/// A mesh of shape `shape` (0: a jittered sphere, 1: a non-manifold book of three
+/// pages, else a random mesh with holes and fins), `None` when the random mesh's
+/// generator gives up: the meshes the path oracles run on.
+pub fn oracle_mesh(shape: u8, seed: u64) -> Option<TriMesh> {
+    match shape {
+        0 => Some(sphere(2, 0.2, seed)),
+        1 => Some(random_book(seed, 3, 4)),
+        _ => random_mesh(seed, 7).ok(),
+    }
+}
+
+/// Two triangles far apart: two islands, no path between them.
+pub fn two_islands() -> TriMesh {
+    TriMesh::new(
+        vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [5.0, 0.0, 0.0],
+            [6.0, 0.0, 0.0],
+            [5.0, 1.0, 0.0],
+        ],
+        vec![[0, 1, 2], [3, 4, 5]],
+    )
+    .unwrap()
+}
