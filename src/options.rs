@@ -96,7 +96,10 @@ pub struct Options {
     /// Bytes a solver and one run may take (mesh excluded), checked before anything is
     /// allocated: a k that would need more is refused with [`Error::KTooLarge`] and the
     /// largest k that fits. `None` (the default) uses the memory the system reports as
-    /// available (Linux), or checks nothing where it reports none.
+    /// available (Linux), or checks nothing where it reports none. A path searched
+    /// from both ends ([`Stop::both_ends`]) needs a second run's buffers: it runs
+    /// one-ended where they would not fit beside the first (under the limit, or in
+    /// what the system reports available at the query).
     ///
     /// [`Error::KTooLarge`]: crate::Error::KTooLarge
     pub memory_limit: Option<u64>,
@@ -203,8 +206,9 @@ pub struct Stop {
     /// metric the backward side runs the reversed metric ([`crate::Reversed`]) on a
     /// solver built for the query (its setup is the price). Default: `true`; it takes
     /// effect for the Steiner-graph engines (not [`Method::Wave`], which is not
-    /// goal-directed), [`goal_directed`](Self::goal_directed) runs, and when rayon's
-    /// pool has two threads or more. Fields ([`Solver::solve_from`]) come from their
+    /// goal-directed), [`goal_directed`](Self::goal_directed) runs, when rayon's pool
+    /// has two threads or more, and when a second run's buffers fit the memory budget
+    /// ([`Options::memory_limit`]). Fields ([`Solver::solve_from`]) come from their
     /// sources alone whatever this says. The backward side runs on a thread of its
     /// own: paths already run in parallel (one per core) are better one-ended.
     ///

@@ -189,6 +189,35 @@ fn one_thread_or_sources_search_from_one_end() {
     assert!((there - back).abs() > 1e-3 * there, "{there} {back}");
 }
 
+/// A memory budget that fits the solver and one run, but not a second run's buffers:
+/// one-ended; with room for them, from both ends.
+#[test]
+fn a_second_run_must_fit_the_memory_budget() {
+    if !two_threads() {
+        return;
+    }
+    let mesh = hills(30);
+    let options = Options::DEFAULT.with_method(Method::Tracks).with_k(3.0);
+    // The least limit the solver accepts (what it and one run need), by bisection.
+    let (mut lo, mut hi) = (0u64, 1u64 << 40);
+    while hi - lo > 1 {
+        let mid = lo + (hi - lo) / 2;
+        match Solver::new(&mesh, Euclidean, &options.with_memory_limit(mid)) {
+            Ok(_) => hi = mid,
+            Err(Error::KTooLarge { .. }) => lo = mid,
+            Err(e) => panic!("{e}"),
+        }
+    }
+    let (from, to) = (SurfacePoint::Vertex(3), SurfacePoint::Vertex(30 * 31 + 20));
+    for (limit, both) in [(hi, false), (3 * hi, true)] {
+        let solver = Solver::new(&mesh, Euclidean, &options.with_memory_limit(limit)).unwrap();
+        let (_, stats) = solver
+            .shortest_path_with(&[Source::new(from)], to, &Stop::NONE)
+            .unwrap();
+        assert_eq!(stats.both_ends, both, "limit {limit}");
+    }
+}
+
 /// Two islands: no path, from both ends as from one; and a path from a point to
 /// itself, or across one face, is the point or the straight segment.
 #[test]

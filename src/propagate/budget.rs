@@ -31,15 +31,16 @@ pub(super) fn check(
     spacing: Spacing,
     method: Method,
     memory: Option<u64>,
-) -> Result<(), Error> {
-    let Some(limit) = breaks(mesh, scheme, spacing, method, memory) else {
-        return Ok(());
+) -> Result<u64, Error> {
+    let limit = match breaks(mesh, scheme, spacing, method, memory) {
+        Ok(needed) => return Ok(needed),
+        Err(limit) => limit,
     };
     // The limits grow with k: bisect for the largest k that keeps within them.
     let (mut lo, mut hi) = (0.0, scheme.k());
     for _ in 0..60 {
         let mid = 0.5 * (lo + hi);
-        if breaks(mesh, scheme.with_k(mid), spacing, method, memory).is_none() {
+        if breaks(mesh, scheme.with_k(mid), spacing, method, memory).is_ok() {
             lo = mid;
         } else {
             hi = mid;
@@ -61,23 +62,25 @@ pub(super) fn check(
     })
 }
 
-/// The first limit `scheme` breaks, if any.
+/// The first limit `scheme` breaks, or the bytes it needs.
 fn breaks(
     mesh: &TriMesh,
     scheme: SteinerScheme,
     spacing: Spacing,
     method: Method,
     memory: Option<u64>,
-) -> Option<SizeLimit> {
+) -> Result<u64, SizeLimit> {
     if !scheme.is_valid() {
         // Below any point at all: nothing to lay out, nothing to break.
-        return None;
+        return Ok(0);
     }
     let counts = scheme.counts_relative_to(spacing.lengths, spacing.min, spacing.mean);
     if matches!(method, Method::Tracks | Method::Wave) {
-        let (edge, &points) = counts.iter().enumerate().max_by_key(|(_, &c)| c)?;
+        let Some((edge, &points)) = counts.iter().enumerate().max_by_key(|(_, &c)| c) else {
+            return Ok(0);
+        };
         if points as u64 > MAX_POINTS_PER_EDGE {
-            return Some(SizeLimit::PointsOnEdge {
+            return Err(SizeLimit::PointsOnEdge {
                 edge: edge as u32,
                 points: points as u64,
                 limit: MAX_POINTS_PER_EDGE,
@@ -87,12 +90,29 @@ fn breaks(
     let steiner: u64 = counts.iter().map(|&c| c as u64).sum();
     let nodes = mesh.vertex_count() as u64 + steiner;
     if nodes >= NONE as u64 {
-        return Some(SizeLimit::Nodes { nodes });
+        return Err(SizeLimit::Nodes { nodes });
     }
     let needed = bytes(mesh, &counts, steiner, nodes, method);
     match memory {
-        Some(available) if needed > available => Some(SizeLimit::Memory { needed, available }),
-        _ => None,
+        Some(available) if needed > available => Err(SizeLimit::Memory { needed, available }),
+        _ => Ok(needed),
+    }
+}
+
+/// The bytes one more run's buffers take (a workspace: per node its distance, parent,
+/// parent face, queue flag and goal estimate, about two queue entries, and a track per
+/// instance): what a path searched from both ends needs beyond a one-ended run.
+pub(super) fn run_bytes(nodes: usize, instances: usize) -> u64 {
+    (8 + 4 + 4 + 1 + 8 + 2 * 4) * nodes as u64 + 8 * instances as u64
+}
+
+/// Whether a second run's buffers (`run_bytes`) fit: within `limit` beside what the
+/// solver and its first run were budgeted (`budgeted`), or without a limit within what
+/// the system says is available now (or where it says nothing).
+pub(super) fn second_run_fits(extra: u64, budgeted: u64, limit: Option<u64>) -> bool {
+    match limit {
+        Some(limit) => budgeted.saturating_add(extra) <= limit,
+        None => available_memory().is_none_or(|available| extra <= available),
     }
 }
 

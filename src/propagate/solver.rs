@@ -78,6 +78,10 @@ pub struct Solver<'m, M> {
     /// run records the nodes it touched, so the next one clears only those (and the
     /// track table), instead of allocating buffers the size of the mesh.
     path_workspaces: std::sync::Mutex<Vec<Workspace>>,
+    /// [`Options::memory_limit`], and what the solver and one run were budgeted: a
+    /// path searched from both ends needs a second run's buffers.
+    memory_limit: Option<u64>,
+    budgeted: u64,
 }
 
 /// The per-run buffers of a [`Solver`]: per-node distances and parents, per-instance
@@ -266,6 +270,8 @@ impl<'m, M: Metric> Solver<'m, M> {
         };
         let options = &options.with_method(method);
         let mut reach = 0.0;
+        // What the budget check found the solver and a run need (0: not checked).
+        let mut budgeted = 0;
         let layout = if options.method == Method::Dijkstra {
             SteinerLayout::vertices_only(mesh)
         } else {
@@ -289,7 +295,7 @@ impl<'m, M: Metric> Solver<'m, M> {
                 mean: options.mean_edge_length,
             };
             let memory = options.memory_limit.or_else(budget::available_memory);
-            budget::check(mesh, options.steiner, spacing, options.method, memory)?;
+            budgeted = budget::check(mesh, options.steiner, spacing, options.method, memory)?;
             let counts =
                 options
                     .steiner
@@ -363,6 +369,8 @@ impl<'m, M: Metric> Solver<'m, M> {
             wires,
             setup_seconds: start.elapsed().as_secs_f64(),
             path_workspaces: std::sync::Mutex::default(),
+            memory_limit: options.memory_limit,
+            budgeted,
         })
     }
 
@@ -398,6 +406,8 @@ impl<'m, M: Metric> Solver<'m, M> {
             wires,
             setup_seconds: start.elapsed().as_secs_f64(),
             path_workspaces: std::sync::Mutex::default(),
+            memory_limit: self.memory_limit,
+            budgeted: self.budgeted,
         })
     }
 
@@ -1237,7 +1247,8 @@ impl<M: Metric> Solver<'_, M> {
             && stop.goal_directed
             && sources.len() == 1
             && self.method != Method::Wave
-            && rayon::current_num_threads() >= 2;
+            && rayon::current_num_threads() >= 2
+            && self.second_run_fits();
         if both_ends {
             let mut workspaces = [self.path_workspace(), self.path_workspace()];
             let (source, max) = (sources[0], stop.max_distance);
@@ -1272,6 +1283,14 @@ impl<M: Metric> Solver<'_, M> {
             });
         self.keep_path_workspace(workspace);
         found
+    }
+
+    /// Whether a second run's buffers fit the memory budget (see
+    /// [`Options::memory_limit`]): a search from both ends needs them.
+    fn second_run_fits(&self) -> bool {
+        let instances = self.tables.as_ref().map_or(0, |t| t.instances);
+        let extra = budget::run_bytes(self.layout.node_count(), instances);
+        budget::second_run_fits(extra, self.budgeted, self.memory_limit)
     }
 
     /// A workspace for a path query: one a path query ran in before, or a new one.
