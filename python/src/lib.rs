@@ -199,7 +199,9 @@ impl MeshSolverCore {
     }
 
     /// The shortest path from `target` to the nearest of `sources`, straightened:
-    /// `(points (p, 3), surface points, length)`, from the target to the source.
+    /// `(points (p, 3), surface points, length)`, from the target to the source. From
+    /// one source, with the Steiner-graph engines, it is searched from both ends at
+    /// once on two threads; the solver keeps its buffers for the next path.
     fn path<'py>(
         &self,
         py: Python<'py>,
