@@ -3,12 +3,11 @@
 //!
 //! Each side is an ordinary goal-directed run (the forward one from the path's start
 //! under the metric, the backward one from its end under the metric reversed: the
-//! same metric when it is symmetric), ordered by its
-//! value plus the average of the two ends' estimates ([`Goal::between`]): a node's
-//! two keys add up to the cost of the best path through it plus `offset`. Each side
-//! settles nodes in key order, so every node whose key is below its side's *level*
-//! (the queue's lower bound on what it still holds) has its final value, and has made
-//! its offers.
+//! same metric when it is symmetric), ordered by its value plus the average of the
+//! two ends' estimates ([`Goal::between`]): a node's two keys add up to the cost of
+//! the best path through it plus `offset`. Each side settles nodes in key order, so
+//! every node whose key is below its side's *level* (the queue's lower bound on what
+//! it still holds) has its final value, and has made its offers.
 //!
 //! # When the search is over
 //! Let `μ` be the least `forward(v) + backward(v)` found so far (over the nodes one
@@ -27,11 +26,11 @@
 //! nothing left to settle: its level is then `inf`). At a round's end both sides wait
 //! for each other, each checks the nodes the other settled in the round (handed over
 //! as a list, with their values) against its own values, they wait again, and take
-//! the same decision from the same numbers. What each
-//! side does in a round depends only on its own run, so the result does not depend on
-//! how the threads were scheduled: the same query gives the same path, every time.
-//! Equal work per round keeps either side from waiting long for the other; the side
-//! whose nodes cost less to settle gets further, as a search from both ends should.
+//! the same decision from the same numbers. What each side does in a round depends
+//! only on its own run, so the result does not depend on how the threads were
+//! scheduled: the same query gives the same path, every time. Equal work per round
+//! keeps either side from waiting long for the other; the side whose nodes cost less
+//! to settle gets further, as a search from both ends should.
 //!
 //! [`Goal::between`]: crate::field::Goal::between
 
