@@ -79,12 +79,10 @@ pub(crate) struct Goal {
     pub lo: glam::DVec3,
     pub hi: glam::DVec3,
     pub per_length: f64,
-    /// The source, for one side of a search from both ends (the box is then its
-    /// target, a point).
-    pub away: Option<glam::DVec3>,
-    /// `per_length · |to − from|` for one side of a search from both ends; 0 without
-    /// `away`.
-    pub offset: f64,
+    /// For one side of a search from both ends (the box is then its target, a
+    /// point): its source, and `per_length · |to − from|`, which the two sides'
+    /// estimates add up to.
+    pub away: Option<(glam::DVec3, f64)>,
 }
 
 impl Goal {
@@ -95,7 +93,6 @@ impl Goal {
             hi,
             per_length,
             away: None,
-            offset: 0.0,
         }
     }
 
@@ -105,8 +102,7 @@ impl Goal {
             lo: to,
             hi: to,
             per_length,
-            away: Some(from),
-            offset: per_length * from.distance(to),
+            away: Some((from, per_length * from.distance(to))),
         }
     }
 
@@ -116,10 +112,10 @@ impl Goal {
         let to = self.per_length * p.distance(p.clamp(self.lo, self.hi));
         match self.away {
             None => to,
-            Some(source) => {
+            Some((source, offset)) => {
                 let from = self.per_length * p.distance(source);
                 // (≥ 0 but for rounding: the clamp keeps it an estimate.)
-                (0.5 * (to - from + self.offset)).max(0.0)
+                (0.5 * (to - from + offset)).max(0.0)
             }
         }
     }

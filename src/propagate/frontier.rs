@@ -248,8 +248,7 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
         self.settles += 1;
         if let Some(side) = &mut self.meet {
             // Everything below the level is settled; `q` is not yet.
-            let level = self.queue.level();
-            if side.round_over() && side.end_round(level, self.distance) {
+            if side.round_over() && side.end_round(self.queue.level(), self.distance) {
                 return None;
             }
             side.settle(q, self.distance[q as usize]);

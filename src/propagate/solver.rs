@@ -319,16 +319,12 @@ impl<'m, M: Metric> Solver<'m, M> {
                 std::borrow::Cow::Owned(first_face_steps(mesh, &metric, &layout))
             }
         };
-        let wires = wire_costs(mesh, &metric)?;
+        let (wires, cost_total, per_length) = checked_costs(mesh, &metric, &layout, &steps)?;
         setup_tests += wires.len() as u64 / 2;
-        let cost_total = check_cost_range(&metric, &layout, &steps, &wires)?;
-        let per_length = check_per_length(mesh, &metric, &layout, &steps, &wires)?;
         // Only the tracks engine uses a bucket queue (the baselines keep a heap).
-        // (The graph engines' heaps need no width; a search from both ends paces
-        // its rounds by it.)
-        let width = bucket_width(&steps);
         let (tables, bucket_width) = match options.method {
             Method::Tracks | Method::Wave => {
+                let width = bucket_width(&steps);
                 let mut tables =
                     TrackTables::new(mesh, &layout, edge_steps.as_deref(), flat_frames.as_deref())?;
                 if options.method == Method::Wave {
@@ -336,7 +332,7 @@ impl<'m, M: Metric> Solver<'m, M> {
                 }
                 (Some(Arc::new(tables)), width)
             }
-            _ => (None, width),
+            _ => (None, 1.0),
         };
         let isometric = match (&tables, options.method) {
             (Some(tables), Method::Wave) => wave::isometric_edges(mesh, &layout, tables),
@@ -384,9 +380,7 @@ impl<'m, M: Metric> Solver<'m, M> {
         let (mesh, metric) = (self.mesh, Reversed(&self.metric));
         debug_assert!(self.edge_steps.is_none() && self.isometric.is_empty());
         let steps = first_face_steps(mesh, &metric, &self.layout);
-        let wires = wire_costs(mesh, &metric)?;
-        let cost_total = check_cost_range(&metric, &self.layout, &steps, &wires)?;
-        let per_length = check_per_length(mesh, &metric, &self.layout, &steps, &wires)?;
+        let (wires, cost_total, per_length) = checked_costs(mesh, &metric, &self.layout, &steps)?;
         Ok(Solver {
             id: SolverId::fresh(),
             mesh,
@@ -1012,6 +1006,24 @@ impl<'m, M: Metric> Solver<'m, M> {
     }
 }
 
+/// Per vertex, its wires: the vertex at the other end and the wire's cost.
+type Wires = Csr<(u32, f64)>;
+
+/// The wires' costs, and the run-wide bounds checked against them and the steps
+/// along edges: the total cost (`check_cost_range`) and the least cost per unit of
+/// length (`check_per_length`).
+fn checked_costs<M: Metric>(
+    mesh: &TriMesh,
+    metric: &M,
+    layout: &SteinerLayout,
+    steps: &[f64],
+) -> Result<(Wires, f64, f64), Error> {
+    let wires = wire_costs(mesh, metric)?;
+    let cost_total = check_cost_range(metric, layout, steps, &wires)?;
+    let per_length = check_per_length(mesh, metric, layout, steps, &wires)?;
+    Ok((wires, cost_total, per_length))
+}
+
 /// Every face's frame in the metric's flattening ([`flat::flat_frame`]), or `None`
 /// unless the metric gives every face's.
 fn flat_frames<M: Metric>(mesh: &TriMesh, metric: &M) -> Option<Vec<FaceFrame>> {
@@ -1335,13 +1347,19 @@ impl<M: Metric> Solver<'_, M> {
         self.validate_sources(&mut sources)?;
         let [source] = sources;
         let (from, to) = (source.point.position(mesh), target.position(mesh));
-        let (forward_goal, backward_goal, offset) = if self.per_length > 0.0 {
+        let (forward_goal, backward_goal) = if self.per_length > 0.0 {
             let forward = Goal::between(from, to, self.per_length);
-            let backward = Goal::between(to, from, self.per_length);
-            (Some(forward), Some(backward), forward.offset)
+            (
+                Some(forward),
+                Some(Goal::between(to, from, self.per_length)),
+            )
         } else {
-            (None, None, 0.0)
+            (None, None)
         };
+        // (What the two sides' estimates add up to; 0 without estimates.)
+        let offset = forward_goal
+            .and_then(|g| g.away)
+            .map_or(0.0, |(_, offset)| offset);
         let round = (layout.node_count() / ROUNDS_PER_MESH).clamp(ROUND_LEAST, ROUND_MOST);
         let meeting = Meeting::new(offset, round);
         forward.sources.clear();
@@ -1443,8 +1461,9 @@ const ROUNDS_PER_MESH: usize = 256;
 /// See [`ROUNDS_PER_MESH`].
 const ROUND_LEAST: usize = 32;
 /// See [`ROUNDS_PER_MESH`]: on the 1000 × 1000 terrain bench's corner route (1.9 M
-/// settles a side) about 120 rounds, which waited for each other a few percent of
-/// the time.
+/// settles a side) 116 rounds. A side still waits for the other: `perf record` on
+/// the CLI's `slope:4` corner route put 10 % of the samples in `sched_yield`
+/// (balancing rounds by metric evaluations instead of settles did no better).
 const ROUND_MOST: usize = 1 << 14;
 
 /// The bucket queue's width: a low quantile of the cost between consecutive nodes on an
