@@ -19,9 +19,19 @@ impl FaceFrame {
     /// The length of the face's longest edge.
     #[inline]
     pub fn diameter(&self) -> f64 {
-        let l02 = self.x2.hypot(self.y2);
-        let l12 = (self.x2 - self.l01).hypot(self.y2);
-        self.l01.max(l02).max(l12)
+        // The longest edge's square, then one square root: the tracks engine asks for
+        // the diameter at every settle under a metric that is not a norm, and `hypot`
+        // costs several square roots. Where the squares leave the normal range (lengths
+        // beyond 1e154 or below 1e-154) the exact `hypot`s instead.
+        let (dx, y) = (self.x2 - self.l01, self.y2);
+        let squared = (self.l01 * self.l01)
+            .max(self.x2 * self.x2 + y * y)
+            .max(dx * dx + y * y);
+        if squared.is_normal() {
+            squared.sqrt()
+        } else {
+            self.l01.max(self.x2.hypot(y)).max(dx.hypot(y))
+        }
     }
 
     /// The three corners in the frame.
@@ -80,9 +90,20 @@ impl EdgeLine {
     /// The point at parameter `t` from the edge's first corner.
     #[inline(always)]
     pub fn point(&self, t: f64) -> FacePoint {
-        let mut bary = [0.0; 3];
-        bary[self.corners[0]] = 1.0 - t;
-        bary[self.corners[1]] = t;
+        // Each weight chosen by comparisons rather than stored at a computed index: the
+        // engines read the point back as a whole at once, and a store at a computed
+        // index stalls that load (store forwarding fails).
+        let [from, to] = self.corners;
+        let weight = |c: usize| {
+            if c == from {
+                1.0 - t
+            } else if c == to {
+                t
+            } else {
+                0.0
+            }
+        };
+        let bary = [weight(0), weight(1), weight(2)];
         FacePoint {
             uv: [
                 self.origin[0] + t * self.delta[0],
@@ -542,27 +563,36 @@ impl Faces {
         spatially_ordered: bool,
     ) -> TriMesh {
         let n = self.positions.len();
-        let edge_faces = Csr::from_pairs(
-            edge_vertices.len(),
-            face_edges
-                .iter()
-                .enumerate()
-                .flat_map(|(f, es)| es.iter().map(move |&e| (e, f as u32))),
-        );
-        let vertex_faces = Csr::from_pairs(
-            n,
-            self.kept
-                .iter()
-                .enumerate()
-                .flat_map(|(f, t)| t.iter().map(move |&v| (v, f as u32))),
-        );
-        let vertex_edges = Csr::from_pairs(
-            n,
-            edge_vertices
-                .iter()
-                .enumerate()
-                .flat_map(|(e, ev)| ev.iter().map(move |&v| (v, e as u32))),
-        );
+        // The three tables at once, on the cores there are.
+        let edge_faces = || {
+            Csr::from_pairs(
+                edge_vertices.len(),
+                face_edges
+                    .iter()
+                    .enumerate()
+                    .flat_map(|(f, es)| es.iter().map(move |&e| (e, f as u32))),
+            )
+        };
+        let vertex_faces = || {
+            Csr::from_pairs(
+                n,
+                self.kept
+                    .iter()
+                    .enumerate()
+                    .flat_map(|(f, t)| t.iter().map(move |&v| (v, f as u32))),
+            )
+        };
+        let vertex_edges = || {
+            Csr::from_pairs(
+                n,
+                edge_vertices
+                    .iter()
+                    .enumerate()
+                    .flat_map(|(e, ev)| ev.iter().map(move |&v| (v, e as u32))),
+            )
+        };
+        let (edge_faces, (vertex_faces, vertex_edges)) =
+            rayon::join(edge_faces, || rayon::join(vertex_faces, vertex_edges));
         TriMesh {
             positions: self.positions,
             triangles: self.kept,

@@ -436,7 +436,7 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
         for &inc in self.tables.edge_faces(edge) {
             let r = &self.tables.faces[inc.record() as usize];
             let s = inc.side();
-            let (pa, pb) = (r.edge_point(s, a), r.edge_point(s, b));
+            let (pa, pb) = r.edge_points(s, a, b);
             best = best.min(self.search.cost(r.face, &pa, &pb));
         }
         best

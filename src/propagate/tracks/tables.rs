@@ -76,20 +76,31 @@ impl FaceRecord {
     /// vertex: 0 and `count + 1` are the edge's vertices, the Steiner points between.
     #[inline]
     pub fn edge_point(&self, s: usize, i: u32) -> FacePoint {
+        self.edge_points(s, i, i).0
+    }
+
+    /// Points `a` and `b` along the edge of slot `s`, numbered as in
+    /// [`edge_point`](Self::edge_point): the slot's line and spacing found once for both
+    /// (an edge step asks for two points in each face of its edge).
+    #[inline]
+    pub fn edge_points(&self, s: usize, a: u32, b: u32) -> (FacePoint, FacePoint) {
         let slot = self.slot(s);
-        // Numbered from corner `s` instead: the ends are corners `s` and `s + 1`.
-        let j = if self.is_reversed(s) {
-            slot.count + 1 - i
-        } else {
-            i
+        let point = |i: u32| {
+            // Numbered from corner `s` instead: the ends are corners `s` and `s + 1`.
+            let j = if self.is_reversed(s) {
+                slot.count + 1 - i
+            } else {
+                i
+            };
+            if j == 0 {
+                self.corner_point(s)
+            } else if j == slot.count + 1 {
+                self.corner_point((s + 1) % 3)
+            } else {
+                slot.at(j - 1).1
+            }
         };
-        if j == 0 {
-            self.corner_point(s)
-        } else if j == slot.count + 1 {
-            self.corner_point((s + 1) % 3)
-        } else {
-            slot.at(j - 1).1
-        }
+        (point(a), point(b))
     }
 
     /// The points of slot `s`, in slot order (from corner `s`).
