@@ -7,7 +7,7 @@ mod common;
 
 use common::Rng;
 use geotracks::terrain::{
-    route, route_on_grid, ElevationGrid, GridGeometry, TerrainCost, TerrainError,
+    route, route_on_grid, ElevationGrid, GridGeometry, TerrainCost, TerrainError, TerrainMesh,
 };
 use geotracks::{Error, Method, Metric, Options, Solver};
 use proptest::prelude::*;
@@ -164,6 +164,12 @@ fn the_grids_mean_edge_and_least_cost_match_its_mesh() {
             (from_grid - mean).abs() <= 1e-12 * mean,
             "{from_grid} against {mean}"
         );
+        // Kept for the next call; a grid that kept it is still the same grid (one
+        // without NODATA: NaN equals nothing).
+        assert_eq!(grid.mean_edge_length(), Some(from_grid));
+        if holes == 0.0 {
+            assert_eq!(grid, hilly(23, seed, 5.0, holes));
+        }
         for name in COSTS {
             let cost: TerrainCost = name.parse().unwrap();
             let least = cost.least_cost_per_length(&grid);
@@ -178,6 +184,81 @@ fn the_grids_mean_edge_and_least_cost_match_its_mesh() {
                 );
             }
         }
+    }
+}
+
+/// A window's mesh is the whole grid's cut to the kept cells: each kept cell has the
+/// same triangles at the same places, every other cell none; a sample is a vertex
+/// exactly when a kept cell's triangle has it; points in kept cells are located on
+/// the same spot. Also for windows one cell wide, or along the grid's edges, whose
+/// maps cover their own box only.
+#[test]
+fn a_windows_mesh_is_the_grids_cut_to_its_cells() {
+    let grid = hilly(17, 7, 4.0, 0.15);
+    let g = *grid.geometry();
+    let whole = grid.to_mesh().unwrap();
+    let corners = |m: &TerrainMesh, f: u32| m.mesh.face_vertices(f).map(|v| m.mesh.position(v));
+    let mut rng = Rng(11);
+    let windows = [
+        (0..16, 0..16),
+        (3..4, 0..16),
+        (0..16, 15..16),
+        (5..9, 2..12),
+        (15..16, 14..16),
+    ];
+    for (cols, rows) in windows {
+        let kept: Vec<bool> = (0..16 * 16).map(|_| rng.next() < 0.8).collect();
+        let keep = |c: usize, r: usize| kept[r * 16 + c];
+        let in_window = |c: usize, r: usize| cols.contains(&c) && rows.contains(&r) && keep(c, r);
+        let window = grid
+            .to_mesh_within(cols.clone(), rows.clone(), keep)
+            .unwrap();
+        for r in 0..g.nrows - 1 {
+            for c in 0..g.ncols - 1 {
+                let faces: Vec<u32> = window.cell_faces(c, r).collect();
+                if !in_window(c, r) {
+                    assert!(faces.is_empty(), "cell ({c}, {r}) outside the window");
+                    continue;
+                }
+                let expected: Vec<u32> = whole.cell_faces(c, r).collect();
+                assert_eq!(faces.len(), expected.len(), "cell ({c}, {r})");
+                for (&f, &e) in faces.iter().zip(&expected) {
+                    assert_eq!(corners(&window, f), corners(&whole, e));
+                }
+                if let Some(&f) = expected.first() {
+                    // Its first triangle's centroid, located in both meshes.
+                    let [a, b, d] = corners(&whole, f);
+                    let p = (a + b + d) / 3.0;
+                    let at = |m: &TerrainMesh| m.locate(p.x, p.y).unwrap().position(&m.mesh);
+                    assert!(at(&window).distance(at(&whole)) < 1e-9);
+                }
+            }
+        }
+        for r in 0..g.nrows {
+            for c in 0..g.ncols {
+                // Whether a kept cell's triangle has the sample as a corner.
+                let used = whole.sample_vertex(c, r).is_some_and(|v| {
+                    [(0, 0), (1, 0), (0, 1), (1, 1)].iter().any(|&(dc, dr)| {
+                        c >= dc
+                            && r >= dr
+                            && in_window(c - dc, r - dr)
+                            && whole
+                                .cell_faces(c - dc, r - dr)
+                                .any(|f| whole.mesh.face_vertices(f).contains(&v))
+                    })
+                });
+                match window.sample_vertex(c, r) {
+                    Some(v) => {
+                        assert!(used, "sample ({c}, {r}) is no kept triangle's corner");
+                        let w = whole.sample_vertex(c, r).unwrap();
+                        assert_eq!(window.mesh.position(v), whole.mesh.position(w));
+                    }
+                    None => assert!(!used, "sample ({c}, {r}) left out"),
+                }
+            }
+        }
+        assert!(window.sample_vertex(g.ncols, 0).is_none());
+        assert_eq!(window.cell_faces(g.ncols - 1, 0).count(), 0);
     }
 }
 

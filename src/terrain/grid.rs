@@ -134,6 +134,21 @@ pub struct ElevationGrid {
     values: Vec<f64>,
     /// The EPSG code of the coordinate reference system, when the file names one.
     epsg: Option<u32>,
+    /// [`mean_edge_length`](Self::mean_edge_length), once asked (a command line and
+    /// the router it calls both need it: a pass over every sample).
+    mean_edge: Memo<Option<f64>>,
+}
+
+/// A value worked out from the rest of its struct on first use, and kept: it adds
+/// nothing to what the struct is, so two structs compare equal whatever their memos
+/// hold.
+#[derive(Clone, Debug, Default)]
+struct Memo<T>(std::sync::OnceLock<T>);
+
+impl<T> PartialEq for Memo<T> {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
 }
 
 impl ElevationGrid {
@@ -176,6 +191,7 @@ impl ElevationGrid {
             geometry,
             values,
             epsg: None,
+            mean_edge: Memo::default(),
         })
     }
 
@@ -350,6 +366,14 @@ impl ElevationGrid {
     ///
     /// [`Options::mean_edge_length`]: crate::Options::mean_edge_length
     pub fn mean_edge_length(&self) -> Option<f64> {
+        *self
+            .mean_edge
+            .0
+            .get_or_init(|| self.measure_mean_edge_length())
+    }
+
+    /// [`mean_edge_length`](Self::mean_edge_length), worked out.
+    fn measure_mean_edge_length(&self) -> Option<f64> {
         let g = self.geometry;
         let (ncols, nrows) = (g.ncols, g.nrows);
         if ncols < 2 || nrows < 2 {
@@ -484,43 +508,66 @@ impl ElevationGrid {
         };
         let keep = window.as_ref().map(|w| w.2);
         let sample_range = (cols.start..cols.end + 1, rows.start..rows.end + 1);
+        // The maps from samples and cells to the mesh cover the window's box only: a
+        // small window of a large grid is meshed in time for its size.
+        let samples = GridBox {
+            col0: cols.start,
+            row0: rows.start,
+            cols: sample_range.0.len(),
+            rows: sample_range.1.len(),
+        };
+        let cell_box = GridBox {
+            col0: cols.start,
+            row0: rows.start,
+            cols: cols.len(),
+            rows: rows.len(),
+        };
+        // Sample `s` (a grid index, of a cell in row `row`) in the box.
+        let local = |s: usize, row: usize| {
+            let r = if s >= (row + 1) * ncols { row + 1 } else { row };
+            (r - samples.row0) * samples.cols + (s - r * ncols) - samples.col0
+        };
         // The samples that become vertices: every valid one for the whole grid, the
         // corners of the kept cells' triangles for a window.
         let used = keep.map(|keep| {
-            let mut used = vec![false; ncols * nrows];
+            let mut used = vec![false; samples.len()];
             for (col, row) in tiled(cols.clone(), rows.clone()).filter(|&(c, r)| keep(c, r)) {
                 for t in self.cell_triangles(col, row).into_iter().flatten() {
                     for s in t {
-                        used[s] = true;
+                        used[local(s, row)] = true;
                     }
                 }
             }
             used
         });
-        let mut sample_vertex = vec![NONE; ncols * nrows];
+        let mut sample_vertex = vec![NONE; samples.len()];
         let mut vertex_sample = Vec::new();
         let mut positions = Vec::new();
         for (col, row) in tiled(sample_range.0, sample_range.1) {
-            let s = row * ncols + col;
-            let z = self.values[s];
-            if !z.is_nan() && used.as_ref().is_none_or(|u| u[s]) {
-                sample_vertex[s] = positions.len() as u32;
-                vertex_sample.push(s as u32);
+            let z = self.values[row * ncols + col];
+            let i = (row - samples.row0) * samples.cols + (col - samples.col0);
+            if !z.is_nan() && used.as_ref().is_none_or(|u| u[i]) {
+                sample_vertex[i] = positions.len() as u32;
+                vertex_sample.push(i as u32);
                 let [x, y] = g.position(col, row);
                 positions.push([x, y, z]);
             }
         }
-        let cells = (ncols - 1) * (nrows - 1);
-        let mut cell_faces = vec![[NONE; 2]; cells];
-        let mut triangles = Vec::with_capacity(if keep.is_none() { 2 * cells } else { 0 });
+        let mut cell_faces = vec![[NONE; 2]; cell_box.len()];
+        let mut triangles = Vec::with_capacity(if keep.is_none() {
+            cell_box.len() * 2
+        } else {
+            0
+        });
         for (col, row) in tiled(cols, rows) {
             if keep.is_some_and(|keep| !keep(col, row)) {
                 continue;
             }
+            let cell = (row - cell_box.row0) * cell_box.cols + (col - cell_box.col0);
             for (k, t) in self.cell_triangles(col, row).into_iter().enumerate() {
                 if let Some(t) = t {
-                    cell_faces[row * (ncols - 1) + col][k] = triangles.len() as u32;
-                    triangles.push(t.map(|s| sample_vertex[s]));
+                    cell_faces[cell][k] = triangles.len() as u32;
+                    triangles.push(t.map(|s| sample_vertex[local(s, row)]));
                 }
             }
         }
@@ -529,7 +576,7 @@ impl ElevationGrid {
         }
         let input_faces = triangles.len();
         let (face_edges, edge_vertices) =
-            grid_edges(ncols, &sample_vertex, &vertex_sample, &triangles);
+            grid_edges(samples.cols, &sample_vertex, &vertex_sample, &triangles);
         let mesh = TriMesh::with_edge_table(positions, triangles, face_edges, edge_vertices, true)?;
         if mesh.face_count() != input_faces {
             // Not expected (grid cells have area), but a dropped face renumbers the rest.
@@ -546,7 +593,9 @@ impl ElevationGrid {
         Ok(TerrainMesh {
             mesh,
             geometry: g,
+            samples,
             sample_vertex,
+            cells: cell_box,
             cell_faces,
         })
     }
@@ -577,7 +626,8 @@ fn tiled(cols: Range<usize>, rows: Range<usize>) -> impl Iterator<Item = (usize,
 /// lower vertex, then higher) without sorting them: each face edge joins two
 /// neighbouring samples, so it is one of eight directions at its lower vertex; a table
 /// of eight slots per vertex marks the edges used, and numbering a vertex's edges only
-/// orders its (at most eight) higher neighbours.
+/// orders its (at most eight) higher neighbours. Samples are numbered row-major in a
+/// box `ncols` wide.
 fn grid_edges(
     ncols: usize,
     sample_vertex: &[u32],
@@ -645,10 +695,37 @@ pub struct TerrainMesh {
     /// The mesh: vertices at valid sample centres, in the grid's units.
     pub mesh: TriMesh,
     geometry: GridGeometry,
-    /// Per sample (row-major from the north), its vertex or `NONE`.
+    /// The box of samples `sample_vertex` covers (the meshed cells' corners).
+    samples: GridBox,
+    /// Per sample of the box (row-major from the north), its vertex or `NONE`.
     sample_vertex: Vec<u32>,
-    /// Per cell (row-major from the north), its faces or `NONE`.
+    /// The box of cells `cell_faces` covers (the meshed cells).
+    cells: GridBox,
+    /// Per cell of the box (row-major from the north), its faces or `NONE`.
     cell_faces: Vec<[u32; 2]>,
+}
+
+/// A box of a grid's samples or cells: `cols × rows` of them from `(col0, row0)`,
+/// numbered row-major.
+#[derive(Clone, Copy, Debug)]
+struct GridBox {
+    col0: usize,
+    row0: usize,
+    cols: usize,
+    rows: usize,
+}
+
+impl GridBox {
+    fn len(&self) -> usize {
+        self.cols * self.rows
+    }
+
+    /// The number of `(col, row)` in the box, if it lies in it.
+    #[inline]
+    fn index(&self, col: usize, row: usize) -> Option<usize> {
+        let (c, r) = (col.checked_sub(self.col0)?, row.checked_sub(self.row0)?);
+        (c < self.cols && r < self.rows).then_some(r * self.cols + c)
+    }
 }
 
 impl TerrainMesh {
@@ -659,10 +736,11 @@ impl TerrainMesh {
 
     /// Per vertex, its sample (row-major index from the north).
     pub(crate) fn vertex_samples(&self) -> Vec<usize> {
+        let (b, ncols) = (&self.samples, self.geometry.ncols);
         let mut samples = vec![0; self.mesh.vertex_count()];
-        for (s, &v) in self.sample_vertex.iter().enumerate() {
+        for (i, &v) in self.sample_vertex.iter().enumerate() {
             if v != NONE {
-                samples[v as usize] = s;
+                samples[v as usize] = (b.row0 + i / b.cols) * ncols + b.col0 + i % b.cols;
             }
         }
         samples
@@ -671,19 +749,18 @@ impl TerrainMesh {
     /// The vertex of sample `(col, row)`, if the sample is valid.
     #[inline]
     pub fn sample_vertex(&self, col: usize, row: usize) -> Option<u32> {
-        let v = self.sample_vertex[self.geometry.sample_index(col, row)?];
+        self.geometry.sample_index(col, row)?;
+        let v = self.sample_vertex[self.samples.index(col, row)?];
         (v != NONE).then_some(v)
     }
 
     /// The faces of cell `(col, row)` (the cell whose north-west sample is `(col, row)`):
     /// none, one or two.
     pub fn cell_faces(&self, col: usize, row: usize) -> impl Iterator<Item = u32> + '_ {
-        let g = &self.geometry;
-        let pair = if col + 1 < g.ncols && row + 1 < g.nrows {
-            self.cell_faces[row * (g.ncols - 1) + col]
-        } else {
-            [NONE; 2]
-        };
+        let pair = self
+            .cells
+            .index(col, row)
+            .map_or([NONE; 2], |i| self.cell_faces[i]);
         pair.into_iter().filter(|&f| f != NONE)
     }
 

@@ -225,6 +225,10 @@ const FIRST_WINDOW_SLACK: f64 = 0.05;
 /// cost but where the line climbs what the route goes round.
 const FIRST_WINDOW_SLACK_WAVE: f64 = 0.01;
 
+/// Steps of a quarter cell per piece of the straight line that [`straight_line_cost`]
+/// meshes at once (64 cells).
+const LINE_PIECE_STEPS: usize = 256;
+
 /// A window of more than this fraction of the grid's cells is not cut: the whole grid
 /// runs instead (meshing it costs little more, and it needs no second run).
 const WHOLE_GRID_ABOVE: f64 = 0.75;
@@ -407,10 +411,6 @@ fn straight_line_cost(
         };
         (pc - t * dc).hypot(pr - t * dr) <= 2.0
     };
-    let cols = cell_span(a.0.min(b.0), a.0.max(b.0), 3.0, g.ncols - 1);
-    let rows = cell_span(a.1.min(b.1), a.1.max(b.1), 3.0, g.nrows - 1);
-    let terrain = grid.to_mesh_within(cols, rows, near).ok()?;
-    let metric = cost.metric_on_grid(grid, &terrain).ok()?;
     let steps = (4.0 * cells).ceil().max(1.0) as usize;
     let at = |i: usize| {
         let t = i as f64 / steps as f64;
@@ -420,16 +420,29 @@ fn straight_line_cost(
         ]
     };
     let mut total = 0.0;
-    for i in 0..steps {
-        let (p, q) = (at(i), at(i + 1));
-        // Each step in the face under its middle (a step that crosses an edge is
-        // costed in one of its faces: a guess).
-        let (face, _) = terrain
-            .covering(0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1]))
-            .ok()?;
-        let frame = terrain.mesh.frame(face);
-        let point = |[x, y]: [f64; 2]| frame.point(terrain.bary_2d(face, x, y));
-        total += metric.cost(face, &point(p), &point(q));
+    // In pieces, each meshed on its own: the box around a long diagonal line holds
+    // most of the grid.
+    for first in (0..steps).step_by(LINE_PIECE_STEPS) {
+        let last = (first + LINE_PIECE_STEPS).min(steps);
+        let (p, q) = (
+            g.to_grid(at(first)[0], at(first)[1]),
+            g.to_grid(at(last)[0], at(last)[1]),
+        );
+        let cols = cell_span(p.0.min(q.0), p.0.max(q.0), 3.0, g.ncols - 1);
+        let rows = cell_span(p.1.min(q.1), p.1.max(q.1), 3.0, g.nrows - 1);
+        let terrain = grid.to_mesh_within(cols, rows, near).ok()?;
+        let metric = cost.metric_on_grid(grid, &terrain).ok()?;
+        for i in first..last {
+            let (p, q) = (at(i), at(i + 1));
+            // Each step in the face under its middle (a step that crosses an edge is
+            // costed in one of its faces: a guess).
+            let (face, _) = terrain
+                .covering(0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1]))
+                .ok()?;
+            let frame = terrain.mesh.frame(face);
+            let point = |[x, y]: [f64; 2]| frame.point(terrain.bary_2d(face, x, y));
+            total += metric.cost(face, &point(p), &point(q));
+        }
     }
     total.is_finite().then_some(total)
 }
