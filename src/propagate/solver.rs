@@ -1054,10 +1054,12 @@ fn edge_lengths(mesh: &TriMesh, flat_frames: Option<&[FaceFrame]>) -> Vec<f64> {
 }
 
 /// The cost between consecutive nodes of each edge in its first face (for a directed
-/// metric, in the dearer direction: these bound what a path along edges costs).
+/// metric, in the dearer direction: these bound what a path along edges costs), on all
+/// cores.
 fn first_face_steps<M: Metric>(mesh: &TriMesh, metric: &M, layout: &SteinerLayout) -> Vec<f64> {
     let directed = !metric.is_symmetric();
     (0..mesh.edge_count() as u32)
+        .into_par_iter()
         .map(|e| {
             let f = mesh.edge_faces(e)[0];
             let [a, b] = mesh
