@@ -76,7 +76,7 @@ impl FaceRecord {
     /// vertex: 0 and `count + 1` are the edge's vertices, the Steiner points between.
     #[inline]
     pub fn edge_point(&self, s: usize, i: u32) -> FacePoint {
-        self.edge_points(s, i, i).0
+        self.point_of(&self.slot(s), s, i)
     }
 
     /// Points `a` and `b` along the edge of slot `s`, numbered as in
@@ -85,22 +85,25 @@ impl FaceRecord {
     #[inline]
     pub fn edge_points(&self, s: usize, a: u32, b: u32) -> (FacePoint, FacePoint) {
         let slot = self.slot(s);
-        let point = |i: u32| {
-            // Numbered from corner `s` instead: the ends are corners `s` and `s + 1`.
-            let j = if self.is_reversed(s) {
-                slot.count + 1 - i
-            } else {
-                i
-            };
-            if j == 0 {
-                self.corner_point(s)
-            } else if j == slot.count + 1 {
-                self.corner_point((s + 1) % 3)
-            } else {
-                slot.at(j - 1).1
-            }
+        (self.point_of(&slot, s, a), self.point_of(&slot, s, b))
+    }
+
+    /// [`edge_point`](Self::edge_point) with the slot's points at hand.
+    #[inline(always)]
+    fn point_of(&self, slot: &SlotPoints, s: usize, i: u32) -> FacePoint {
+        // Numbered from corner `s` instead: the ends are corners `s` and `s + 1`.
+        let j = if self.is_reversed(s) {
+            slot.count + 1 - i
+        } else {
+            i
         };
-        (point(a), point(b))
+        if j == 0 {
+            self.corner_point(s)
+        } else if j == slot.count + 1 {
+            self.corner_point((s + 1) % 3)
+        } else {
+            slot.at(j - 1).1
+        }
     }
 
     /// The points of slot `s`, in slot order (from corner `s`).
