@@ -545,7 +545,7 @@ impl ElevationGrid {
         let mut positions = Vec::new();
         for (col, row) in tiled(sample_range.0, sample_range.1) {
             let z = self.values[row * ncols + col];
-            let i = (row - samples.row0) * samples.cols + (col - samples.col0);
+            let i = samples.offset(col, row);
             if !z.is_nan() && used.as_ref().is_none_or(|u| u[i]) {
                 sample_vertex[i] = positions.len() as u32;
                 vertex_sample.push(i as u32);
@@ -563,7 +563,7 @@ impl ElevationGrid {
             if keep.is_some_and(|keep| !keep(col, row)) {
                 continue;
             }
-            let cell = (row - cell_box.row0) * cell_box.cols + (col - cell_box.col0);
+            let cell = cell_box.offset(col, row);
             for (k, t) in self.cell_triangles(col, row).into_iter().enumerate() {
                 if let Some(t) = t {
                     cell_faces[cell][k] = triangles.len() as u32;
@@ -726,6 +726,12 @@ impl GridBox {
         let (c, r) = (col.checked_sub(self.col0)?, row.checked_sub(self.row0)?);
         (c < self.cols && r < self.rows).then_some(r * self.cols + c)
     }
+
+    /// The number of `(col, row)`, which lies in the box.
+    #[inline]
+    fn offset(&self, col: usize, row: usize) -> usize {
+        (row - self.row0) * self.cols + (col - self.col0)
+    }
 }
 
 impl TerrainMesh {
@@ -749,7 +755,7 @@ impl TerrainMesh {
     /// The vertex of sample `(col, row)`, if the sample is valid.
     #[inline]
     pub fn sample_vertex(&self, col: usize, row: usize) -> Option<u32> {
-        self.geometry.sample_index(col, row)?;
+        // (The box lies in the grid: a sample outside it has no vertex.)
         let v = self.sample_vertex[self.samples.index(col, row)?];
         (v != NONE).then_some(v)
     }
