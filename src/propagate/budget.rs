@@ -103,8 +103,12 @@ fn breaks(
 /// parent face, queue flag and goal estimate, about two queue entries, and a track per
 /// instance): what a path searched from both ends needs beyond a one-ended run.
 pub(super) fn run_bytes(nodes: usize, instances: usize) -> u64 {
-    (8 + 4 + 4 + 1 + 8 + 2 * 4) * nodes as u64 + 8 * instances as u64
+    (RUN_BYTES_PER_NODE + 8) * nodes as u64 + 8 * instances as u64
 }
+
+/// A run's bytes per node: distance, parent, parent face, queue flag, and about two
+/// queue entries (a goal-directed run adds its estimate).
+const RUN_BYTES_PER_NODE: u64 = 8 + 4 + 4 + 1 + 2 * 4;
 
 /// Whether a second run's buffers (`run_bytes`) fit: within `limit` beside what the
 /// solver and its first run were budgeted (`budgeted`), or without a limit within what
@@ -121,7 +125,7 @@ pub(super) fn second_run_fits(extra: u64, budgeted: u64, limit: Option<u64>) -> 
 /// Steiner point its block; for the tracks engine a record per face and edge and a
 /// track per (face, boundary node).
 fn bytes(mesh: &TriMesh, counts: &[u32], steiner: u64, nodes: u64, method: Method) -> u64 {
-    let per_node = 8 + 4 + 4 + 1 + 2 * 4;
+    let per_node = RUN_BYTES_PER_NODE;
     let layout = 4 * steiner + 12 * counts.len() as u64;
     let engine = match method {
         Method::Tracks => {
