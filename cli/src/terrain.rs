@@ -116,7 +116,9 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     outputs.declare_some(args.png.as_ref())?;
     outputs.declare_some(args.contours.as_ref())?;
     let spinner = ui::Spinner::start("reading the grid and routing");
+    let reading = std::time::Instant::now();
     let grid = terrain::read_grid(&args.dem)?;
+    let read_seconds = reading.elapsed().as_secs_f64();
     let mut options = Options::DEFAULT.with_k(args.k).with_method(args.method);
     match grid.mean_edge_length() {
         // Points spaced as on the whole grid, whatever part of it is meshed.
@@ -254,6 +256,21 @@ pub fn run(args: &TerrainArgs) -> CliResult {
         }
     );
     crate::report_stats(s);
+    if ui::verbose() {
+        // Where the rest of the time went: a route's window, and its path.
+        let setup = window
+            .map(|w| {
+                format!(
+                    "window cut and meshed {:.4} s, metric {:.4} s, solver {:.4} s; ",
+                    w.mesh_seconds, w.metric_seconds, w.solver_seconds
+                )
+            })
+            .unwrap_or_default();
+        eprintln!(
+            "  grid read {read_seconds:.4} s; {setup}path traced and straightened {:.4} s",
+            route.path_seconds
+        );
+    }
     Ok(())
 }
 

@@ -585,3 +585,56 @@ fn contours_lie_at_their_cost_on_a_flat_grid_and_bad_levels_leave_no_file() {
         assert!(!c.exists());
     }
 }
+
+#[test]
+fn verbose_routes_say_where_the_time_went() {
+    let dir = tempfile::tempdir().unwrap();
+    let dem = hill_asc(dir.path());
+    let (dem, json) = (dem.to_str().unwrap(), dir.path().join("route.geojson"));
+    let route = |extra: &[&str]| {
+        let mut args = vec![
+            "terrain",
+            dem,
+            "--from",
+            "1010,5010",
+            "--to",
+            "1290,5180",
+            "-v",
+            "-o",
+        ];
+        args.push(json.to_str().unwrap());
+        args.extend_from_slice(extra);
+        String::from_utf8_lossy(&geotracks_ok(&args).stderr).into_owned()
+    };
+    // A route alone runs on a window: its meshing, metric and solver are timed.
+    let window = route(&[]);
+    let line = window
+        .lines()
+        .find(|l| l.trim_start().starts_with("grid read"))
+        .unwrap_or_else(|| panic!("no timing line in {window:?}"));
+    let seconds: Vec<f64> = line
+        .split_whitespace()
+        .filter_map(|w| w.parse().ok())
+        .collect();
+    assert_eq!(seconds.len(), 5, "{line}");
+    assert!(seconds.iter().all(|s| *s >= 0.0 && s.is_finite()), "{line}");
+    for part in [
+        "window cut and meshed",
+        "metric",
+        "solver",
+        "path traced and straightened",
+    ] {
+        assert!(line.contains(part), "{line} lacks {part}");
+    }
+    // With a map the whole grid runs: no window.
+    let png = dir.path().join("map.png");
+    let whole = route(&["--png", png.to_str().unwrap()]);
+    let line = whole
+        .lines()
+        .find(|l| l.trim_start().starts_with("grid read"))
+        .unwrap_or_else(|| panic!("no timing line in {whole:?}"));
+    assert!(
+        !line.contains("window") && line.contains("path traced"),
+        "{line}"
+    );
+}

@@ -211,6 +211,13 @@ pub struct RouteWindow {
     /// Seconds spent meshing the windows and building the metrics and solvers (all
     /// runs); the propagation's are in the route's [`stats`](Route::stats) (last run).
     pub setup_seconds: f64,
+    /// Of `setup_seconds`, those spent cutting and meshing the windows.
+    pub mesh_seconds: f64,
+    /// Of `setup_seconds`, those spent building the metrics.
+    pub metric_seconds: f64,
+    /// Of `setup_seconds`, those spent building the solvers ([`Solver::new`]: Steiner
+    /// points, edge steps, the engine's tables).
+    pub solver_seconds: f64,
 }
 
 /// How much dearer than the straight line between its ends (what it costs on the
@@ -314,7 +321,7 @@ pub fn route_on_grid(
     // Whether `bound` is the cost of a route found (on a narrower window).
     let mut found = false;
     let mut runs = 0;
-    let mut setup_seconds = 0.0;
+    let [mut mesh_seconds, mut metric_seconds, mut solver_seconds] = [0.0; 3];
     loop {
         runs += 1;
         let setup = Instant::now();
@@ -346,9 +353,13 @@ pub fn route_on_grid(
             })?
         };
         let (a, b) = (mesh.locate(from[0], from[1])?, mesh.locate(to[0], to[1])?);
+        mesh_seconds += setup.elapsed().as_secs_f64();
+        let metric_start = Instant::now();
         let metric = cost.metric_on_grid(grid, &mesh)?;
+        metric_seconds += metric_start.elapsed().as_secs_f64();
+        let solver_start = Instant::now();
         let solver = Solver::new(&mesh.mesh, metric, &options)?;
-        setup_seconds += setup.elapsed().as_secs_f64();
+        solver_seconds += solver_start.elapsed().as_secs_f64();
         // A run within the bound: a goal-directed one that finds no route as cheap
         // stops as soon as it knows, having settled a corridor.
         let routed = route_within(&solver, a, b, if whole { f64::INFINITY } else { bound });
@@ -366,7 +377,10 @@ pub fn route_on_grid(
                         runs,
                         bound,
                         per_length,
-                        setup_seconds,
+                        setup_seconds: mesh_seconds + metric_seconds + solver_seconds,
+                        mesh_seconds,
+                        metric_seconds,
+                        solver_seconds,
                     },
                 })
             }
