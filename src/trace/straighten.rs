@@ -35,8 +35,8 @@ use glam::DVec3;
 /// a vertex sideways per round and per hop ([`HOPS`]), so this bounds both the work and
 /// how far it goes. 16 rounds with hops straighten the 1000 × 1000 terrain bench's
 /// routes further than 48 rounds without hops did (13 333.9 against 13 346.3 corner to
-/// corner, `slope:4`), in the same time; fewer rounds leave a 20-square strip's
-/// diagonal more than 1e-6 off (the `shortest_path_with` doc test).
+/// corner, `slope:4`) for a few hundredths of a second more; fewer rounds leave a
+/// 20-square strip's diagonal more than 1e-6 off (the `shortest_path_with` doc test).
 const ROUNDS: usize = 16;
 /// Sliding sweeps at most (after Newton's method, they polish).
 const SWEEPS: usize = 30;
