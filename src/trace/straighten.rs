@@ -78,13 +78,7 @@ pub fn straighten<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M
             continue;
         }
         // Points start..=end lie in faces: straighten them as a path of their own.
-        let mut piece = GeodesicPath {
-            points: path.points[start..=end].to_vec(),
-            faces: path.faces[start..end].to_vec(),
-            source: path.source,
-            length: 0.0,
-            traced_length: path.traced_length,
-        };
+        let mut piece = stretch(path, start, end);
         if !piece.faces.is_empty() {
             straighten_in_faces(&mut piece, mesh, metric);
         }
@@ -240,15 +234,20 @@ fn newton_between<M: Metric>(
     if hi < lo + 2 {
         return;
     }
-    let mut stretch = GeodesicPath {
+    let mut part = stretch(path, lo, hi);
+    newton(&mut part, mesh, metric);
+    path.points[lo..=hi].copy_from_slice(&part.points);
+}
+
+/// Points `lo..=hi` of `path` and the segments between them, as a path of their own.
+fn stretch(path: &GeodesicPath, lo: usize, hi: usize) -> GeodesicPath {
+    GeodesicPath {
         points: path.points[lo..=hi].to_vec(),
         faces: path.faces[lo..hi].to_vec(),
         source: path.source,
         length: 0.0,
         traced_length: path.traced_length,
-    };
-    newton(&mut stretch, mesh, metric);
-    path.points[lo..=hi].copy_from_slice(&stretch.points);
+    }
 }
 
 /// Crossings pressed against an end of their edge (within [`SNAP`]) become that vertex.
