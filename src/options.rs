@@ -158,8 +158,11 @@ impl Options {
 /// after an early stop is always the value a full run gives, at a node and at any other
 /// surface point ([`Query::distance_at`](crate::Query::distance_at)). A point beyond the
 /// maximum is unreached, and so is one that a node the stop left unreached might have
-/// given a smaller value (a point within about an edge of the maximum, or of where a
-/// stop at the targets left off).
+/// given a smaller value. For the Steiner-graph engines (tracks, graph, Dijkstra) that
+/// never happens within the maximum (a node gives a point its value plus a cost ≥ 0);
+/// for the wavefront engine, whose waves give less than their nodes' values nearer
+/// their sources, it can: a point within about an edge of the maximum, or of where a
+/// stop at the targets left off, may be unreached.
 ///
 /// ```
 /// use geotracks::{Stop, SurfacePoint};

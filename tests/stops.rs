@@ -62,9 +62,17 @@ fn check(
                 a
             );
         } else if stop.targets.is_empty() {
-            // Only the points within about an edge of the maximum may be left out.
+            // Only the points within about an edge of the maximum may be left out (the
+            // wavefront engine's: a node beyond it may carry a wave that gives less);
+            // the Steiner-graph engines' values at a point come from its face's nodes,
+            // each adding a cost ≥ 0, so none within it.
+            let margin = if method == Method::Wave {
+                2.0 * longest
+            } else {
+                0.0
+            };
             prop_assert!(
-                b > stop.max_distance - 2.0 * longest,
+                b > stop.max_distance - margin,
                 "{:?} at {}: unreached, full {} (max {})",
                 method,
                 point,

@@ -128,6 +128,9 @@ pub(super) struct FaceField {
     /// left unreached when it stopped early: a point they might give less than its
     /// value is unreached too.
     pub unreached: Vec<Site>,
+    /// Whether the field's nodes carry waves (the wavefront engine's), whose values at
+    /// a point can be less than the node's.
+    pub waves: bool,
 }
 
 impl FaceField {
@@ -228,14 +231,19 @@ impl FaceField {
     }
 
     /// The least value an unreached node of the face could give `x` (`inf` when the
-    /// run did not stop early).
+    /// run did not stop early), where `horizon` bounds such a node's value from below.
+    ///
+    /// A Steiner-graph node gives `x` its value plus the cost from it to `x`; a node's
+    /// wave (the wavefront engine) may give less than the node's value, by up to that
+    /// cost (its source lies behind the node, on the line through `x`).
     pub fn unsettled<M: Metric>(&self, metric: &M, horizon: f64, x: &FacePoint) -> f64 {
         let px = self.flat_point(x);
+        let sign = if self.waves { -1.0 } else { 1.0 };
         self.unreached
             .iter()
             .map(|site| match (site, px) {
-                (Site::Flat(p), Some(px)) => horizon - px.sub(*p).length(),
-                (Site::Metric(p), _) => horizon - metric.cost(self.face, p, x),
+                (Site::Flat(p), Some(px)) => horizon + sign * px.sub(*p).length(),
+                (Site::Metric(p), _) => horizon + sign * metric.cost(self.face, p, x),
                 _ => f64::NEG_INFINITY,
             })
             .fold(f64::INFINITY, f64::min)
@@ -348,6 +356,7 @@ impl<M: Metric> Query<'_, M> {
             flat,
             candidates,
             unreached,
+            waves: self.has_waves(),
         }
     }
 
