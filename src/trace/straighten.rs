@@ -102,7 +102,8 @@ fn straighten_in_faces<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metri
     // they measure under the reversed metric (a directed metric's travel costs).
     let travel = &Reversed(metric);
     let mut unpinning = true;
-    let mut gained = f64::INFINITY;
+    // What the round before gained (none before the first: no hops in it).
+    let mut gained = 0.0;
     for round in 0..ROUNDS {
         let before = length;
         let saved = unpinning.then(|| path.clone());
@@ -114,8 +115,7 @@ fn straighten_in_faces<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metri
             unpin(path, mesh, travel);
         }
         newton(path, mesh, travel);
-        // (`gained`: the round before's; see `HOP_WHEN`.)
-        if unpinning && round > 0 && gained > HOP_WHEN * before {
+        if unpinning && gained > HOP_WHEN * before {
             hop(path, mesh, travel);
         }
         length = path.metric_length(mesh, metric);
@@ -150,9 +150,9 @@ const HOP_GAIN: f64 = 1e-7;
 /// Hops run from the second round on, while the round before gained more than this
 /// fraction of the length: a path still moving off its corridor (a terrain route
 /// gains about 1e-5 a round), not one being polished. A hop costs about a round
-/// (passes over the whole path), and after every round it made the shared meshes'
-/// paths 25–55 % slower for a mean excess of 0.0001 % instead of 0.0002 %
-/// (`examples/eval --paths 100`); gated, 0–27 % slower, as accurate as before.
+/// (passes over the whole path): after every round (a scratch build) it made the
+/// shared meshes' paths 25–55 % slower for a mean excess of 0.0001 % instead of
+/// 0.0002 %; gated, 0–27 % slower, as accurate as before (`examples/eval --paths 100`).
 const HOP_WHEN: f64 = 1e-6;
 
 /// Local rounds: the crossings left pressed against a vertex go round it at once, and
@@ -160,6 +160,8 @@ const HOP_WHEN: f64 = 1e-6;
 /// far off its best corridor moves several vertices a round (a round's work is all the
 /// path's, a hop's only where it moves). A hop that ends longer is undone.
 fn hop<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
+    // The length before the hop: the one before measured it last.
+    let mut length = None;
     for _ in 0..HOPS {
         let n = path.points.len();
         if n < 3 {
@@ -167,20 +169,14 @@ fn hop<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
         }
         let mut pressed: Vec<u32> = path.points[1..n - 1]
             .iter()
-            .filter_map(|p| match *p {
-                SurfacePoint::Edge { edge, t } if t <= SNAP => Some(mesh.edge_vertices(edge)[0]),
-                SurfacePoint::Edge { edge, t } if t >= 1.0 - SNAP => {
-                    Some(mesh.edge_vertices(edge)[1])
-                }
-                _ => None,
-            })
+            .filter_map(|p| pressed_vertex(mesh, p))
             .collect();
         if pressed.is_empty() {
             return;
         }
         pressed.sort_unstable();
         let saved = path.clone();
-        let before = path.metric_length(mesh, metric);
+        let before = *length.get_or_insert_with(|| path.metric_length(mesh, metric));
         snap_to_vertices(path, mesh);
         merge(path, mesh, metric);
         unpin(path, mesh, metric);
@@ -220,6 +216,7 @@ fn hop<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
         if before - after <= HOP_GAIN * before {
             return;
         }
+        length = Some(after);
     }
 }
 
@@ -254,14 +251,24 @@ fn stretch(path: &GeodesicPath, lo: usize, hi: usize) -> GeodesicPath {
 fn snap_to_vertices(path: &mut GeodesicPath, mesh: &TriMesh) {
     let n = path.points.len();
     for p in path.points.iter_mut().take(n.saturating_sub(1)).skip(1) {
-        if let SurfacePoint::Edge { edge, t } = *p {
-            let [lo, hi] = mesh.edge_vertices(edge);
-            if t <= SNAP {
-                *p = SurfacePoint::Vertex(lo);
-            } else if t >= 1.0 - SNAP {
-                *p = SurfacePoint::Vertex(hi);
-            }
+        if let Some(v) = pressed_vertex(mesh, p) {
+            *p = SurfacePoint::Vertex(v);
         }
+    }
+}
+
+/// The vertex a crossing is pressed against (within [`SNAP`] of it along its edge).
+fn pressed_vertex(mesh: &TriMesh, p: &SurfacePoint) -> Option<u32> {
+    let SurfacePoint::Edge { edge, t } = *p else {
+        return None;
+    };
+    let [lo, hi] = mesh.edge_vertices(edge);
+    if t <= SNAP {
+        Some(lo)
+    } else if t >= 1.0 - SNAP {
+        Some(hi)
+    } else {
+        None
     }
 }
 
