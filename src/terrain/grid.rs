@@ -510,22 +510,17 @@ impl ElevationGrid {
         let sample_range = (cols.start..cols.end + 1, rows.start..rows.end + 1);
         // The maps from samples and cells to the mesh cover the window's box only: a
         // small window of a large grid is meshed in time for its size.
-        let samples = GridBox {
-            col0: cols.start,
-            row0: rows.start,
-            cols: sample_range.0.len(),
-            rows: sample_range.1.len(),
-        };
         let cell_box = GridBox {
             col0: cols.start,
             row0: rows.start,
             cols: cols.len(),
             rows: rows.len(),
         };
-        // Sample `s` (a grid index, of a cell in row `row`) in the box.
+        let samples = cell_box.corners();
+        // Sample `s` (a grid index, of a cell in row `row`: no division) in the box.
         let local = |s: usize, row: usize| {
             let r = if s >= (row + 1) * ncols { row + 1 } else { row };
-            (r - samples.row0) * samples.cols + (s - r * ncols) - samples.col0
+            samples.offset(s - r * ncols, r)
         };
         // The samples that become vertices: every valid one for the whole grid, the
         // corners of the kept cells' triangles for a window.
@@ -593,7 +588,6 @@ impl ElevationGrid {
         Ok(TerrainMesh {
             mesh,
             geometry: g,
-            samples,
             sample_vertex,
             cells: cell_box,
             cell_faces,
@@ -695,9 +689,8 @@ pub struct TerrainMesh {
     /// The mesh: vertices at valid sample centres, in the grid's units.
     pub mesh: TriMesh,
     geometry: GridGeometry,
-    /// The box of samples `sample_vertex` covers (the meshed cells' corners).
-    samples: GridBox,
-    /// Per sample of the box (row-major from the north), its vertex or `NONE`.
+    /// Per sample of the cells' box's corners ([`GridBox::corners`], row-major from the
+    /// north), its vertex or `NONE`.
     sample_vertex: Vec<u32>,
     /// The box of cells `cell_faces` covers (the meshed cells).
     cells: GridBox,
@@ -732,6 +725,15 @@ impl GridBox {
     fn offset(&self, col: usize, row: usize) -> usize {
         (row - self.row0) * self.cols + (col - self.col0)
     }
+
+    /// The box of the samples at the corners of these cells.
+    fn corners(&self) -> GridBox {
+        GridBox {
+            cols: self.cols + 1,
+            rows: self.rows + 1,
+            ..*self
+        }
+    }
 }
 
 impl TerrainMesh {
@@ -742,7 +744,7 @@ impl TerrainMesh {
 
     /// Per vertex, its sample (row-major index from the north).
     pub(crate) fn vertex_samples(&self) -> Vec<usize> {
-        let (b, ncols) = (&self.samples, self.geometry.ncols);
+        let (b, ncols) = (self.cells.corners(), self.geometry.ncols);
         let mut samples = vec![0; self.mesh.vertex_count()];
         for (i, &v) in self.sample_vertex.iter().enumerate() {
             if v != NONE {
@@ -756,7 +758,7 @@ impl TerrainMesh {
     #[inline]
     pub fn sample_vertex(&self, col: usize, row: usize) -> Option<u32> {
         // (The box lies in the grid: a sample outside it has no vertex.)
-        let v = self.sample_vertex[self.samples.index(col, row)?];
+        let v = self.sample_vertex[self.cells.corners().index(col, row)?];
         (v != NONE).then_some(v)
     }
 
