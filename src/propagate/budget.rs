@@ -125,7 +125,6 @@ pub(super) fn second_run_fits(extra: u64, budgeted: u64, limit: Option<u64>) -> 
 /// Steiner point its block; for the tracks engine a record per face and edge and a
 /// track per (face, boundary node).
 fn bytes(mesh: &TriMesh, counts: &[u32], steiner: u64, nodes: u64, method: Method) -> u64 {
-    let per_node = RUN_BYTES_PER_NODE;
     let layout = 4 * steiner + 12 * counts.len() as u64;
     let engine = match method {
         Method::Tracks => {
@@ -140,7 +139,7 @@ fn bytes(mesh: &TriMesh, counts: &[u32], steiner: u64, nodes: u64, method: Metho
         // The heap holds about two entries of 16 bytes per node.
         Method::Graph | Method::Dijkstra => 2 * 16 * nodes,
     };
-    per_node * nodes + layout + engine
+    RUN_BYTES_PER_NODE * nodes + layout + engine
 }
 
 /// Memory the system says is available (Linux: `MemAvailable`), if it says.
