@@ -248,7 +248,9 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
         self.settles += 1;
         if let Some(side) = &mut self.meet {
             // Everything below the level is settled; `q` is not yet.
-            if side.round_over() && side.end_round(self.queue.level(), self.distance) {
+            if side.round_over(self.pushes)
+                && side.end_round(self.queue.level(), self.distance, self.pushes)
+            {
                 return None;
             }
             side.settle(q, self.distance[q as usize]);
