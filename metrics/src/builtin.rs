@@ -85,6 +85,17 @@ macro_rules! metric_enum {
             fn name(&self) -> &str {
                 match self { $($name::$variant(m) => m.name()),+ }
             }
+            #[inline(always)]
+            fn sliding_cost(
+                &self,
+                face: u32,
+                a: &$crate::FacePoint,
+                da: &$crate::FacePoint,
+                b: &$crate::FacePoint,
+                db: &$crate::FacePoint,
+            ) -> Option<$crate::SlidingCost> {
+                match self { $($name::$variant(m) => m.sliding_cost(face, a, da, b, db)),+ }
+            }
         }
     };
 }

@@ -1,4 +1,4 @@
-use crate::{FaceGeometry, FacePoint, Metric, MetricError};
+use crate::{FaceGeometry, FacePoint, Metric, MetricError, SlidingCost};
 
 /// A positive scalar cost per vertex, linear on each face (weighted geodesics).
 ///
@@ -143,5 +143,37 @@ impl Metric for Density {
     }
     fn name(&self) -> &str {
         "density"
+    }
+    /// The segment's length `L` (a norm: [`Metric::sliding_cost`] of `Euclidean`)
+    /// times the mean density `m` of its ends, which is linear in `s` and `t`: the
+    /// product rule, with `m`'s second derivatives 0.
+    #[inline]
+    fn sliding_cost(
+        &self,
+        face: u32,
+        a: &FacePoint,
+        da: &FacePoint,
+        b: &FacePoint,
+        db: &FacePoint,
+    ) -> Option<SlidingCost> {
+        let length = crate::sliding_norm([1.0, 0.0, 1.0], a, da, b, db)?;
+        let c = &self.per_corner[face as usize];
+        let along = |p: &FacePoint| 0.5 * (c[0] * p.bary[0] + c[1] * p.bary[1] + c[2] * p.bary[2]);
+        let (m, ms, mt) = (along(a) + along(b), along(da), along(db));
+        let (l, [ls, lt], [lss, lst, ltt]) = (length.cost, length.gradient, length.hessian);
+        let cost = l * m;
+        if cost >= f64::MAX {
+            return None; // (`cost` clamps it there.)
+        }
+        SlidingCost {
+            cost,
+            gradient: [ls * m + l * ms, lt * m + l * mt],
+            hessian: [
+                lss * m + 2.0 * ls * ms,
+                lst * m + ls * mt + lt * ms,
+                ltt * m + 2.0 * lt * mt,
+            ],
+        }
+        .finite()
     }
 }

@@ -1,4 +1,4 @@
-use crate::{FacePoint, Metric};
+use crate::{sliding_norm, FacePoint, Metric, SlidingCost};
 
 /// The plain length of a segment: geodesic distance on the surface as it is.
 ///
@@ -28,5 +28,16 @@ impl Metric for Euclidean {
     }
     fn name(&self) -> &str {
         "euclidean"
+    }
+    #[inline]
+    fn sliding_cost(
+        &self,
+        _face: u32,
+        a: &FacePoint,
+        da: &FacePoint,
+        b: &FacePoint,
+        db: &FacePoint,
+    ) -> Option<SlidingCost> {
+        sliding_norm([1.0, 0.0, 1.0], a, da, b, db)
     }
 }

@@ -1,4 +1,4 @@
-use crate::{FaceGeometry, FacePoint, Metric, MetricError};
+use crate::{FaceGeometry, FacePoint, Metric, MetricError, SlidingCost};
 
 /// A symmetric positive-definite tensor per face (anisotropic, direction-dependent cost).
 ///
@@ -233,6 +233,17 @@ impl Metric for Tensor {
     }
     fn name(&self) -> &str {
         "tensor"
+    }
+    #[inline]
+    fn sliding_cost(
+        &self,
+        face: u32,
+        a: &FacePoint,
+        da: &FacePoint,
+        b: &FacePoint,
+        db: &FacePoint,
+    ) -> Option<SlidingCost> {
+        crate::sliding_norm(self.local[face as usize], a, da, b, db)
     }
 }
 

@@ -348,6 +348,21 @@ impl<M: Metric> Metric for Impassable<M> {
     fn name(&self) -> &str {
         "impassable"
     }
+    // (A blocked face's costs are infinite: no formula.)
+    fn sliding_cost(
+        &self,
+        face: u32,
+        a: &FacePoint,
+        da: &FacePoint,
+        b: &FacePoint,
+        db: &FacePoint,
+    ) -> Option<geotracks_metrics::SlidingCost> {
+        if self.blocked[face as usize] {
+            None
+        } else {
+            self.inner.sliding_cost(face, a, da, b, db)
+        }
+    }
 }
 
 /// A terrain cost as the command line names it: `none`, `slope:A[,max:DEG]`,
