@@ -294,11 +294,11 @@ fn merge<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
         }
         // One face holding all three points (the same face twice, or points along one
         // edge whose segments name different faces of it): the straight segment there.
-        let bent = segment_cost(mesh, metric, f, a, p) + segment_cost(mesh, metric, g, p, b);
         let shared = [f, g]
             .into_iter()
             .find(|&h| [a, p, b].iter().all(|x| x.bary_in(mesh, h).is_some()));
         if let Some(h) = shared {
+            let bent = segment_cost(mesh, metric, f, a, p) + segment_cost(mesh, metric, g, p, b);
             if segment_cost(mesh, metric, h, a, b) <= bent {
                 path.points.remove(i);
                 path.faces[i - 1] = h;
