@@ -156,7 +156,7 @@ impl Metric for Density {
         b: &FacePoint,
         db: &FacePoint,
     ) -> Option<SlidingCost> {
-        let length = crate::sliding_norm([1.0, 0.0, 1.0], a, da, b, db)?;
+        let length = SlidingCost::norm([1.0, 0.0, 1.0], a, da, b, db)?;
         let c = &self.per_corner[face as usize];
         let along = |p: &FacePoint| 0.5 * (c[0] * p.bary[0] + c[1] * p.bary[1] + c[2] * p.bary[2]);
         let (m, ms, mt) = (along(a) + along(b), along(da), along(db));

@@ -1,4 +1,4 @@
-use crate::{sliding_norm, FacePoint, Metric, SlidingCost};
+use crate::{FacePoint, Metric, SlidingCost};
 
 /// The plain length of a segment: geodesic distance on the surface as it is.
 ///
@@ -38,6 +38,6 @@ impl Metric for Euclidean {
         b: &FacePoint,
         db: &FacePoint,
     ) -> Option<SlidingCost> {
-        sliding_norm([1.0, 0.0, 1.0], a, da, b, db)
+        SlidingCost::norm([1.0, 0.0, 1.0], a, da, b, db)
     }
 }

@@ -237,7 +237,8 @@ pub trait Metric: Sync {
     /// calls of [`Metric::cost`] estimate the same by central differences, several
     /// times slower. `None` (the default) where the metric gives no formula, or where
     /// its formula breaks down (a segment of length 0, a cost beyond the f64 range):
-    /// the differences stand in. `Euclidean`, `Density` and `Tensor` give it.
+    /// the differences stand in. `Euclidean`, `Density` and `Tensor` give it, and so
+    /// do geotracks' directed terrain costs (`DirectedCost`).
     ///
     /// ```
     /// use geotracks_metrics::{Euclidean, FacePoint, Metric};
@@ -277,6 +278,59 @@ pub struct SlidingCost {
 }
 
 impl SlidingCost {
+    /// [`Metric::sliding_cost`] for the norm `sqrt(vᵀ G v)` of `v = b − a` (`G`:
+    /// `[g11, g12, g22]`, symmetric positive-semidefinite, in the face's frame): with
+    /// `n = sqrt(vᵀ G v)`, its gradient in `v` is `G v / n` and its Hessian
+    /// `(G − (G v)(G v)ᵀ / n²) / n`, and `v` moves by `db − da`. `None` for a segment
+    /// whose squared norm is not a normal number (0, or beyond the f64 range). What
+    /// `Euclidean` (`G = I`) and `Tensor` give, and a start for metrics built on a
+    /// norm.
+    ///
+    /// ```
+    /// use geotracks_metrics::{FacePoint, SlidingCost};
+    /// let a = FacePoint { uv: [0.0, 0.0], bary: [1.0, 0.0, 0.0] };
+    /// let b = FacePoint { uv: [1.0, 1.0], bary: [0.0, 0.0, 1.0] };
+    /// let still = FacePoint { uv: [0.0, 0.0], bary: [0.0, 0.0, 0.0] };
+    /// // Twice the cost along u: sqrt(4 du² + dv²).
+    /// let d = SlidingCost::norm([4.0, 0.0, 1.0], &a, &still, &b, &still).unwrap();
+    /// assert_eq!(d.cost, 5f64.sqrt());
+    /// ```
+    pub fn norm(
+        g: [f64; 3],
+        a: &FacePoint,
+        da: &FacePoint,
+        b: &FacePoint,
+        db: &FacePoint,
+    ) -> Option<SlidingCost> {
+        let [g11, g12, g22] = g;
+        let v = [b.uv[0] - a.uv[0], b.uv[1] - a.uv[1]];
+        let gv = [g11 * v[0] + g12 * v[1], g12 * v[0] + g22 * v[1]];
+        let squared = v[0] * gv[0] + v[1] * gv[1];
+        if !squared.is_normal() {
+            return None;
+        }
+        let n = squared.sqrt();
+        // How `v` moves with `s` (`a` moves forward, so `v` back) and with `t`.
+        let (vs, vt) = ([-da.uv[0], -da.uv[1]], db.uv);
+        let dot = |x: [f64; 2], y: [f64; 2]| x[0] * y[0] + x[1] * y[1];
+        let (gs, gt) = (dot(gv, vs) / n, dot(gv, vt) / n);
+        // xᵀ G y, less the rank-one part, over n.
+        let second = |x: [f64; 2], y: [f64; 2], gx: f64, gy: f64| {
+            let gxy = g11 * x[0] * y[0] + g12 * (x[0] * y[1] + x[1] * y[0]) + g22 * x[1] * y[1];
+            (gxy - gx * gy) / n
+        };
+        SlidingCost {
+            cost: n,
+            gradient: [gs, gt],
+            hessian: [
+                second(vs, vs, gs, gs),
+                second(vs, vt, gs, gt),
+                second(vt, vt, gt, gt),
+            ],
+        }
+        .finite()
+    }
+
     /// The same segment travelled the other way (its ends and their parameters
     /// swapped): what [`Reversed`] gives.
     fn swapped(self) -> SlidingCost {
@@ -289,8 +343,10 @@ impl SlidingCost {
         }
     }
 
-    /// `Some(self)` if all its numbers are finite.
-    fn finite(self) -> Option<SlidingCost> {
+    /// `Some(self)` if all its numbers are finite (the cost, its gradient and its
+    /// Hessian), `None` otherwise: what [`Metric::sliding_cost`] returns where a
+    /// formula overflows.
+    pub fn finite(self) -> Option<SlidingCost> {
         let all = [self.cost]
             .iter()
             .chain(&self.gradient)
@@ -298,47 +354,6 @@ impl SlidingCost {
             .all(|x| x.is_finite());
         all.then_some(self)
     }
-}
-
-/// [`Metric::sliding_cost`] for the norm `sqrt(vᵀ G v)` of `v = b − a` (`G`:
-/// `[g11, g12, g22]`, symmetric positive-definite, in the face's frame): with
-/// `n = sqrt(vᵀ G v)`, its gradient in `v` is `G v / n` and its Hessian
-/// `(G − (G v)(G v)ᵀ / n²) / n`, and `v` moves by `db − da`. `None` for a segment
-/// whose squared norm is not a normal number (0, or beyond the f64 range).
-pub(crate) fn sliding_norm(
-    g: [f64; 3],
-    a: &FacePoint,
-    da: &FacePoint,
-    b: &FacePoint,
-    db: &FacePoint,
-) -> Option<SlidingCost> {
-    let [g11, g12, g22] = g;
-    let v = [b.uv[0] - a.uv[0], b.uv[1] - a.uv[1]];
-    let gv = [g11 * v[0] + g12 * v[1], g12 * v[0] + g22 * v[1]];
-    let squared = v[0] * gv[0] + v[1] * gv[1];
-    if !squared.is_normal() {
-        return None;
-    }
-    let n = squared.sqrt();
-    // How `v` moves with `s` (`a` moves forward, so `v` back) and with `t`.
-    let (vs, vt) = ([-da.uv[0], -da.uv[1]], db.uv);
-    let dot = |x: [f64; 2], y: [f64; 2]| x[0] * y[0] + x[1] * y[1];
-    let (gs, gt) = (dot(gv, vs) / n, dot(gv, vt) / n);
-    // xᵀ G y, less the rank-one part, over n.
-    let second = |x: [f64; 2], y: [f64; 2], gx: f64, gy: f64| {
-        let gxy = g11 * x[0] * y[0] + g12 * (x[0] * y[1] + x[1] * y[0]) + g22 * x[1] * y[1];
-        (gxy - gx * gy) / n
-    };
-    SlidingCost {
-        cost: n,
-        gradient: [gs, gt],
-        hessian: [
-            second(vs, vs, gs, gs),
-            second(vs, vt, gs, gt),
-            second(vt, vt, gt, gt),
-        ],
-    }
-    .finite()
 }
 
 impl<M: Metric + ?Sized> Metric for &M {

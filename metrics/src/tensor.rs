@@ -243,7 +243,7 @@ impl Metric for Tensor {
         b: &FacePoint,
         db: &FacePoint,
     ) -> Option<SlidingCost> {
-        crate::sliding_norm(self.local[face as usize], a, da, b, db)
+        SlidingCost::norm(self.local[face as usize], a, da, b, db)
     }
 }
 

@@ -32,7 +32,7 @@
 use super::cost::{face_normal_up, tan2};
 use super::TerrainError;
 use crate::mesh::TriMesh;
-use geotracks_metrics::{FaceGeometry, FacePoint, Metric};
+use geotracks_metrics::{FaceGeometry, FacePoint, Metric, SlidingCost};
 
 /// How a [`DirectedCost`] charges a segment (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -175,6 +175,69 @@ impl DirectedModel {
                 } else {
                     seconds
                 }
+            }
+        }
+    }
+
+    /// The cost of a step `h` long on the map rising `dz`, with its first and second
+    /// derivatives in `h` and `dz`: `[f, f_h, f_z, f_hh, f_hz, f_zz]`. `None` on a
+    /// kink (level ground for `uphill` and r.walk, r.walk's steep-descent edge,
+    /// Tobler's fastest slope), for Tobler straight up or down, and where the step
+    /// has no length.
+    fn derivatives(&self, h: f64, dz: f64) -> Option<[f64; 6]> {
+        match *self {
+            DirectedModel::Uphill { b } => {
+                let r = h.hypot(dz);
+                if dz == 0.0 || !r.is_normal() {
+                    return None;
+                }
+                let r3 = r * r * r;
+                let climb = if dz > 0.0 { b } else { 0.0 };
+                Some([
+                    r + climb * dz,
+                    h / r,
+                    dz / r + climb,
+                    dz * dz / r3,
+                    -h * dz / r3,
+                    h * h / r3,
+                ])
+            }
+            DirectedModel::Walk {
+                a,
+                b,
+                c,
+                d,
+                slope_factor,
+            } => {
+                if dz == 0.0 || dz == slope_factor * h {
+                    return None;
+                }
+                let per_rise = if dz > 0.0 {
+                    b
+                } else if dz < slope_factor * h {
+                    d
+                } else {
+                    c
+                };
+                Some([a * h + per_rise * dz, a, per_rise, 0.0, 0.0, 0.0])
+            }
+            DirectedModel::Tobler { off_path } => {
+                let tangent = dz / h + 0.05;
+                if h == 0.0 || tangent == 0.0 || !tangent.is_finite() {
+                    return None;
+                }
+                // 0.6 h e^{g (dz/h + 0.05)}, g = ±3.5 on either side of the kink.
+                let g = 3.5f64.copysign(tangent);
+                let scale = if off_path { 1.0 } else { 0.6 };
+                let e = scale * (g * tangent).exp();
+                Some([
+                    h * e,
+                    e * (1.0 - g * dz / h),
+                    g * e,
+                    e * g * g * dz * dz / (h * h * h),
+                    -e * g * g * dz / (h * h),
+                    e * g * g / h,
+                ])
             }
         }
     }
@@ -352,6 +415,36 @@ impl Metric for DirectedCost {
     fn min_cost_per_length(&self) -> f64 {
         self.per_length
     }
+    /// The model's cost of the step's map length `h` and rise `z` (chain rule): `h` is
+    /// the norm of the step in the face's frame under the Gram matrix of its axes'
+    /// map parts, `z` is linear in the step.
+    fn sliding_cost(
+        &self,
+        face: u32,
+        a: &FacePoint,
+        da: &FacePoint,
+        b: &FacePoint,
+        db: &FacePoint,
+    ) -> Option<SlidingCost> {
+        let [ux, uy, uz, vx, vy, vz] = self.axes[face as usize];
+        let gram = [ux * ux + uy * uy, ux * vx + uy * vy, vx * vx + vy * vy];
+        let h = SlidingCost::norm(gram, a, da, b, db)?;
+        let rise = |p: [f64; 2]| p[0] * uz + p[1] * vz;
+        let z = rise([b.uv[0] - a.uv[0], b.uv[1] - a.uv[1]]);
+        let (zs, zt) = (-rise(da.uv), rise(db.uv));
+        let [f, fh, fz, fhh, fhz, fzz] = self.model.derivatives(h.cost, z)?;
+        let ([hs, ht], [hss, hst, htt]) = (h.gradient, h.hessian);
+        SlidingCost {
+            cost: f,
+            gradient: [fh * hs + fz * zs, fh * ht + fz * zt],
+            hessian: [
+                fhh * hs * hs + 2.0 * fhz * hs * zs + fzz * zs * zs + fh * hss,
+                fhh * hs * ht + fhz * (hs * zt + ht * zs) + fzz * zs * zt + fh * hst,
+                fhh * ht * ht + 2.0 * fhz * ht * zt + fzz * zt * zt + fh * htt,
+            ],
+        }
+        .finite()
+    }
     fn name(&self) -> &str {
         match self.model {
             DirectedModel::Uphill { .. } => "uphill",
@@ -364,7 +457,121 @@ impl Metric for DirectedCost {
 
 #[cfg(test)]
 mod tests {
-    use super::DirectedModel;
+    use super::{DirectedCost, DirectedModel};
+    use crate::mesh::TriMesh;
+    use geotracks_metrics::{FacePoint, Metric};
+
+    /// The models' formulas for a segment's derivatives against central differences of
+    /// its cost (step 1e-4), on a tilted face, for segments between interior and edge
+    /// points whose ends slide along the face's edges or stay; segments whose rise over
+    /// run lies within 0.02 of a kink are left out (the differences straddle it).
+    #[test]
+    fn sliding_costs_are_the_derivatives_of_cost() {
+        let mesh = TriMesh::new(
+            vec![[0.0, 0.0, 0.0], [10.0, 0.0, 2.0], [0.0, 10.0, -3.0]],
+            vec![[0, 1, 2]],
+        )
+        .unwrap();
+        let frame = mesh.frame(0);
+        let point = |bary: [f64; 3]| frame.point(bary);
+        let velocity = |from: usize, to: usize| {
+            let (p, q) = (frame.corner(from), frame.corner(to));
+            FacePoint {
+                uv: [q.uv[0] - p.uv[0], q.uv[1] - p.uv[1]],
+                bary: [0, 1, 2].map(|i| q.bary[i] - p.bary[i]),
+            }
+        };
+        let still = FacePoint {
+            uv: [0.0; 2],
+            bary: [0.0; 3],
+        };
+        let slide = |p: &FacePoint, dp: &FacePoint, s: f64| FacePoint {
+            uv: [0, 1].map(|i| p.uv[i] + s * dp.uv[i]),
+            bary: [0, 1, 2].map(|i| p.bary[i] + s * dp.bary[i]),
+        };
+        let points = [
+            point([0.2, 0.3, 0.5]),
+            point([0.0, 0.4, 0.6]),
+            point([0.7, 0.3, 0.0]),
+            point([0.1, 0.8, 0.1]),
+            point([0.5, 0.0, 0.5]),
+        ];
+        let velocities = [velocity(0, 1), velocity(1, 2), velocity(2, 0), still];
+        let models = [
+            DirectedModel::Uphill { b: 8.0 },
+            DirectedModel::NAISMITH,
+            DirectedModel::RWALK,
+            DirectedModel::Tobler { off_path: false },
+            DirectedModel::Tobler { off_path: true },
+        ];
+        let mut checked = 0;
+        for model in models {
+            let cost = DirectedCost::new(&mesh, model).unwrap();
+            for a in &points {
+                for b in &points {
+                    let (pa, pb) = (mesh_point(&mesh, a), mesh_point(&mesh, b));
+                    let run = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
+                    if run == 0.0 {
+                        continue;
+                    }
+                    let grade = (pb[2] - pa[2]) / run;
+                    let kinks = [0.0, -0.2125, -0.3, -0.05];
+                    if kinks.iter().any(|k| (grade - k).abs() < 0.02) {
+                        continue;
+                    }
+                    for da in &velocities {
+                        for db in &velocities {
+                            let c =
+                                |s: f64, t: f64| cost.cost(0, &slide(a, da, s), &slide(b, db, t));
+                            let d = cost.sliding_cost(0, a, da, b, db).expect("a formula");
+                            let h = 1e-4;
+                            let expected = [
+                                c(0.0, 0.0),
+                                (c(h, 0.0) - c(-h, 0.0)) / (2.0 * h),
+                                (c(0.0, h) - c(0.0, -h)) / (2.0 * h),
+                                (c(h, 0.0) - 2.0 * c(0.0, 0.0) + c(-h, 0.0)) / (h * h),
+                                (c(h, h) - c(h, -h) - c(-h, h) + c(-h, -h)) / (4.0 * h * h),
+                                (c(0.0, h) - 2.0 * c(0.0, 0.0) + c(0.0, -h)) / (h * h),
+                            ];
+                            let found = [
+                                d.cost,
+                                d.gradient[0],
+                                d.gradient[1],
+                                d.hessian[0],
+                                d.hessian[1],
+                                d.hessian[2],
+                            ];
+                            // (A Hessian entry against the Hessian's scale: a mixed
+                            // derivative can be 0 where the differences read 1e-5.)
+                            let hessian = expected[3..].iter().fold(0.0f64, |m, y| m.max(y.abs()));
+                            for (k, (x, y)) in found.iter().zip(expected).enumerate() {
+                                let scale = if k >= 3 { hessian } else { y.abs() };
+                                assert!(
+                                    (x - y).abs() <= 1e-5 * (1.0 + scale),
+                                    "{model:?} part {k}: {x} against {y}"
+                                );
+                            }
+                            checked += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(checked > 200, "only {checked} cases away from the kinks");
+    }
+
+    /// The 3D position of a point of the mesh's only face.
+    fn mesh_point(mesh: &TriMesh, p: &FacePoint) -> [f64; 3] {
+        let t = mesh.triangles()[0];
+        let mut out = [0.0; 3];
+        for (c, &v) in t.iter().enumerate() {
+            let q = mesh.position(v);
+            for (i, x) in [q.x, q.y, q.z].into_iter().enumerate() {
+                out[i] += p.bary[c] * x;
+            }
+        }
+        out
+    }
 
     /// The least cost per unit of 3D length is a lower bound on every direction of a
     /// face with the given steepest tangent, and a tight one (some direction costs
