@@ -60,11 +60,10 @@ fn run<M: Metric>(
         node_count: solver.layout().node_count() as u64,
         links: (0..mesh.triangles().len() as u32)
             .map(|f| {
-                let layout = solver.layout();
                 let on_face = 3 + mesh
                     .face_edges(f)
                     .iter()
-                    .map(|&e| layout.count(e) as u64)
+                    .map(|&e| solver.layout().count(e) as u64)
                     .sum::<u64>();
                 on_face * (on_face - 1)
             })

@@ -157,8 +157,9 @@ impl Metric for Density {
         db: &FacePoint,
     ) -> Option<SlidingCost> {
         let length = SlidingCost::norm([1.0, 0.0, 1.0], a, da, b, db)?;
-        let c = &self.per_corner[face as usize];
-        let along = |p: &FacePoint| 0.5 * (c[0] * p.bary[0] + c[1] * p.bary[1] + c[2] * p.bary[2]);
+        // (`at` is linear in the barycentric coordinates: on a velocity it gives the
+        // density's rate.)
+        let along = |p: &FacePoint| 0.5 * self.at(face, p);
         let (m, ms, mt) = (along(a) + along(b), along(da), along(db));
         let (l, [ls, lt], [lss, lst, ltt]) = (length.cost, length.gradient, length.hessian);
         let cost = l * m;

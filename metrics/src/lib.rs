@@ -343,6 +343,42 @@ impl SlidingCost {
         }
     }
 
+    /// The same by central differences of `cost(s, t)` with step `h` (nine calls; a
+    /// still end, `moving[i] == false`, gets derivatives 0 and costs no calls): what
+    /// stands in for [`Metric::sliding_cost`] where a metric gives no formula, and the
+    /// check of those that do.
+    ///
+    /// ```
+    /// use geotracks_metrics::SlidingCost;
+    /// let d = SlidingCost::by_differences(|s, t| s * s * t, 1e-3, [true, true]);
+    /// assert!((d.hessian[2]).abs() < 1e-9 && d.gradient[0].abs() < 1e-9);
+    /// ```
+    pub fn by_differences(
+        cost: impl Fn(f64, f64) -> f64,
+        h: f64,
+        moving: [bool; 2],
+    ) -> SlidingCost {
+        let c0 = cost(0.0, 0.0);
+        let mut d = SlidingCost {
+            cost: c0,
+            ..SlidingCost::default()
+        };
+        if moving[0] {
+            let (p, m) = (cost(h, 0.0), cost(-h, 0.0));
+            d.gradient[0] = (p - m) / (2.0 * h);
+            d.hessian[0] = (p - 2.0 * c0 + m) / (h * h);
+        }
+        if moving[1] {
+            let (p, m) = (cost(0.0, h), cost(0.0, -h));
+            d.gradient[1] = (p - m) / (2.0 * h);
+            d.hessian[2] = (p - 2.0 * c0 + m) / (h * h);
+        }
+        if moving[0] && moving[1] {
+            d.hessian[1] = (cost(h, h) - cost(h, -h) - cost(-h, h) + cost(-h, -h)) / (4.0 * h * h);
+        }
+        d
+    }
+
     /// `Some(self)` if all its numbers are finite (the cost, its gradient and its
     /// Hessian), `None` otherwise: what [`Metric::sliding_cost`] returns where a
     /// formula overflows.
@@ -547,6 +583,12 @@ mod sliding_tests {
         FacePoint { uv, bary }
     }
 
+    /// The cost, gradient and Hessian in a row.
+    fn parts(d: &SlidingCost) -> [f64; 6] {
+        let ([gs, gt], [hss, hst, htt]) = (d.gradient, d.hessian);
+        [d.cost, gs, gt, hss, hst, htt]
+    }
+
     fn slide(p: &FacePoint, dp: &FacePoint, s: f64) -> FacePoint {
         FacePoint {
             uv: [0, 1].map(|i| p.uv[i] + s * dp.uv[i]),
@@ -572,24 +614,9 @@ mod sliding_tests {
                 for da in &velocities {
                     for db in &velocities {
                         let c = |s: f64, t: f64| metric.cost(0, &slide(a, da, s), &slide(b, db, t));
-                        let d = metric.sliding_cost(0, a, da, b, db).expect("a formula");
-                        let expected = [
-                            c(0.0, 0.0),
-                            (c(h, 0.0) - c(-h, 0.0)) / (2.0 * h),
-                            (c(0.0, h) - c(0.0, -h)) / (2.0 * h),
-                            (c(h, 0.0) - 2.0 * c(0.0, 0.0) + c(-h, 0.0)) / (h * h),
-                            (c(h, h) - c(h, -h) - c(-h, h) + c(-h, -h)) / (4.0 * h * h),
-                            (c(0.0, h) - 2.0 * c(0.0, 0.0) + c(0.0, -h)) / (h * h),
-                        ];
-                        let found = [
-                            d.cost,
-                            d.gradient[0],
-                            d.gradient[1],
-                            d.hessian[0],
-                            d.hessian[1],
-                            d.hessian[2],
-                        ];
-                        for (k, (x, y)) in found.iter().zip(expected).enumerate() {
+                        let found = metric.sliding_cost(0, a, da, b, db).expect("a formula");
+                        let expected = SlidingCost::by_differences(c, h, [true, true]);
+                        for (k, (x, y)) in parts(&found).iter().zip(parts(&expected)).enumerate() {
                             assert!(
                                 (x - y).abs() <= 1e-5 * (1.0 + y.abs()),
                                 "{} part {k}: {x} against {y} ({a:?} → {b:?})",

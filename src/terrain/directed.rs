@@ -459,7 +459,8 @@ impl Metric for DirectedCost {
 mod tests {
     use super::{DirectedCost, DirectedModel};
     use crate::mesh::TriMesh;
-    use geotracks_metrics::{FacePoint, Metric};
+    use crate::surface::SurfacePoint;
+    use geotracks_metrics::{FacePoint, Metric, SlidingCost};
 
     /// The models' formulas for a segment's derivatives against central differences of
     /// its cost (step 1e-4), on a tilted face, for segments between interior and edge
@@ -509,12 +510,19 @@ mod tests {
             let cost = DirectedCost::new(&mesh, model).unwrap();
             for a in &points {
                 for b in &points {
-                    let (pa, pb) = (mesh_point(&mesh, a), mesh_point(&mesh, b));
-                    let run = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
+                    let on = |p: &FacePoint| {
+                        SurfacePoint::Face {
+                            face: 0,
+                            bary: p.bary,
+                        }
+                        .position(&mesh)
+                    };
+                    let (pa, pb) = (on(a), on(b));
+                    let run = (pb.x - pa.x).hypot(pb.y - pa.y);
                     if run == 0.0 {
                         continue;
                     }
-                    let grade = (pb[2] - pa[2]) / run;
+                    let grade = (pb.z - pa.z) / run;
                     let kinks = [0.0, -0.2125, -0.3, -0.05];
                     if kinks.iter().any(|k| (grade - k).abs() < 0.02) {
                         continue;
@@ -523,24 +531,14 @@ mod tests {
                         for db in &velocities {
                             let c =
                                 |s: f64, t: f64| cost.cost(0, &slide(a, da, s), &slide(b, db, t));
-                            let d = cost.sliding_cost(0, a, da, b, db).expect("a formula");
-                            let h = 1e-4;
-                            let expected = [
-                                c(0.0, 0.0),
-                                (c(h, 0.0) - c(-h, 0.0)) / (2.0 * h),
-                                (c(0.0, h) - c(0.0, -h)) / (2.0 * h),
-                                (c(h, 0.0) - 2.0 * c(0.0, 0.0) + c(-h, 0.0)) / (h * h),
-                                (c(h, h) - c(h, -h) - c(-h, h) + c(-h, -h)) / (4.0 * h * h),
-                                (c(0.0, h) - 2.0 * c(0.0, 0.0) + c(0.0, -h)) / (h * h),
-                            ];
-                            let found = [
-                                d.cost,
-                                d.gradient[0],
-                                d.gradient[1],
-                                d.hessian[0],
-                                d.hessian[1],
-                                d.hessian[2],
-                            ];
+                            let parts = |d: SlidingCost| {
+                                let ([gs, gt], [hss, hst, htt]) = (d.gradient, d.hessian);
+                                [d.cost, gs, gt, hss, hst, htt]
+                            };
+                            let found =
+                                parts(cost.sliding_cost(0, a, da, b, db).expect("a formula"));
+                            let expected =
+                                parts(SlidingCost::by_differences(c, 1e-4, [true, true]));
                             // (A Hessian entry against the Hessian's scale: a mixed
                             // derivative can be 0 where the differences read 1e-5.)
                             let hessian = expected[3..].iter().fold(0.0f64, |m, y| m.max(y.abs()));
@@ -558,19 +556,6 @@ mod tests {
             }
         }
         assert!(checked > 200, "only {checked} cases away from the kinks");
-    }
-
-    /// The 3D position of a point of the mesh's only face.
-    fn mesh_point(mesh: &TriMesh, p: &FacePoint) -> [f64; 3] {
-        let t = mesh.triangles()[0];
-        let mut out = [0.0; 3];
-        for (c, &v) in t.iter().enumerate() {
-            let q = mesh.position(v);
-            for (i, x) in [q.x, q.y, q.z].into_iter().enumerate() {
-                out[i] += p.bary[c] * x;
-            }
-        }
-        out
     }
 
     /// The least cost per unit of 3D length is a lower bound on every direction of a

@@ -602,29 +602,10 @@ impl Chain {
         if let Some(exact) = exact {
             return exact;
         }
-        let h = FD_STEP;
         let c = |da: f64, db: f64| {
             self.segment(metric, faces, j, ca.map(|x| x + da), cb.map(|x| x + db))
         };
-        let c0 = c(0.0, 0.0);
-        let mut d = SlidingCost {
-            cost: c0,
-            ..SlidingCost::default()
-        };
-        if a.is_some() {
-            let (p, m) = (c(h, 0.0), c(-h, 0.0));
-            d.gradient[0] = (p - m) / (2.0 * h);
-            d.hessian[0] = (p - 2.0 * c0 + m) / (h * h);
-        }
-        if b.is_some() {
-            let (p, m) = (c(0.0, h), c(0.0, -h));
-            d.gradient[1] = (p - m) / (2.0 * h);
-            d.hessian[2] = (p - 2.0 * c0 + m) / (h * h);
-        }
-        if a.is_some() && b.is_some() {
-            d.hessian[1] = (c(h, h) - c(h, -h) - c(-h, h) + c(-h, -h)) / (4.0 * h * h);
-        }
-        d
+        SlidingCost::by_differences(c, FD_STEP, [a.is_some(), b.is_some()])
     }
 
     fn length<M: Metric>(&self, metric: &M, faces: &[u32], t: &[Option<f64>]) -> f64 {
