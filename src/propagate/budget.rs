@@ -21,6 +21,30 @@ pub(super) struct Spacing<'a> {
     pub min: u32,
     /// The length the interval scheme's k is relative to (`None`: the lengths' mean).
     pub mean: Option<f64>,
+    /// Lengths whose points the marked edges must also hold (`None`: no such
+    /// constraint): the wavefront engine keeps the Steiner graph's points at the same k
+    /// (spaced by the edges' lengths in space) on the edges where waves restart, and
+    /// refines them by the metric's lengths.
+    pub containing: Option<(&'a [f64], &'a [bool])>,
+}
+
+impl Spacing<'_> {
+    /// The points per edge under `scheme`: spaced by `lengths`, at least `min`, and on
+    /// the edges `containing` marks, the smallest count at least that dense whose points
+    /// include the ones its lengths space (an evenly spaced edge of `c` points holds
+    /// those of `g` when `c + 1` is a multiple of `g + 1`).
+    pub fn counts(&self, scheme: SteinerScheme) -> Vec<u32> {
+        let mut counts = scheme.counts_relative_to(self.lengths, self.min, self.mean);
+        let Some((lengths, marked)) = self.containing else {
+            return counts;
+        };
+        let base = scheme.counts_relative_to(lengths, 0, self.mean);
+        for ((c, &g), _) in counts.iter_mut().zip(&base).zip(marked).filter(|(_, &m)| m) {
+            let (n, g) = (*c as u64 + 1, g as u64 + 1);
+            *c = (n.div_ceil(g) * g - 1).min(u32::MAX as u64) as u32;
+        }
+        counts
+    }
 }
 
 /// Checks `scheme` on `mesh` for `method` against the limits; `memory` is the budget in
@@ -74,7 +98,7 @@ fn breaks(
         // Below any point at all: nothing to lay out, nothing to break.
         return Ok(0);
     }
-    let counts = scheme.counts_relative_to(spacing.lengths, spacing.min, spacing.mean);
+    let counts = spacing.counts(scheme);
     if matches!(method, Method::Tracks | Method::Wave) {
         let Some((edge, &points)) = counts.iter().enumerate().max_by_key(|(_, &c)| c) else {
             return Ok(0);

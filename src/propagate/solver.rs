@@ -270,6 +270,8 @@ impl<'m, M: Metric> Solver<'m, M> {
         };
         let options = &options.with_method(method);
         let mut reach = 0.0;
+        // The edges' lengths in the faces' flattenings, for the wavefront engine.
+        let mut flat = None;
         // What the budget check found the solver and a run need (0: not checked).
         let mut budgeted = 0;
         let layout = if options.method == Method::Dijkstra {
@@ -285,21 +287,26 @@ impl<'m, M: Metric> Solver<'m, M> {
                     return Err(Error::InvalidMeanEdgeLength { length });
                 }
             }
-            // The wavefront engine spaces points by the metric's lengths, and puts at
-            // least one on every edge: a wave crosses an edge only through its points.
-            let lengths = edge_lengths(mesh, flat_frames.as_deref());
-            let min = (options.method == Method::Wave) as u32;
+            // The wavefront engine spaces points by the metric's lengths, puts at least
+            // one on every edge (a wave crosses an edge only through its points), and
+            // keeps every point the Steiner graph has at the same k (spaced by the
+            // lengths in space), so that it holds at least the graph's paths: where
+            // faces do not glue (per-face tensors) waves restart at every edge, and its
+            // values are then the graph's or better.
+            let in_space = edge_lengths(mesh, None);
+            flat = flat_frames
+                .as_deref()
+                .map(|frames| FlatEdges::new(mesh, frames, &in_space));
+            let lengths = flat.as_ref().map_or(&in_space[..], |f| &f.lengths);
             let spacing = budget::Spacing {
-                lengths: &lengths,
-                min,
+                lengths,
+                min: (options.method == Method::Wave) as u32,
                 mean: options.mean_edge_length,
+                containing: flat.as_ref().map(|f| (&in_space[..], &f.refracting[..])),
             };
             let memory = options.memory_limit.or_else(budget::available_memory);
             budgeted = budget::check(mesh, options.steiner, spacing, options.method, memory)?;
-            let counts =
-                options
-                    .steiner
-                    .counts_relative_to(&lengths, min, options.mean_edge_length);
+            let counts = spacing.counts(options.steiner);
             if options.method == Method::Wave {
                 reach = lengths.iter().fold(0.0f64, |m, &l| m.max(l));
             }
@@ -334,8 +341,8 @@ impl<'m, M: Metric> Solver<'m, M> {
             }
             _ => (None, 1.0),
         };
-        let isometric = match (&tables, options.method) {
-            (Some(tables), Method::Wave) => wave::isometric_edges(mesh, &layout, tables),
+        let isometric = match (&flat, options.method) {
+            (Some(flat), Method::Wave) => flat.isometric_blocks(&layout),
             _ => Vec::new(),
         };
         // The tracks engine keeps its steps in its edge records.
@@ -1051,6 +1058,59 @@ fn edge_lengths(mesh: &TriMesh, flat_frames: Option<&[FaceFrame]>) -> Vec<f64> {
         }
     }
     lengths
+}
+
+/// The edges' lengths in the faces' flattenings (the wavefront engine's), and which
+/// edges refract.
+struct FlatEdges {
+    /// Per edge, the longest of its lengths in the faces around it; a length that
+    /// agrees with the edge's length in space to rounding (`1e-12` relative) is taken
+    /// as that one: under a metric that is Euclidean on a part of the mesh, the points
+    /// there are then exactly the Steiner graph's (a length a unit in the last place
+    /// apart could round the count the other way).
+    lengths: Vec<f64>,
+    /// Per edge, whether two faces around it give it different lengths (to `1e-9`
+    /// relative): waves do not cross it.
+    refracting: Vec<bool>,
+}
+
+impl FlatEdges {
+    fn new(mesh: &TriMesh, frames: &[FaceFrame], in_space: &[f64]) -> FlatEdges {
+        let mut lengths = vec![f64::NAN; mesh.edge_count()];
+        let mut refracting = vec![false; mesh.edge_count()];
+        for (f, frame) in frames.iter().enumerate() {
+            let c = frame.corners();
+            for (s, e) in mesh.face_edges(f as u32).into_iter().enumerate() {
+                let (a, b) = (c[s], c[(s + 1) % 3]);
+                let l = (b[0] - a[0]).hypot(b[1] - a[1]);
+                let e = e as usize;
+                if lengths[e].is_nan() {
+                    lengths[e] = l;
+                } else {
+                    refracting[e] |= (l - lengths[e]).abs() > 1e-9 * lengths[e];
+                    lengths[e] = lengths[e].max(l);
+                }
+            }
+        }
+        for (l, &e) in lengths.iter_mut().zip(in_space) {
+            if l.is_nan() || (*l - e).abs() <= 1e-12 * e {
+                *l = e;
+            }
+        }
+        FlatEdges {
+            lengths,
+            refracting,
+        }
+    }
+
+    /// Per edge block of `layout`: whether waves cross it (its faces glue).
+    fn isometric_blocks(&self, layout: &SteinerLayout) -> Vec<bool> {
+        let mut iso = vec![true; self.refracting.len()];
+        for (e, &r) in self.refracting.iter().enumerate() {
+            iso[layout.block_of_edge(e as u32) as usize] = !r;
+        }
+        iso
+    }
 }
 
 /// The cost between consecutive nodes of each edge in its first face (for a directed

@@ -68,7 +68,7 @@ use crate::flat::{
     hinge, hinge_end, in_window, project, same_source, same_source_slack, uv, wave_value_on_edge,
     EdgeFrame, P, TIE, TOUCH,
 };
-use crate::mesh::{TriMesh, NONE};
+use crate::mesh::NONE;
 use crate::surface::Source;
 use geotracks_metrics::Metric;
 
@@ -617,33 +617,6 @@ struct Entry {
 /// The slot of face record `r` that Steiner node `node` lies on.
 fn slot_of(r: &FaceRecord, node: u32) -> Option<usize> {
     (0..3).find(|&s| node.wrapping_sub(r.lo[s]) < r.count(s))
-}
-
-/// Per edge (in the layout's block order): whether every face around it gives it the
-/// same flattened length (to 1e-9), so that waves cross it unbent.
-pub(super) fn isometric_edges(
-    mesh: &TriMesh,
-    layout: &crate::steiner::SteinerLayout,
-    tables: &TrackTables,
-) -> Vec<bool> {
-    let layout_blocks = tables.edges.len();
-    let mut iso = vec![true; layout_blocks];
-    let mut first = vec![f64::NAN; layout_blocks];
-    for r in &tables.faces {
-        let edges = mesh.face_edges(r.face);
-        let c = r.frame.corners();
-        for s in 0..3 {
-            let b = layout.block_of_edge(edges[s]) as usize;
-            let (a, z) = (c[s], c[(s + 1) % 3]);
-            let len = P(z[0] - a[0], z[1] - a[1]).length();
-            if first[b].is_nan() {
-                first[b] = len;
-            } else if (len - first[b]).abs() > 1e-9 * first[b] {
-                iso[b] = false;
-            }
-        }
-    }
-    iso
 }
 
 #[cfg(test)]
