@@ -169,3 +169,91 @@ fn wave_keeps_the_graphs_points_where_faces_do_not_glue() {
     let excess = wave_over_graph_under_tensors(2856946878332503535, 0, 1, 5.709916924400502);
     assert!(excess.unwrap() <= 1e-9, "{excess:?}");
 }
+
+/// A triangle with one far vertex and two close ones (a needle whose short edge is
+/// measured next to large coordinates), moved to a random place: lengths from
+/// `10^-far_decades` … `10^far_decades` apart in one face.
+fn needle_triangle(seed: u64, far_decades: f64, near_decades: f64) -> Option<TriMesh> {
+    let mut rng = Rng(seed | 1);
+    let far = 10f64.powf(far_decades * rng.next());
+    let near = 10f64.powf(-near_decades * rng.next());
+    let angle = std::f64::consts::TAU * rng.next();
+    let offset = [rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5].map(|c| c * far);
+    let corners = [
+        [far * angle.cos(), far * angle.sin(), 0.0],
+        [near * rng.next(), near * rng.next(), 0.0],
+        [near * rng.next(), near * rng.next(), near * rng.next()],
+    ];
+    let positions = corners
+        .iter()
+        .map(|c| [c[0] + offset[0], c[1] + offset[1], c[2] + offset[2]])
+        .collect();
+    // `None` where the face is too thin to be a face (refused as degenerate).
+    TriMesh::new(positions, vec![[0, 1, 2]]).ok()
+}
+
+proptest! {
+    #![proptest_config(cases(2000))]
+
+    /// A valid mesh is accepted by every engine, whatever its scales: the metric's
+    /// floor check allows for the rounding of a short edge's length next to large
+    /// coordinates, and every vertex gets a finite value at least the straight line's.
+    #[test]
+    fn needles_next_to_large_coordinates_are_accepted(
+        seed in any::<u64>(), far in 0.0f64..9.0, near in 0.0f64..9.0, method in 0usize..4,
+    ) {
+        let Some(mesh) = needle_triangle(seed, far, near) else {
+            return Ok(());
+        };
+        let method = [Method::Wave, Method::Tracks, Method::Graph, Method::Dijkstra][method];
+        let source = [Source::new(SurfacePoint::Vertex((seed % 3) as u32))];
+        let field = Solver::new(&mesh, geotracks::Euclidean, &Options::DEFAULT.with_method(method))
+            .map_err(|e| TestCaseError::fail(format!("refused: {e}")))?
+            .solve_from(&source, &Stop::NONE)
+            .map_err(|e| TestCaseError::fail(format!("refused: {e}")))?;
+        // Lengths are computed to rounding of the coordinates, not of the length.
+        let scale = mesh.positions().iter().map(|p| p.abs().max_element()).fold(0.0, f64::max);
+        let from = mesh.position((seed % 3) as u32);
+        for (v, &d) in field.vertex_distances().iter().enumerate() {
+            let straight = from.distance(mesh.position(v as u32));
+            prop_assert!(
+                d.is_finite() && d >= straight * (1.0 - 1e-9) - 1e-13 * scale,
+                "vertex {v}: {d} < {straight}"
+            );
+        }
+    }
+}
+
+/// The triangle a fuzzer found refused by every engine ("edge 2 costs 9.999987e-1 per
+/// unit"): a vertex at (6.07e5, 1.66e5, 0) and two vertices 8.6e-5 apart near the
+/// origin.
+#[test]
+fn a_needle_next_to_a_far_vertex_is_accepted() {
+    let mesh = TriMesh::new(
+        vec![
+            [606555.1002761879, 165514.35398437196, 0.0],
+            [9.054179724671717e-05, 4.297565703312921e-05, 0.0],
+            [1.3985733911443288e-05, 3.565712964532375e-06, 0.0],
+        ],
+        vec![[0, 1, 2]],
+    )
+    .unwrap();
+    for method in [
+        Method::Wave,
+        Method::Tracks,
+        Method::Graph,
+        Method::Dijkstra,
+    ] {
+        let field = solve(
+            &mesh,
+            geotracks::Euclidean,
+            &[Source::new(SurfacePoint::Vertex(0))],
+            Options::DEFAULT.with_method(method),
+        );
+        let straight = mesh.position(0).distance(mesh.position(2));
+        assert!(
+            (field.distance(2) - straight).abs() <= 1e-9 * straight,
+            "{method:?}"
+        );
+    }
+}

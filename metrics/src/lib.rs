@@ -213,7 +213,9 @@ pub trait Metric: Sync {
     /// targets, which no path from it can undercut, so a route between two points
     /// settles a corridor around it rather than a disc. The engine checks the bound on
     /// every edge when a solver is built ([`Metric::cost`] of each edge against `m`
-    /// times its length); a bound that holds on edges but not inside faces gives wrong
+    /// times its length, allowing for the rounding of a length next to large
+    /// coordinates, 1e-13 of them, and then lowering `m` to the cheapest edge it
+    /// found); a bound that holds on edges but not inside faces gives wrong
     /// early-stopped distances. `Euclidean` gives 1, `Density` its least density,
     /// `Tensor` the square root of its least eigenvalue.
     fn min_cost_per_length(&self) -> f64 {
