@@ -8,14 +8,14 @@
 //!   glue (per-face tensors: waves restart at every edge, and its points include the
 //!   graph's);
 //! - several sources give the minimum of their single-source fields (the Steiner graph
-//!   and the tracks engine to rounding; the wavefront engine within its stated bound);
+//!   and the tracks engine to rounding; the wavefront engine within its stated bounds);
 //! - the wavefront engine exact on flat meshes from one vertex (multi-scale Delaunay
 //!   patches, needles);
 //! - every valid mesh accepted by every engine (the metric's floor check allows for the
 //!   rounding of an edge's own length).
 //!
 //! Case counts are set so that the file runs about 10⁴ cases in well under a minute
-//! (release build); `PROPTEST_CASES` raises them for a longer search.
+//! (release build); `PROPTEST_CASES=N` runs N cases of each property instead.
 
 mod common;
 
@@ -27,14 +27,11 @@ use geotracks::mesh::TriMesh;
 use geotracks::{Method, Metric, Options, Solver, Source, Stop, SurfacePoint, Tensor};
 use proptest::prelude::*;
 
-/// Cases per property: about 10⁴ in all across this file.
+/// `n` cases for a property (about 10⁴ in all across this file; `PROPTEST_CASES` in
+/// the environment sets another count for every property), new random ones each run.
 fn cases(n: u32) -> ProptestConfig {
-    let scale = std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|c| c.parse::<u32>().ok())
-        .map_or(1.0, |c| c as f64 / 256.0);
     ProptestConfig {
-        cases: ((n as f64 * scale).ceil() as u32).max(1),
+        cases: n,
         failure_persistence: None,
         ..ProptestConfig::default()
     }
@@ -257,3 +254,255 @@ fn a_needle_next_to_a_far_vertex_is_accepted() {
         );
     }
 }
+
+/// Twice the signed area of `a, b, c` (positive counter-clockwise).
+fn orient(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
+    (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+}
+
+/// A flat convex patch with coordinates over ten orders of magnitude: `n` points, each
+/// `10^u` times a point of the unit square (`u` uniform in [-7, -4] or [0, 3]), triangulated by a
+/// sweep (each point in x order joined to the hull edges it sees: fans of needles),
+/// each face starting at a random corner.
+/// `None` when rounding makes the triangulation doubtful (a face not clearly
+/// counter-clockwise, or faces whose areas do not add up to the hull's).
+fn multiscale_flat_patch(seed: u64, n: usize) -> Option<TriMesh> {
+    let mut rng = Rng(seed | 1);
+    let mut points: Vec<[f64; 2]> = (0..n)
+        .map(|_| {
+            // Half in a cluster 1e-7 to 1e-6 wide at the origin, half from 1 to 1e3 out:
+            // short edges measured in faces with far corners.
+            let decade = if rng.next() < 0.5 { -7.0 } else { 0.0 };
+            let scale = 10f64.powf(decade + 3.0 * rng.next());
+            [scale * rng.next(), scale * rng.next()]
+        })
+        .collect();
+    points.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    points.dedup();
+    let o = orient(points[0], points[1], points[2]);
+    if o == 0.0 {
+        return None;
+    }
+    // The hull, counter-clockwise.
+    let mut hull: Vec<usize> = if o > 0.0 {
+        vec![0, 1, 2]
+    } else {
+        vec![0, 2, 1]
+    };
+    let mut triangles = vec![[hull[0] as u32, hull[1] as u32, hull[2] as u32]];
+    for p in 3..points.len() {
+        let m = hull.len();
+        let sees = |i: usize| orient(points[hull[i]], points[hull[(i + 1) % m]], points[p]) < 0.0;
+        // The hull edges p sees form one chain: find its first edge.
+        let first = (0..m).find(|&i| sees(i) && !sees((i + m - 1) % m))?;
+        let mut last = first;
+        while sees((last + 1) % m) && (last + 1) % m != first {
+            last = (last + 1) % m;
+        }
+        let mut i = first;
+        loop {
+            let (a, b) = (hull[i], hull[(i + 1) % m]);
+            // Any corner first: a face's frame measures its first side exactly and the
+            // others through the far corner.
+            let mut t = [b as u32, a as u32, p as u32];
+            t.rotate_left(rng.below(3));
+            triangles.push(t);
+            if i == last {
+                break;
+            }
+            i = (i + 1) % m;
+        }
+        // Replace the seen chain's inner vertices by p: the hull from the chain's end
+        // round to its start, then p.
+        let mut next = Vec::with_capacity(m + 1);
+        let mut j = (last + 1) % m;
+        loop {
+            next.push(hull[j]);
+            if j == first {
+                break;
+            }
+            j = (j + 1) % m;
+        }
+        next.push(p);
+        hull = next;
+    }
+    let area = |t: [usize; 3]| orient(points[t[0]], points[t[1]], points[t[2]]);
+    let total: f64 = triangles.iter().map(|t| area(t.map(|v| v as usize))).sum();
+    let hull_area: f64 = (1..hull.len() - 1)
+        .map(|i| area([hull[0], hull[i], hull[i + 1]]))
+        .sum();
+    let clear = triangles.iter().all(|t| {
+        let [a, b, c] = t.map(|v| points[v as usize]);
+        let longest = [(a, b), (b, c), (c, a)]
+            .iter()
+            .map(|(p, q)| (p[0] - q[0]).hypot(p[1] - q[1]))
+            .fold(0.0, f64::max);
+        orient(a, b, c) > 1e-13 * longest * longest
+    });
+    if !clear || (total - hull_area).abs() > 1e-9 * hull_area {
+        return None;
+    }
+    let positions = points.iter().map(|p| [p[0], p[1], 0.0]).collect();
+    let mesh = TriMesh::new(positions, triangles).ok()?;
+    mesh.dropped_faces().is_empty().then_some(mesh)
+}
+
+/// How far from exact (relative, beside rounding of the coordinates) the wavefront
+/// engine may be on a flat patch whose edges span ten orders of magnitude. Waves count
+/// as one when their sources agree to 1e-9 of the lengths around them, and a wave
+/// carried across a cluster of edges 1e-7 long from a source 10 away is placed to
+/// rounding of that distance: measured over 2·10⁵ patches, 2.7e-8 at worst, below 1e-9
+/// in all but a handful.
+const EXACT_MULTISCALE: f64 = 1e-7;
+
+proptest! {
+    #![proptest_config(cases(2500))]
+
+    /// A flat convex patch with coordinates from 1e-7 to 1e3, one vertex source: the
+    /// wavefront engine is exact (the straight line, to 1e-9 of it and to rounding of
+    /// the coordinates, see `EXACT_MULTISCALE`) at every vertex, at any k.
+    #[test]
+    fn wave_is_exact_on_multiscale_flat_patches(
+        seed in any::<u64>(), n in 4usize..40, k in 1u32..5, source in any::<u32>(),
+    ) {
+        let Some(mesh) = multiscale_flat_patch(seed, n) else {
+            return Ok(());
+        };
+        let source = source % mesh.vertex_count() as u32;
+        let field = solve(
+            &mesh,
+            geotracks::Euclidean,
+            &[Source::new(SurfacePoint::Vertex(source))],
+            Options::DEFAULT.with_k(k as f64).with_method(Method::Wave),
+        );
+        let scale = mesh.positions().iter().map(|p| p.abs().max_element()).fold(0.0, f64::max);
+        let from = mesh.position(source);
+        for (v, &d) in field.vertex_distances().iter().enumerate() {
+            let straight = from.distance(mesh.position(v as u32));
+            let slack = EXACT_MULTISCALE * straight + 1e-12 * scale;
+            prop_assert!((d - straight).abs() <= slack, "vertex {v}: {d}, straight line {straight}");
+        }
+    }
+}
+
+/// The flat convex patch a fuzzer found (30 vertices, 5 unused, coordinates from 1e-7
+/// to 1e3): from vertex 19 the wavefront engine gave vertex 9 3.6 % above the straight
+/// line. A short edge measured in a face with a far corner was taken for a refraction
+/// (its lengths in the two faces differed by more than 1e-9 of it, by rounding), so
+/// waves could not cross it.
+#[test]
+fn wave_crosses_short_edges_next_to_far_corners() {
+    let mesh = geotracks::mesh::io::read_mesh(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/multiscale_flat_patch.obj"
+    ))
+    .unwrap();
+    for k in [1.0, 2.0, 4.0] {
+        for source in [0, 5, 12, 19, 25] {
+            let field = solve(
+                &mesh,
+                geotracks::Euclidean,
+                &[Source::new(SurfacePoint::Vertex(source))],
+                Options::DEFAULT.with_k(k).with_method(Method::Wave),
+            );
+            let from = mesh.position(source);
+            for v in 0..mesh.vertex_count() as u32 {
+                let (d, straight) = (field.distance(v), from.distance(mesh.position(v)));
+                // Vertices no face uses are not reached.
+                if d.is_finite() {
+                    assert!(
+                        (d - straight).abs() <= 1e-9 * straight + 1e-12 * 1e3,
+                        "k {k}, source {source}, vertex {v}: {d} against {straight}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// The worst `(d(S) − min over s of d({s})) / scale` at the vertices for `method`, and
+/// the worst the other way round (`d(S)` below the minimum), over random meshes of the
+/// classes, random sources (two or three) and k, Euclidean or a per-face tensor.
+fn several_against_single(
+    seed: u64,
+    class: u8,
+    k: u32,
+    tensor: bool,
+    method: Method,
+) -> (f64, f64) {
+    let mesh = random_class(class, seed);
+    let mut rng = Rng(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
+    let sources: Vec<Source> = (0..2 + rng.below(2))
+        .map(|_| Source::new(random_point(&mesh, &mut rng)).with_start(random_start(&mut rng)))
+        .collect();
+    let options = Options::DEFAULT.with_k(k as f64).with_method(method);
+    let run = |sources: &[Source]| -> Vec<f64> {
+        match random_tensor(&mesh, &mut Rng(seed | 1), 1e3).filter(|_| tensor) {
+            Some(t) => solve(&mesh, &t, sources, options)
+                .vertex_distances()
+                .to_vec(),
+            None => solve(&mesh, geotracks::Euclidean, sources, options)
+                .vertex_distances()
+                .to_vec(),
+        }
+    };
+    let all = run(&sources);
+    let mut least = vec![f64::INFINITY; mesh.vertex_count()];
+    for s in &sources {
+        for (l, d) in least.iter_mut().zip(run(std::slice::from_ref(s))) {
+            *l = l.min(d);
+        }
+    }
+    (
+        worst_excess(&all, &least, &sources),
+        worst_excess(&least, &all, &sources),
+    )
+}
+
+proptest! {
+    #![proptest_config(cases(1500))]
+
+    /// Several sources give the minimum of their single-source fields: exactly (to
+    /// rounding) on the Steiner graph and the tracks engine, which find the graph's
+    /// shortest paths.
+    #[test]
+    fn several_sources_are_the_minimum_of_single_ones_on_the_graph(
+        seed in any::<u64>(), class in 0u8..6, k in 1u32..5, tensor in any::<bool>(),
+        tracks in any::<bool>(),
+    ) {
+        let method = if tracks { Method::Tracks } else { Method::Graph };
+        let (above, below) = several_against_single(seed, class, k, tensor, method);
+        prop_assert!(above <= 1e-9 && below <= 1e-9, "above {:e}, below {:e}", above, below);
+    }
+
+    /// The same for the wavefront engine, within its stated bounds: it keeps one wave
+    /// per point, so where the waves of two sources meet a point keeps the one that
+    /// gave it the lower value, and the other's lines beyond it are lost (the field
+    /// is then above the least single-source field); and a single-source run loses
+    /// waves of its own that several sources can make up for (below it). Set
+    /// `MEASURE=1` to print every case's figures instead of checking them.
+    #[test]
+    fn several_sources_are_near_the_minimum_of_single_ones_on_the_wave_engine(
+        seed in any::<u64>(), class in 0u8..6, k in 1u32..5, tensor in any::<bool>(),
+    ) {
+        let (above, below) = several_against_single(seed, class, k, tensor, Method::Wave);
+        if std::env::var("MEASURE").is_ok() {
+            eprintln!("several sources: above {above:e} below {below:e} (seed {seed}, class {class}, k {k}, tensor {tensor})");
+            return Ok(());
+        }
+        prop_assert!(
+            above <= SEVERAL_SOURCES_WAVE_ABOVE && below <= SEVERAL_SOURCES_WAVE_BELOW,
+            "above {:e}, below {:e}", above, below
+        );
+    }
+}
+
+/// How far above the least of its single-source fields the wavefront engine's field
+/// from several sources may lie at a vertex (relative). Measured over 10⁴ random cases
+/// (`MEASURE=1 PROPTEST_CASES=10000`): above it by more than rounding in 4.1 % of
+/// cases, by more than 1 % in 1.6 %; at most 32 % (a book at k = 1), 15 % at k = 2,
+/// 13 % at k = 4. The bound only catches a regression; the exact engine is what
+/// removes the error.
+const SEVERAL_SOURCES_WAVE_ABOVE: f64 = 0.5;
+/// How far below it (measured: 2.0 % at most).
+const SEVERAL_SOURCES_WAVE_BELOW: f64 = 0.05;

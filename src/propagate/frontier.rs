@@ -402,29 +402,53 @@ pub(super) fn edge_steps<M: Metric>(
     }
     // Face by face (on all cores, kept in face order), so that the mesh is read in
     // order: each slot's whole edge, from the edge's lower vertex to its higher one as
-    // a node-by-node walk would measure it; then the least per edge.
-    let slots: Vec<[f64; 3]> = (0..mesh.face_count() as u32)
+    // a node-by-node walk would measure it, with the face's longest side (what the
+    // cost's rounding is relative to); then per edge the least, or the one measured
+    // most precisely where the faces agree to rounding.
+    let slots: Vec<([f64; 3], f64)> = (0..mesh.face_count() as u32)
         .into_par_iter()
         .map(|f| {
             let frame = mesh.frame(f);
-            std::array::from_fn(|s| {
+            let costs = std::array::from_fn(|s| {
                 let (from, to) = (frame.corner(s), frame.corner((s + 1) % 3));
                 if mesh.slot_is_reversed(f, s) {
                     metric.cost(f, &to, &from)
                 } else {
                     metric.cost(f, &from, &to)
                 }
-            })
+            });
+            (costs, costs.iter().fold(0.0f64, |m, &c| m.max(c)))
         })
         .collect();
-    let mut whole = vec![f64::INFINITY; mesh.edge_count()];
-    for (f, costs) in slots.iter().enumerate() {
-        for (e, cost) in mesh.face_edges(f as u32).into_iter().zip(costs) {
-            whole[e as usize] = whole[e as usize].min(*cost);
+    // Per edge: the least cost and its face's scale, and the cost in the face of least
+    // scale.
+    let mut least = vec![(f64::INFINITY, 0.0f64); mesh.edge_count()];
+    let mut precise = vec![(f64::INFINITY, f64::INFINITY); mesh.edge_count()];
+    for (f, (costs, scale)) in slots.iter().enumerate() {
+        for (e, &cost) in mesh.face_edges(f as u32).into_iter().zip(costs) {
+            let e = e as usize;
+            if cost < least[e].0 {
+                least[e] = (cost, *scale);
+            }
+            if *scale < precise[e].1 {
+                precise[e] = (cost, *scale);
+            }
         }
     }
+    // A short edge of a face with a far corner is measured there to rounding of that
+    // corner's distance: where that is all that sets the faces apart, the precise cost
+    // is the edge's (a wave carried along it then agrees with the faces around it).
+    let whole = least
+        .iter()
+        .zip(&precise)
+        .map(|(&(low, scale), &(cost, _))| {
+            if cost - low <= 1e-12 * scale {
+                cost
+            } else {
+                low
+            }
+        });
     let steps = whole
-        .into_iter()
         .enumerate()
         .map(|(e, whole)| whole / (layout.count(e as u32) + 1) as f64)
         .collect();

@@ -1069,33 +1069,40 @@ struct FlatEdges {
     /// there are then exactly the Steiner graph's (a length a unit in the last place
     /// apart could round the count the other way).
     lengths: Vec<f64>,
-    /// Per edge, whether two faces around it give it different lengths (to `1e-9`
-    /// relative): waves do not cross it.
+    /// Per edge, whether two faces around it give it different lengths (beyond `1e-9`
+    /// of it and rounding): waves do not cross it.
     refracting: Vec<bool>,
 }
 
 impl FlatEdges {
     fn new(mesh: &TriMesh, frames: &[FaceFrame], in_space: &[f64]) -> FlatEdges {
-        let mut lengths = vec![f64::NAN; mesh.edge_count()];
-        let mut refracting = vec![false; mesh.edge_count()];
+        // Per edge: its shortest and longest length over the faces around it, and the
+        // longest edge of those faces (what the lengths' rounding is relative to).
+        let mut range = vec![[f64::INFINITY, 0.0f64, 0.0f64]; mesh.edge_count()];
         for (f, frame) in frames.iter().enumerate() {
             let c = frame.corners();
-            for (s, e) in mesh.face_edges(f as u32).into_iter().enumerate() {
+            let sides = [0, 1, 2].map(|s| {
                 let (a, b) = (c[s], c[(s + 1) % 3]);
-                let l = (b[0] - a[0]).hypot(b[1] - a[1]);
-                let e = e as usize;
-                if lengths[e].is_nan() {
-                    lengths[e] = l;
-                } else {
-                    refracting[e] |= (l - lengths[e]).abs() > 1e-9 * lengths[e];
-                    lengths[e] = lengths[e].max(l);
-                }
+                (b[0] - a[0]).hypot(b[1] - a[1])
+            });
+            let longest = sides.iter().fold(0.0f64, |m, &l| m.max(l));
+            for (l, e) in sides.into_iter().zip(mesh.face_edges(f as u32)) {
+                let r = &mut range[e as usize];
+                *r = [r[0].min(l), r[1].max(l), r[2].max(longest)];
             }
         }
-        for (l, &e) in lengths.iter_mut().zip(in_space) {
-            if l.is_nan() || (*l - e).abs() <= 1e-12 * e {
-                *l = e;
-            }
+        let mut lengths = Vec::with_capacity(range.len());
+        let mut refracting = Vec::with_capacity(range.len());
+        for (&[shortest, longest, scale], &e) in range.iter().zip(in_space) {
+            // Two faces glue where they give the edge one length, to 1e-9 of it, or to
+            // rounding of the face's own size: a short edge of a face with a far corner
+            // is measured to 1e-16 of that corner's distance, not of its own length.
+            refracting.push(longest - shortest > 1e-9 * longest + 1e-12 * scale);
+            lengths.push(if shortest > longest || (longest - e).abs() <= 1e-12 * e {
+                e
+            } else {
+                longest
+            });
         }
         FlatEdges {
             lengths,
