@@ -14,7 +14,9 @@
 mod common;
 
 use common::Rng;
-use geotracks::terrain::{route, route_and_field, ElevationGrid, GridGeometry, TerrainCost};
+use geotracks::terrain::{
+    route, route_and_field, route_on_grid, ElevationGrid, GridGeometry, TerrainCost,
+};
 use geotracks::{Error, Method, Options, Solver, Source, Stop};
 use proptest::prelude::*;
 
@@ -111,10 +113,10 @@ fn two_threads() -> bool {
 proptest! {
     #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
 
-    /// From both ends (the route's search), from one end goal-directed, and from one
-    /// end over the whole grid: the same Steiner-graph value at the route's end, under
-    /// every cost, and the straightened routes within [`STRAIGHTENED_SPREAD`] of one
-    /// another.
+    /// From both ends (the route's search, on the whole grid and on the window the
+    /// command line cuts), from one end goal-directed, and from one end over the whole
+    /// grid: the same Steiner-graph value at the route's end, under every cost, and the
+    /// straightened routes within [`STRAIGHTENED_SPREAD`] of one another.
     #[test]
     fn from_both_ends_a_route_costs_what_one_end_gives(
         seed in any::<u64>(),
@@ -130,11 +132,14 @@ proptest! {
         let terrain = grid.to_mesh().unwrap();
         let cost: TerrainCost = COSTS[which].parse().unwrap();
         let method = if graph { Method::Graph } else { Method::Tracks };
-        let options = Options::DEFAULT.with_k(k as f64).with_method(method);
+        let options = Options::DEFAULT
+            .with_k(k as f64)
+            .with_method(method)
+            .with_mean_edge_length(grid.mean_edge_length().unwrap());
         let solver = Solver::new(&terrain.mesh, cost.metric(&terrain.mesh).unwrap(), &options).unwrap();
         let [w, h] = [(ncols - 1) as f64 * 30.0, (nrows - 1) as f64 * 30.0];
-        let at = |u: f64, v: f64| terrain.locate(u * w, v * h).unwrap();
-        let (from, to) = (at(ends[0], ends[1]), at(ends[2], ends[3]));
+        let (a, b) = ([ends[0] * w, ends[1] * h], [ends[2] * w, ends[3] * h]);
+        let (from, to) = (terrain.locate(a[0], a[1]).unwrap(), terrain.locate(b[0], b[1]).unwrap());
         let source = [Source::new(from)];
         let field = solver.solve_from(&source, &Stop::NONE).unwrap();
         let expected = solver.query(&field).unwrap().distance_at(to).unwrap();
@@ -156,7 +161,13 @@ proptest! {
             }
         };
         prop_assert_eq!(stats.both_ends, two_threads());
-        for (how, traced) in [("both ends", both.traced_length), ("one end", one.traced_length)] {
+        // The command line's route: on the window of the grid it needs, from both ends.
+        let window = route_on_grid(&grid, &cost, &options, a, b).unwrap().route;
+        for (how, traced) in [
+            ("both ends", both.traced_length),
+            ("one end", one.traced_length),
+            ("the window", window.traced_cost),
+        ] {
             prop_assert!(
                 (traced - expected).abs() <= 1e-9 * expected,
                 "{} {:?} k {}: {} traced {} against the full run's {}",
