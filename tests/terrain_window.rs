@@ -7,9 +7,9 @@ mod common;
 
 use common::Rng;
 use geotracks::terrain::{
-    route, route_on_grid, ElevationGrid, GridGeometry, TerrainCost, TerrainError, TerrainMesh,
+    route_on_grid, ElevationGrid, GridGeometry, TerrainCost, TerrainError, TerrainMesh,
 };
-use geotracks::{Error, Method, Metric, Options, Solver};
+use geotracks::{Error, Method, Metric, Options, Solver, Source, Stop};
 use proptest::prelude::*;
 
 fn geometry(n: usize) -> GridGeometry {
@@ -53,7 +53,8 @@ fn whole_grid_cost(
         terrain.locate(from[0], from[1])?,
         terrain.locate(to[0], to[1])?,
     );
-    Ok(route(&solver, a, b, true)?.traced_cost)
+    let field = solver.solve_from(&[Source::new(a)], &Stop::NONE)?;
+    Ok(solver.query(&field)?.trace(b)?.traced_length)
 }
 
 const COSTS: [&str; 8] = [

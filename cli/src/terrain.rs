@@ -5,7 +5,7 @@ use crate::output::Outputs;
 use crate::{ui, CliResult, Value};
 use geotracks::terrain::{self, map, Route, TerrainCost, TerrainError};
 use geotracks::trace::IsolineOptions;
-use geotracks::{Error, Method, Options, Solver};
+use geotracks::{Error, Method, Options, Solver, Source, Stop};
 use std::path::{Path, PathBuf};
 
 /// Arguments of `geotracks terrain`.
@@ -38,7 +38,7 @@ pub struct TerrainArgs {
     k: f64,
     /// Propagation method: wave (Steiner points that carry their wavefront: exact on
     /// planes, the best route at a given k; for none and incline:B, the others run
-    /// tracks), or tracks (the track-pruned Steiner graph, which a route alone runs
+    /// tracks), or tracks (the track-pruned Steiner graph, which a route runs
     /// goal-directed, A*: it settles a corridor around the route rather than a disc;
     /// on the README's 1000 × 1000 grid, none at k = 4 routes as well as wave at
     /// k = 2, in less time).
@@ -126,49 +126,56 @@ pub fn run(args: &TerrainArgs) -> CliResult {
         // No triangle: the meshing error, naming the file.
         None => drop(grid.to_mesh_named(Some(&args.dem))?),
     }
-    let routed = if args.png.is_none() && args.contours.is_none() {
-        // A route alone: on the window of the grid it needs.
-        routing_error(
-            terrain::route_on_grid(&grid, &args.cost, &options, args.from, args.to)
-                .map(|r| (r.route, r.mesh, None, Some(r.window))),
-            args,
-        )?
-    } else {
-        // The map and the contours need the whole field.
+    // The route: on the window of the grid it needs, the same search whatever else is
+    // asked (a map or contours never change it).
+    let routed = routing_error(
+        terrain::route_on_grid(&grid, &args.cost, &options, args.from, args.to),
+        args,
+    )?;
+    let (route, window) = (routed.route, routed.window);
+    drop(routed.mesh);
+    // The map and the contours need the cost from the start everywhere: a run of its
+    // own over the whole grid.
+    let field_start = std::time::Instant::now();
+    let whole = if args.png.is_some() || args.contours.is_some() {
         let terrain = grid.to_mesh_named(Some(&args.dem))?;
         let locate =
             |[x, y]: [f64; 2]| routing_error(terrain.locate(x, y).map_err(Error::from), args);
-        let (from, to) = (locate(args.from)?, locate(args.to)?);
-        let metric = args.cost.metric(&terrain.mesh)?;
+        let from = locate(args.from)?;
+        let metric = args.cost.metric_on_grid(&grid, &terrain)?;
         let solver = Solver::new(&terrain.mesh, metric, &options)?;
-        let routed = if args.contours.is_some() {
-            terrain::route_and_field(&solver, from, to).map(|(r, f)| (r, Some(f)))
-        } else {
-            terrain::route(&solver, from, to, true).map(|r| (r, None))
-        };
-        let (route, field) = routing_error(routed, args)?;
-        let contours = match &field {
-            Some(field) => {
-                let query = solver.query(field)?;
+        let field = solver.solve_from(&[Source::new(from)], &Stop::NONE)?;
+        let contours = match &args.contours {
+            Some(_) => {
+                let query = solver.query(&field)?;
                 let levels = isolines::levels_of(&query, args.contour_levels, &args.contour_at);
                 Some(query.isolines(&levels, &IsolineOptions::DEFAULT)?)
             }
             None => None,
         };
+        let costs = field.vertex_distances().to_vec();
         drop(solver);
-        (route, terrain, contours, None)
+        Some((terrain, costs, contours))
+    } else {
+        None
     };
-    let (route, terrain, contours, window) = routed;
-    let picture = args.png.as_ref().map(|_| {
-        let xy: Vec<[f64; 2]> = route.points.iter().map(|p| [p.x, p.y]).collect();
-        map::render(
-            &grid,
-            &terrain,
-            route.vertex_costs.as_deref(),
-            &xy,
-            &map::MapOptions::DEFAULT.with_cost_unit(args.cost.unit()),
-        )
-    });
+    let field_seconds = field_start.elapsed().as_secs_f64();
+    let picture = match (&args.png, &whole) {
+        (Some(_), Some((terrain, costs, _))) => {
+            let xy: Vec<[f64; 2]> = route.points.iter().map(|p| [p.x, p.y]).collect();
+            Some(map::render(
+                &grid,
+                terrain,
+                Some(costs),
+                &xy,
+                &map::MapOptions::DEFAULT.with_cost_unit(args.cost.unit()),
+            ))
+        }
+        _ => None,
+    };
+    let contours = whole
+        .as_ref()
+        .and_then(|(terrain, _, lines)| Some((terrain, lines.as_ref()?)));
 
     drop(spinner);
     let (cost, length, length_2d) = (route.cost(), route.length(), route.length_2d());
@@ -180,7 +187,7 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     if let (Some(path), Some(picture)) = (&args.png, &picture) {
         outputs.write(path, |w| picture.write_png_to(w))?;
     }
-    if let (Some(path), Some(lines)) = (&args.contours, &contours) {
+    if let (Some(path), Some((terrain, lines))) = (&args.contours, &contours) {
         let (mesh, crs) = (&terrain.mesh, map_coordinates.crs());
         outputs.write(path, |w| {
             let position = |p: &geotracks::SurfacePoint| map_coordinates.point(p.position(mesh));
@@ -204,7 +211,7 @@ pub fn run(args: &TerrainArgs) -> CliResult {
             Value(route.traced_cost)
         ),
     ];
-    if let (Some(path), Some(lines)) = (&args.contours, &contours) {
+    if let (Some(path), Some((_, lines))) = (&args.contours, &contours) {
         summary.push(format!(
             "contours: {} lines, in {}",
             lines.len(),
@@ -232,14 +239,12 @@ pub fn run(args: &TerrainArgs) -> CliResult {
         g.ncols,
         g.nrows,
         s.faces,
-        window
-            .map(|w| format!(
-                " (a window of {:.0} % of the cells, {} run{})",
-                100.0 * w.cells as f64 / w.grid_cells.max(1) as f64,
-                w.runs,
-                if w.runs == 1 { "" } else { "s" }
-            ))
-            .unwrap_or_default(),
+        format!(
+            " (a window of {:.0} % of the cells, {} run{})",
+            100.0 * window.cells as f64 / window.grid_cells.max(1) as f64,
+            window.runs,
+            if window.runs == 1 { "" } else { "s" }
+        ),
         crate::run_summary(s),
         crate::shown(&args.output),
         match (&args.png, &picture) {
@@ -257,18 +262,17 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     );
     crate::report_stats(s);
     if ui::verbose() {
-        // Where the rest of the time went: a route's window, and its path.
-        let setup = window
-            .map(|w| {
-                format!(
-                    "window cut and meshed {:.4} s, metric {:.4} s, solver {:.4} s; ",
-                    w.mesh_seconds, w.metric_seconds, w.solver_seconds
-                )
-            })
-            .unwrap_or_default();
+        // Where the rest of the time went: the route's window, its path, and the
+        // whole grid's field for a map or contours.
+        let field = if whole.is_some() {
+            format!("; whole grid's cost field (map, contours) {field_seconds:.4} s")
+        } else {
+            String::new()
+        };
         eprintln!(
-            "  grid read {read_seconds:.4} s; {setup}path traced and straightened {:.4} s",
-            route.path_seconds
+            "  grid read {read_seconds:.4} s; window cut and meshed {:.4} s, metric {:.4} s, \
+             solver {:.4} s; path traced and straightened {:.4} s{field}",
+            window.mesh_seconds, window.metric_seconds, window.solver_seconds, route.path_seconds
         );
     }
     Ok(())

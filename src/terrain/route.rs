@@ -26,9 +26,11 @@ pub struct Route {
     /// The Steiner graph's cost to the end, before straightening.
     pub traced_cost: f64,
     /// The cost from the start at every vertex, when asked for (the whole field, for
-    /// maps and contours); `None` when the run stopped at the end.
+    /// maps and contours: a run of its own, which does not change the route); `None`
+    /// otherwise.
     pub vertex_costs: Option<Vec<f64>>,
-    /// The propagation's counters and timings.
+    /// The counters and timings of the propagation that found the route (the path
+    /// query's, not the whole field's).
     pub stats: Stats,
     /// Seconds spent tracing and straightening the route, after the propagation.
     pub path_seconds: f64,
@@ -56,9 +58,16 @@ impl Route {
 
 /// The cheapest route from `from` to `to` under the solver's metric, as a path query
 /// finds it ([`Solver::shortest_path_with`]: from both ends at once where it can, else
-/// a run from `from` that stops once `to` is final; with `whole_field`, a run from
-/// `from` over the whole surface that keeps every vertex's cost), straightened and
-/// reversed so that it starts at `from`.
+/// a run from `from` that stops once `to` is final), straightened and reversed so that
+/// it starts at `from`; with `whole_field`, also the cost from `from` at every vertex
+/// (a second run, over the whole surface, for maps and contours).
+///
+/// The route is the path query's whatever `whole_field` says: what else is asked never
+/// changes it. (Many Steiner-graph paths can cost the same to the last bit, on a
+/// regular grid with rounded elevations above all; which one a search keeps depends on
+/// the order it settles nodes in, and each straightens to its own local optimum, so a
+/// route traced from the whole field could differ from the query's by a few percent
+/// after straightening, at the same graph cost.)
 ///
 /// ```
 /// use geotracks::terrain::{route, ElevationGrid, GridGeometry, TerrainCost};
@@ -71,6 +80,9 @@ impl Route {
 /// let r = route(&solver, from, to, false)?;
 /// assert!((r.cost() - 10.0).abs() < 1e-6); // flat: the straight line, 8 by 6
 /// assert_eq!(r.points[0].x, 1.0);
+/// let with_costs = route(&solver, from, to, true)?;
+/// assert_eq!(with_costs.points, r.points);
+/// assert!(with_costs.vertex_costs.is_some());
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 ///
@@ -86,8 +98,7 @@ pub fn route<M: Metric>(
     if !whole_field {
         return route_within(solver, from, to, f64::INFINITY);
     }
-    let field = solver.solve_from(&[Source::new(from)], &Stop::NONE)?;
-    route_in(solver, &field, to, true)
+    Ok(route_and_field(solver, from, to)?.0)
 }
 
 /// As [`route`] stopping at the end, going no farther than `max_cost` (`inf`: no
@@ -110,9 +121,11 @@ fn route_within<M: Metric>(
     Ok(route)
 }
 
-/// As [`route`] over the whole surface, also handing back the field (the cost from
+/// As [`route`] with the whole field, also handing back the field (the cost from
 /// `from` everywhere): for queries on it, such as cost contours with
-/// [`Query::isolines`](crate::Query::isolines).
+/// [`Query::isolines`](crate::Query::isolines). The route is the path query's, as
+/// [`route`] finds it without the field (its [`stats`](Route::stats) are that
+/// query's; the field's are [`GeodesicField::stats`]).
 ///
 /// # Errors
 /// As [`route`].
@@ -121,29 +134,10 @@ pub fn route_and_field<M: Metric>(
     from: SurfacePoint,
     to: SurfacePoint,
 ) -> Result<(Route, GeodesicField), Error> {
+    let mut route = route_within(solver, from, to, f64::INFINITY)?;
     let field = solver.solve_from(&[Source::new(from)], &Stop::NONE)?;
-    let route = route_in(solver, &field, to, true)?;
+    route.vertex_costs = Some(field.vertex_distances().to_vec());
     Ok((route, field))
-}
-
-/// The route to `to` in `field` (a run from the start), with the vertex costs if
-/// `keep_costs`.
-fn route_in<M: Metric>(
-    solver: &Solver<'_, M>,
-    field: &GeodesicField,
-    to: SurfacePoint,
-    keep_costs: bool,
-) -> Result<Route, Error> {
-    let start = Instant::now();
-    let path = solver.query(field)?.path(to)?;
-    let costs = keep_costs.then(|| field.vertex_distances().to_vec());
-    Ok(path_route(
-        solver,
-        path,
-        field.stats().clone(),
-        costs,
-        start,
-    ))
 }
 
 /// `path` (from the end back to the start) as a route from the start, with the run's
@@ -265,8 +259,10 @@ const WHOLE_GRID_ABOVE: f64 = 0.75;
 /// waves meet first, so its route may differ in the last digits.
 ///
 /// `options` as for a [`Solver`]; its `mean_edge_length` is replaced by the grid's.
-/// Maps and cost contours need the whole field: use [`route_and_field`] on the
-/// whole grid's mesh for those.
+/// Maps and cost contours need the whole field: a run from the start over the whole
+/// grid's mesh ([`Solver::solve_from`]) besides this route, which stays the one to
+/// draw (a route found on the whole grid's mesh costs the same in the Steiner graph,
+/// but among paths of equal cost it may keep another, which straightens differently).
 ///
 /// ```
 /// use geotracks::terrain::{route_on_grid, ElevationGrid, GridGeometry, TerrainCost};
