@@ -1710,3 +1710,79 @@ fn pictures_of_distance_and_isolines_at_their_size_and_bad_options_leave_no_file
     ]);
     assert!(!result.status.success());
 }
+
+/// Two outputs that are one file under another name (`./`, `..`, a symbolic link) are
+/// refused before the work; they were compared as text, and the run exited 0 with the
+/// labels alone in the file. An output that is an input under another name likewise.
+#[test]
+fn one_file_under_two_names_is_refused_as_two_outputs() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let m = mesh.to_str().unwrap();
+    std::fs::create_dir(dir.path().join("sub")).unwrap();
+    let d = dir.path().join("d.txt");
+    let spellings = [
+        dir.path().join(".").join("d.txt"),
+        dir.path().join("sub").join("..").join("d.txt"),
+    ];
+    for other in &spellings {
+        assert_fails(
+            &[
+                "distance",
+                m,
+                "--source",
+                "0",
+                "--source",
+                "2",
+                "-o",
+                d.to_str().unwrap(),
+                "--voronoi",
+                other.to_str().unwrap(),
+            ],
+            &d,
+            "given for two outputs",
+        );
+    }
+    #[cfg(unix)]
+    {
+        std::fs::write(&d, "old\n").unwrap();
+        let link = dir.path().join("link.txt");
+        std::os::unix::fs::symlink(&d, &link).unwrap();
+        let o = geotracks(&[
+            "distance",
+            m,
+            "--source",
+            "0",
+            "--source",
+            "2",
+            "-o",
+            link.to_str().unwrap(),
+            "--voronoi",
+            d.to_str().unwrap(),
+        ]);
+        assert!(!o.status.success());
+        assert!(String::from_utf8_lossy(&o.stderr).contains("two outputs"));
+        assert_eq!(std::fs::read_to_string(&d).unwrap(), "old\n");
+        // The mesh through a link, as an output.
+        let mesh_link = dir.path().join("sub").join("mesh.txt");
+        std::os::unix::fs::symlink(&mesh, &mesh_link).unwrap();
+        let o = geotracks(&[
+            "distance",
+            m,
+            "--source",
+            "0",
+            "-o",
+            mesh_link.to_str().unwrap(),
+        ]);
+        assert!(!o.status.success());
+        assert!(String::from_utf8_lossy(&o.stderr).contains("is also an input"));
+        // A link to one output is written through, and stays a link.
+        geotracks_ok(&["distance", m, "--source", "0", "-o", link.to_str().unwrap()]);
+        assert!(std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink());
+        assert_eq!(read_values(&d).len(), 4);
+    }
+    assert_no_temporary_files(dir.path());
+}
