@@ -1786,3 +1786,76 @@ fn one_file_under_two_names_is_refused_as_two_outputs() {
     }
     assert_no_temporary_files(dir.path());
 }
+
+/// A FIFO as the mesh or as a density file hung the command (and the blocked process
+/// ignored SIGINT and SIGTERM); it is refused at once, with no output.
+#[cfg(unix)]
+#[test]
+fn a_fifo_as_an_input_is_refused_at_once() {
+    use std::process::{Command, Stdio};
+    use std::time::{Duration, Instant};
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let pipe_mesh = dir.path().join("pipe.obj");
+    let pipe_density = dir.path().join("rho.txt");
+    for pipe in [&pipe_mesh, &pipe_density] {
+        assert!(Command::new("mkfifo").arg(pipe).status().unwrap().success());
+    }
+    let out = dir.path().join("d.txt");
+    for (mesh, density) in [(&pipe_mesh, None), (&mesh, Some(&pipe_density))] {
+        let mut args = vec![
+            "distance".to_string(),
+            mesh.display().to_string(),
+            "--source".into(),
+            "0".into(),
+            "-o".into(),
+            out.display().to_string(),
+        ];
+        if let Some(d) = density {
+            args.extend(["--density".into(), d.display().to_string()]);
+        }
+        let mut child = Command::new(env!("CARGO_BIN_EXE_geotracks"))
+            .args(&args)
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let start = Instant::now();
+        let status = loop {
+            if let Some(status) = child.try_wait().unwrap() {
+                break status;
+            }
+            if start.elapsed() > Duration::from_secs(20) {
+                let _ = child.kill();
+                panic!("{args:?}: still running after 20 s (blocked on the FIFO)");
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        };
+        let mut stderr = String::new();
+        std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut stderr).unwrap();
+        assert_eq!(status.code(), Some(1), "{args:?}: {stderr}");
+        assert!(stderr.contains("named pipe (FIFO)"), "{stderr}");
+        assert!(!out.exists());
+    }
+}
+
+/// A density file saved with a UTF-8 byte-order mark reads as without one.
+#[test]
+fn a_density_file_with_a_byte_order_mark() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let density = dir.path().join("rho.txt");
+    std::fs::write(&density, "\u{feff}2\n2\n2\n2\n").unwrap();
+    let out = dir.path().join("d.txt");
+    geotracks_ok(&[
+        "distance",
+        mesh.to_str().unwrap(),
+        "--source",
+        "0",
+        "--density",
+        density.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(read_values(&out)[1], 2.0);
+}

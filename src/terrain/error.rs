@@ -116,12 +116,25 @@ pub enum TerrainError {
         message: String,
     },
     /// The TIFF decoder failed (a corrupt or truncated file).
-    #[error("{path}: {source}")]
+    #[error("{path}: {context}: {source}")]
     Tiff {
         /// The file.
         path: PathBuf,
+        /// What was being read: the header, a tag (by name and number), or the image
+        /// and the strip or tile that failed, with its offset and size in the file.
+        context: String,
         /// The decoder's error.
         source: tiff::TiffError,
+    },
+    /// The path names something that is not a regular file: a named pipe (FIFO), a
+    /// socket or a device, refused before it is opened (reading it could block forever).
+    /// Fix: save the data to a file and name that file.
+    #[error("{path}: is {kind}, not a regular file; save the data to a file and read that")]
+    NotAFile {
+        /// The path.
+        path: PathBuf,
+        /// What it is ("a named pipe (FIFO)").
+        kind: &'static str,
     },
     /// The grid's shape and its values do not match, or a value is ±inf (in-memory
     /// grids; NaN marks a missing sample there).
