@@ -99,7 +99,7 @@ pub enum Error {
     },
     /// A number given as input is not usable: NaN, or infinite where a finite value is
     /// needed.
-    #[error("{which} is {value}; it must be a finite number")]
+    #[error("{which} is {}; it must be a finite number", geotracks_metrics::Num(*value))]
     InvalidValue {
         /// Which value.
         which: ValueRole,
@@ -107,7 +107,7 @@ pub enum Error {
         value: f64,
     },
     /// An isoline option is out of range ([`IsolineOptions`](crate::trace::IsolineOptions)).
-    #[error("isoline option {option} is {value}; it must be {expected}")]
+    #[error("isoline option {option} is {}; it must be {expected}", geotracks_metrics::Num(*value))]
     InvalidIsolineOption {
         /// The option's name.
         option: &'static str,
@@ -117,7 +117,7 @@ pub enum Error {
         expected: &'static str,
     },
     /// A region option is out of range ([`Query::regions`](crate::trace::Query::regions)).
-    #[error("region option {option} is {value}; it must be {expected}")]
+    #[error("region option {option} is {}; it must be {expected}", geotracks_metrics::Num(*value))]
     InvalidRegionOption {
         /// The option's name.
         option: &'static str,
@@ -127,7 +127,7 @@ pub enum Error {
         expected: &'static str,
     },
     /// A picture option is out of range ([`render_field`](crate::render::render_field)).
-    #[error("picture option {option} is {value}; it must be {expected}")]
+    #[error("picture option {option} is {}; it must be {expected}", geotracks_metrics::Num(*value))]
     InvalidPictureOption {
         /// The option's name.
         option: &'static str,
@@ -179,7 +179,7 @@ pub enum Error {
     },
     /// A metric returned a NaN or negative cost. Metrics must return costs ≥ 0
     /// (`+inf` is allowed and means the segment cannot be crossed).
-    #[error("metric '{metric}' returned {value} for a segment in face {face}; costs must be ≥ 0 and not NaN")]
+    #[error("metric '{metric}' returned {} for a segment in face {face}; costs must be ≥ 0 and not NaN", geotracks_metrics::Num(*value))]
     InvalidCost {
         /// The metric's name.
         metric: String,
@@ -190,7 +190,7 @@ pub enum Error {
     },
     /// A metric returned a NaN or negative cost for a wire (a line element that is no
     /// face edge, [`TriMesh::vertex_wires`](crate::mesh::TriMesh::vertex_wires)).
-    #[error("metric '{metric}' returned {value} for the wire from vertex {} to vertex {}; costs must be ≥ 0 and not NaN", wire[0], wire[1])]
+    #[error("metric '{metric}' returned {} for the wire from vertex {} to vertex {}; costs must be ≥ 0 and not NaN", geotracks_metrics::Num(*value), wire[0], wire[1])]
     InvalidWireCost {
         /// The metric's name.
         metric: String,

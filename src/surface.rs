@@ -21,6 +21,7 @@
 
 use crate::mesh::TriMesh;
 use geotracks_metrics::FacePoint;
+use geotracks_metrics::Num;
 use glam::DVec3;
 use std::fmt;
 use std::str::FromStr;
@@ -81,13 +82,13 @@ pub enum PointError {
         count: usize,
     },
     /// The edge parameter is outside `[0, 1]` (or not finite).
-    #[error("edge parameter t = {t} is outside [0, 1]")]
+    #[error("edge parameter t = {} is outside [0, 1]", Num(*t))]
     ParameterOutOfRange {
         /// The parameter given.
         t: f64,
     },
     /// The barycentric coordinates do not sum to 1 (or are not finite).
-    #[error("barycentric coordinates {bary:?} sum to {sum}, not 1 (tolerance {TOLERANCE:e})")]
+    #[error("barycentric coordinates {bary:?} sum to {}, not 1 (tolerance {TOLERANCE:e})", Num(*sum))]
     BarycentricSum {
         /// The coordinates given.
         bary: [f64; 3],
@@ -351,9 +352,11 @@ impl fmt::Display for SurfacePoint {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             SurfacePoint::Vertex(v) => write!(f, "{v}"),
-            SurfacePoint::Edge { edge, t } => write!(f, "e:{edge}:{t}"),
+            // `Num`: the shortest text that reads back, never hundreds of digits.
+            SurfacePoint::Edge { edge, t } => write!(f, "e:{edge}:{}", Num(*t)),
             SurfacePoint::Face { face, bary } => {
-                write!(f, "f:{face}:{},{},{}", bary[0], bary[1], bary[2])
+                let [a, b, c] = bary.map(Num);
+                write!(f, "f:{face}:{a},{b},{c}")
             }
         }
     }

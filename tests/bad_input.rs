@@ -235,3 +235,17 @@ fn a_metric_that_returns_nan_is_reported() {
     assert!(matches!(e, Error::InvalidCost { face: 1, .. }), "{e}");
     assert!(e.to_string().contains("broken"));
 }
+
+/// Numbers in messages are never hundreds of digits: `1e300` printed as 301.
+#[test]
+fn huge_numbers_in_messages_print_in_exponent_notation() {
+    let mesh = square();
+    let err = Density::new(&mesh, vec![-1e300; mesh.vertex_count()]).unwrap_err();
+    let message = err.to_string();
+    assert!(message.contains("-1e300"), "{message}");
+    assert!(message.len() < 100, "{message}");
+    let point: geotracks::SurfacePoint = "e:0:1e300".parse().unwrap();
+    let message = point.validated(&mesh).unwrap_err().to_string();
+    assert!(message.contains("1e300"), "{message}");
+    assert!(message.len() < 200, "{message}");
+}

@@ -162,3 +162,84 @@ fn lying_headers_allocate_nothing() {
         );
     }
 }
+
+/// Huge files, sparse on disk (`File::set_len` costs no space), each read in a child
+/// process under an address-space limit:
+/// - under 1 GiB, a binary STL whose header claims 12 million triangles, its size
+///   matching (600 MB): the file fits, and the process aborted on the per-face tables
+///   ("memory allocation of … bytes failed"; 43 million under 4 GiB did the same); it
+///   now gets an out-of-memory error;
+/// - under 1 GiB, a binary PLY declaring 30 million vertices over 720 MB: the same, on
+///   the vertices;
+/// - under 2 GiB, 2 GB of NUL bytes named `.obj`, `.ply`, `.off`, `.ma`, `.asc`: read
+///   whole before their first byte was looked at (the read failed under the limit),
+///   now refused from their start as not the format; named `.stl`, the header's
+///   triangle count (0) says that nothing after it is needed.
+#[cfg(unix)]
+#[test]
+fn huge_files_are_refused_from_their_start_or_fail_with_an_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let sparse = |name: &str, start: &[u8], len: u64| {
+        let path = dir.path().join(name);
+        let mut file = std::fs::File::create(&path).unwrap();
+        std::io::Write::write_all(&mut file, start).unwrap();
+        file.set_len(len).unwrap();
+        path
+    };
+    let triangles: u64 = 12_000_000;
+    let mut stl_header = vec![0u8; 80];
+    stl_header.extend((triangles as u32).to_le_bytes());
+    let ply_header = b"ply\nformat binary_little_endian 1.0\nelement vertex 30000000\n\
+property float x\nproperty float y\nproperty float z\nelement face 0\n\
+property list uchar int vertex_indices\nend_header\n";
+    let two_gb = 2_000_000_000;
+    let (one_gib, two_gib) = ("1048576", "2097152");
+    let cases = [
+        (
+            sparse("big.stl", &stl_header, 84 + 50 * triangles),
+            one_gib,
+            "not enough memory",
+        ),
+        (
+            sparse("big.ply", ply_header, 720_000_000),
+            one_gib,
+            "not enough memory",
+        ),
+        (sparse("nul.obj", &[], two_gb), two_gib, "not an OBJ file"),
+        (sparse("nul.ply", &[], two_gb), two_gib, "not a PLY file"),
+        (sparse("nul.off", &[], two_gb), two_gib, "not an OFF file"),
+        (sparse("nul.ma", &[], two_gb), two_gib, "not a medial axis"),
+        (
+            sparse("nul.asc", &[], two_gb),
+            two_gib,
+            "not an ESRI ASCII grid",
+        ),
+        (sparse("nul.stl", &[], two_gb), two_gib, "no usable face"),
+    ];
+    let exe = std::env::current_exe().expect("the test binary");
+    for (path, kib, expected) in cases {
+        let output = Command::new("sh")
+            .arg("-c")
+            .arg(r#"ulimit -v "$GEOTRACKS_LIMIT_KIB" && exec "$0" "$@""#)
+            .arg(&exe)
+            .args([
+                "read_one_lying_file",
+                "--exact",
+                "--ignored",
+                "--nocapture",
+                "--test-threads=1",
+            ])
+            .env("GEOTRACKS_LYING_FILE", &path)
+            .env("GEOTRACKS_LIMIT_KIB", kib)
+            .output()
+            .expect("run the test binary under ulimit");
+        let stdout = String::from_utf8_lossy(&output.stdout);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(
+            output.status.success() && stdout.contains("clean error:") && stdout.contains(expected),
+            "{} under a {kib} KiB address-space limit (expected {expected:?}): {}\n{stdout}\n{stderr}",
+            path.display(),
+            output.status
+        );
+    }
+}

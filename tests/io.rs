@@ -1190,3 +1190,92 @@ fn weld_merges_identical_positions_and_keeps_face_numbering() {
         "{err:?}"
     );
 }
+
+/// A UTF-8 byte-order mark at the start of a text file is skipped by every text format:
+/// it made an OBJ's first vertex disappear silently (its line read as an unknown
+/// statement), and the other formats refuse the file as not theirs.
+#[test]
+fn a_byte_order_mark_is_skipped_in_every_text_format() {
+    const BOM: &str = "\u{feff}";
+    let square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n";
+    let ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n\
+               property float z\nelement face 1\nproperty list uchar int vertex_indices\n\
+               end_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n";
+    let off = "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n";
+    let stl = "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n\
+               vertex 1 1 0\nendloop\nendfacet\nfacet normal 0 0 1\nouter loop\n\
+               vertex 0 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid s\n";
+    let ma = "4 0 2\nv 0 0 0 1\nv 1 0 0 1\nv 1 1 0 1\nv 0 1 0 1\nf 0 1 2\nf 0 2 3\n";
+    for (name, text) in [
+        ("square.obj", square),
+        ("square.ply", ply),
+        ("square.off", off),
+        ("square.stl", stl),
+        ("square.ma", ma),
+    ] {
+        let (_dir, path) = temp_file(name, format!("{BOM}{text}"));
+        let mesh = read_mesh(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(
+            (mesh.vertex_count(), mesh.face_count()),
+            (4, 2),
+            "{name}: a vertex or face lost to the byte-order mark"
+        );
+    }
+    let (_dir, path) = temp_file("axis.ma", format!("{BOM}{ma}"));
+    assert_eq!(read_medial_axis(&path).unwrap().radii.len(), 4);
+    // Binary PLY: the header after the mark, the payload as before.
+    let mut bytes = BOM.as_bytes().to_vec();
+    bytes.extend(binary_square_ply(false));
+    let (_dir, path) = temp_file("binary.ply", bytes);
+    assert_eq!(read_mesh(&path).unwrap().vertex_count(), 4);
+}
+
+/// Runs `read` on another thread; `None` if it has not returned within `seconds` (a
+/// reader blocked on a FIFO never returns, and ignores signals while blocked).
+fn within<T: Send + 'static>(seconds: u64, read: impl FnOnce() -> T + Send + 'static) -> Option<T> {
+    let (send, receive) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let _ = send.send(read());
+    });
+    receive
+        .recv_timeout(std::time::Duration::from_secs(seconds))
+        .ok()
+}
+
+/// A named pipe (FIFO) given as a mesh blocked the reader forever (opening it waits
+/// for a writer); every reader now refuses it, and anything that is not a regular file,
+/// before opening it.
+#[cfg(unix)]
+#[test]
+fn a_fifo_or_a_device_is_refused_without_blocking() {
+    let dir = tempfile::tempdir().unwrap();
+    for name in ["pipe.obj", "pipe.ply", "pipe.stl", "pipe.off", "pipe.ma"] {
+        let path = dir.path().join(name);
+        let made = std::process::Command::new("mkfifo")
+            .arg(&path)
+            .status()
+            .expect("mkfifo");
+        assert!(made.success());
+        let shown = path.clone();
+        let result = within(10, move || read_mesh(&shown).map(|_| ()))
+            .unwrap_or_else(|| panic!("{name}: the reader blocked on the FIFO"));
+        let err = result.expect_err("a FIFO is not a mesh file");
+        assert!(matches!(err, MeshError::NotAFile { .. }), "{name}: {err:?}");
+        let message = err.to_string();
+        assert!(message.contains("named pipe (FIFO)"), "{message}");
+        assert!(message.contains(name), "{message}");
+    }
+    let ma = dir.path().join("pipe.ma");
+    let result = within(10, move || read_medial_axis(&ma).map(|_| ())).expect("blocked");
+    assert!(
+        matches!(result, Err(MeshError::NotAFile { .. })),
+        "{result:?}"
+    );
+    // A character device: reading /dev/zero would never end.
+    if Path::new("/dev/zero").exists() {
+        let err = within(10, || read_mesh("/dev/zero").map(|_| ()))
+            .expect("blocked")
+            .unwrap_err();
+        assert!(matches!(err, MeshError::NotAFile { .. }), "{err:?}");
+    }
+}

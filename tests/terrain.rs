@@ -1122,3 +1122,93 @@ proptest! {
         }
     }
 }
+
+/// Grids are refused when they are not regular files: a FIFO blocked the reader.
+#[cfg(unix)]
+#[test]
+fn a_fifo_as_a_grid_is_refused_without_blocking() {
+    let dir = tempfile::tempdir().unwrap();
+    for name in ["pipe.asc", "pipe.tif"] {
+        let path = dir.path().join(name);
+        let made = std::process::Command::new("mkfifo")
+            .arg(&path)
+            .status()
+            .expect("mkfifo");
+        assert!(made.success());
+        let (send, receive) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let _ = send.send(read_grid(&path).map(|_| ()));
+        });
+        let result = receive
+            .recv_timeout(std::time::Duration::from_secs(10))
+            .unwrap_or_else(|_| panic!("{name}: the reader blocked on the FIFO"));
+        let err = result.expect_err("a FIFO is not a grid");
+        assert!(matches!(err, TerrainError::NotAFile { .. }), "{err:?}");
+        assert!(err.to_string().contains("named pipe"), "{err}");
+    }
+}
+
+/// An ESRI grid saved with a UTF-8 byte-order mark (Windows editors) reads as without
+/// one; the mark made its first header key unknown.
+#[test]
+fn esri_grid_with_a_byte_order_mark() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("bom.asc");
+    std::fs::write(
+        &path,
+        "\u{feff}ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2\n3 4\n",
+    )
+    .unwrap();
+    let grid = read_grid(&path).unwrap();
+    assert_eq!(grid.elevation(0, 0), Some(1.0));
+}
+
+/// A corrupt strip is named with its index and offset; the decoder alone said "no lzw
+/// end code found" (or "failed to fill whole buffer") and nothing of where.
+#[test]
+fn a_corrupt_geotiff_strip_is_named_with_its_offset() {
+    use tiff::encoder::{colortype::Gray16, Compression, TiffEncoder};
+    use tiff::tags::Tag;
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("corrupt.tif");
+    let (w, h) = (64u32, 64u32);
+    let data: Vec<u16> = (0..w * h).map(|i| (i % 251) as u16).collect();
+    {
+        let file = std::fs::File::create(&path).unwrap();
+        let mut tiff = TiffEncoder::new(file)
+            .unwrap()
+            .with_compression(Compression::Lzw);
+        let mut image = tiff.new_image::<Gray16>(w, h).unwrap();
+        let enc = image.encoder();
+        enc.write_tag(Tag::ModelPixelScaleTag, &[1.0, 1.0, 0.0][..])
+            .unwrap();
+        enc.write_tag(Tag::ModelTiepointTag, &[0.0, 0.0, 0.0, 0.0, 64.0, 0.0][..])
+            .unwrap();
+        image.write_data(&data).unwrap();
+    }
+    assert!(read_geotiff(&path).is_ok());
+    let (offsets, sizes) = {
+        let mut decoder = tiff::decoder::Decoder::new(std::fs::File::open(&path).unwrap()).unwrap();
+        (
+            decoder.get_tag_u64_vec(Tag::StripOffsets).unwrap(),
+            decoder.get_tag_u64_vec(Tag::StripByteCounts).unwrap(),
+        )
+    };
+    // Garbage in the last strip: LZW cannot decode it.
+    let last = offsets.len() - 1;
+    let mut bytes = std::fs::read(&path).unwrap();
+    let (at, size) = (offsets[last] as usize, sizes[last] as usize);
+    for b in &mut bytes[at..at + size] {
+        *b = 0xff;
+    }
+    std::fs::write(&path, &bytes).unwrap();
+    let err = read_geotiff(&path).unwrap_err();
+    assert!(matches!(err, TerrainError::Tiff { .. }), "{err:?}");
+    let message = err.to_string();
+    assert!(
+        message.contains(&format!("strip {last} of {}", offsets.len()))
+            && message.contains(&format!("at byte {at}")),
+        "{message}"
+    );
+    assert!(message.contains("corrupt.tif"), "{message}");
+}

@@ -74,7 +74,11 @@ pub fn run(args: &DistanceArgs) -> CliResult {
     }
     let max_distance = args.max_distance.unwrap_or(f64::INFINITY);
     if max_distance.is_nan() || max_distance < 0.0 {
-        return Err(format!("--max-distance {max_distance}: it must be a number >= 0").into());
+        return Err(format!(
+            "--max-distance {}: it must be a number >= 0",
+            crate::Value(max_distance)
+        )
+        .into());
     }
     let mut outputs = Outputs::new(std::iter::once(args.mesh.as_path()).chain(args.metric.files()));
     for path in [

@@ -50,9 +50,24 @@ pub fn load_mesh(path: &Path, weld: bool) -> CliResult<TriMesh> {
 
 /// The whole file as text; a file that is not UTF-8 text (binary data, a mesh given by
 /// mistake) is named as such, with the first offending byte and its line.
+///
+/// Only regular files are read: a named pipe or a device is refused before it is
+/// opened (opening a FIFO blocks until a writer comes). A leading UTF-8 byte-order mark
+/// is skipped.
 fn read_text(path: &Path) -> Result<String, InputError> {
+    match io::not_a_file(path) {
+        Ok(None) => {}
+        Ok(Some(kind)) => {
+            return Err(input_error(
+                path,
+                0,
+                format!("is {kind}, not a regular file; save the data to a file and read that"),
+            ))
+        }
+        Err(e) => return Err(input_error(path, 0, e.to_string())),
+    }
     let bytes = std::fs::read(path).map_err(|e| input_error(path, 0, e.to_string()))?;
-    String::from_utf8(bytes).map_err(|e| {
+    let text = String::from_utf8(bytes).map_err(|e| {
         let bytes = e.as_bytes();
         let at = e.utf8_error().valid_up_to();
         let line = 1 + bytes[..at].iter().filter(|&&b| b == b'\n').count();
@@ -65,6 +80,10 @@ fn read_text(path: &Path) -> Result<String, InputError> {
                 bytes[at]
             ),
         )
+    })?;
+    Ok(match text.strip_prefix('\u{feff}') {
+        Some(rest) => rest.to_string(),
+        None => text,
     })
 }
 

@@ -1,13 +1,26 @@
 //! A command's outputs, all or nothing.
 //!
 //! Every output is checked before the work starts ([`Outputs::declare`]): not one of
-//! the command's inputs, not twice the same file, in a directory that exists, and not a
-//! file the user could not write (a read-only file is refused, not replaced). After the
-//! work, each output is written to a temporary file beside its target
+//! the command's inputs and not twice the same file, whatever the paths' spelling (`./`,
+//! `..`, symbolic links, hard links: paths are compared by where they lead and existing
+//! files by identity), in a directory that exists, and not a file the user could not
+//! write (a read-only file is refused, not replaced). An output that is a symbolic link
+//! is written through it: the file it points to is replaced and the link stays a link.
+//!
+//! After the work, each output is written to a temporary file beside its target
 //! ([`Outputs::write`]); only when all are written does [`Outputs::commit`] rename them
-//! over their targets. Any failure before that leaves every target as it was, and the
+//! over their targets, one rename after the other with everything else prepared first,
+//! so that the window in which some targets are new and others old is as short as the
+//! file system allows. Any failure before that leaves every target as it was, and the
 //! temporary files are removed, also when the process is interrupted (SIGINT, SIGTERM,
-//! SIGHUP: [`remove_on_signal`]). Errors name the target, never the temporary file.
+//! SIGHUP: [`remove_on_signal`]); an interruption after the renames says which files
+//! were replaced. Errors name the target, never the temporary file.
+//!
+//! A process killed outright (SIGKILL, a power cut) cannot remove its temporary files
+//! (`.geotracks-XXXXXX.tmp`, and `.geotracks-XXXXXX.bak` during a commit). Each
+//! temporary file is locked while its process lives; the next run that writes into
+//! the same directory removes those of our naming that no process holds and that are
+//! more than a minute old ([`remove_stale_temporaries`]).
 //!
 //! `-` as a target is standard output: its content is kept in memory and written at the
 //! commit, before the renames, so a reader that fails (a closed pipe) also keeps the
@@ -17,18 +30,34 @@ use crate::CliResult;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, MutexGuard};
+use std::time::{Duration, SystemTime};
 use tempfile::TempPath;
 
-/// Temporary files that exist now, for the signal handler to remove.
-static PENDING: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+/// What the signal handler needs to know: the temporary files to remove, and what a
+/// commit has put in place.
+struct Progress {
+    /// Temporary files that exist now.
+    temporary: Vec<PathBuf>,
+    /// Standard output has been (or is being) written.
+    stdout: bool,
+    /// The files a commit has put in place, as the user named them.
+    replaced: Vec<String>,
+}
 
-fn pending() -> MutexGuard<'static, Vec<PathBuf>> {
-    // A panic while holding the lock leaves the list as it was: still usable.
-    PENDING.lock().unwrap_or_else(|e| e.into_inner())
+static PROGRESS: Mutex<Progress> = Mutex::new(Progress {
+    temporary: Vec::new(),
+    stdout: false,
+    replaced: Vec::new(),
+});
+
+fn progress() -> MutexGuard<'static, Progress> {
+    // A panic while holding the lock leaves the lists as they were: still usable.
+    PROGRESS.lock().unwrap_or_else(|e| e.into_inner())
 }
 
 /// Removes the temporary files of uncommitted outputs when the process is interrupted
-/// or terminated, then exits with status 130 (128 + SIGINT).
+/// or terminated, says which outputs (if any) were already written, then exits with
+/// status 130 (128 + SIGINT).
 ///
 /// `ctrlc` (with its `termination` feature) rather than `signal-hook`: it covers SIGINT,
 /// SIGTERM and SIGHUP on Unix and Ctrl-C and console close on Windows with one call,
@@ -37,69 +66,140 @@ fn pending() -> MutexGuard<'static, Vec<PathBuf>> {
 pub fn remove_on_signal() {
     // Failing to install the handler (another one is installed) only loses the cleanup.
     let _ = ctrlc::set_handler(|| {
-        // Holding the lock waits for a commit in progress to finish: its outputs are
-        // then all in place, and nothing is left to remove.
-        let mut files = pending();
-        for file in files.drain(..) {
+        // Holding the lock waits for a commit in progress to finish its renames: the
+        // outputs are then all in place (or all as they were), never half.
+        let mut progress = progress();
+        for file in progress.temporary.drain(..) {
             let _ = std::fs::remove_file(file);
         }
-        eprintln!("interrupted: no output written");
+        eprintln!("{}", interrupted(&progress));
         std::process::exit(130);
     });
 }
 
+/// The message of an interrupted run: what it wrote.
+fn interrupted(progress: &Progress) -> String {
+    match (progress.replaced.as_slice(), progress.stdout) {
+        ([], false) => "interrupted: no output written".into(),
+        ([], true) => "interrupted: no file written; standard output may be incomplete".into(),
+        (files, stdout) => format!(
+            "interrupted after the outputs were complete: wrote {}{}",
+            if stdout { "standard output, " } else { "" },
+            files.join(", ")
+        ),
+    }
+}
+
 /// Where an output goes.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 enum Target {
-    File(PathBuf),
+    /// A file: `given` as the user wrote it (for messages, and to find it again), `real`
+    /// where it leads (its directory canonical, a symbolic link followed): the temporary
+    /// file is made beside `real` and renamed to it.
+    File {
+        given: PathBuf,
+        real: PathBuf,
+    },
     Stdout,
 }
 
 /// One output: its target and, once written, its content.
 struct Entry {
     target: Target,
+    /// The existing file's identity, to recognise it under another name.
+    identity: Option<Identity>,
     /// The file's temporary twin, or standard output's bytes.
     written: Option<Written>,
 }
 
 enum Written {
-    File(TempPath),
+    /// The temporary file, and its handle, which holds its lock.
+    File(TempPath, std::fs::File),
     Stdout(Vec<u8>),
 }
 
 /// The outputs of one command.
 pub struct Outputs {
-    inputs: Vec<PathBuf>,
+    /// The inputs, where they lead, and their identity.
+    inputs: Vec<(PathBuf, Option<Identity>)>,
     entries: Vec<Entry>,
+    /// Directories already cleaned of stale temporary files.
+    cleaned: Vec<PathBuf>,
 }
 
 impl Outputs {
     /// Outputs of a command that reads `inputs` (which no output may overwrite).
     pub fn new<'a>(inputs: impl IntoIterator<Item = &'a Path>) -> Outputs {
         Outputs {
-            inputs: inputs.into_iter().map(Path::to_path_buf).collect(),
+            inputs: inputs
+                .into_iter()
+                .filter_map(|p| {
+                    let real = std::fs::canonicalize(p).ok()?;
+                    Some((real, Identity::of(p)))
+                })
+                .collect(),
             entries: Vec::new(),
+            cleaned: Vec::new(),
         }
     }
 
     /// Checks `path` as an output (`-` is standard output) before any work is done.
     pub fn declare(&mut self, path: &Path) -> CliResult {
-        let target = if path.as_os_str() == "-" {
-            Target::Stdout
-        } else {
-            Target::File(path.to_path_buf())
-        };
-        if self.entries.iter().any(|e| e.target == target) {
-            return Err(match target {
-                Target::Stdout => "standard output (-) is given for two outputs".into(),
-                Target::File(_) => format!("{}: given for two outputs", path.display()).into(),
+        if path.as_os_str() == "-" {
+            if self
+                .entries
+                .iter()
+                .any(|e| matches!(e.target, Target::Stdout))
+            {
+                return Err("standard output (-) is given for two outputs".into());
+            }
+            self.entries.push(Entry {
+                target: Target::Stdout,
+                identity: None,
+                written: None,
             });
+            return Ok(());
         }
-        if let Target::File(file) = &target {
-            check_file(file, &self.inputs)?;
+        let real = check_file(path)?;
+        let identity = Identity::of(&real);
+        let same = |other: &Path, other_identity: &Option<Identity>| {
+            other == real || (identity.is_some() && *other_identity == identity)
+        };
+        if self.inputs.iter().any(|(input, id)| same(input, id)) {
+            return Err(format!(
+                "{}: is also an input of this command; write the output to another file",
+                path.display()
+            )
+            .into());
+        }
+        for entry in &self.entries {
+            if let Target::File { given, real } = &entry.target {
+                if same(real, &entry.identity) {
+                    return Err(if given.as_os_str() == path.as_os_str() {
+                        format!("{}: given for two outputs", path.display())
+                    } else {
+                        format!(
+                            "{}: the same file as {}, given for two outputs",
+                            path.display(),
+                            given.display()
+                        )
+                    }
+                    .into());
+                }
+            }
+        }
+        if let Some(dir) = real.parent() {
+            if !self.cleaned.iter().any(|d| d == dir) {
+                remove_stale_temporaries(dir, STALE_AFTER);
+                self.cleaned.push(dir.to_path_buf());
+            }
         }
         self.entries.push(Entry {
-            target,
+            target: Target::File {
+                given: path.to_path_buf(),
+                real,
+            },
+            identity,
             written: None,
         });
         Ok(())
@@ -125,7 +225,7 @@ impl Outputs {
             .iter_mut()
             .find(|e| match &e.target {
                 Target::Stdout => path.as_os_str() == "-",
-                Target::File(f) => f == path,
+                Target::File { given, .. } => given == path,
             })
             .expect("outputs are declared before they are written");
         let fail = |e: std::io::Error| format!("{}: {e}", path.display());
@@ -135,16 +235,15 @@ impl Outputs {
                 write(&mut bytes).map_err(fail)?;
                 entry.written = Some(Written::Stdout(bytes));
             }
-            Target::File(file) => {
-                let temp = temp_file_beside(file).map_err(fail)?;
+            Target::File { real, .. } => {
+                let (file, temp) = temp_file_beside(real).map_err(fail)?;
                 let written = (|| {
-                    let file = std::fs::OpenOptions::new().write(true).open(&temp)?;
-                    let mut out = std::io::BufWriter::new(file);
+                    let mut out = std::io::BufWriter::new(&file);
                     write(&mut out)?;
                     out.flush()
                 })();
                 match written {
-                    Ok(()) => entry.written = Some(Written::File(temp)),
+                    Ok(()) => entry.written = Some(Written::File(temp, file)),
                     Err(e) => {
                         discard(temp);
                         return Err(fail(e).into());
@@ -168,15 +267,23 @@ impl Outputs {
         for entry in entries {
             match (entry.target, entry.written) {
                 (_, Some(Written::Stdout(bytes))) => stdout_bytes = Some(bytes),
-                (Target::File(target), Some(Written::File(temp))) => renames.push((temp, target)),
+                (Target::File { given, real }, Some(Written::File(temp, file))) => {
+                    renames.push(Rename {
+                        temp,
+                        lock: file,
+                        given,
+                        real,
+                    })
+                }
                 _ => panic!("every declared output is written before the commit"),
             }
         }
-        let names: Vec<PathBuf> = renames.iter().map(|(t, _)| t.to_path_buf()).collect();
+        let names: Vec<PathBuf> = renames.iter().map(|r| r.temp.to_path_buf()).collect();
         // Standard output first, without the lock: a reader that does not read blocks
         // the write, and a signal must still find the temporary files and exit.
         let written = match stdout_bytes {
             Some(bytes) => {
+                progress().stdout = true;
                 let mut out = std::io::stdout().lock();
                 out.write_all(&bytes)
                     .and_then(|()| out.flush())
@@ -185,28 +292,55 @@ impl Outputs {
             None => Ok(()),
         };
         // Held until every file is in place: a signal handler waits for it.
-        let mut files = pending();
+        let mut progress = progress();
         let result = written.and_then(|()| rename_all(renames));
-        files.retain(|f| !names.contains(f));
-        result
+        progress.temporary.retain(|f| !names.contains(f));
+        if let Ok(replaced) = &result {
+            progress.replaced.extend(replaced.iter().cloned());
+        }
+        result.map(|_| ())
     }
 }
 
-/// The renames of [`Outputs::commit`]; if one fails, the files renamed before it are
-/// put back. The temporary files not renamed are removed on return.
-fn rename_all(renames: Vec<(TempPath, PathBuf)>) -> CliResult {
+/// One file of a commit: its temporary file (and the handle that locks it), the target
+/// as the user named it and where it leads.
+struct Rename {
+    temp: TempPath,
+    lock: std::fs::File,
+    given: PathBuf,
+    real: PathBuf,
+}
+
+/// The renames of [`Outputs::commit`]: first everything that can be done before a
+/// target changes (permissions, backups), then the renames back to back; if one fails,
+/// the files renamed before it are put back. Returns the targets replaced, as named.
+/// The temporary files not renamed are removed on return.
+fn rename_all(renames: Vec<Rename>) -> CliResult<Vec<String>> {
     // What each target was, to put it back if a later rename fails.
+    let prepared: Vec<(Rename, Option<TempPath>)> = renames
+        .into_iter()
+        .map(|rename| {
+            let backup = match std::fs::metadata(&rename.real) {
+                Ok(meta) => {
+                    // The new file takes the old one's permissions.
+                    let _ = std::fs::set_permissions(&rename.temp, meta.permissions());
+                    backup_of(&rename.real)
+                }
+                Err(_) => None,
+            };
+            (rename, backup)
+        })
+        .collect();
     let mut done: Vec<(PathBuf, Option<TempPath>)> = Vec::new();
-    for (temp, target) in renames {
-        let backup = match std::fs::metadata(&target) {
-            Ok(meta) => {
-                // The new file takes the old one's permissions.
-                let _ = std::fs::set_permissions(&temp, meta.permissions());
-                backup_of(&target)
-            }
-            Err(_) => None,
-        };
-        if let Err(e) = temp.persist(&target) {
+    let mut replaced = Vec::new();
+    for (rename, backup) in prepared {
+        let Rename {
+            temp,
+            lock,
+            given,
+            real,
+        } = rename;
+        if let Err(e) = temp.persist(&real) {
             for (earlier, backup) in done.into_iter().rev() {
                 match backup {
                     Some(b) => {
@@ -217,19 +351,21 @@ fn rename_all(renames: Vec<(TempPath, PathBuf)>) -> CliResult {
                     }
                 }
             }
-            return Err(format!("{}: {}", target.display(), e.error).into());
+            return Err(format!("{}: {}", given.display(), e.error).into());
         }
-        done.push((target, backup));
+        drop(lock);
+        done.push((real, backup));
+        replaced.push(given.display().to_string());
     }
     // The backups are removed with `done`.
-    Ok(())
+    Ok(replaced)
 }
 
 impl Drop for Outputs {
     fn drop(&mut self) {
         // Uncommitted outputs: their temporary files go.
         for entry in std::mem::take(&mut self.entries) {
-            if let Some(Written::File(temp)) = entry.written {
+            if let Some(Written::File(temp, _lock)) = entry.written {
                 discard(temp);
             }
         }
@@ -239,41 +375,73 @@ impl Drop for Outputs {
 /// Removes a temporary file and forgets it.
 fn discard(temp: TempPath) {
     let name = temp.to_path_buf();
-    let mut files = pending();
+    let mut progress = progress();
     let _ = temp.close();
-    files.retain(|f| f != &name);
+    progress.temporary.retain(|f| f != &name);
 }
 
-/// Checks that `file` can be an output: not an input, not a directory, not read-only,
-/// in a directory that exists.
-fn check_file(file: &Path, inputs: &[PathBuf]) -> CliResult {
-    let shown = file.display();
-    let dir = match file.parent() {
+/// A file's identity (device and inode on Unix), to recognise an existing file under
+/// another name (a hard link); `None` where there is no such notion or no file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Identity(u64, u64);
+
+impl Identity {
+    fn of(path: &Path) -> Option<Identity> {
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::MetadataExt;
+            let meta = std::fs::metadata(path).ok()?;
+            Some(Identity(meta.dev(), meta.ino()))
+        }
+        #[cfg(not(unix))]
+        {
+            let _ = path;
+            None
+        }
+    }
+}
+
+/// The directory a path's file is in (`.` for a bare name).
+fn directory_of(file: &Path) -> &Path {
+    match file.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
-    };
+    }
+}
+
+/// Checks that `file` can be an output: not a directory, not read-only, in a directory
+/// that exists; returns where it leads (its directory canonical, a symbolic link
+/// followed to its file).
+fn check_file(file: &Path) -> CliResult<PathBuf> {
+    let shown = file.display();
+    let dir = directory_of(file);
     if !dir.is_dir() {
         return Err(format!("{shown}: the directory {} does not exist", dir.display()).into());
     }
-    let Ok(meta) = std::fs::metadata(file) else {
-        return Ok(()); // a new file
+    let is_link = std::fs::symlink_metadata(file).is_ok_and(|m| m.file_type().is_symlink());
+    let meta = std::fs::metadata(file);
+    let real = match (&meta, is_link) {
+        (Ok(_), true) => std::fs::canonicalize(file).map_err(|e| format!("{shown}: {e}"))?,
+        (Err(_), true) => {
+            return Err(format!(
+                "{shown}: is a symbolic link to a file that does not exist; not replaced \
+                 (give the file it should point to, or remove the link)"
+            )
+            .into())
+        }
+        _ => {
+            let Some(name) = file.file_name() else {
+                return Err(format!("{shown}: is not a file name").into());
+            };
+            let dir = std::fs::canonicalize(dir).map_err(|e| format!("{shown}: {e}"))?;
+            dir.join(name)
+        }
+    };
+    let Ok(meta) = meta else {
+        return Ok(real); // a new file
     };
     if !meta.is_file() {
         return Err(format!("{shown}: exists and is not a file; not replaced").into());
-    }
-    // The same file, whatever the path's spelling (relative, symbolic links).
-    let canonical = std::fs::canonicalize(file).ok();
-    for input in inputs {
-        let same = match (&canonical, std::fs::canonicalize(input)) {
-            (Some(a), Ok(b)) => *a == b,
-            _ => false,
-        };
-        if same {
-            return Err(format!(
-                "{shown}: is also an input of this command; write the output to another file"
-            )
-            .into());
-        }
     }
     let writable = !meta.permissions().readonly()
         && std::fs::OpenOptions::new().write(true).open(file).is_ok();
@@ -283,31 +451,109 @@ fn check_file(file: &Path, inputs: &[PathBuf]) -> CliResult {
         )
         .into());
     }
-    Ok(())
+    Ok(real)
 }
 
-/// A new, empty temporary file in `target`'s directory, registered for removal on a
-/// signal. Its error names no temporary path.
-fn temp_file_beside(target: &Path) -> std::io::Result<TempPath> {
-    let dir = match target.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
+/// How long a temporary file of our naming must have been left alone (and unlocked)
+/// before another run removes it: a file is locked an instant after it is created, and
+/// this leaves that instant a wide margin.
+const STALE_AFTER: Duration = Duration::from_secs(60);
+
+/// Removes from `dir` the temporary files a killed run left: names of our pattern
+/// (`.geotracks-` + 6 letters or digits + `.tmp` or `.bak`), regular files, not locked
+/// by a running process, unchanged for `age` ([`STALE_AFTER`] in a run). Failures are
+/// ignored: this is housekeeping, and the run's own outputs do not depend on it.
+fn remove_stale_temporaries(dir: &Path, age: Duration) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
     };
-    let mut files = pending();
+    let now = SystemTime::now();
+    for entry in entries.flatten() {
+        let name = entry.file_name();
+        if !is_our_temporary(&name.to_string_lossy()) {
+            continue;
+        }
+        let path = entry.path();
+        let Ok(meta) = std::fs::symlink_metadata(&path) else {
+            continue;
+        };
+        let old = last_change(&meta)
+            .is_some_and(|t| now.duration_since(t).map_or(age.is_zero(), |a| a >= age));
+        if !meta.is_file() || !old {
+            continue;
+        }
+        // A running process holds a lock on its temporary files.
+        let Ok(file) = std::fs::File::open(&path) else {
+            continue;
+        };
+        if file.try_lock().is_ok() {
+            let _ = std::fs::remove_file(&path);
+        }
+    }
+}
+
+/// When a file last changed: its status-change time on Unix (a backup is a new hard link
+/// to an old file, whose modification time says nothing of the link), else its
+/// modification time.
+fn last_change(meta: &std::fs::Metadata) -> Option<SystemTime> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        let changed = SystemTime::UNIX_EPOCH
+            + Duration::from_secs(u64::try_from(meta.ctime()).ok()?)
+            + Duration::from_nanos(u64::try_from(meta.ctime_nsec()).ok()?);
+        Some(changed.max(meta.modified().ok()?))
+    }
+    #[cfg(not(unix))]
+    {
+        meta.modified().ok()
+    }
+}
+
+/// `true` for the names [`temp_file_beside`] and [`backup_of`] make.
+fn is_our_temporary(name: &str) -> bool {
+    let Some(rest) = name.strip_prefix(TEMP_PREFIX) else {
+        return false;
+    };
+    let Some(random) = rest
+        .strip_suffix(TEMP_SUFFIX)
+        .or_else(|| rest.strip_suffix(BACKUP_SUFFIX))
+    else {
+        return false;
+    };
+    random.len() == RANDOM_LEN && random.bytes().all(|b| b.is_ascii_alphanumeric())
+}
+
+const TEMP_PREFIX: &str = ".geotracks-";
+const TEMP_SUFFIX: &str = ".tmp";
+const BACKUP_SUFFIX: &str = ".bak";
+/// Random characters in a temporary name (tempfile's default, set explicitly so the
+/// names stay recognisable).
+const RANDOM_LEN: usize = 6;
+
+/// A new, empty temporary file in `target`'s directory, locked for as long as the
+/// returned handle lives and registered for removal on a signal. Its error names no
+/// temporary path.
+fn temp_file_beside(target: &Path) -> std::io::Result<(std::fs::File, TempPath)> {
+    let dir = directory_of(target);
+    let mut progress = progress();
     let mut builder = tempfile::Builder::new();
-    builder.prefix(".geotracks-").suffix(".tmp");
+    builder
+        .prefix(TEMP_PREFIX)
+        .suffix(TEMP_SUFFIX)
+        .rand_bytes(RANDOM_LEN);
     // Created 0600 by default; 0666 lets the umask decide, as for any new file.
     #[cfg(unix)]
     {
         use std::os::unix::fs::PermissionsExt;
         builder.permissions(std::fs::Permissions::from_mode(0o666));
     }
-    let temp = builder
-        .tempfile_in(dir)
-        .map_err(without_temp_path)?
-        .into_temp_path();
-    files.push(temp.to_path_buf());
-    Ok(temp)
+    let temp = builder.tempfile_in(dir).map_err(without_temp_path)?;
+    // Where locks are not supported, stale files are only recognised by their age.
+    let _ = temp.as_file().lock();
+    let (file, temp) = temp.into_parts();
+    progress.temporary.push(temp.to_path_buf());
+    Ok((file, temp))
 }
 
 /// A hard link to `target` under a temporary name, to restore it from; `None` where
@@ -316,8 +562,9 @@ fn temp_file_beside(target: &Path) -> std::io::Result<TempPath> {
 fn backup_of(target: &Path) -> Option<TempPath> {
     let dir = target.parent().filter(|d| !d.as_os_str().is_empty())?;
     let name = tempfile::Builder::new()
-        .prefix(".geotracks-")
-        .suffix(".bak")
+        .prefix(TEMP_PREFIX)
+        .suffix(BACKUP_SUFFIX)
+        .rand_bytes(RANDOM_LEN)
         .make_in(dir, |path| std::fs::hard_link(target, path))
         .ok()?;
     Some(name.into_temp_path())
@@ -371,7 +618,10 @@ mod tests {
         assert_eq!(std::fs::read_to_string(&a).unwrap(), "old a\n");
         assert!(!b.exists());
         assert!(temps(dir.path()).is_empty(), "{:?}", temps(dir.path()));
-        assert!(!pending().iter().any(|f| f.starts_with(dir.path())));
+        assert!(!progress()
+            .temporary
+            .iter()
+            .any(|f| f.starts_with(dir.path())));
     }
 
     #[test]
@@ -449,5 +699,160 @@ mod tests {
             .to_string();
         assert!(err.contains("does not exist"), "{err}");
         assert!(!err.contains(".geotracks-"), "{err}");
+    }
+
+    /// Two outputs that are one file under two spellings: `./`, `..`, a symbolic link,
+    /// a hard link. The second was compared as text and accepted, and the first
+    /// output was lost.
+    #[test]
+    fn one_file_under_two_names_is_refused_as_two_outputs() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path().join("d.txt");
+        std::fs::create_dir(dir.path().join("sub")).unwrap();
+        for other in [
+            dir.path().join(".").join("d.txt"),
+            dir.path().join("sub").join("..").join("d.txt"),
+        ] {
+            let mut outputs = Outputs::new([]);
+            outputs.declare(&d).unwrap();
+            let err = outputs.declare(&other).unwrap_err().to_string();
+            assert!(err.contains("the same file as"), "{err}");
+            assert!(err.contains("two outputs"), "{err}");
+        }
+        // Through links, to an existing file.
+        std::fs::write(&d, "old\n").unwrap();
+        let link = dir.path().join("link.txt");
+        let hard = dir.path().join("hard.txt");
+        #[cfg(unix)]
+        std::os::unix::fs::symlink(&d, &link).unwrap();
+        std::fs::hard_link(&d, &hard).unwrap();
+        for other in [&link, &hard] {
+            if !other.exists() {
+                continue;
+            }
+            let mut outputs = Outputs::new([]);
+            outputs.declare(other).unwrap();
+            let err = outputs.declare(&d).unwrap_err().to_string();
+            assert!(err.contains("two outputs"), "{other:?}: {err}");
+            // And as an input.
+            let mut outputs = Outputs::new([d.as_path()]);
+            let err = outputs.declare(other).unwrap_err().to_string();
+            assert!(err.contains("is also an input"), "{other:?}: {err}");
+        }
+    }
+
+    /// A symbolic link as an output is written through: the file it points to gets the
+    /// content, and the link stays a link.
+    #[cfg(unix)]
+    #[test]
+    fn an_output_that_is_a_symbolic_link_is_written_through_it() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::create_dir(dir.path().join("real")).unwrap();
+        let target = dir.path().join("real").join("d.txt");
+        std::fs::write(&target, "old\n").unwrap();
+        let link = dir.path().join("link.txt");
+        std::os::unix::fs::symlink(&target, &link).unwrap();
+        let mut outputs = Outputs::new([]);
+        outputs.declare(&link).unwrap();
+        outputs.write(&link, |w| w.write_all(b"new\n")).unwrap();
+        outputs.commit().unwrap();
+        assert!(std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink());
+        assert_eq!(std::fs::read_to_string(&target).unwrap(), "new\n");
+        assert!(temps(dir.path()).is_empty());
+        assert!(temps(&dir.path().join("real")).is_empty());
+        // A link to nothing is refused rather than replaced by a file.
+        let dangling = dir.path().join("dangling.txt");
+        std::os::unix::fs::symlink(dir.path().join("nowhere.txt"), &dangling).unwrap();
+        let err = Outputs::new([]).declare(&dangling).unwrap_err().to_string();
+        assert!(
+            err.contains("symbolic link to a file that does not exist"),
+            "{err}"
+        );
+    }
+
+    /// What an interrupted run says follows what the commit did: nothing, standard
+    /// output only started, or every file in place. It said "no output written" after
+    /// the renames too.
+    #[test]
+    fn the_interruption_message_says_what_was_written() {
+        let mut p = Progress {
+            temporary: Vec::new(),
+            stdout: false,
+            replaced: Vec::new(),
+        };
+        assert_eq!(interrupted(&p), "interrupted: no output written");
+        p.stdout = true;
+        assert!(interrupted(&p).contains("standard output may be incomplete"));
+        p.replaced = vec!["big.ply".into(), "run.json".into()];
+        assert_eq!(
+            interrupted(&p),
+            "interrupted after the outputs were complete: wrote standard output, big.ply, run.json"
+        );
+        // A commit records its targets, as the user named them, under the lock the
+        // signal handler takes.
+        let dir = tempfile::tempdir().unwrap();
+        let (a, b) = (dir.path().join("a.txt"), dir.path().join("b.txt"));
+        let mut outputs = Outputs::new([]);
+        outputs.declare(&a).unwrap();
+        outputs.declare(&b).unwrap();
+        outputs.write(&a, |w| w.write_all(b"a\n")).unwrap();
+        outputs.write(&b, |w| w.write_all(b"b\n")).unwrap();
+        let before = progress().replaced.len();
+        assert!(!progress().replaced.contains(&a.display().to_string()));
+        outputs.commit().unwrap();
+        let replaced = progress().replaced.clone();
+        assert!(replaced.len() >= before + 2);
+        for name in [&a, &b] {
+            assert!(
+                replaced.contains(&name.display().to_string()),
+                "{replaced:?}"
+            );
+        }
+    }
+
+    /// Temporary files a killed run left (unlocked, of our naming) go; those of a
+    /// live run (locked) and files of other names stay.
+    #[test]
+    fn stale_temporary_files_are_removed_and_live_ones_kept() {
+        let dir = tempfile::tempdir().unwrap();
+        let stale = dir.path().join(".geotracks-AbC123.tmp");
+        let stale_backup = dir.path().join(".geotracks-x9y8z7.bak");
+        let other = [
+            ".geotracks-notours.tmp",
+            "keep.tmp",
+            ".geotracks-abcdef.txt",
+        ];
+        for name in [&stale, &stale_backup] {
+            std::fs::write(name, "left by a killed run").unwrap();
+        }
+        for name in other {
+            std::fs::write(dir.path().join(name), "not ours").unwrap();
+        }
+        let live = dir.path().join("live.txt");
+        let mut outputs = Outputs::new([]);
+        outputs.declare(&live).unwrap();
+        outputs.write(&live, |w| w.write_all(b"live\n")).unwrap();
+        let live_temp: Vec<String> = temps(dir.path())
+            .into_iter()
+            .filter(|n| n.ends_with(".tmp") && is_our_temporary(n) && !n.contains("AbC123"))
+            .collect();
+        assert_eq!(live_temp.len(), 1, "{live_temp:?}");
+        // Fresh files are left alone at the run's age limit.
+        remove_stale_temporaries(dir.path(), STALE_AFTER);
+        assert!(stale.exists() && stale_backup.exists());
+        remove_stale_temporaries(dir.path(), Duration::ZERO);
+        assert!(!stale.exists() && !stale_backup.exists());
+        assert!(
+            dir.path().join(&live_temp[0]).exists(),
+            "a live run's file was removed"
+        );
+        for name in other {
+            assert!(dir.path().join(name).exists(), "{name}");
+        }
+        outputs.commit().unwrap();
+        assert_eq!(std::fs::read_to_string(&live).unwrap(), "live\n");
     }
 }

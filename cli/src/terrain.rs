@@ -294,7 +294,7 @@ fn routing_error<T>(routed: Result<T, Error>, args: &TerrainArgs) -> Result<T, S
             .to_string(),
         Error::Terrain(
             ref t @ (TerrainError::Outside { x, y, .. } | TerrainError::NoData { x, y }),
-        ) => format!("{} {x},{y}: {t}", end(x, y)),
+        ) => format!("{} {},{}: {t}", end(x, y), Value(x), Value(y)),
         e => e.to_string(),
     })
 }

@@ -1710,3 +1710,152 @@ fn pictures_of_distance_and_isolines_at_their_size_and_bad_options_leave_no_file
     ]);
     assert!(!result.status.success());
 }
+
+/// Two outputs that are one file under another name (`./`, `..`, a symbolic link) are
+/// refused before the work; they were compared as text, and the run exited 0 with the
+/// labels alone in the file. An output that is an input under another name likewise.
+#[test]
+fn one_file_under_two_names_is_refused_as_two_outputs() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let m = mesh.to_str().unwrap();
+    std::fs::create_dir(dir.path().join("sub")).unwrap();
+    let d = dir.path().join("d.txt");
+    let spellings = [
+        dir.path().join(".").join("d.txt"),
+        dir.path().join("sub").join("..").join("d.txt"),
+    ];
+    for other in &spellings {
+        assert_fails(
+            &[
+                "distance",
+                m,
+                "--source",
+                "0",
+                "--source",
+                "2",
+                "-o",
+                d.to_str().unwrap(),
+                "--voronoi",
+                other.to_str().unwrap(),
+            ],
+            &d,
+            "given for two outputs",
+        );
+    }
+    #[cfg(unix)]
+    {
+        std::fs::write(&d, "old\n").unwrap();
+        let link = dir.path().join("link.txt");
+        std::os::unix::fs::symlink(&d, &link).unwrap();
+        let o = geotracks(&[
+            "distance",
+            m,
+            "--source",
+            "0",
+            "--source",
+            "2",
+            "-o",
+            link.to_str().unwrap(),
+            "--voronoi",
+            d.to_str().unwrap(),
+        ]);
+        assert!(!o.status.success());
+        assert!(String::from_utf8_lossy(&o.stderr).contains("two outputs"));
+        assert_eq!(std::fs::read_to_string(&d).unwrap(), "old\n");
+        // The mesh through a link, as an output.
+        let mesh_link = dir.path().join("sub").join("mesh.txt");
+        std::os::unix::fs::symlink(&mesh, &mesh_link).unwrap();
+        let o = geotracks(&[
+            "distance",
+            m,
+            "--source",
+            "0",
+            "-o",
+            mesh_link.to_str().unwrap(),
+        ]);
+        assert!(!o.status.success());
+        assert!(String::from_utf8_lossy(&o.stderr).contains("is also an input"));
+        // A link to one output is written through, and stays a link.
+        geotracks_ok(&["distance", m, "--source", "0", "-o", link.to_str().unwrap()]);
+        assert!(std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink());
+        assert_eq!(read_values(&d).len(), 4);
+    }
+    assert_no_temporary_files(dir.path());
+}
+
+/// A FIFO as the mesh or as a density file hung the command (and the blocked process
+/// ignored SIGINT and SIGTERM); it is refused at once, with no output.
+#[cfg(unix)]
+#[test]
+fn a_fifo_as_an_input_is_refused_at_once() {
+    use std::process::{Command, Stdio};
+    use std::time::{Duration, Instant};
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let pipe_mesh = dir.path().join("pipe.obj");
+    let pipe_density = dir.path().join("rho.txt");
+    for pipe in [&pipe_mesh, &pipe_density] {
+        assert!(Command::new("mkfifo").arg(pipe).status().unwrap().success());
+    }
+    let out = dir.path().join("d.txt");
+    for (mesh, density) in [(&pipe_mesh, None), (&mesh, Some(&pipe_density))] {
+        let mut args = vec![
+            "distance".to_string(),
+            mesh.display().to_string(),
+            "--source".into(),
+            "0".into(),
+            "-o".into(),
+            out.display().to_string(),
+        ];
+        if let Some(d) = density {
+            args.extend(["--density".into(), d.display().to_string()]);
+        }
+        let mut child = Command::new(env!("CARGO_BIN_EXE_geotracks"))
+            .args(&args)
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let start = Instant::now();
+        let status = loop {
+            if let Some(status) = child.try_wait().unwrap() {
+                break status;
+            }
+            if start.elapsed() > Duration::from_secs(20) {
+                let _ = child.kill();
+                panic!("{args:?}: still running after 20 s (blocked on the FIFO)");
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        };
+        let mut stderr = String::new();
+        std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut stderr).unwrap();
+        assert_eq!(status.code(), Some(1), "{args:?}: {stderr}");
+        assert!(stderr.contains("named pipe (FIFO)"), "{stderr}");
+        assert!(!out.exists());
+    }
+}
+
+/// A density file saved with a UTF-8 byte-order mark reads as without one.
+#[test]
+fn a_density_file_with_a_byte_order_mark() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = square_obj(dir.path());
+    let density = dir.path().join("rho.txt");
+    std::fs::write(&density, "\u{feff}2\n2\n2\n2\n").unwrap();
+    let out = dir.path().join("d.txt");
+    geotracks_ok(&[
+        "distance",
+        mesh.to_str().unwrap(),
+        "--source",
+        "0",
+        "--density",
+        density.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(read_values(&out)[1], 2.0);
+}

@@ -18,7 +18,7 @@ pub enum MetricError {
         found: usize,
     },
     /// A density is zero, negative, NaN or infinite. Densities must be finite and > 0.
-    #[error("density at vertex {vertex} is {value}; it must be finite and > 0")]
+    #[error("density at vertex {vertex} is {}; it must be finite and > 0", crate::Num(*value))]
     InvalidDensity {
         /// The vertex index.
         vertex: usize,
@@ -34,7 +34,7 @@ pub enum MetricError {
     },
     /// A tensor, once restricted to its face's plane, is not symmetric positive-definite.
     /// Fix: give a matrix whose restriction to the face has positive eigenvalues.
-    #[error("tensor of face {face} is not positive-definite in the face plane (restricted to [{m11}, {m12}; {m12}, {m22}])")]
+    #[error("tensor of face {face} is not positive-definite in the face plane (restricted to [{}, {}; {}, {}])", crate::Num(*m11), crate::Num(*m12), crate::Num(*m12), crate::Num(*m22))]
     NotPositiveDefinite {
         /// The face index.
         face: usize,
@@ -50,7 +50,7 @@ pub enum MetricError {
     /// matrix whose restriction to every face of the vertex has positive eigenvalues
     /// (a 2×2 map-frame tensor with a zero z row and column works on every face that
     /// is not vertical).
-    #[error("tensor of vertex {vertex} is not finite and positive-definite in the plane of face {face} (restricted to [{m11}, {m12}; {m12}, {m22}])")]
+    #[error("tensor of vertex {vertex} is not finite and positive-definite in the plane of face {face} (restricted to [{}, {}; {}, {}])", crate::Num(*m11), crate::Num(*m12), crate::Num(*m12), crate::Num(*m22))]
     VertexTensor {
         /// The vertex index.
         vertex: usize,

@@ -50,6 +50,7 @@ mod builtin;
 mod density;
 mod error;
 mod euclidean;
+mod num;
 mod tensor;
 mod tensor_field;
 
@@ -57,6 +58,7 @@ pub use builtin::BuiltinMetric;
 pub use density::Density;
 pub use error::MetricError;
 pub use euclidean::Euclidean;
+pub use num::Num;
 pub use tensor::Tensor;
 pub use tensor_field::TensorField;
 

@@ -21,6 +21,26 @@ pub enum MeshError {
         /// The directory.
         path: PathBuf,
     },
+    /// The path names something that is not a regular file: a named pipe (FIFO), a
+    /// socket or a device. Reading one could block forever or never end, so it is
+    /// refused before it is opened. Fix: save the data to a file and name that file.
+    #[error("{path}: is {kind}, not a regular file; save the data to a file and read that")]
+    NotAFile {
+        /// The path.
+        path: PathBuf,
+        /// What it is ("a named pipe (FIFO)").
+        kind: &'static str,
+    },
+    /// Memory for the data could not be allocated (the file is larger than the memory
+    /// the process may use). Nothing was half-built. Fix: more memory, or a smaller
+    /// mesh.
+    #[error("not enough memory for {what} ({bytes} bytes)")]
+    OutOfMemory {
+        /// What the memory was for ("the file's 2147483648 bytes").
+        what: String,
+        /// How many bytes were asked for.
+        bytes: u64,
+    },
     /// The file's content is not the format its extension names: binary data given as a
     /// text format, another format's file under this extension, text under a binary
     /// format's extension. Fix: give the file its right extension, or convert it.
@@ -166,6 +186,7 @@ impl MeshError {
             | MeshError::EdgeIndexOutOfRange { .. }
             | MeshError::NonFiniteVertex { .. }
             | MeshError::CoordinateOutOfRange { .. }
+            | MeshError::OutOfMemory { .. }
             | MeshError::NoUsableFace { .. } => MeshError::InFile {
                 path: path.into(),
                 error: Box::new(self),
@@ -173,6 +194,32 @@ impl MeshError {
             other => other,
         }
     }
+}
+
+/// Room for `additional` more elements in `vec`, or [`MeshError::OutOfMemory`] naming
+/// `what` (`Vec::reserve` aborts the process when memory runs out).
+pub(crate) fn try_reserve<T>(
+    vec: &mut Vec<T>,
+    additional: usize,
+    what: impl FnOnce() -> String,
+) -> Result<(), MeshError> {
+    vec.try_reserve_exact(additional)
+        .map_err(|_| MeshError::OutOfMemory {
+            what: what(),
+            bytes: (additional as u64).saturating_mul(std::mem::size_of::<T>() as u64),
+        })
+}
+
+/// Room for `needed` more elements in `vec`, grown by doubling as `Vec::push` grows it,
+/// but with [`MeshError::OutOfMemory`] (naming `what` the elements are) instead of an
+/// abort when memory runs out.
+pub(crate) fn try_grow<T>(vec: &mut Vec<T>, needed: usize, what: &str) -> Result<(), MeshError> {
+    if vec.capacity() - vec.len() >= needed {
+        return Ok(());
+    }
+    let more = vec.len().max(needed).max(1024);
+    let total = vec.len() + more;
+    try_reserve(vec, more, || format!("{total} {what}"))
 }
 
 /// `:line` for a known line, nothing for line 0 (binary data has no lines).

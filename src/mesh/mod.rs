@@ -13,6 +13,7 @@ mod trimesh;
 
 pub use csr::Csr;
 pub use error::MeshError;
+pub(crate) use error::{try_grow, try_reserve};
 pub use homology::{graph_betti_numbers, Betti};
 pub(crate) use homology::{unique_edges, CycleSheets};
 pub(crate) use report::bounding_box;

@@ -1,4 +1,4 @@
-use super::{Csr, MeshError, MeshReport};
+use super::{try_reserve, Csr, MeshError, MeshReport};
 use geotracks_metrics::{FaceGeometry, FacePoint};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -506,24 +506,36 @@ impl Faces {
                 });
             }
         }
-        let positions: Vec<DVec3> = positions.into_iter().map(DVec3::from_array).collect();
+        // The tables sized by the input are reserved with an error, not an abort, when
+        // memory runs out (a file's counts can ask for more than the process may use).
+        let mut converted: Vec<DVec3> = Vec::new();
+        try_reserve(&mut converted, n, || format!("{n} vertices"))?;
+        converted.extend(positions.into_iter().map(DVec3::from_array));
+        let positions = converted;
 
         let input_count = triangles.len();
+        let faces = || format!("{input_count} faces");
         let repeats = |t: &[u32; 3]| t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
         // The frames on all cores (a square root and a division or two per face, the
         // most of the work here), kept in face order.
-        let all_frames: Vec<Option<FaceFrame>> = triangles
-            .par_iter()
-            .map(|t| {
-                (!repeats(t))
-                    .then(|| frame_of(t.map(|v| positions[v as usize])))
-                    .flatten()
-            })
-            .collect();
-        let mut kept = Vec::with_capacity(input_count);
-        let mut frames = Vec::with_capacity(input_count);
-        let mut input_faces = Vec::with_capacity(input_count);
+        let mut all_frames: Vec<Option<FaceFrame>> = Vec::new();
+        try_reserve(&mut all_frames, input_count, faces)?;
+        all_frames.par_extend(triangles.par_iter().map(|t| {
+            (!repeats(t))
+                .then(|| frame_of(t.map(|v| positions[v as usize])))
+                .flatten()
+        }));
+        let kept_count = all_frames.iter().filter(|f| f.is_some()).count();
+        let mut kept = Vec::new();
+        let mut frames = Vec::new();
+        let mut input_faces = Vec::new();
         let mut dropped = Vec::new();
+        try_reserve(&mut kept, kept_count, faces)?;
+        try_reserve(&mut frames, kept_count, faces)?;
+        try_reserve(&mut input_faces, kept_count, faces)?;
+        try_reserve(&mut dropped, input_count - kept_count, || {
+            format!("{} degenerate faces", input_count - kept_count)
+        })?;
         for (i, (t, frame)) in triangles.into_iter().zip(all_frames).enumerate() {
             let repeated_vertex = repeats(&t);
             match frame {

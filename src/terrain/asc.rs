@@ -34,15 +34,50 @@ use std::path::Path;
 /// ```
 pub fn read_asc(path: impl AsRef<Path>) -> Result<ElevationGrid, TerrainError> {
     let path = path.as_ref();
-    let bytes = std::fs::read(path).map_err(|source| TerrainError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let bytes = read_checked(path)?;
     // GDAL writes an ESRI grid's CRS beside it, as WKT in a `.prj` of the same name.
-    let epsg = std::fs::read_to_string(path.with_extension("prj"))
-        .ok()
+    // Only a regular file: a FIFO of that name would block the read.
+    let prj = path.with_extension("prj");
+    let epsg = matches!(crate::mesh::io::not_a_file(&prj), Ok(None))
+        .then(|| std::fs::read_to_string(&prj).ok())
+        .flatten()
         .and_then(|wkt| epsg_of_wkt(&wkt));
     Ok(read_asc_bytes(path, &bytes)?.with_epsg(epsg))
+}
+
+/// The file, refused from its first bytes when they are not text (a binary file is
+/// not read whole to find out), with memory for the rest reserved before it is read.
+fn read_checked(path: &Path) -> Result<Vec<u8>, TerrainError> {
+    use std::io::Read;
+    let io = |source| TerrainError::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    super::refuse_non_file(path)?;
+    let mut file = std::fs::File::open(path).map_err(io)?;
+    let size = file.metadata().map_err(io)?.len();
+    let mut bytes = Vec::new();
+    (&mut file).take(4096).read_to_end(&mut bytes).map_err(io)?;
+    refuse_binary(path, &bytes)?;
+    let rest = usize::try_from(size.saturating_sub(bytes.len() as u64)).unwrap_or(usize::MAX);
+    crate::mesh::try_reserve(&mut bytes, rest, || {
+        format!("reading the file ({size} bytes)")
+    })
+    .map_err(|e| e.in_file(path))?;
+    file.read_to_end(&mut bytes).map_err(io)?;
+    Ok(bytes)
+}
+
+/// [`TerrainError::WrongFormat`] when the start of the file is not text.
+fn refuse_binary(path: &Path, bytes: &[u8]) -> Result<(), TerrainError> {
+    if crate::mesh::io::sniff::binary(bytes).is_some() {
+        return Err(TerrainError::WrongFormat {
+            path: path.to_path_buf(),
+            expected: "an ESRI ASCII grid",
+            found: crate::mesh::io::sniff::describe(bytes),
+        });
+    }
+    Ok(())
 }
 
 /// The EPSG code a WKT string ends with: the last `AUTHORITY["EPSG","code"]` (WKT1,
@@ -71,13 +106,9 @@ pub(crate) fn epsg_of_wkt(wkt: &str) -> Option<u32> {
 /// As [`read_asc`].
 pub fn read_asc_bytes(path: impl AsRef<Path>, bytes: &[u8]) -> Result<ElevationGrid, TerrainError> {
     let path = path.as_ref();
-    if crate::mesh::io::sniff::binary(bytes).is_some() {
-        return Err(TerrainError::WrongFormat {
-            path: path.to_path_buf(),
-            expected: "an ESRI ASCII grid",
-            found: crate::mesh::io::sniff::describe(bytes),
-        });
-    }
+    refuse_binary(path, bytes)?;
+    // A leading byte-order mark is skipped, as the editors that write it do.
+    let bytes = crate::mesh::io::sniff::without_bom(bytes);
     let text = std::str::from_utf8(bytes).map_err(|e| {
         let at = e.valid_up_to();
         let line = 1 + bytes[..at].iter().filter(|&&b| b == b'\n').count();
@@ -224,7 +255,10 @@ fn parse_asc(path: &Path, text: &str) -> Result<ElevationGrid, TerrainError> {
     let data_bytes = lines.peek().map_or(0, |&(_, line)| {
         text.len() - (line.as_ptr() as usize - text.as_ptr() as usize)
     });
-    let mut values = Vec::with_capacity(expected.min(data_bytes / 2 + 1));
+    let room = expected.min(data_bytes / 2 + 1);
+    let mut values = Vec::new();
+    crate::mesh::try_reserve(&mut values, room, || format!("{room} samples"))
+        .map_err(|e| e.in_file(path))?;
     for (i, line) in lines {
         for token in line.split_whitespace() {
             if values.len() == expected {

@@ -1,3 +1,4 @@
+use geotracks_metrics::Num;
 use std::path::PathBuf;
 use thiserror::Error;
 
@@ -96,8 +97,9 @@ pub enum TerrainError {
     },
     /// The sample spacing is not a finite positive number.
     #[error(
-        "{}cell size {value} is not a finite positive number",
-        path_prefix(path)
+        "{}cell size {} is not a finite positive number",
+        path_prefix(path),
+        Num(*value)
     )]
     CellSize {
         /// The file, if the grid came from one.
@@ -116,12 +118,25 @@ pub enum TerrainError {
         message: String,
     },
     /// The TIFF decoder failed (a corrupt or truncated file).
-    #[error("{path}: {source}")]
+    #[error("{path}: {context}: {source}")]
     Tiff {
         /// The file.
         path: PathBuf,
+        /// What was being read: the header, a tag (by name and number), or the image
+        /// and the strip or tile that failed, with its offset and size in the file.
+        context: String,
         /// The decoder's error.
         source: tiff::TiffError,
+    },
+    /// The path names something that is not a regular file: a named pipe (FIFO), a
+    /// socket or a device, refused before it is opened (reading it could block forever).
+    /// Fix: save the data to a file and name that file.
+    #[error("{path}: is {kind}, not a regular file; save the data to a file and read that")]
+    NotAFile {
+        /// The path.
+        path: PathBuf,
+        /// What it is ("a named pipe (FIFO)").
+        kind: &'static str,
     },
     /// The grid's shape and its values do not match, or a value is ±inf (in-memory
     /// grids; NaN marks a missing sample there).
@@ -144,7 +159,7 @@ pub enum TerrainError {
         valid: usize,
     },
     /// A map point lies outside the grid (beyond the outermost sample centres).
-    #[error("point ({x}, {y}) is outside the grid (x from {x_min} to {x_max}, y from {y_min} to {y_max})")]
+    #[error("point ({}, {}) is outside the grid (x from {} to {}, y from {} to {})", Num(*x), Num(*y), Num(*x_min), Num(*x_max), Num(*y_min), Num(*y_max))]
     Outside {
         /// x.
         x: f64,
@@ -160,7 +175,7 @@ pub enum TerrainError {
         y_max: f64,
     },
     /// A map point lies in a cell with NODATA samples: no triangle covers it.
-    #[error("point ({x}, {y}) lies on NODATA (no elevation there)")]
+    #[error("point ({}, {}) lies on NODATA (no elevation there)", Num(*x), Num(*y))]
     NoData {
         /// x.
         x: f64,
@@ -168,7 +183,7 @@ pub enum TerrainError {
         y: f64,
     },
     /// A cost parameter is out of range.
-    #[error("{what} is {value}; {expected}")]
+    #[error("{what} is {}; {expected}", Num(*value))]
     Parameter {
         /// Which parameter.
         what: &'static str,

@@ -48,6 +48,7 @@ pub fn read_geotiff(path: impl AsRef<Path>) -> Result<ElevationGrid, TerrainErro
         path: path.to_path_buf(),
         source,
     };
+    super::refuse_non_file(path)?;
     let file = std::fs::File::open(path).map_err(io)?;
     let file_len = file.metadata().map_err(io)?.len();
     read_geotiff_from(path, BufReader::new(file), file_len)
@@ -73,10 +74,15 @@ fn read_geotiff_from<R: Read + Seek>(
     mut file: R,
     file_len: u64,
 ) -> Result<ElevationGrid, TerrainError> {
-    let tiff_error = |source| TerrainError::Tiff {
-        path: path.to_path_buf(),
-        source,
+    let tiff_error = |context: &str| {
+        let context = context.to_string();
+        move |source| TerrainError::Tiff {
+            path: path.to_path_buf(),
+            context,
+            source,
+        }
     };
+    let tag_error = |tag: Tag| tiff_error(&tag_name(tag));
     let unsupported = |message: String| TerrainError::Unsupported {
         path: path.to_path_buf(),
         message,
@@ -92,10 +98,18 @@ fn read_geotiff_from<R: Read + Seek>(
     limits.ifd_value_size = file_limit;
     limits.intermediate_buffer_size = file_limit;
     let mut decoder = Decoder::new(file)
-        .map_err(tiff_error)?
+        .map_err(tiff_error(
+            "reading the header and the first image directory",
+        ))?
         .with_limits(limits.clone());
-    let (ncols, nrows) = decoder.dimensions().map_err(tiff_error)?;
-    let bits = match decoder.colortype().map_err(tiff_error)? {
+    let (ncols, nrows) = decoder.dimensions().map_err(tiff_error(
+        "reading the image size (tags ImageWidth 256, ImageLength 257)",
+    ))?;
+    let colour = decoder.colortype().map_err(tiff_error(
+        "reading the sample type (tags BitsPerSample 258, SampleFormat 339, \
+         PhotometricInterpretation 262)",
+    ))?;
+    let bits = match colour {
         ColorType::Gray(bits) => bits,
         ColorType::Multiband { num_samples, .. } => {
             return Err(unsupported(format!(
@@ -113,7 +127,7 @@ fn read_geotiff_from<R: Read + Seek>(
     // compression any codec reaches (deflate at most 1032:1, LZW below 3641:1).
     let compressed = decoder
         .find_tag_unsigned::<u16>(Tag::Compression)
-        .map_err(tiff_error)?
+        .map_err(tag_error(Tag::Compression))?
         .is_some_and(|c| c != 1);
     let sample_bytes = u64::from(bits).div_ceil(8).max(1);
     let declared = u64::from(ncols) * u64::from(nrows);
@@ -137,10 +151,10 @@ fn read_geotiff_from<R: Read + Seek>(
 
     let geo_keys = decoder
         .find_tag(Tag::GeoKeyDirectoryTag)
-        .map_err(tiff_error)?
+        .map_err(tag_error(Tag::GeoKeyDirectoryTag))?
         .map(|v| v.into_u16_vec())
         .transpose()
-        .map_err(tiff_error)?
+        .map_err(tag_error(Tag::GeoKeyDirectoryTag))?
         .unwrap_or_default();
     let geo_key = |id: u16| -> Option<u16> {
         // Header of 4 shorts, then entries (key, location, count, value); location 0
@@ -167,10 +181,10 @@ fn read_geotiff_from<R: Read + Seek>(
     let f64_tag = |decoder: &mut Decoder<_>, tag| -> Result<Option<Vec<f64>>, TerrainError> {
         decoder
             .find_tag(tag)
-            .map_err(tiff_error)?
+            .map_err(tag_error(tag))?
             .map(|v| v.into_f64_vec())
             .transpose()
-            .map_err(tiff_error)
+            .map_err(tag_error(tag))
     };
     let scale = f64_tag(&mut decoder, Tag::ModelPixelScaleTag)?;
     let tie = f64_tag(&mut decoder, Tag::ModelTiepointTag)?;
@@ -227,7 +241,7 @@ fn read_geotiff_from<R: Read + Seek>(
 
     let nodata = decoder
         .find_tag(Tag::GdalNodata)
-        .map_err(tiff_error)?
+        .map_err(tag_error(Tag::GdalNodata))?
         .and_then(|v| v.into_string().ok())
         .and_then(|s| {
             s.trim_matches(|c: char| c == '\0' || c.is_whitespace())
@@ -235,7 +249,18 @@ fn read_geotiff_from<R: Read + Seek>(
                 .ok()
         });
 
-    let samples = decoder.read_image().map_err(tiff_error)?;
+    let samples = match decoder.read_image() {
+        Ok(samples) => samples,
+        Err(source) => {
+            let context = failing_chunk(&mut decoder)
+                .unwrap_or_else(|| format!("decoding the image ({ncols} × {nrows} samples)"));
+            return Err(TerrainError::Tiff {
+                path: path.to_path_buf(),
+                context,
+                source,
+            });
+        }
+    };
     let single = matches!(samples, DecodingResult::F32(_));
     let values: Vec<f64> = match samples {
         DecodingResult::U8(v) => v.into_iter().map(f64::from).collect(),
@@ -274,6 +299,46 @@ fn color_name(color: ColorType) -> String {
         ColorType::Palette(bits) => format!("a palette image ({bits}-bit)"),
         _ => "a colour image".to_string(),
     }
+}
+
+/// A tag as messages name it: its name in the specification and its number.
+fn tag_name(tag: Tag) -> String {
+    format!("reading tag {tag:?} ({})", tag.to_u16())
+}
+
+/// After the image failed to decode, which strip or tile fails on its own, as "reading
+/// strip 3 of 8 (at byte 1234, 567 bytes)"; `None` if none does (or the layout itself
+/// cannot be read). Only run on the error path: it decodes chunks again one by one.
+fn failing_chunk<R: Read + Seek>(decoder: &mut Decoder<R>) -> Option<String> {
+    use tiff::decoder::ChunkType;
+    let (kind, count, offsets, sizes) = match decoder.get_chunk_type() {
+        ChunkType::Strip => (
+            "strip",
+            decoder.strip_count().ok()?,
+            Tag::StripOffsets,
+            Tag::StripByteCounts,
+        ),
+        ChunkType::Tile => (
+            "tile",
+            decoder.tile_count().ok()?,
+            Tag::TileOffsets,
+            Tag::TileByteCounts,
+        ),
+    };
+    let offsets = decoder.get_tag_u64_vec(offsets).ok();
+    let sizes = decoder.get_tag_u64_vec(sizes).ok();
+    let at =
+        |list: &Option<Vec<u64>>, i: u32| list.as_ref().and_then(|l| l.get(i as usize).copied());
+    (0..count).find_map(|i| {
+        decoder.read_chunk(i).err().map(|_| {
+            let place = match (at(&offsets, i), at(&sizes, i)) {
+                (Some(offset), Some(size)) => format!(" (at byte {offset}, {size} bytes)"),
+                (Some(offset), None) => format!(" (at byte {offset})"),
+                _ => String::new(),
+            };
+            format!("reading {kind} {i} of {count}{place}")
+        })
+    })
 }
 
 /// Checks the first image directory's entries against the file's size: a directory of

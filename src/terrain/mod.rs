@@ -60,21 +60,37 @@ use std::path::Path;
 /// `.tif`/`.tiff` (single-band GeoTIFF).
 ///
 /// # Errors
-/// [`TerrainError::IsDirectory`], [`TerrainError::UnknownFormat`] for another extension,
+/// [`TerrainError::IsDirectory`], [`TerrainError::NotAFile`],
+/// [`TerrainError::UnknownFormat`] for another extension,
 /// or what the reader returns.
 pub fn read_grid(path: impl AsRef<Path>) -> Result<ElevationGrid, TerrainError> {
     let path = path.as_ref();
-    if path.is_dir() {
-        return Err(TerrainError::IsDirectory {
-            path: path.to_path_buf(),
-        });
-    }
+    refuse_non_file(path)?;
     match crate::mesh::io::lowercase_extension(path).as_deref() {
         Some("asc") => read_asc(path),
         Some("tif" | "tiff") => read_geotiff(path),
         _ => Err(TerrainError::UnknownFormat {
             path: path.to_path_buf(),
         }),
+    }
+}
+
+/// [`TerrainError::IsDirectory`] for a directory, [`TerrainError::NotAFile`] for a named
+/// pipe, a socket or a device (refused before it is opened: opening a FIFO blocks until
+/// a writer comes). A path that cannot be looked at passes: the reader reports it.
+fn refuse_non_file(path: &Path) -> Result<(), TerrainError> {
+    match crate::mesh::io::not_a_file(path) {
+        Ok(None) => Ok(()),
+        Ok(Some("a directory")) => Err(TerrainError::IsDirectory {
+            path: path.to_path_buf(),
+        }),
+        Ok(Some(kind)) => Err(TerrainError::NotAFile {
+            path: path.to_path_buf(),
+            kind,
+        }),
+        // A path that cannot be looked at (missing, say) is the reader's to report,
+        // after the extension.
+        Err(_) => Ok(()),
     }
 }
 

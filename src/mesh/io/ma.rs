@@ -6,10 +6,17 @@
 //! duplicating its sheets' edges.
 
 use super::sniff;
-use super::text::{at_line, capacity, next_number, parse_error, Lines};
+use super::text::{at_line, capacity, next_number, parse_error, reserved, Lines};
 use super::MedialAxis;
 use crate::mesh::{MeshError, TriMesh};
 use std::path::Path;
+
+/// Refuses a file whose start is not text before the rest is read; the reader needs
+/// all of it.
+pub(super) fn check(path: &Path, head: &[u8], size: u64) -> Result<u64, MeshError> {
+    sniff::expect_text(path, "a medial axis (.ma) file", head)?;
+    Ok(size)
+}
 
 /// Reads a medial axis; one of curves only (no usable face) is an error unless
 /// `allow_curves_only`. `weld` merges vertices at identical positions (the first one's
@@ -47,10 +54,10 @@ pub(super) fn read(
     // `v 0 0 0 0`, `e 0 1` and `f 0 1 2` with their newlines); a count that lies is
     // reported against the lines found once the file has been read.
     let rest = lines.rest_len();
-    let mut positions: Vec<[f64; 3]> = Vec::with_capacity(capacity(nv, rest, 10));
-    let mut radii: Vec<f64> = Vec::with_capacity(capacity(nv, rest, 10));
-    let mut edges: Vec<[u32; 2]> = Vec::with_capacity(capacity(ne, rest, 6));
-    let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(capacity(nf, rest, 8));
+    let mut positions: Vec<[f64; 3]> = reserved(path, capacity(nv, rest, 10), "vertices")?;
+    let mut radii: Vec<f64> = reserved(path, capacity(nv, rest, 10), "radii")?;
+    let mut edges: Vec<[u32; 2]> = reserved(path, capacity(ne, rest, 6), "edges")?;
+    let mut triangles: Vec<[u32; 3]> = reserved(path, capacity(nf, rest, 8), "triangles")?;
 
     // Vertices may come after the edges and faces that use them, so indices are checked
     // against the header's count, which the end of the file then confirms.
@@ -99,6 +106,8 @@ pub(super) fn read(
                         format!("vertex {v} has radius {r}; a radius is finite and >= 0"),
                     ));
                 }
+                crate::mesh::try_grow(&mut positions, 1, "vertices")
+                    .map_err(|e| e.in_file(path))?;
                 positions.push([p[0], p[1], p[2]]);
                 radii.push(r);
             }
@@ -127,6 +136,8 @@ pub(super) fn read(
                     vertex,
                     vertex_count: nv,
                 };
+                crate::mesh::try_grow(&mut triangles, 1, "triangles")
+                    .map_err(|e| e.in_file(path))?;
                 triangles.push([
                     index(tokens.next(), line, &error)?,
                     index(tokens.next(), line, &error)?,

@@ -98,9 +98,12 @@ const READABLE: &str = "obj, ply, off, stl, ma";
 /// order.
 ///
 /// # Errors
-/// - [`MeshError::IsDirectory`] for a directory, [`MeshError::UnknownFormat`] for
-///   another extension, [`MeshError::Io`] if the file cannot be read,
+/// - [`MeshError::IsDirectory`] for a directory, [`MeshError::NotAFile`] for a named
+///   pipe, socket or device (refused before it is opened), [`MeshError::UnknownFormat`]
+///   for another extension, [`MeshError::Io`] if the file cannot be read,
 ///   [`MeshError::EmptyFile`] if it holds no data (only blanks or comments).
+/// - [`MeshError::OutOfMemory`] (in [`MeshError::InFile`]) if the memory the file needs
+///   cannot be had.
 /// - [`MeshError::WrongFormat`] if the content is not the extension's format (binary
 ///   data as OBJ, OFF or `.ma`; a PLY file named `.obj`; text that is no STL named
 ///   `.stl`).
@@ -171,8 +174,8 @@ impl Default for ReadOptions {
 pub fn read_mesh_with(path: impl AsRef<Path>, options: &ReadOptions) -> Result<TriMesh, MeshError> {
     let path = path.as_ref();
     refuse_directory(path)?;
-    let reader = reader_for(path)?;
-    reader(path, &read_bytes(path)?, options.weld)
+    let (reader, check) = reader_for(path)?;
+    reader(path, &read_bytes(path, check)?, options.weld)
 }
 
 /// Builds a reader's mesh, welding first if asked; errors name the file.
@@ -236,7 +239,7 @@ fn weld_positions(positions: &mut Vec<[f64; 3]>) -> Option<Vec<u32>> {
 /// ```
 pub fn read_mesh_bytes(path: impl AsRef<Path>, bytes: &[u8]) -> Result<TriMesh, MeshError> {
     let path = path.as_ref();
-    let reader = reader_for(path)?;
+    let (reader, _) = reader_for(path)?;
     if text::is_blank(bytes) {
         return Err(MeshError::EmptyFile {
             path: path.to_path_buf(),
@@ -248,14 +251,20 @@ pub fn read_mesh_bytes(path: impl AsRef<Path>, bytes: &[u8]) -> Result<TriMesh, 
 /// A reader of bytes into a mesh, for one format; the flag asks it to weld.
 type Reader = fn(&Path, &[u8], bool) -> Result<TriMesh, MeshError>;
 
-/// The reader for `path`'s extension.
-fn reader_for(path: &Path) -> Result<Reader, MeshError> {
+/// What a format checks from the start of a file (at most [`HEAD`] bytes) and the
+/// file's size before the rest is read: the start's signature, counts a header declares
+/// against the size. Returns how many bytes of the file the reader needs (a binary STL
+/// ignores bytes after its triangles).
+type Check = fn(&Path, &[u8], u64) -> Result<u64, MeshError>;
+
+/// The reader for `path`'s extension, and its check of the file's start.
+fn reader_for(path: &Path) -> Result<(Reader, Check), MeshError> {
     Ok(match lowercase_extension(path).as_deref() {
-        Some("obj") => obj::read,
-        Some("ply") => ply::read,
-        Some("off") => off::read,
-        Some("stl") => stl::read,
-        Some("ma") => ma::read_surface,
+        Some("obj") => (obj::read, obj::check),
+        Some("ply") => (ply::read, ply::check),
+        Some("off") => (off::read, off::check),
+        Some("stl") => (stl::read, stl::check),
+        Some("ma") => (ma::read_surface, ma::check),
         _ => {
             return Err(MeshError::UnknownFormat {
                 path: path.to_path_buf(),
@@ -298,7 +307,7 @@ pub fn read_obj_bytes(bytes: &[u8]) -> Result<TriMesh, MeshError> {
 pub fn read_medial_axis(path: impl AsRef<Path>) -> Result<MedialAxis, MeshError> {
     let path = path.as_ref();
     refuse_directory(path)?;
-    ma::read(path, &read_bytes(path)?, true, false)
+    ma::read(path, &read_bytes(path, ma::check)?, true, false)
 }
 
 /// [`read_medial_axis`] on a `.ma` file held in memory; errors name `path`.
@@ -319,23 +328,93 @@ pub fn read_medial_axis_bytes(
 }
 
 /// [`MeshError::IsDirectory`] for a directory (whose "extension" would otherwise be
-/// reported as an unknown format, or whose read fail with the system's words).
-fn refuse_directory(path: &Path) -> Result<(), MeshError> {
-    if path.is_dir() {
-        return Err(MeshError::IsDirectory {
+/// reported as an unknown format, or whose read fail with the system's words), and
+/// [`MeshError::NotAFile`] for a named pipe, a socket or a device, which are refused
+/// before they are opened: opening a FIFO blocks until a writer comes, and reading a
+/// device may never end. Symbolic links are followed.
+pub(crate) fn refuse_directory(path: &Path) -> Result<(), MeshError> {
+    match not_a_file(path) {
+        Ok(None) => Ok(()),
+        Ok(Some("a directory")) => Err(MeshError::IsDirectory {
             path: path.to_path_buf(),
-        });
+        }),
+        Ok(Some(kind)) => Err(MeshError::NotAFile {
+            path: path.to_path_buf(),
+            kind,
+        }),
+        // A path that cannot be looked at (missing, say) is the reader's to report,
+        // after the extension.
+        Err(_) => Ok(()),
     }
-    Ok(())
 }
 
-/// The whole file: every format is parsed from memory, which also lets STL be told apart
-/// by its size. A file of only whitespace is empty whatever its format.
-fn read_bytes(path: &Path) -> Result<Vec<u8>, MeshError> {
-    let bytes = std::fs::read(path).map_err(|source| MeshError::Io {
+/// What `path` is when it is not a regular file (after following symbolic links), as
+/// a phrase ("a named pipe (FIFO)"); `None` for a regular file.
+pub fn not_a_file(path: &Path) -> std::io::Result<Option<&'static str>> {
+    let kind = std::fs::metadata(path)?.file_type();
+    if kind.is_file() {
+        return Ok(None);
+    }
+    if kind.is_dir() {
+        return Ok(Some("a directory"));
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if kind.is_fifo() {
+            return Ok(Some("a named pipe (FIFO)"));
+        }
+        if kind.is_socket() {
+            return Ok(Some("a socket"));
+        }
+        if kind.is_char_device() {
+            return Ok(Some("a character device"));
+        }
+        if kind.is_block_device() {
+            return Ok(Some("a block device"));
+        }
+    }
+    Ok(Some("not a regular file"))
+}
+
+/// How much of a file's start is read first, for the format's [`Check`]: the first
+/// line of every format, and the whole header of all but unusual PLY files.
+const HEAD: u64 = 64 * 1024;
+
+/// The file, as much of it as the format needs: its start is read first and checked
+/// with the file's size (`check`), so that a file that is not the format, or whose
+/// header claims more than the file holds, is refused without reading the rest. Memory
+/// for the rest is reserved before it is read, and a failure is
+/// [`MeshError::OutOfMemory`]. A file of only whitespace is empty whatever its format.
+pub(crate) fn read_bytes(path: &Path, check: Check) -> Result<Vec<u8>, MeshError> {
+    use std::io::Read;
+    let io = |source| MeshError::Io {
         path: path.to_path_buf(),
         source,
-    })?;
+    };
+    refuse_directory(path)?;
+    let mut file = std::fs::File::open(path).map_err(io)?;
+    let size = file.metadata().map_err(io)?.len();
+    let mut bytes = Vec::new();
+    (&mut file).take(HEAD).read_to_end(&mut bytes).map_err(io)?;
+    let read = bytes.len() as u64;
+    if read < size {
+        let needed = match text::is_blank(&bytes) {
+            true => size,
+            false => check(path, &bytes, size)?,
+        };
+        if needed > read {
+            let rest = usize::try_from(needed - read).unwrap_or(usize::MAX);
+            super::try_reserve(&mut bytes, rest, || {
+                format!("reading the file ({size} bytes)")
+            })
+            .map_err(|e| e.in_file(path))?;
+            (&mut file)
+                .take(needed - read)
+                .read_to_end(&mut bytes)
+                .map_err(io)?;
+        }
+    }
     if text::is_blank(&bytes) {
         return Err(MeshError::EmptyFile {
             path: path.to_path_buf(),

@@ -21,6 +21,13 @@ struct ForwardRef {
     vertex: i64,
 }
 
+/// Refuses a file whose start is not text before the rest is read; the reader needs
+/// all of it.
+pub(super) fn check(path: &Path, head: &[u8], size: u64) -> Result<u64, MeshError> {
+    sniff::expect_text(path, "an OBJ file", head)?;
+    Ok(size)
+}
+
 pub(super) fn read(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, MeshError> {
     sniff::expect_text(path, "an OBJ file", bytes)?;
     let mut positions: Vec<[f64; 3]> = Vec::new();
@@ -46,6 +53,8 @@ pub(super) fn read(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, Mes
                 }
                 // A fourth value is a weight (rational curves only) or an RGB colour:
                 // neither moves the point of a polygonal mesh.
+                crate::mesh::try_grow(&mut positions, 1, "vertices")
+                    .map_err(|e| e.in_file(path))?;
                 positions.push(p);
             }
             Some("f") | Some("fo") => {
@@ -114,6 +123,8 @@ pub(super) fn read(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, Mes
                 // Fan triangulation, as tobj and most readers do: exact for convex
                 // polygons, which is what faces in mesh files are.
                 for k in 1..polygon.len() - 1 {
+                    crate::mesh::try_grow(&mut triangles, 1, "triangles")
+                        .map_err(|e| e.in_file(path))?;
                     triangles.push([polygon[0], polygon[k], polygon[k + 1]]);
                 }
                 faces += 1;

@@ -6,9 +6,16 @@
 //! knowing which variant of the format wrote them.
 
 use super::sniff;
-use super::text::{at_line, capacity, next_number, parse_error, Lines};
+use super::text::{at_line, capacity, next_number, parse_error, reserved, Lines};
 use crate::mesh::{MeshError, TriMesh};
 use std::path::Path;
+
+/// Refuses a file whose start is not text before the rest is read; the reader needs
+/// all of it.
+pub(super) fn check(path: &Path, head: &[u8], size: u64) -> Result<u64, MeshError> {
+    sniff::expect_text(path, "an OFF file", head)?;
+    Ok(size)
+}
 
 pub(super) fn read(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, MeshError> {
     sniff::expect_text(path, "an OFF file", bytes)?;
@@ -55,7 +62,7 @@ pub(super) fn read(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, Mes
     // 6 bytes (`0 0 0` and its newline), a face line 8 (`3 0 1 2`).
     let counts_line = line;
     let rest = lines.rest_len();
-    let mut positions: Vec<[f64; 3]> = Vec::with_capacity(capacity(nv, rest, 6));
+    let mut positions: Vec<[f64; 3]> = reserved(path, capacity(nv, rest, 6), "vertices")?;
     for v in 0..nv {
         let (line, text) = expect_line(&mut lines, path, || {
             format!("vertex {v} of the {nv} that line {counts_line} declares")
@@ -67,10 +74,11 @@ pub(super) fn read(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, Mes
                 format!("{} coordinate of vertex {v}", ["x", "y", "z"][axis])
             })?;
         }
+        crate::mesh::try_grow(&mut positions, 1, "vertices").map_err(|e| e.in_file(path))?;
         positions.push(p);
     }
 
-    let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(capacity(nf, rest, 8));
+    let mut triangles: Vec<[u32; 3]> = reserved(path, capacity(nf, rest, 8), "triangles")?;
     let mut polygon: Vec<u32> = Vec::new();
     for f in 0..nf {
         let (line, text) = expect_line(&mut lines, path, || {
@@ -109,6 +117,7 @@ pub(super) fn read(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, Mes
         }
         // Fan triangulation: exact for the convex polygons mesh files hold.
         for k in 1..n - 1 {
+            crate::mesh::try_grow(&mut triangles, 1, "triangles").map_err(|e| e.in_file(path))?;
             triangles.push([polygon[0], polygon[k], polygon[k + 1]]);
         }
     }

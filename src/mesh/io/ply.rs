@@ -123,6 +123,33 @@ impl std::fmt::Display for Place<'_> {
     }
 }
 
+/// Refuses a file whose first line is not `ply`, and a binary payload too short for the
+/// counts its header declares, before the rest of the file is read (when the header
+/// lies within the start read so far; a longer header is checked once read).
+pub(super) fn check(path: &Path, head: &[u8], size: u64) -> Result<u64, MeshError> {
+    let start = sniff::without_bom(head);
+    let first = start.split(|&b| b == b'\n').next().unwrap_or(start);
+    let cut = first.len() == start.len();
+    let first_is_ply = match std::str::from_utf8(first) {
+        Ok(text) => text.trim() == "ply" || (cut && text.trim().is_empty()),
+        Err(_) => false,
+    };
+    if !first_is_ply {
+        return Err(sniff::wrong_format(path, "a PLY file", head));
+    }
+    if let Ok(header) = read_header(path, head) {
+        let needed = ["vertex", "face", "tristrips"]
+            .iter()
+            .filter_map(|name| header.elements.iter().position(|e| e.name == *name))
+            .max();
+        if let Some(last_needed) = needed {
+            let data_len = usize::try_from(size).unwrap_or(usize::MAX) - header.data_start;
+            check_counts(path, data_len, &header, last_needed)?;
+        }
+    }
+    Ok(size)
+}
+
 pub(super) fn read(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, MeshError> {
     let header = read_header(path, bytes)?;
     let find = |name: &str| header.elements.iter().position(|e| e.name == name);
@@ -186,7 +213,7 @@ pub(super) fn read(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, Mes
         .flatten()
         .max()
         .unwrap_or(vertex_at);
-    check_counts(path, bytes, &header, last_needed)?;
+    check_counts(path, bytes.len() - header.data_start, &header, last_needed)?;
 
     let nv = vertex.count as usize;
     let data = &bytes[header.data_start..];
@@ -221,7 +248,9 @@ pub(super) fn read(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, Mes
         }
         if role == Role::Vertex {
             // Checked against the payload's size (binary), or bounded by its lines.
-            positions.reserve_exact(nv.min(data.len() / 2 + 1));
+            let room = nv.min(data.len() / 2 + 1);
+            crate::mesh::try_reserve(&mut positions, room, || format!("{nv} vertices"))
+                .map_err(|e| e.in_file(path))?;
         }
         for index in 0..element.count {
             let line = records.start_record(path, element, index)?;
@@ -241,6 +270,8 @@ pub(super) fn read(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, Mes
                             (kind, _) => records.skip(path, kind, place, line)?,
                         }
                     }
+                    crate::mesh::try_grow(&mut positions, 1, "vertices")
+                        .map_err(|e| e.in_file(path))?;
                     positions.push(p);
                 }
                 Role::Faces(which) | Role::Strips(which) => {
@@ -257,6 +288,8 @@ pub(super) fn read(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, Mes
                             kind => records.skip(path, kind, place, line)?,
                         }
                     }
+                    crate::mesh::try_grow(&mut triangles, list.len(), "triangles")
+                        .map_err(|e| e.in_file(path))?;
                     let wrap = |e: MeshError| match line {
                         Some(line) => at_line(path, line, e),
                         None => e.in_file(path),
@@ -377,7 +410,8 @@ fn strips(list: &[i64], nv: usize, out: &mut Vec<[u32; 3]>) -> Result<(), String
 
 /// Reads the header: its lines up to `end_header`.
 fn read_header(path: &Path, bytes: &[u8]) -> Result<Header, MeshError> {
-    let mut at = 0usize;
+    // A byte-order mark before `ply` is skipped; offsets stay the file's.
+    let mut at = bytes.len() - sniff::without_bom(bytes).len();
     let mut line_no = 0usize;
     let mut format = None;
     let mut elements: Vec<Element> = Vec::new();
@@ -511,15 +545,14 @@ fn read_header(path: &Path, bytes: &[u8]) -> Result<Header, MeshError> {
 /// line by line instead, and a short one reported as truncated where it ends.
 fn check_counts(
     path: &Path,
-    bytes: &[u8],
+    data_len: usize,
     header: &Header,
     last_needed: usize,
 ) -> Result<(), MeshError> {
     if header.format == Format::Ascii {
         return Ok(());
     }
-    let data = &bytes[header.data_start..];
-    let mut left = data.len() as u64;
+    let mut left = data_len as u64;
     for element in header.elements.iter().take(last_needed + 1) {
         let per_record = element.min_binary_size();
         let at_most = left.checked_div(per_record).unwrap_or(u64::MAX);
@@ -532,7 +565,7 @@ fn check_counts(
                     element.name, element.name, element.count
                 ),
                 declared: element.count,
-                bytes: data.len() as u64,
+                bytes: data_len as u64,
                 at_most,
             });
         }

@@ -84,8 +84,19 @@ pub(crate) fn expect_text(
     }
 }
 
+/// The UTF-8 byte-order mark some editors (Windows Notepad, Excel's CSV) put at the
+/// start of a text file.
+pub(crate) const BOM: &[u8] = b"\xEF\xBB\xBF";
+
+/// `bytes` without a leading UTF-8 byte-order mark: every text format skips it, as
+/// the editors that write it do, instead of reading it as part of the first line.
+pub(crate) fn without_bom(bytes: &[u8]) -> &[u8] {
+    bytes.strip_prefix(BOM).unwrap_or(bytes)
+}
+
 /// The first non-blank line, lossily decoded (for messages only).
 fn first_line(bytes: &[u8]) -> String {
+    let bytes = without_bom(bytes);
     let head = &bytes[..bytes.len().min(PROBE)];
     String::from_utf8_lossy(head)
         .lines()

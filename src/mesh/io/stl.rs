@@ -20,19 +20,28 @@ use std::path::Path;
 const HEADER: usize = 84;
 const RECORD: usize = 50;
 
-/// Reads an STL; its corners are always welded (`_weld` changes nothing).
-pub(super) fn read(path: &Path, bytes: &[u8], _weld: bool) -> Result<TriMesh, MeshError> {
-    let declared = bytes
+/// Which of the two an STL file is.
+enum Layout {
+    /// Binary, with this many triangles (a file longer than they need has its trailing
+    /// bytes ignored, as other readers do).
+    Binary(u64),
+    Ascii,
+}
+
+/// Tells binary from ascii by the file's start (at least its first 84 bytes when it
+/// has them) and its size, and refuses what is neither: text that does not start with
+/// `solid`, binary data too short for its header or its triangle count.
+fn layout(path: &Path, start: &[u8], size: u64) -> Result<Layout, MeshError> {
+    let declared = start
         .get(80..HEADER)
         .and_then(|b| <[u8; 4]>::try_from(b).ok())
         .map(|b| u64::from(u32::from_le_bytes(b)));
     let binary_size = declared.map(|n| HEADER as u64 + RECORD as u64 * n);
-    let text = sniff::binary(bytes).is_none();
-    let mut welder = Welder::default();
-    if binary_size == Some(bytes.len() as u64) {
-        read_binary(path, bytes, &mut welder)?;
-    } else if text {
-        let starts_solid = first_word(bytes).is_some_and(|w| w.eq_ignore_ascii_case("solid"));
+    if binary_size == Some(size) {
+        return Ok(Layout::Binary(declared.unwrap_or(0)));
+    }
+    if sniff::binary(start).is_none() {
+        let starts_solid = first_word(start).is_some_and(|w| w.eq_ignore_ascii_case("solid"));
         if !starts_solid {
             return Err(MeshError::WrongFormat {
                 path: path.to_path_buf(),
@@ -40,36 +49,50 @@ pub(super) fn read(path: &Path, bytes: &[u8], _weld: bool) -> Result<TriMesh, Me
                 found: format!(
                     "{}; an ascii STL starts with `solid`, and the file is too short or too \
                      long for a binary STL",
-                    sniff::describe(bytes)
+                    sniff::describe(start)
                 ),
             });
         }
-        read_ascii(path, bytes, &mut welder)?;
-    } else {
-        let (Some(n), Some(size)) = (declared, binary_size) else {
-            return Err(parse_error(
-                path,
-                0,
-                format!(
-                    "too short for a binary STL: {} bytes, where the header alone has {HEADER}",
-                    bytes.len()
-                ),
-            ));
-        };
-        if (bytes.len() as u64) < size {
-            let complete = (bytes.len() - HEADER) / RECORD;
-            return Err(parse_error(
-                path,
-                0,
-                format!(
-                    "the binary STL is truncated: its header declares {n} triangles \
-                     ({size} bytes) but the file has {} bytes; triangle {complete} is incomplete",
-                    bytes.len()
-                ),
-            ));
-        }
-        // Longer than its count needs: the trailing bytes are ignored, as other readers do.
-        read_binary(path, bytes, &mut welder)?;
+        return Ok(Layout::Ascii);
+    }
+    let (Some(n), Some(binary_size)) = (declared, binary_size) else {
+        return Err(parse_error(
+            path,
+            0,
+            format!(
+                "too short for a binary STL: {size} bytes, where the header alone has {HEADER}"
+            ),
+        ));
+    };
+    if size < binary_size {
+        let complete = (size - HEADER as u64) / RECORD as u64;
+        return Err(parse_error(
+            path,
+            0,
+            format!(
+                "the binary STL is truncated: its header declares {n} triangles \
+                 ({binary_size} bytes) but the file has {size} bytes; triangle {complete} is incomplete"
+            ),
+        ));
+    }
+    Ok(Layout::Binary(n))
+}
+
+/// Decides the layout from the file's start and size, before the rest is read: a binary
+/// STL needs only the bytes of its declared triangles.
+pub(super) fn check(path: &Path, head: &[u8], size: u64) -> Result<u64, MeshError> {
+    Ok(match layout(path, head, size)? {
+        Layout::Binary(n) => HEADER as u64 + RECORD as u64 * n,
+        Layout::Ascii => size,
+    })
+}
+
+/// Reads an STL; its corners are always welded (`_weld` changes nothing).
+pub(super) fn read(path: &Path, bytes: &[u8], _weld: bool) -> Result<TriMesh, MeshError> {
+    let mut welder = Welder::default();
+    match layout(path, bytes, bytes.len() as u64)? {
+        Layout::Binary(n) => read_binary(path, bytes, n, &mut welder)?,
+        Layout::Ascii => read_ascii(path, bytes, &mut welder)?,
     }
     let Welder {
         positions,
@@ -81,14 +104,18 @@ pub(super) fn read(path: &Path, bytes: &[u8], _weld: bool) -> Result<TriMesh, Me
 
 /// The first word of the file, if its start is text.
 fn first_word(bytes: &[u8]) -> Option<&str> {
+    let bytes = sniff::without_bom(bytes);
     let end = bytes
         .iter()
         .position(|&b| b == b'\n')
         .unwrap_or(bytes.len());
-    std::str::from_utf8(&bytes[..end])
-        .ok()?
-        .split_whitespace()
-        .next()
+    let line = &bytes[..end];
+    // A first line cut by the end of the file's start read so far is still text.
+    let valid = match std::str::from_utf8(line) {
+        Ok(text) => text,
+        Err(e) => std::str::from_utf8(&line[..e.valid_up_to()]).ok()?,
+    };
+    valid.split_whitespace().next()
 }
 
 /// Corners welded by their exact coordinates.
@@ -100,26 +127,55 @@ struct Welder {
 }
 
 impl Welder {
-    fn corner(&mut self, p: [f32; 3]) -> u32 {
+    fn corner(&mut self, p: [f32; 3]) -> Result<u32, MeshError> {
         // `+ 0.0` turns -0.0 into 0.0, so the two zeros weld as the same point.
         let p = p.map(|c| c + 0.0);
-        *self.index_of.entry(p.map(f32::to_bits)).or_insert_with(|| {
-            self.positions.push(p.map(f64::from));
-            self.positions.len() as u32 - 1
-        })
+        let key = p.map(f32::to_bits);
+        if let Some(&v) = self.index_of.get(&key) {
+            return Ok(v);
+        }
+        if self.positions.len() == self.positions.capacity() {
+            // Grown by doubling, as `push` would, but failing with an error.
+            let more = self.positions.len().max(1024);
+            let total = self.positions.len() + more;
+            crate::mesh::try_reserve(&mut self.positions, more, || {
+                format!("{total} welded vertices")
+            })?;
+            self.index_of
+                .try_reserve(more)
+                .map_err(|_| MeshError::OutOfMemory {
+                    what: format!("the index of {total} welded vertices"),
+                    bytes: (more as u64).saturating_mul(16),
+                })?;
+        }
+        self.positions.push(p.map(f64::from));
+        let v = self.positions.len() as u32 - 1;
+        self.index_of.insert(key, v);
+        Ok(v)
     }
 
-    fn triangle(&mut self, corners: [[f32; 3]; 3]) {
-        let t = corners.map(|c| self.corner(c));
+    fn triangle(&mut self, corners: [[f32; 3]; 3]) -> Result<(), MeshError> {
+        let t = [
+            self.corner(corners[0])?,
+            self.corner(corners[1])?,
+            self.corner(corners[2])?,
+        ];
+        if self.triangles.len() == self.triangles.capacity() {
+            let more = self.triangles.len().max(1024);
+            let total = self.triangles.len() + more;
+            crate::mesh::try_reserve(&mut self.triangles, more, || format!("{total} triangles"))?;
+        }
         self.triangles.push(t);
+        Ok(())
     }
 }
 
-fn read_binary(path: &Path, bytes: &[u8], welder: &mut Welder) -> Result<(), MeshError> {
+fn read_binary(path: &Path, bytes: &[u8], n: u64, welder: &mut Welder) -> Result<(), MeshError> {
     // The caller checked that the file holds every record the count declares.
     let records = bytes[HEADER..].chunks_exact(RECORD);
-    let n = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize;
-    welder.triangles.reserve_exact(n);
+    let n = usize::try_from(n).unwrap_or(usize::MAX);
+    crate::mesh::try_reserve(&mut welder.triangles, n, || format!("{n} triangles"))
+        .map_err(|e| e.in_file(path))?;
     for (t, record) in records.take(n).enumerate() {
         let mut corners = [[0f32; 3]; 3];
         for (k, c) in corners.iter_mut().flatten().enumerate() {
@@ -137,7 +193,7 @@ fn read_binary(path: &Path, bytes: &[u8], welder: &mut Welder) -> Result<(), Mes
                 ),
             ));
         }
-        welder.triangle(corners);
+        welder.triangle(corners).map_err(|e| e.in_file(path))?;
     }
     Ok(())
 }
@@ -151,7 +207,7 @@ impl std::fmt::Display for Coords {
             if i > 0 {
                 f.write_str(", ")?;
             }
-            write!(f, "({x}, {y}, {z})")?;
+            write!(f, "({x:?}, {y:?}, {z:?})")?;
         }
         Ok(())
     }
@@ -249,7 +305,7 @@ fn read_ascii(path: &Path, bytes: &[u8], welder: &mut Welder) -> Result<(), Mesh
                 )))
             }
             (State::EndLoop, "endfacet") => {
-                welder.triangle(corners);
+                welder.triangle(corners).map_err(|e| e.in_file(path))?;
                 facet += 1;
                 State::Solid
             }

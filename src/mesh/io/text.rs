@@ -14,10 +14,11 @@ pub(super) struct Lines<'a> {
 }
 
 impl<'a> Lines<'a> {
+    /// Lines of a whole file; a leading UTF-8 byte-order mark is skipped.
     pub(super) fn new(path: &'a Path, bytes: &'a [u8]) -> Self {
         Lines {
             path,
-            rest: bytes,
+            rest: super::sniff::without_bom(bytes),
             line: 0,
         }
     }
@@ -122,7 +123,9 @@ pub(super) fn next_number<T: std::str::FromStr>(
 /// `true` if the bytes hold nothing but whitespace: such a file is reported as
 /// [`MeshError::EmptyFile`] whatever its format.
 pub(super) fn is_blank(bytes: &[u8]) -> bool {
-    bytes.iter().all(u8::is_ascii_whitespace)
+    super::sniff::without_bom(bytes)
+        .iter()
+        .all(u8::is_ascii_whitespace)
 }
 
 /// How many elements to reserve room for when a header declares `declared` and each
@@ -131,4 +134,12 @@ pub(super) fn is_blank(bytes: &[u8]) -> bool {
 /// reader then grows as it reads, and reports the truncation where the data ends).
 pub(super) fn capacity(declared: usize, rest: usize, per_line: usize) -> usize {
     declared.min(rest / per_line + 1)
+}
+
+/// An empty vector with room for `n` elements (named `what` in the error), or
+/// [`MeshError::OutOfMemory`] for the file `path`.
+pub(super) fn reserved<T>(path: &Path, n: usize, what: &str) -> Result<Vec<T>, MeshError> {
+    let mut vec = Vec::new();
+    crate::mesh::try_reserve(&mut vec, n, || format!("{n} {what}")).map_err(|e| e.in_file(path))?;
+    Ok(vec)
 }
