@@ -1101,7 +1101,7 @@ fn bad_surface_points_fail_cleanly() {
     for (extra, expected) in [
         (
             ["--max-distance", "-1"],
-            "--max-distance -1: it must be a number >= 0",
+            "--max-distance -1: the maximum distance is -1; it must be a number >= 0",
         ),
         (["--max-distance", "nan"], "--max-distance NaN"),
         (
@@ -1709,4 +1709,132 @@ fn pictures_of_distance_and_isolines_at_their_size_and_bad_options_leave_no_file
         "top",
     ]);
     assert!(!result.status.success());
+}
+
+/// Runs `args`, which must fail within `seconds` (killed and failed otherwise: before
+/// the bounds, these ran for minutes or hours) with `expected` on stderr.
+fn fails_quickly(args: &[&str], seconds: u64, output: &Path, expected: &str) {
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_geotracks"))
+        .args(args)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed().as_secs() >= seconds {
+            child.kill().unwrap();
+            child.wait().unwrap();
+            panic!("{args:?} still ran after {seconds} s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    // It ended: now check its message and that it wrote nothing.
+    assert_fails(args, output, expected);
+}
+
+/// Every knob that scales the work or the output is bounded before the work starts:
+/// levels (10⁸ on 18 faces never ended), k (51,500 on 18 faces was accepted, for
+/// hours of work), the rows of a matrix (a million rows of Spot: 23 GB).
+#[test]
+fn knobs_that_scale_work_are_refused_before_the_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = grid_obj(dir.path(), 3);
+    let g = grid.to_str().unwrap();
+    let out = dir.path().join("lines.csv");
+    let o = out.to_str().unwrap();
+    for levels in [["--levels", "100000000"], ["--levels", "1001"]] {
+        let mut args = vec!["isolines", g, "--source", "0", "-o", o];
+        args.extend(levels);
+        fails_quickly(&args, 10, &out, "between 1 and 1000");
+    }
+    let at: Vec<String> = (1..=1001).map(|i| format!("{}", i as f64 * 1e-3)).collect();
+    let at = at.join(",");
+    fails_quickly(
+        &["isolines", g, "--source", "0", "-o", o, "--at", &at],
+        10,
+        &out,
+        "--at 1001",
+    );
+    let d = dir.path().join("d.txt");
+    let dt = d.to_str().unwrap();
+    for method in ["wave", "tracks", "graph"] {
+        fails_quickly(
+            &[
+                "distance", g, "--source", "0", "--k", "51500", "--method", method, "-o", dt,
+            ],
+            10,
+            &d,
+            "largest k that fits",
+        );
+    }
+    fails_quickly(
+        &["distance", g, "--source", "0", "--k", "20000", "-o", dt],
+        10,
+        &d,
+        "distance tests, more than the work limit of 4.00e9",
+    );
+    // The limit can be set, or lifted.
+    fails_quickly(
+        &[
+            "distance",
+            g,
+            "--source",
+            "0",
+            "--k",
+            "50",
+            "--work-limit",
+            "1000",
+            "-o",
+            dt,
+        ],
+        10,
+        &d,
+        "work limit of 1.00e3",
+    );
+    geotracks_ok(&[
+        "distance",
+        g,
+        "--source",
+        "0",
+        "--k",
+        "50",
+        "--work-limit",
+        "none",
+        "-o",
+        dt,
+    ]);
+    assert_fails(
+        &[
+            "distance",
+            g,
+            "--source",
+            "0",
+            "--work-limit",
+            "lots",
+            "-o",
+            dt,
+        ],
+        &dir.path().join("nothing.txt"),
+        "is not a work limit",
+    );
+    // A million rows of Spot's 2,930 columns (23 GB) are refused before any row runs
+    // on a machine with less memory than that available (this test's), the ids file
+    // aside.
+    let sources = dir.path().join("sources.txt");
+    std::fs::write(&sources, "0\n".repeat(10_000_000)).unwrap();
+    let csv = dir.path().join("m.csv");
+    fails_quickly(
+        &[
+            "matrix",
+            SPOT,
+            "--sources",
+            sources.to_str().unwrap(),
+            "-o",
+            csv.to_str().unwrap(),
+        ],
+        30,
+        &csv,
+        "a distance matrix of 10000000 rows",
+    );
 }

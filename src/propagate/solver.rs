@@ -254,8 +254,9 @@ impl<'m, M: Metric> Solver<'m, M> {
     /// [`Error::InvalidK`] for a scheme with no points, [`Error::InvalidMeanEdgeLength`]
     /// for a mean edge length that is not a length; [`Error::KTooLarge`] when an edge
     /// would carry more than 65535 points (tracks), the nodes would exceed 32-bit ids,
-    /// or the run would not fit [`Options::memory_limit`] (checked before allocating,
-    /// with the largest k that fits); [`Error::TooLarge`] when the tracks engine's
+    /// the run would not fit [`Options::memory_limit`], or it would make more distance
+    /// tests than [`Options::work_limit`] (checked before allocating, with the largest
+    /// k that fits); [`Error::TooLarge`] when the tracks engine's
     /// instances exceed 32-bit ids.
     pub fn new(mesh: &'m TriMesh, metric: M, options: &Options) -> Result<Self, Error> {
         let start = Instant::now();
@@ -294,8 +295,11 @@ impl<'m, M: Metric> Solver<'m, M> {
                 min,
                 mean: options.mean_edge_length,
             };
-            let memory = options.memory_limit.or_else(budget::available_memory);
-            budgeted = budget::check(mesh, options.steiner, spacing, options.method, memory)?;
+            let limits = budget::Limits {
+                memory: options.memory_limit.or_else(budget::available_memory),
+                work: options.work_limit,
+            };
+            budgeted = budget::check(mesh, options.steiner, spacing, options.method, limits)?;
             let counts =
                 options
                     .steiner
@@ -532,8 +536,8 @@ impl<'m, M: Metric> Solver<'m, M> {
     /// # Errors
     /// [`Error::NoSource`]; [`Error::SourceOutOfRange`] for a source vertex that does not
     /// exist; [`Error::InvalidPoint`] for any other source or target that is not a point
-    /// of the mesh; [`Error::InvalidValue`] for a start value or maximum distance that is
-    /// NaN (or an infinite start); [`Error::InvalidCost`] if the metric returns NaN or a
+    /// of the mesh; [`Error::InvalidValue`] for a start value that is not finite or a
+    /// maximum distance that is negative or NaN ([`Stop::check`]); [`Error::InvalidCost`] if the metric returns NaN or a
     /// negative cost.
     pub fn run_from(
         &self,
@@ -565,12 +569,7 @@ impl<'m, M: Metric> Solver<'m, M> {
         if workspace.sources.is_empty() {
             return Err(Error::NoSource);
         }
-        if stop.max_distance.is_nan() {
-            return Err(Error::InvalidValue {
-                which: ValueRole::MaxDistance,
-                value: stop.max_distance,
-            });
-        }
+        stop.check()?;
         self.validate_sources(&mut workspace.sources)?;
         workspace.targets.clear();
         for (i, target) in stop.targets.iter().enumerate() {
@@ -877,7 +876,9 @@ impl<'m, M: Metric> Solver<'m, M> {
     ///
     /// # Errors
     /// As [`Solver::run`], plus [`Error::TargetOutOfRange`] for a target that is not a
-    /// vertex (targets are checked first, before any work).
+    /// vertex and [`Error::OutputTooLarge`] when the rows (8 bytes a value) would not
+    /// fit [`Options::memory_limit`], by default what the system reports available
+    /// (both checked first, before any work).
     ///
     /// ```
     /// use geotracks::{mesh::TriMesh, Euclidean, Options, Solver};
@@ -920,6 +921,19 @@ impl<'m, M: Metric> Solver<'m, M> {
                 vertex: vertex as u64,
                 vertex_count,
             });
+        }
+        // The rows are kept in memory: refuse before any run what cannot fit.
+        let columns = targets.map_or(vertex_count, <[u32]>::len);
+        let bytes = (sources.len() as u64).saturating_mul(columns as u64 * 8);
+        if let Some(available) = self.memory_limit.or_else(budget::available_memory) {
+            if bytes > available {
+                return Err(Error::OutputTooLarge {
+                    rows: sources.len(),
+                    columns,
+                    bytes,
+                    available,
+                });
+            }
         }
         let stop = match targets {
             Some(t) => {

@@ -87,6 +87,29 @@ impl Default for IsolineOptions {
     }
 }
 
+/// The most levels one call of [`Query::isolines`] draws. Each level costs a pass over
+/// the faces its range crosses and writes its lines: a thousand levels draw a contour
+/// every 0.1 % of the range, finer than any picture or map shows, while a mistyped
+/// count (10⁸) would run for hours and fill the memory. Draw more in several calls.
+pub const MAX_LEVELS: usize = 1000;
+
+/// Checks a number of levels against [`MAX_LEVELS`] (and that there is at least one),
+/// before any level is computed or allocated; [`Query::isolines`] makes the same
+/// check.
+///
+/// # Errors
+/// [`Error::InvalidIsolineOption`] naming `levels`.
+pub fn check_level_count(count: usize) -> Result<(), Error> {
+    if count == 0 || count > MAX_LEVELS {
+        return Err(Error::InvalidIsolineOption {
+            option: "number of levels",
+            value: count as f64,
+            expected: "between 1 and 1000 (draw more in several calls)",
+        });
+    }
+    Ok(())
+}
+
 /// `count` levels spread evenly over `(0, max)`, excluding both ends: the level at 0
 /// is the sources themselves and the one at the maximum a point.
 pub fn spread_levels(max: f64, count: usize) -> Vec<f64> {
@@ -150,7 +173,8 @@ impl<M: Metric> Query<'_, M> {
     ///
     /// # Errors
     /// [`Error::InvalidValue`] for a level that is not finite,
-    /// [`Error::InvalidIsolineOption`] for options out of range.
+    /// [`Error::InvalidIsolineOption`] for options out of range or more than
+    /// [`MAX_LEVELS`] levels.
     pub fn isolines(
         &self,
         levels: &[f64],
@@ -175,6 +199,9 @@ impl<M: Metric> Query<'_, M> {
 }
 
 fn check_options(levels: &[f64], options: &IsolineOptions) -> Result<(), Error> {
+    if levels.len() > MAX_LEVELS {
+        check_level_count(levels.len())?;
+    }
     if let Some((index, &value)) = levels.iter().enumerate().find(|(_, l)| !l.is_finite()) {
         return Err(Error::InvalidValue {
             which: ValueRole::IsolineLevel { index },
