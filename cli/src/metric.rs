@@ -45,7 +45,18 @@ pub struct MetricArgs {
 #[derive(Clone, Copy, Debug)]
 pub struct WorkLimit(Option<u64>);
 
-fn parse_work_limit(text: &str) -> Result<WorkLimit, String> {
+impl WorkLimit {
+    /// `options` with this limit, or as they are without one given.
+    pub fn apply(limit: Option<WorkLimit>, options: Options) -> Options {
+        match limit {
+            Some(WorkLimit(limit)) => options.with_work_limit(limit),
+            None => options,
+        }
+    }
+}
+
+/// Parses `--work-limit`.
+pub fn parse_work_limit(text: &str) -> Result<WorkLimit, String> {
     if text == "none" {
         return Ok(WorkLimit(None));
     }
@@ -71,10 +82,7 @@ impl MetricArgs {
         let options = Options::DEFAULT
             .with_k(self.k(metric))
             .with_method(self.method);
-        match self.work_limit {
-            Some(WorkLimit(limit)) => options.with_work_limit(limit),
-            None => options,
-        }
+        WorkLimit::apply(self.work_limit, options)
     }
 
     /// The files the metric reads (none, or its density or tensor file): inputs that no

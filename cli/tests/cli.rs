@@ -1818,6 +1818,22 @@ fn knobs_that_scale_work_are_refused_before_the_work() {
         &dir.path().join("nothing.txt"),
         "is not a work limit",
     );
+    // Terrain routes take the same limit.
+    let dem = dir.path().join("dem.asc");
+    let mut text = String::from("ncols 4\nnrows 4\nxllcorner 0\nyllcorner 0\ncellsize 10\n");
+    for row in 0..4 {
+        let values: Vec<String> = (0..4).map(|c| format!("{}", row * c)).collect();
+        text += &(values.join(" ") + "\n");
+    }
+    std::fs::write(&dem, text).unwrap();
+    let route = dir.path().join("route.geojson");
+    let (dm, r) = (dem.to_str().unwrap(), route.to_str().unwrap());
+    let terrain = ["terrain", dm, "--from", "5,5", "--to", "25,25", "-o", r];
+    let limited = [&terrain[..], &["--work-limit", "10"]].concat();
+    fails_quickly(&limited, 10, &route, "work limit of 1.00e1");
+    let huge = [&terrain[..], &["--k", "20000"]].concat();
+    fails_quickly(&huge, 10, &route, "largest k that fits");
+    geotracks_ok(&terrain);
     // A million rows of Spot's 2,930 columns (23 GB) are refused before any row runs
     // on a machine with less memory than that available (this test's), the ids file
     // aside.
