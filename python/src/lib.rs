@@ -279,8 +279,11 @@ impl MeshSolverCore {
     ) -> PyResult<Vec<(f64, Matrix<'py, f64>, bool)>> {
         use geotracks::trace::IsolineOptions;
         let mesh = self.cell.borrow_owner();
-        // The library's bound on levels, before the field is computed.
-        geotracks::trace::check_level_count(levels.len()).map_err(error)?;
+        // The library's bound on levels, before the field is computed (no level at
+        // all draws nothing, as the library does).
+        if !levels.is_empty() {
+            geotracks::trace::check_level_count(levels.len()).map_err(error)?;
+        }
         let mut options = IsolineOptions::DEFAULT;
         if let Some(n) = subdivisions {
             options = options.with_subdivisions(n);

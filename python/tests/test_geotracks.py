@@ -430,6 +430,7 @@ def test_knobs_that_scale_work_are_bounded_before_any_work():
     with pytest.raises(geotracks.GeotracksError, match="levels.*1000"):
         solver.isolines(0, np.linspace(0.1, 1.0, 1001))
     assert len(solver.isolines(0, np.linspace(0.1, 1.0, 1000))) > 0
+    assert solver.isolines(0, []) == []
     # A distance matrix that cannot fit in memory (here 10⁷ rows of 3,721 values,
     # 298 GB) is refused before any row runs.
     V, F = grid(60)
