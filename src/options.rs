@@ -114,7 +114,7 @@ pub struct Options {
     /// anything is allocated: a k that would need more is refused with
     /// [`Error::KTooLarge`] (naming the estimate and the limit) and the largest k that
     /// fits. The estimate grows with the square of the nodes on each face (the
-    /// README's section on limits has the figures). Default:
+    /// README's Library section has the figures). Default:
     /// [`DEFAULT_WORK_LIMIT`](Options::DEFAULT_WORK_LIMIT) (a few minutes of one
     /// core); `None`: no limit.
     ///
