@@ -292,6 +292,21 @@ pub enum Error {
         /// Bytes available: `Options::memory_limit`, or what the system reports.
         available: u64,
     },
+    /// The vertices within a maximum distance of each source
+    /// ([`Solver::local_distance_rows`](crate::Solver::local_distance_rows)) outgrew
+    /// the memory while the rows were computed. Lower the maximum distance, or ask for
+    /// fewer sources at a time.
+    #[error("the pairs within {max_distance} of {sources} sources outgrew the memory: {pairs} pairs so far, more than the {:.3} GB available; lower the maximum distance or ask for fewer sources at a time", *available as f64 / 1e9)]
+    LocalRowsTooLarge {
+        /// The maximum distance asked for.
+        max_distance: f64,
+        /// Sources asked for.
+        sources: usize,
+        /// Pairs found when the limit was passed.
+        pairs: u64,
+        /// Bytes available: `Options::memory_limit`, or what the system reports.
+        available: u64,
+    },
     /// The mesh needs more state than 32-bit ids can address.
     #[error("the mesh is too large: {count} {what} exceed the 32-bit id range; lower k")]
     TooLarge {

@@ -296,3 +296,39 @@ fn a_distance_matrix_beyond_the_memory_is_refused_before_any_row() {
         Err(Error::OutputTooLarge { .. })
     ));
 }
+
+/// The pairs within a maximum distance of each source are counted as the runs finish:
+/// rows that outgrow the memory budget stop the call (everything within `inf` of
+/// every vertex of Spot is 8.6M pairs, 137 MB, against a 20 MB budget), while rows
+/// within a small radius fit and hold every pair a full run finds there.
+#[test]
+fn local_rows_that_outgrow_the_memory_stop_the_call() {
+    let mesh = spot();
+    let options = Options::DEFAULT.with_memory_limit(20_000_000);
+    let solver = Solver::new(&mesh, Euclidean, &options).unwrap();
+    let all: Vec<u32> = (0..mesh.vertex_count() as u32).collect();
+    match solver.local_distance_rows(&all, f64::INFINITY) {
+        Err(Error::LocalRowsTooLarge {
+            pairs, available, ..
+        }) => {
+            assert_eq!(available, 20_000_000);
+            assert!(pairs * 16 > available, "{pairs}");
+        }
+        Err(e) => panic!("{e}"),
+        Ok(rows) => panic!("{} rows accepted", rows.len()),
+    }
+    let radius = 0.05;
+    let rows = solver.local_distance_rows(&all[..50], radius).unwrap();
+    for (&source, row) in all.iter().zip(&rows) {
+        let full = solver.solve(&[source]).unwrap();
+        let within: Vec<u32> = (0..mesh.vertex_count() as u32)
+            .filter(|&v| full.distance(v) <= radius)
+            .collect();
+        let listed: Vec<u32> = row.iter().map(|&(v, _)| v).collect();
+        assert_eq!(listed, within, "source {source}");
+    }
+    assert!(matches!(
+        solver.local_distance_rows(&all, -1.0),
+        Err(Error::InvalidValue { .. })
+    ));
+}

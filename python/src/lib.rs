@@ -393,29 +393,14 @@ impl MeshSolverCore {
         sources: PyReadonlyArray1<'_, i64>,
         max_distance: f64,
     ) -> PyResult<(Vector<'py, i64>, Vector<'py, i64>, Vector<'py, f64>)> {
-        use rayon::prelude::*;
         // The library's check, as every run and the command line make it.
-        let stop = Stop::NONE.with_max_distance(max_distance);
-        stop.check()
+        Stop::NONE
+            .with_max_distance(max_distance)
+            .check()
             .map_err(|e| error(format!("max_distance = {max_distance}: {e}")))?;
         let sources = vertex_ids(&sources, "source")?;
         let solver = self.cell.borrow_dependent();
-        let rows: Result<Vec<Vec<(u32, f64)>>, geotracks::Error> = py.detach(|| {
-            sources
-                .par_iter()
-                .map_init(
-                    || solver.workspace(),
-                    |workspace, &v| {
-                        solver.run_from(workspace, &[Source::new(v)], &stop)?;
-                        // What the run reached, not a scan of the mesh: with a small
-                        // radius that is most of the saving.
-                        let mut row: Vec<(u32, f64)> = workspace.reached_vertices().collect();
-                        row.sort_unstable_by_key(|&(j, _)| j);
-                        Ok(row)
-                    },
-                )
-                .collect()
-        });
+        let rows = py.detach(|| solver.local_distance_rows(&sources, max_distance));
         let rows = rows.map_err(error)?;
         let total: usize = rows.iter().map(Vec::len).sum();
         let (mut r, mut c, mut d) = (

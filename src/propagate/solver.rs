@@ -972,6 +972,67 @@ impl<'m, M: Metric> Solver<'m, M> {
             .collect()
     }
 
+    /// For each of `sources` (vertices), the vertices within `max_distance` of it and
+    /// their distances, sorted by vertex: one run per source stopped at
+    /// `max_distance`, on all cores (rayon), each costing what it reaches. The rows
+    /// are kept in memory: their size is not known before the runs, so it is counted
+    /// as they finish, and the call stops as soon as they would exceed
+    /// [`Options::memory_limit`] (by default what the system reports available).
+    ///
+    /// ```
+    /// use geotracks::{mesh::TriMesh, Euclidean, Options, Solver};
+    /// let mesh = TriMesh::new(
+    ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+    ///     vec![[0, 1, 2], [0, 2, 3]],
+    /// )?;
+    /// let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT)?;
+    /// let rows = solver.local_distance_rows(&[0], 1.2)?;
+    /// assert_eq!(rows[0].iter().map(|&(v, _)| v).collect::<Vec<_>>(), [0, 1, 3]);
+    /// # Ok::<(), geotracks::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`Solver::run`] (a negative or NaN `max_distance` is refused before any
+    /// run), plus [`Error::LocalRowsTooLarge`] when the rows outgrow the memory.
+    pub fn local_distance_rows(
+        &self,
+        sources: &[u32],
+        max_distance: f64,
+    ) -> Result<Vec<Vec<(u32, f64)>>, Error> {
+        use std::sync::atomic::{AtomicU64, Ordering};
+        let stop = Stop::NONE.with_max_distance(max_distance);
+        stop.check()?;
+        let available = self.memory_limit.or_else(budget::available_memory);
+        let pair = std::mem::size_of::<(u32, f64)>() as u64;
+        let pairs = AtomicU64::new(0);
+        sources
+            .par_iter()
+            .map_init(
+                || self.workspace(),
+                |workspace, &v| {
+                    self.run_from(workspace, &[Source::new(v)], &stop)?;
+                    // What the run reached, not a scan of the mesh: with a small radius
+                    // that is most of the saving.
+                    let mut row: Vec<(u32, f64)> = workspace.reached_vertices().collect();
+                    row.sort_unstable_by_key(|&(j, _)| j);
+                    let total =
+                        pairs.fetch_add(row.len() as u64, Ordering::Relaxed) + row.len() as u64;
+                    match available {
+                        Some(available) if total.saturating_mul(pair) > available => {
+                            Err(Error::LocalRowsTooLarge {
+                                max_distance,
+                                sources: sources.len(),
+                                pairs: total,
+                                available,
+                            })
+                        }
+                        _ => Ok(row),
+                    }
+                },
+            )
+            .collect()
+    }
+
     /// Propagates from `sources` into a fresh workspace and returns the whole field.
     ///
     /// # Errors
