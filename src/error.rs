@@ -44,6 +44,17 @@ pub enum ValueRole {
     },
 }
 
+impl ValueRole {
+    /// What the value must be: a maximum distance any number ≥ 0 (`inf`: no limit),
+    /// the others any finite number.
+    pub fn expected(self) -> &'static str {
+        match self {
+            ValueRole::MaxDistance => "a number >= 0 (inf: no limit)",
+            ValueRole::Start { .. } | ValueRole::IsolineLevel { .. } => "a finite number",
+        }
+    }
+}
+
 impl fmt::Display for ValueRole {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
@@ -97,9 +108,10 @@ pub enum Error {
         /// What is wrong with it.
         error: PointError,
     },
-    /// A number given as input is not usable: NaN, or infinite where a finite value is
-    /// needed.
-    #[error("{which} is {}; it must be a finite number", geotracks_metrics::Num(*value))]
+    /// A number given as input is not usable: NaN, infinite where a finite value is
+    /// needed, or negative where it must not be ([`ValueRole::expected`] says what it
+    /// must be).
+    #[error("{which} is {}; it must be {}", geotracks_metrics::Num(*value), which.expected())]
     InvalidValue {
         /// Which value.
         which: ValueRole,
@@ -254,8 +266,9 @@ pub enum Error {
     /// A grassfire needs a boundary to start from, and the surface has none.
     #[error("the surface has no boundary (no edge with exactly one face): a grassfire has nowhere to start")]
     NoBoundary,
-    /// The Steiner points asked for cannot be laid out, or the run would not fit in
-    /// memory; checked before anything is allocated. Lower k to `largest_k` or below.
+    /// The Steiner points asked for cannot be laid out, the run would not fit in
+    /// memory, or it would do more work than the work limit allows; checked before
+    /// anything is allocated. Lower k to `largest_k` or below (or raise the limit).
     #[error("k = {k} is too large: {limit}; the largest k that fits is {largest_k}")]
     KTooLarge {
         /// The k asked for (points per edge for the fixed scheme).
@@ -264,6 +277,35 @@ pub enum Error {
         limit: SizeLimit,
         /// The largest k (of the same scheme) that fits; 0 if none does.
         largest_k: f64,
+    },
+    /// A distance matrix ([`Solver::distance_rows`](crate::Solver::distance_rows))
+    /// would not fit in memory: checked before any row is computed. Ask for fewer
+    /// sources or targets at a time.
+    #[error("a distance matrix of {rows} rows × {columns} columns needs {:.3} GB, more than the {:.3} GB available; ask for fewer sources or targets at a time", *bytes as f64 / 1e9, *available as f64 / 1e9)]
+    OutputTooLarge {
+        /// Rows asked for (one per source).
+        rows: usize,
+        /// Columns per row (targets, or every vertex).
+        columns: usize,
+        /// Bytes the rows would take.
+        bytes: u64,
+        /// Bytes available: `Options::memory_limit`, or what the system reports.
+        available: u64,
+    },
+    /// The vertices within a maximum distance of each source
+    /// ([`Solver::local_distance_rows`](crate::Solver::local_distance_rows)) outgrew
+    /// the memory while the rows were computed. Lower the maximum distance, or ask for
+    /// fewer sources at a time.
+    #[error("the pairs within {max_distance} of {sources} sources outgrew the memory: {pairs} pairs so far, more than the {:.3} GB available; lower the maximum distance or ask for fewer sources at a time", *available as f64 / 1e9)]
+    LocalRowsTooLarge {
+        /// The maximum distance asked for.
+        max_distance: f64,
+        /// Sources asked for.
+        sources: usize,
+        /// Pairs found when the limit was passed.
+        pairs: u64,
+        /// Bytes available: `Options::memory_limit`, or what the system reports.
+        available: u64,
     },
     /// The mesh needs more state than 32-bit ids can address.
     #[error("the mesh is too large: {count} {what} exceed the 32-bit id range; lower k")]
@@ -293,6 +335,15 @@ pub enum SizeLimit {
         /// Nodes needed.
         nodes: u64,
     },
+    /// A run would make more distance tests than the work limit allows
+    /// ([`Options::work_limit`](crate::Options::work_limit); an estimate, see the
+    /// README's Library section).
+    Work {
+        /// The estimated distance tests of one full run.
+        tests: f64,
+        /// The limit.
+        limit: u64,
+    },
     /// The run's state would need more memory than is available.
     Memory {
         /// Bytes the layout, the engine's tables and one run's buffers would take
@@ -317,6 +368,11 @@ impl std::fmt::Display for SizeLimit {
             SizeLimit::Nodes { nodes } => write!(
                 f,
                 "{nodes} nodes (vertices and Steiner points) exceed the 32-bit id range"
+            ),
+            SizeLimit::Work { tests, limit } => write!(
+                f,
+                "one run would make about {tests:.2e} distance tests, more than the work limit of {:.2e} (raise the work limit to run it anyway)",
+                limit as f64
             ),
             SizeLimit::Memory { needed, available } => write!(
                 f,

@@ -110,15 +110,33 @@ pub struct Options {
     /// the whole would have (as terrain routes do on their window, see
     /// [`route_on_grid`](crate::terrain::route_on_grid)).
     pub mean_edge_length: Option<f64>,
+    /// The most distance tests one full run may be estimated to make, checked before
+    /// anything is allocated: a k that would need more is refused with
+    /// [`Error::KTooLarge`] (naming the estimate and the limit) and the largest k that
+    /// fits. The estimate grows with the square of the nodes on each face (the
+    /// README's Library section has the figures). Default:
+    /// [`DEFAULT_WORK_LIMIT`](Options::DEFAULT_WORK_LIMIT) (a few minutes of one
+    /// core); `None`: no limit.
+    ///
+    /// [`Error::KTooLarge`]: crate::Error::KTooLarge
+    pub work_limit: Option<u64>,
 }
 
 impl Options {
+    /// The default [`work_limit`](Options::work_limit): 4·10⁹ estimated distance tests,
+    /// a few minutes of one core (a test takes 50–100 ns). Every shared benchmark mesh
+    /// fits at k = 20 with every engine (the largest, 1.1M faces, is estimated at
+    /// 2.7·10⁹ with the complete graph, 1.1·10⁹ with the wavefront engine); a flat
+    /// 18-face grid fits up to k ≈ 9,700 with the wavefront engine.
+    pub const DEFAULT_WORK_LIMIT: u64 = 4_000_000_000;
+
     /// The defaults: interval scheme with k = 2, the wavefront engine.
     pub const DEFAULT: Options = Options {
         steiner: SteinerScheme::Interval { k: 2.0 },
         method: Method::Wave,
         memory_limit: None,
         mean_edge_length: None,
+        work_limit: Some(Options::DEFAULT_WORK_LIMIT),
     };
 
     /// Interval scheme with a mean of `k` points per edge.
@@ -136,6 +154,13 @@ impl Options {
     /// The memory budget in bytes (see [`Options::memory_limit`]).
     pub const fn with_memory_limit(mut self, bytes: u64) -> Self {
         self.memory_limit = Some(bytes);
+        self
+    }
+
+    /// The work budget in estimated distance tests per run, `None` for none (see
+    /// [`Options::work_limit`]).
+    pub const fn with_work_limit(mut self, tests: Option<u64>) -> Self {
+        self.work_limit = tests;
         self
     }
 
@@ -228,6 +253,32 @@ impl Stop {
         goal_directed: true,
         both_ends: true,
     };
+
+    /// Checks the stop's numbers, as every run does before it starts (the command line
+    /// and the Python package call this same check): `max_distance` must be ≥ 0 and
+    /// not NaN (`inf`: no limit). A negative one would leave every node unreached,
+    /// the sources included.
+    ///
+    /// ```
+    /// use geotracks::Stop;
+    /// assert!(Stop::NONE.with_max_distance(0.0).check().is_ok());
+    /// let err = Stop::NONE.with_max_distance(-1.0).check().unwrap_err();
+    /// assert_eq!(err.to_string(), "the maximum distance is -1; it must be a number >= 0 (inf: no limit)");
+    /// assert!(Stop::NONE.with_max_distance(f64::NAN).check().is_err());
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::InvalidValue`](crate::Error::InvalidValue) naming
+    /// [`ValueRole::MaxDistance`](crate::ValueRole::MaxDistance).
+    pub fn check(&self) -> Result<(), crate::Error> {
+        if self.max_distance.is_nan() || self.max_distance < 0.0 {
+            return Err(crate::Error::InvalidValue {
+                which: crate::ValueRole::MaxDistance,
+                value: self.max_distance,
+            });
+        }
+        Ok(())
+    }
 
     /// Stop at distance `max_distance`.
     pub fn with_max_distance(self, max_distance: f64) -> Stop {

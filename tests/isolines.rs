@@ -305,6 +305,39 @@ fn bad_levels_and_options_are_refused() {
     assert!(err.to_string().contains("subdivisions"), "{err}");
 }
 
+/// The number of levels is bounded (a mistyped 10⁸ ran for hours): more than
+/// `MAX_LEVELS` is refused at once, by the same check the command line and Python
+/// call before computing a field; `MAX_LEVELS` are drawn.
+#[test]
+fn more_levels_than_the_bound_are_refused_at_once() {
+    use geotracks::trace::{check_level_count, MAX_LEVELS};
+    let mesh = common::grid(3, 3.0);
+    let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
+    let field = solver.solve(&[0]).unwrap();
+    let query = solver.query(&field).unwrap();
+    let max = query.max_reached_distance();
+    let start = std::time::Instant::now();
+    let err = query
+        .isolines(
+            &spread_levels(max, MAX_LEVELS + 1),
+            &IsolineOptions::DEFAULT,
+        )
+        .unwrap_err();
+    assert!(start.elapsed().as_secs_f64() < 1.0, "{:?}", start.elapsed());
+    assert!(
+        matches!(err, Error::InvalidIsolineOption { .. })
+            && err.to_string().contains("1001")
+            && err.to_string().contains("between 1 and 1000"),
+        "{err}"
+    );
+    assert!(check_level_count(100_000_000).is_err() && check_level_count(0).is_err());
+    assert!(check_level_count(MAX_LEVELS).is_ok());
+    let lines = query
+        .isolines(&spread_levels(max, MAX_LEVELS), &IsolineOptions::DEFAULT)
+        .unwrap();
+    assert!(lines.len() >= MAX_LEVELS, "{}", lines.len());
+}
+
 #[test]
 fn a_level_through_vertices_has_no_lost_points() {
     // On a unit grid (a flat terrain's) from a vertex, the circle of radius 2 passes

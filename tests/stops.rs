@@ -155,6 +155,41 @@ proptest! {
 /// The case the hardening issue reported: with a maximum distance, a point of a face
 /// that the maximum cuts, next to its vertex beyond the maximum, was given the value
 /// through a node within it: a value beyond the maximum.
+/// A negative maximum distance is refused (it used to leave every node unreached,
+/// the sources included), by every engine, as is NaN; 0 reaches the sources only.
+#[test]
+fn a_negative_maximum_distance_is_refused() {
+    let mesh = common::grid(2, 1.0);
+    for method in [
+        Method::Wave,
+        Method::Tracks,
+        Method::Graph,
+        Method::Dijkstra,
+    ] {
+        let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT.with_method(method)).unwrap();
+        for bad in [-1.0, -1e-300, f64::NEG_INFINITY, f64::NAN] {
+            let err = solver
+                .solve_from(&[Source::new(0)], &Stop::NONE.with_max_distance(bad))
+                .err()
+                .unwrap_or_else(|| panic!("{method}: max distance {bad} accepted"));
+            assert!(
+                matches!(
+                    err,
+                    geotracks::Error::InvalidValue {
+                        which: geotracks::ValueRole::MaxDistance,
+                        ..
+                    }
+                ) && err.to_string().contains("must be a number >= 0"),
+                "{method}: {err}"
+            );
+        }
+        let field = solver
+            .solve_from(&[Source::new(0)], &Stop::NONE.with_max_distance(0.0))
+            .unwrap();
+        assert_eq!(field.vertex_distances()[0], 0.0, "{method}");
+    }
+}
+
 #[test]
 fn a_point_beyond_the_maximum_is_unreached() {
     let mesh = common::grid(4, 4.0);

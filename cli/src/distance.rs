@@ -73,13 +73,10 @@ pub fn run(args: &DistanceArgs) -> CliResult {
         crate::text_output_format(voronoi, &[("txt", ())], ())?;
     }
     let max_distance = args.max_distance.unwrap_or(f64::INFINITY);
-    if max_distance.is_nan() || max_distance < 0.0 {
-        return Err(format!(
-            "--max-distance {}: it must be a number >= 0",
-            crate::Value(max_distance)
-        )
-        .into());
-    }
+    // The library's check, as every run (and the Python package) makes it.
+    let stop = Stop::NONE.with_max_distance(max_distance);
+    stop.check()
+        .map_err(|e| format!("--max-distance {}: {e}", crate::Value(max_distance)))?;
     let mut outputs = Outputs::new(std::iter::once(args.mesh.as_path()).chain(args.metric.files()));
     for path in [
         Some(&args.output),
@@ -92,7 +89,6 @@ pub fn run(args: &DistanceArgs) -> CliResult {
     let spinner = ui::Spinner::start("reading the mesh and propagating");
     let mesh = load_mesh(&args.mesh, args.weld)?;
     let sources = points::sources(&mesh, &args.sources)?;
-    let stop = Stop::NONE.with_max_distance(max_distance);
     let metric = args.metric.metric(&mesh)?;
     let options = args.metric.options(&metric);
     let solver = Solver::new(&mesh, metric, &options)?;

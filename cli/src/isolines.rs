@@ -133,6 +133,12 @@ pub fn check_levels(count: usize, at: &[f64], flags: (&str, &str)) -> CliResult 
     if at.is_empty() && count == 0 {
         return Err(format!("{} 0: ask for at least one level", flags.0).into());
     }
+    // The library's bound, before the field is computed.
+    let (flag, count) = match at.len() {
+        0 => (flags.0, count),
+        listed => (flags.1, listed),
+    };
+    geotracks::trace::check_level_count(count).map_err(|e| format!("{flag} {count}: {e}"))?;
     Ok(())
 }
 

@@ -34,6 +34,38 @@ pub struct MetricArgs {
     /// field is constant on every face).
     #[arg(long)]
     pub tensor_field: Option<PathBuf>,
+    /// The most distance tests one run may be estimated to make (a number such as 1e10,
+    /// or `none`): a k that needs more is refused before any work, with the estimate
+    /// and the largest k that fits [default: 4e9, a few minutes of one core].
+    #[arg(long, value_name = "TESTS", value_parser = parse_work_limit)]
+    pub work_limit: Option<WorkLimit>,
+}
+
+/// `--work-limit`: a number of distance tests, or none.
+#[derive(Clone, Copy, Debug)]
+pub struct WorkLimit(Option<u64>);
+
+impl WorkLimit {
+    /// `options` with this limit, or as they are without one given.
+    pub fn apply(limit: Option<WorkLimit>, options: Options) -> Options {
+        match limit {
+            Some(WorkLimit(limit)) => options.with_work_limit(limit),
+            None => options,
+        }
+    }
+}
+
+/// Parses `--work-limit`.
+pub fn parse_work_limit(text: &str) -> Result<WorkLimit, String> {
+    if text == "none" {
+        return Ok(WorkLimit(None));
+    }
+    match text.parse::<f64>() {
+        Ok(tests) if tests >= 1.0 && tests < u64::MAX as f64 => Ok(WorkLimit(Some(tests as u64))),
+        _ => Err(format!(
+            "'{text}' is not a work limit: give a number of distance tests >= 1 (such as 1e10), or none"
+        )),
+    }
 }
 
 impl MetricArgs {
@@ -47,9 +79,10 @@ impl MetricArgs {
 
     /// The run options for `metric`.
     pub fn options(&self, metric: &BuiltinMetric) -> Options {
-        Options::DEFAULT
+        let options = Options::DEFAULT
             .with_k(self.k(metric))
-            .with_method(self.method)
+            .with_method(self.method);
+        WorkLimit::apply(self.work_limit, options)
     }
 
     /// The files the metric reads (none, or its density or tensor file): inputs that no

@@ -27,6 +27,11 @@ pub struct SkeletonArgs {
     /// Mean number of Steiner points per edge.
     #[arg(long, default_value_t = 5.0)]
     k: f64,
+    /// The most distance tests one run may be estimated to make (a number such as 1e10,
+    /// or `none`): a k that needs more is refused before any work, with the estimate
+    /// and the largest k that fits [default: 4e9, a few minutes of one core].
+    #[arg(long, value_name = "TESTS", value_parser = crate::metric::parse_work_limit)]
+    work_limit: Option<crate::metric::WorkLimit>,
     /// Propagation method.
     #[arg(long, default_value = "tracks")]
     method: Method,
@@ -74,7 +79,10 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
     let spinner = ui::Spinner::start("reading the medial axis, burning and thinning it");
     let axis = read_medial_axis(&args.axis)?;
     let prune = prune.threshold(axis.diagonal());
-    let options = Options::DEFAULT.with_k(args.k).with_method(args.method);
+    let options = crate::metric::WorkLimit::apply(
+        args.work_limit,
+        Options::DEFAULT.with_k(args.k).with_method(args.method),
+    );
     let burn = match args.burn {
         BurnArg::Radius => Burn::Radius,
         BurnArg::Boundary => Burn::Boundary,

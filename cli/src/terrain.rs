@@ -36,6 +36,11 @@ pub struct TerrainArgs {
     /// better corridor; larger k costs time and memory in proportion.
     #[arg(long, default_value_t = 2.0)]
     k: f64,
+    /// The most distance tests one run may be estimated to make (a number such as 1e10,
+    /// or `none`): a k that needs more is refused before any work, with the estimate
+    /// and the largest k that fits [default: 4e9, a few minutes of one core].
+    #[arg(long, value_name = "TESTS", value_parser = crate::metric::parse_work_limit)]
+    work_limit: Option<crate::metric::WorkLimit>,
     /// Propagation method: wave (Steiner points that carry their wavefront: exact on
     /// planes, the best route at a given k; for none and incline:B, the others run
     /// tracks), or tracks (the track-pruned Steiner graph, which a route runs
@@ -119,7 +124,10 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     let reading = std::time::Instant::now();
     let grid = terrain::read_grid(&args.dem)?;
     let read_seconds = reading.elapsed().as_secs_f64();
-    let mut options = Options::DEFAULT.with_k(args.k).with_method(args.method);
+    let mut options = crate::metric::WorkLimit::apply(
+        args.work_limit,
+        Options::DEFAULT.with_k(args.k).with_method(args.method),
+    );
     match grid.mean_edge_length() {
         // Points spaced as on the whole grid, whatever part of it is meshed.
         Some(mean) => options = options.with_mean_edge_length(mean),

@@ -1101,7 +1101,7 @@ fn bad_surface_points_fail_cleanly() {
     for (extra, expected) in [
         (
             ["--max-distance", "-1"],
-            "--max-distance -1: it must be a number >= 0",
+            "--max-distance -1: the maximum distance is -1; it must be a number >= 0",
         ),
         (["--max-distance", "nan"], "--max-distance NaN"),
         (
@@ -1858,4 +1858,148 @@ fn a_density_file_with_a_byte_order_mark() {
         out.to_str().unwrap(),
     ]);
     assert_eq!(read_values(&out)[1], 2.0);
+}
+
+/// Runs `args`, which must fail within `seconds` (killed and failed otherwise: before
+/// the bounds, these ran for minutes or hours) with `expected` on stderr.
+fn fails_quickly(args: &[&str], seconds: u64, output: &Path, expected: &str) {
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_geotracks"))
+        .args(args)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed().as_secs() >= seconds {
+            child.kill().unwrap();
+            child.wait().unwrap();
+            panic!("{args:?} still ran after {seconds} s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    // It ended: now check its message and that it wrote nothing.
+    assert_fails(args, output, expected);
+}
+
+/// Every knob that scales the work or the output is bounded before the work starts:
+/// levels (10⁸ on 18 faces never ended), k (51,500 on 18 faces was accepted, for
+/// hours of work), the rows of a matrix (a million rows of Spot: 23 GB).
+#[test]
+fn knobs_that_scale_work_are_refused_before_the_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = grid_obj(dir.path(), 3);
+    let g = grid.to_str().unwrap();
+    let out = dir.path().join("lines.csv");
+    let o = out.to_str().unwrap();
+    for levels in [["--levels", "100000000"], ["--levels", "1001"]] {
+        let mut args = vec!["isolines", g, "--source", "0", "-o", o];
+        args.extend(levels);
+        fails_quickly(&args, 10, &out, "between 1 and 1000");
+    }
+    let at: Vec<String> = (1..=1001).map(|i| format!("{}", i as f64 * 1e-3)).collect();
+    let at = at.join(",");
+    fails_quickly(
+        &["isolines", g, "--source", "0", "-o", o, "--at", &at],
+        10,
+        &out,
+        "--at 1001",
+    );
+    let d = dir.path().join("d.txt");
+    let dt = d.to_str().unwrap();
+    for method in ["wave", "tracks", "graph"] {
+        fails_quickly(
+            &[
+                "distance", g, "--source", "0", "--k", "51500", "--method", method, "-o", dt,
+            ],
+            10,
+            &d,
+            "largest k that fits",
+        );
+    }
+    fails_quickly(
+        &["distance", g, "--source", "0", "--k", "20000", "-o", dt],
+        10,
+        &d,
+        "distance tests, more than the work limit of 4.00e9",
+    );
+    // The limit can be set, or lifted.
+    fails_quickly(
+        &[
+            "distance",
+            g,
+            "--source",
+            "0",
+            "--k",
+            "50",
+            "--work-limit",
+            "1000",
+            "-o",
+            dt,
+        ],
+        10,
+        &d,
+        "work limit of 1.00e3",
+    );
+    geotracks_ok(&[
+        "distance",
+        g,
+        "--source",
+        "0",
+        "--k",
+        "50",
+        "--work-limit",
+        "none",
+        "-o",
+        dt,
+    ]);
+    assert_fails(
+        &[
+            "distance",
+            g,
+            "--source",
+            "0",
+            "--work-limit",
+            "lots",
+            "-o",
+            dt,
+        ],
+        &dir.path().join("nothing.txt"),
+        "is not a work limit",
+    );
+    // Terrain routes take the same limit.
+    let dem = dir.path().join("dem.asc");
+    let mut text = String::from("ncols 4\nnrows 4\nxllcorner 0\nyllcorner 0\ncellsize 10\n");
+    for row in 0..4 {
+        let values: Vec<String> = (0..4).map(|c| format!("{}", row * c)).collect();
+        text += &(values.join(" ") + "\n");
+    }
+    std::fs::write(&dem, text).unwrap();
+    let route = dir.path().join("route.geojson");
+    let (dm, r) = (dem.to_str().unwrap(), route.to_str().unwrap());
+    let terrain = ["terrain", dm, "--from", "5,5", "--to", "25,25", "-o", r];
+    let limited = [&terrain[..], &["--work-limit", "10"]].concat();
+    fails_quickly(&limited, 10, &route, "work limit of 1.00e1");
+    let huge = [&terrain[..], &["--k", "20000"]].concat();
+    fails_quickly(&huge, 10, &route, "largest k that fits");
+    geotracks_ok(&terrain);
+    // A million rows of Spot's 2,930 columns (23 GB) are refused before any row runs
+    // on a machine with less memory than that available (this test's), the ids file
+    // aside.
+    let sources = dir.path().join("sources.txt");
+    std::fs::write(&sources, "0\n".repeat(10_000_000)).unwrap();
+    let csv = dir.path().join("m.csv");
+    fails_quickly(
+        &[
+            "matrix",
+            SPOT,
+            "--sources",
+            sources.to_str().unwrap(),
+            "-o",
+            csv.to_str().unwrap(),
+        ],
+        30,
+        &csv,
+        "a distance matrix of 10000000 rows",
+    );
 }

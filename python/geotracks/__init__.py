@@ -21,13 +21,14 @@ from typing import NamedTuple, Optional, Union
 
 import numpy as np
 
-from ._geotracks import GeotracksError
+from ._geotracks import DEFAULT_WORK_LIMIT, GeotracksError
 from ._geotracks import MeshSolverCore as _Core
 from ._geotracks import read_mesh as _read_mesh
 from ._geotracks import skeleton as _skeleton
 from ._geotracks import terrain_route as _terrain_route
 
 __all__ = [
+    "DEFAULT_WORK_LIMIT",
     "Density",
     "GeotracksError",
     "Isoline",
@@ -69,6 +70,24 @@ def _array(array, name: str, shape: tuple, integer: bool = False) -> np.ndarray:
         sizes = ", ".join(str(want) for want in shape)
         raise ValueError(f"{name} must have shape ({sizes}{',' if len(shape) == 1 else ''}); got {a.shape}")
     return np.ascontiguousarray(a, dtype=np.int64 if integer else np.float64)
+
+
+def _real(value, name: str) -> float:
+    """`value` as a float, refusing what is not a real number (a string such as
+    ``"0.6"``, a bool, None) with a TypeError naming the argument: numbers are numbers,
+    as on the command line, where the text is parsed once. Whether the number is in
+    range is the library's to check."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise TypeError(f"{name} must be a real number; got {type(value).__name__} {value!r}")
+    return float(value)
+
+
+def _integer(value, name: str) -> int:
+    """`value` as an int, refusing what is not an integer (a string, a float, a bool)
+    with a TypeError naming the argument."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"{name} must be an integer; got {type(value).__name__} {value!r}")
+    return int(value)
 
 
 def _points(points, name: str) -> list:
@@ -214,11 +233,25 @@ class MeshSolver:
         ``"dijkstra"`` (mesh edges only).
     :param metric: ``None`` (Euclidean), a :class:`Density`, a :class:`Tensor` or a
         :class:`TensorField`.
+    :param work_limit: the most distance tests one run may be estimated to make
+        (default :data:`DEFAULT_WORK_LIMIT`, a few minutes of one core; ``None``: no
+        limit): a ``k`` that needs more is refused before any work, with the estimate
+        and the largest ``k`` that fits.
     :raises GeotracksError: for a mesh the library refuses (NaN or huge coordinates, a
-        face naming a missing vertex, no usable face) or a bad metric.
+        face naming a missing vertex, no usable face), a bad metric, or a ``k`` that is
+        not > 0 or breaks a limit (memory, work).
+    :raises TypeError: for a ``k`` or ``work_limit`` that is not a number (``"2"``).
     """
 
-    def __init__(self, V, F, k: Optional[float] = None, method: str = "wave", metric=None):
+    def __init__(
+        self,
+        V,
+        F,
+        k: Optional[float] = None,
+        method: str = "wave",
+        metric=None,
+        work_limit: Optional[int] = DEFAULT_WORK_LIMIT,
+    ):
         V = _array(V, "V", ("n", 3))
         F = _array(F, "F", ("m", 3), integer=True)
         if metric is None:
@@ -230,7 +263,12 @@ class MeshSolver:
                 "metric must be None, geotracks.Density, geotracks.Tensor or geotracks.TensorField; "
                 f"got {type(metric).__name__}"
             )
-        self._core = _Core(V, F, None if k is None else float(k), str(method), kind, data)
+        k = None if k is None else _real(k, "k")
+        if work_limit is not None:
+            work_limit = _integer(work_limit, "work_limit")
+            if work_limit < 1:
+                raise GeotracksError(f"work_limit = {work_limit}: it must be at least 1 (None: no limit)")
+        self._core = _Core(V, F, k, str(method), kind, data, work_limit)
 
     @property
     def vertex_count(self) -> int:
@@ -252,12 +290,13 @@ class MeshSolver:
         ``inf`` where unreached (another component, beyond ``max_distance``).
 
         :param sources: a vertex id or surface point, or a sequence of them.
-        :param max_distance: stop there; farther vertices are ``inf``.
+        :param max_distance: stop there; farther vertices are ``inf``. A number ``>= 0``
+            (a negative one or NaN is refused, as on the command line).
         :param targets: stop once the values at these points are final (the values
             returned there are exact; others may be ``inf``).
         """
         targets = None if targets is None else _points(targets, "targets")
-        return self._core.distance(_points(sources, "sources"), float(max_distance), targets)
+        return self._core.distance(_points(sources, "sources"), _real(max_distance, "max_distance"), targets)
 
     def voronoi(self, sources) -> tuple:
         """``(distances, labels)``: the distance to every vertex and the index (into
@@ -284,8 +323,11 @@ class MeshSolver:
         """The level sets of the distance from ``sources`` at each of ``levels``, as a
         list of :class:`Isoline` (several per level where the set has several pieces),
         each point on its level to 1e-12. ``subdivisions``: sub-triangles per face
-        edge (default 4); a loop smaller than one can be missed."""
-        levels = [float(x) for x in np.atleast_1d(levels)]
+        edge (default 4); a loop smaller than one can be missed. At most 1000 levels
+        per call (``geotracks::trace::MAX_LEVELS``)."""
+        levels = [_real(x, "levels") for x in np.atleast_1d(levels).tolist()]
+        if subdivisions is not None:
+            subdivisions = _integer(subdivisions, "subdivisions")
         lines = self._core.isolines(_points(sources, "sources"), levels, subdivisions)
         return [Isoline(level, points, closed) for level, points, closed in lines]
 
@@ -298,12 +340,16 @@ class MeshSolver:
         Unreached parts of a face belong to no region."""
         if faces is not None:
             faces = _array(np.atleast_1d(faces), "faces", ("n",), integer=True)
+        if subdivisions is not None:
+            subdivisions = _integer(subdivisions, "subdivisions")
         regions = self._core.regions(_points(sources, "sources"), faces, subdivisions)
         return [Region(*r) for r in regions]
 
     def distance_matrix(self, sources, targets=None) -> np.ndarray:
         """Distances from each source vertex (rows) to every vertex, or to ``targets``
-        (columns), computed in parallel; shape ``(len(sources), n or len(targets))``."""
+        (columns), computed in parallel; shape ``(len(sources), n or len(targets))``.
+        A matrix that would not fit in the memory available (8 bytes a value) is
+        refused before any row is computed."""
         sources = _array(np.atleast_1d(sources), "sources", ("n",), integer=True)
         targets = None if targets is None else _array(np.atleast_1d(targets), "targets", ("n",), integer=True)
         return self._core.distance_matrix(sources, targets)
@@ -313,7 +359,7 @@ class MeshSolver:
         columns, distances)`` arrays (row: the source's vertex id), computed in
         parallel: the triples of :meth:`local_distance_matrix` for some rows only."""
         sources = _array(np.atleast_1d(sources), "sources", ("n",), integer=True)
-        return self._core.local_distance_rows(sources, float(max_distance))
+        return self._core.local_distance_rows(sources, _real(max_distance, "max_distance"))
 
     def local_distance_matrix(self, max_distance: float):
         """Every pair of vertices within ``max_distance`` of each other, as a
@@ -322,7 +368,9 @@ class MeshSolver:
         from scipy.sparse import csr_matrix
 
         n = self.vertex_count
-        rows, cols, data = self._core.local_distance_rows(np.arange(n, dtype=np.int64), float(max_distance))
+        rows, cols, data = self._core.local_distance_rows(
+            np.arange(n, dtype=np.int64), _real(max_distance, "max_distance")
+        )
         return csr_matrix((data, (rows, cols)), shape=(n, n))
 
 
@@ -366,12 +414,12 @@ def terrain_route(
     :raises GeotracksError: for an unreadable grid, a point off the grid or on NODATA,
         a bad cost, a bad method, or no route.
     """
-    start = tuple(float(c) for c in start)
-    end = tuple(float(c) for c in end)
+    start = tuple(_real(c, "start") for c in start)
+    end = tuple(_real(c, "end") for c in end)
     if len(start) != 2 or len(end) != 2:
         raise ValueError("start and end are map points (x, y)")
     points, cumulative, total = _terrain_route(
-        str(dem), start, end, str(cost), float(k), str(method)
+        str(dem), start, end, str(cost), _real(k, "k"), str(method)
     )
     return Route(points, cumulative, total)
 
@@ -401,4 +449,4 @@ def skeleton(axis, prune="7%", burn: str = "boundary", k: float = 5.0) -> Skelet
     :param burn: ``"boundary"`` (the grassfire from the axis's border) or ``"radius"``
         (each point burns at its medial radius).
     """
-    return Skeleton(*_skeleton(str(axis), str(prune), str(burn), float(k)))
+    return Skeleton(*_skeleton(str(axis), str(prune), str(burn), _real(k, "k")))

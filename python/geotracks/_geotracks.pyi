@@ -12,6 +12,9 @@ _Point = Union[int, str]
 class GeotracksError(ValueError):
     """What the geotracks library refused, with its message."""
 
+#: The default work limit: estimated distance tests per run (`Options::DEFAULT_WORK_LIMIT`).
+DEFAULT_WORK_LIMIT: int
+
 class MeshSolverCore:
     def __init__(
         self,
@@ -21,6 +24,7 @@ class MeshSolverCore:
         method: str,
         metric: str,
         data: Optional[npt.NDArray[np.float64]] = None,
+        work_limit: Optional[int] = ...,
     ) -> None: ...
     @property
     def vertex_count(self) -> int: ...

@@ -112,7 +112,10 @@ impl MeshSolverCore {
     /// `data` one value per vertex), "tensor" (with `data` (m, 6): xx, xy, xz, yy, yz,
     /// zz per face) or "tensor_field" (`data` (n, 6), per vertex).
     #[new]
-    #[pyo3(signature = (vertices, faces, k, method, metric, data=None))]
+    /// `work_limit`: the most distance tests a run may be estimated to make (`None`: no
+    /// limit; `Options::work_limit`).
+    #[pyo3(signature = (vertices, faces, k, method, metric, data=None, work_limit=Some(Options::DEFAULT_WORK_LIMIT)))]
+    #[allow(clippy::too_many_arguments)] // the Python constructor's arguments, as given
     fn new(
         py: Python<'_>,
         vertices: PyReadonlyArray2<'_, f64>,
@@ -121,6 +124,7 @@ impl MeshSolverCore {
         method: &str,
         metric: &str,
         data: Option<PyReadonlyArray2<'_, f64>>,
+        work_limit: Option<u64>,
     ) -> PyResult<Self> {
         let method: Method = method.parse().map_err(error)?;
         let mesh = TriMesh::new(positions(&vertices), triangles(&faces)?).map_err(error)?;
@@ -148,7 +152,10 @@ impl MeshSolverCore {
         // tensor, a tensor field constant on each face), the Steiner graph's elsewhere.
         let face_flat = geotracks::Metric::is_face_norm(&metric);
         let k = k.unwrap_or(method.default_k(face_flat));
-        let options = Options::DEFAULT.with_k(k).with_method(method);
+        let options = Options::DEFAULT
+            .with_k(k)
+            .with_method(method)
+            .with_work_limit(work_limit);
         let cell =
             py.detach(|| MeshAndSolver::try_new(mesh, |mesh| Solver::new(mesh, metric, &options)));
         Ok(MeshSolverCore {
@@ -183,6 +190,10 @@ impl MeshSolverCore {
         max_distance: f64,
         targets: Option<Vec<PointArg>>,
     ) -> PyResult<Vector<'py, f64>> {
+        Stop::NONE
+            .with_max_distance(max_distance)
+            .check()
+            .map_err(|e| error(format!("max_distance = {max_distance}: {e}")))?;
         let (distances, _) = self.field(py, &sources, max_distance, targets, false)?;
         Ok(distances.into_pyarray(py))
     }
@@ -268,6 +279,11 @@ impl MeshSolverCore {
     ) -> PyResult<Vec<(f64, Matrix<'py, f64>, bool)>> {
         use geotracks::trace::IsolineOptions;
         let mesh = self.cell.borrow_owner();
+        // The library's bound on levels, before the field is computed (no level at
+        // all draws nothing, as the library does).
+        if !levels.is_empty() {
+            geotracks::trace::check_level_count(levels.len()).map_err(error)?;
+        }
         let mut options = IsolineOptions::DEFAULT;
         if let Some(n) = subdivisions {
             options = options.with_subdivisions(n);
@@ -377,31 +393,14 @@ impl MeshSolverCore {
         sources: PyReadonlyArray1<'_, i64>,
         max_distance: f64,
     ) -> PyResult<(Vector<'py, i64>, Vector<'py, i64>, Vector<'py, f64>)> {
-        use rayon::prelude::*;
-        if max_distance.is_nan() || max_distance < 0.0 {
-            return Err(error(format!(
-                "max_distance = {max_distance}: it must be a number >= 0"
-            )));
-        }
+        // The library's check, as every run and the command line make it.
+        Stop::NONE
+            .with_max_distance(max_distance)
+            .check()
+            .map_err(|e| error(format!("max_distance = {max_distance}: {e}")))?;
         let sources = vertex_ids(&sources, "source")?;
         let solver = self.cell.borrow_dependent();
-        let stop = Stop::NONE.with_max_distance(max_distance);
-        let rows: Result<Vec<Vec<(u32, f64)>>, geotracks::Error> = py.detach(|| {
-            sources
-                .par_iter()
-                .map_init(
-                    || solver.workspace(),
-                    |workspace, &v| {
-                        solver.run_from(workspace, &[Source::new(v)], &stop)?;
-                        // What the run reached, not a scan of the mesh: with a small
-                        // radius that is most of the saving.
-                        let mut row: Vec<(u32, f64)> = workspace.reached_vertices().collect();
-                        row.sort_unstable_by_key(|&(j, _)| j);
-                        Ok(row)
-                    },
-                )
-                .collect()
-        });
+        let rows = py.detach(|| solver.local_distance_rows(&sources, max_distance));
         let rows = rows.map_err(error)?;
         let total: usize = rows.iter().map(Vec::len).sum();
         let (mut r, mut c, mut d) = (
@@ -600,5 +599,6 @@ fn _geotracks(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(terrain_route, m)?)?;
     m.add_function(wrap_pyfunction!(skeleton, m)?)?;
     m.add("GeotracksError", m.py().get_type::<GeotracksError>())?;
+    m.add("DEFAULT_WORK_LIMIT", Options::DEFAULT_WORK_LIMIT)?;
     Ok(())
 }

@@ -380,3 +380,60 @@ def test_distance_and_gradient_at_surface_points():
     assert d[0] == 0.0 and np.isnan(g[0]).all() and np.isnan(t[0]).all()
     with pytest.raises(geotracks.GeotracksError):
         solver.gradient(0, ["f:999:0.2,0.3,0.5"])
+
+
+def test_python_refuses_what_the_command_line_refuses():
+    V, F = grid(2)
+    solver = geotracks.MeshSolver(V, F)
+    # A negative maximum distance: refused by the library's own check (it used to
+    # return inf everywhere, the source included), naming the argument.
+    for bad in (-1, -1e-300, float("nan")):
+        with pytest.raises(geotracks.GeotracksError, match="max_distance.*must be a number >= 0"):
+            solver.distance(0, max_distance=bad)
+        with pytest.raises(geotracks.GeotracksError, match="max_distance"):
+            solver.local_distance_rows([0], bad)
+    assert solver.distance(0, max_distance=0)[0] == 0.0
+    assert solver.distance(0, max_distance=np.float32(0.5))[0] == 0.0
+    # Numbers given as text are refused with a TypeError naming the argument.
+    with pytest.raises(TypeError, match="max_distance"):
+        solver.distance(0, max_distance="0.6")
+    with pytest.raises(TypeError, match="max_distance"):
+        solver.local_distance_matrix("0.6")
+    with pytest.raises(TypeError, match="k must be a real number"):
+        geotracks.MeshSolver(V, F, k="2")
+    with pytest.raises(TypeError, match="k must be a real number"):
+        geotracks.MeshSolver(V, F, k=True)
+    with pytest.raises(TypeError, match="levels"):
+        solver.isolines(0, ["0.5"])
+    with pytest.raises(TypeError, match="subdivisions"):
+        solver.isolines(0, [0.5], subdivisions="4")
+    # k out of range: the library's error, as on the command line.
+    for bad in (0, -2, float("nan"), float("inf")):
+        with pytest.raises(geotracks.GeotracksError, match="k ="):
+            geotracks.MeshSolver(V, F, k=bad)
+
+
+def test_knobs_that_scale_work_are_bounded_before_any_work():
+    V, F = grid(2)
+    # A k whose estimated work breaks the limit is refused at once, naming the
+    # estimate, the limit and the largest k that fits; the limit can be lifted.
+    with pytest.raises(geotracks.GeotracksError, match="distance tests.*work limit.*largest k"):
+        geotracks.MeshSolver(V, F, k=50000)
+    with pytest.raises(geotracks.GeotracksError, match="work limit of 1.00e3"):
+        geotracks.MeshSolver(V, F, k=20, work_limit=1000)
+    assert geotracks.MeshSolver(V, F, k=50, work_limit=None).method == "wave"
+    assert geotracks.DEFAULT_WORK_LIMIT == 4_000_000_000
+    with pytest.raises(TypeError, match="work_limit"):
+        geotracks.MeshSolver(V, F, work_limit="1e9")
+    solver = geotracks.MeshSolver(V, F)
+    # More levels than one call draws: refused before the field is computed.
+    with pytest.raises(geotracks.GeotracksError, match="levels.*1000"):
+        solver.isolines(0, np.linspace(0.1, 1.0, 1001))
+    assert len(solver.isolines(0, np.linspace(0.1, 1.0, 1000))) > 0
+    assert solver.isolines(0, []) == []
+    # A distance matrix that cannot fit in memory (here 10⁷ rows of 3,721 values,
+    # 298 GB) is refused before any row runs.
+    V, F = grid(60)
+    solver = geotracks.MeshSolver(V, F)
+    with pytest.raises(geotracks.GeotracksError, match="distance matrix of 10000000 rows"):
+        solver.distance_matrix(np.zeros(10_000_000, dtype=np.int64))

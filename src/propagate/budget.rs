@@ -1,7 +1,19 @@
 //! What a run will need, checked before anything big is allocated: the points one
-//! edge may carry, 32-bit node ids, and memory. A k that breaks a limit is refused with
-//! the numbers and the largest k that would fit, instead of failing late (or being
-//! killed) after gigabytes were allocated.
+//! edge may carry, 32-bit node ids, memory, and the work a run would do. A k that
+//! breaks a limit is refused with the numbers and the largest k that would fit, instead
+//! of failing late (or being killed) after gigabytes were allocated, or running for
+//! hours.
+//!
+//! # The work estimate
+//! Every Steiner engine tests distances between the nodes of each face (its vertices
+//! and the points on its three edges): the complete Steiner graph all of their pairs,
+//! the wavefront engine each wave against the nodes across its face, the tracks
+//! engine the pairs its tracks leave. A face with `p` nodes costs about `c · p²`
+//! distance tests, with `c` measured per engine on flat grids from k = 100 to 1000
+//! (where the estimate is within 2× of the `distance_tests` a run reports): 0.6 for the
+//! complete graph, 0.25 for the wavefront engine, 0.03 for the tracks engine. The sum
+//! over the faces is checked against [`Options::work_limit`](crate::Options::work_limit)
+//! before the layout is built.
 
 use super::Method;
 use crate::error::SizeLimit;
@@ -47,16 +59,23 @@ impl Spacing<'_> {
     }
 }
 
-/// Checks `scheme` on `mesh` for `method` against the limits; `memory` is the budget in
-/// bytes (`None`: no memory check).
+/// The budgets a layout is checked against: bytes (`None`: no memory check) and
+/// estimated distance tests (`None`: no work check).
+#[derive(Clone, Copy)]
+pub(super) struct Limits {
+    pub memory: Option<u64>,
+    pub work: Option<u64>,
+}
+
+/// Checks `scheme` on `mesh` for `method` against the limits.
 pub(super) fn check(
     mesh: &TriMesh,
     scheme: SteinerScheme,
     spacing: Spacing,
     method: Method,
-    memory: Option<u64>,
+    limits: Limits,
 ) -> Result<u64, Error> {
-    let limit = match breaks(mesh, scheme, spacing, method, memory) {
+    let limit = match breaks(mesh, scheme, spacing, method, limits) {
         Ok(needed) => return Ok(needed),
         Err(limit) => limit,
     };
@@ -64,7 +83,7 @@ pub(super) fn check(
     let (mut lo, mut hi) = (0.0, scheme.k());
     for _ in 0..60 {
         let mid = 0.5 * (lo + hi);
-        if breaks(mesh, scheme.with_k(mid), spacing, method, memory).is_ok() {
+        if breaks(mesh, scheme.with_k(mid), spacing, method, limits).is_ok() {
             lo = mid;
         } else {
             hi = mid;
@@ -92,7 +111,7 @@ fn breaks(
     scheme: SteinerScheme,
     spacing: Spacing,
     method: Method,
-    memory: Option<u64>,
+    limits: Limits,
 ) -> Result<u64, SizeLimit> {
     if !scheme.is_valid() {
         // Below any point at all: nothing to lay out, nothing to break.
@@ -117,10 +136,42 @@ fn breaks(
         return Err(SizeLimit::Nodes { nodes });
     }
     let needed = bytes(mesh, &counts, steiner, nodes, method);
-    match memory {
-        Some(available) if needed > available => Err(SizeLimit::Memory { needed, available }),
-        _ => Ok(needed),
+    if let Some(available) = limits.memory {
+        if needed > available {
+            return Err(SizeLimit::Memory { needed, available });
+        }
     }
+    if let Some(limit) = limits.work {
+        let tests = distance_tests(mesh, &counts, method);
+        if tests > limit as f64 {
+            return Err(SizeLimit::Work { tests, limit });
+        }
+    }
+    Ok(needed)
+}
+
+/// About how many distance tests one full run makes (see the module's docs): per face,
+/// the engine's share of the pairs of its nodes.
+pub(super) fn distance_tests(mesh: &TriMesh, counts: &[u32], method: Method) -> f64 {
+    let share = match method {
+        Method::Graph => 0.6,
+        Method::Wave => 0.25,
+        Method::Tracks => 0.03,
+        // Edges only: a few tests per edge, never a concern.
+        Method::Dijkstra => return 2.0 * counts.len() as f64,
+    };
+    let pairs: f64 = (0..mesh.face_count() as u32)
+        .map(|f| {
+            let points: u64 = mesh
+                .face_edges(f)
+                .iter()
+                .map(|&e| counts[e as usize] as u64)
+                .sum();
+            let nodes = (3 + points) as f64;
+            nodes * nodes
+        })
+        .sum();
+    share * pairs
 }
 
 /// The bytes one more run's buffers take (a workspace: per node its distance, parent,

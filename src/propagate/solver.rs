@@ -254,8 +254,9 @@ impl<'m, M: Metric> Solver<'m, M> {
     /// [`Error::InvalidK`] for a scheme with no points, [`Error::InvalidMeanEdgeLength`]
     /// for a mean edge length that is not a length; [`Error::KTooLarge`] when an edge
     /// would carry more than 65535 points (tracks), the nodes would exceed 32-bit ids,
-    /// or the run would not fit [`Options::memory_limit`] (checked before allocating,
-    /// with the largest k that fits); [`Error::TooLarge`] when the tracks engine's
+    /// the run would not fit [`Options::memory_limit`], or it would make more distance
+    /// tests than [`Options::work_limit`] (checked before allocating, with the largest
+    /// k that fits); [`Error::TooLarge`] when the tracks engine's
     /// instances exceed 32-bit ids.
     pub fn new(mesh: &'m TriMesh, metric: M, options: &Options) -> Result<Self, Error> {
         let start = Instant::now();
@@ -304,8 +305,11 @@ impl<'m, M: Metric> Solver<'m, M> {
                 mean: options.mean_edge_length,
                 containing: flat.as_ref().map(|f| (&in_space[..], &f.refracting[..])),
             };
-            let memory = options.memory_limit.or_else(budget::available_memory);
-            budgeted = budget::check(mesh, options.steiner, spacing, options.method, memory)?;
+            let limits = budget::Limits {
+                memory: options.memory_limit.or_else(budget::available_memory),
+                work: options.work_limit,
+            };
+            budgeted = budget::check(mesh, options.steiner, spacing, options.method, limits)?;
             let counts = spacing.counts(options.steiner);
             if options.method == Method::Wave {
                 reach = lengths.iter().fold(0.0f64, |m, &l| m.max(l));
@@ -539,8 +543,8 @@ impl<'m, M: Metric> Solver<'m, M> {
     /// # Errors
     /// [`Error::NoSource`]; [`Error::SourceOutOfRange`] for a source vertex that does not
     /// exist; [`Error::InvalidPoint`] for any other source or target that is not a point
-    /// of the mesh; [`Error::InvalidValue`] for a start value or maximum distance that is
-    /// NaN (or an infinite start); [`Error::InvalidCost`] if the metric returns NaN or a
+    /// of the mesh; [`Error::InvalidValue`] for a start value that is not finite or a
+    /// maximum distance that is negative or NaN ([`Stop::check`]); [`Error::InvalidCost`] if the metric returns NaN or a
     /// negative cost.
     pub fn run_from(
         &self,
@@ -572,12 +576,7 @@ impl<'m, M: Metric> Solver<'m, M> {
         if workspace.sources.is_empty() {
             return Err(Error::NoSource);
         }
-        if stop.max_distance.is_nan() {
-            return Err(Error::InvalidValue {
-                which: ValueRole::MaxDistance,
-                value: stop.max_distance,
-            });
-        }
+        stop.check()?;
         self.validate_sources(&mut workspace.sources)?;
         workspace.targets.clear();
         for (i, target) in stop.targets.iter().enumerate() {
@@ -884,7 +883,9 @@ impl<'m, M: Metric> Solver<'m, M> {
     ///
     /// # Errors
     /// As [`Solver::run`], plus [`Error::TargetOutOfRange`] for a target that is not a
-    /// vertex (targets are checked first, before any work).
+    /// vertex and [`Error::OutputTooLarge`] when the rows (8 bytes a value) would not
+    /// fit [`Options::memory_limit`], by default what the system reports available
+    /// (both checked first, before any work).
     ///
     /// ```
     /// use geotracks::{mesh::TriMesh, Euclidean, Options, Solver};
@@ -928,6 +929,19 @@ impl<'m, M: Metric> Solver<'m, M> {
                 vertex_count,
             });
         }
+        // The rows are kept in memory: refuse before any run what cannot fit.
+        let columns = targets.map_or(vertex_count, <[u32]>::len);
+        let bytes = (sources.len() as u64).saturating_mul(columns as u64 * 8);
+        if let Some(available) = self.memory_limit.or_else(budget::available_memory) {
+            if bytes > available {
+                return Err(Error::OutputTooLarge {
+                    rows: sources.len(),
+                    columns,
+                    bytes,
+                    available,
+                });
+            }
+        }
         let stop = match targets {
             Some(t) => {
                 Stop::NONE.with_targets(t.iter().map(|&v| SurfacePoint::Vertex(v)).collect())
@@ -962,6 +976,67 @@ impl<'m, M: Metric> Solver<'m, M> {
                 }
                 row
             })
+            .collect()
+    }
+
+    /// For each of `sources` (vertices), the vertices within `max_distance` of it and
+    /// their distances, sorted by vertex: one run per source stopped at
+    /// `max_distance`, on all cores (rayon), each costing what it reaches. The rows
+    /// are kept in memory: their size is not known before the runs, so it is counted
+    /// as they finish, and the call stops as soon as they would exceed
+    /// [`Options::memory_limit`] (by default what the system reports available).
+    ///
+    /// ```
+    /// use geotracks::{mesh::TriMesh, Euclidean, Options, Solver};
+    /// let mesh = TriMesh::new(
+    ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+    ///     vec![[0, 1, 2], [0, 2, 3]],
+    /// )?;
+    /// let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT)?;
+    /// let rows = solver.local_distance_rows(&[0], 1.2)?;
+    /// assert_eq!(rows[0].iter().map(|&(v, _)| v).collect::<Vec<_>>(), [0, 1, 3]);
+    /// # Ok::<(), geotracks::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`Solver::run`] (a negative or NaN `max_distance` is refused before any
+    /// run), plus [`Error::LocalRowsTooLarge`] when the rows outgrow the memory.
+    pub fn local_distance_rows(
+        &self,
+        sources: &[u32],
+        max_distance: f64,
+    ) -> Result<Vec<Vec<(u32, f64)>>, Error> {
+        use std::sync::atomic::{AtomicU64, Ordering};
+        let stop = Stop::NONE.with_max_distance(max_distance);
+        stop.check()?;
+        let available = self.memory_limit.or_else(budget::available_memory);
+        let pair = std::mem::size_of::<(u32, f64)>() as u64;
+        let pairs = AtomicU64::new(0);
+        sources
+            .par_iter()
+            .map_init(
+                || self.workspace(),
+                |workspace, &v| {
+                    self.run_from(workspace, &[Source::new(v)], &stop)?;
+                    // What the run reached, not a scan of the mesh: with a small radius
+                    // that is most of the saving.
+                    let mut row: Vec<(u32, f64)> = workspace.reached_vertices().collect();
+                    row.sort_unstable_by_key(|&(j, _)| j);
+                    let total =
+                        pairs.fetch_add(row.len() as u64, Ordering::Relaxed) + row.len() as u64;
+                    match available {
+                        Some(available) if total.saturating_mul(pair) > available => {
+                            Err(Error::LocalRowsTooLarge {
+                                max_distance,
+                                sources: sources.len(),
+                                pairs: total,
+                                available,
+                            })
+                        }
+                        _ => Ok(row),
+                    }
+                },
+            )
             .collect()
     }
 

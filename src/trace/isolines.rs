@@ -26,6 +26,7 @@
 use super::query::FaceFields;
 use super::Query;
 use crate::error::ValueRole;
+use crate::flat::flat_frame;
 use crate::mesh::TriMesh;
 use crate::surface::SurfacePoint;
 use crate::Error;
@@ -85,6 +86,29 @@ impl Default for IsolineOptions {
     fn default() -> Self {
         IsolineOptions::DEFAULT
     }
+}
+
+/// The most levels one call of [`Query::isolines`] draws. Each level costs a pass over
+/// the faces its range crosses and writes its lines: a thousand levels draw a contour
+/// every 0.1 % of the range, finer than any picture or map shows, while a mistyped
+/// count (10⁸) would run for hours and fill the memory. Draw more in several calls.
+pub const MAX_LEVELS: usize = 1000;
+
+/// Checks a number of levels against [`MAX_LEVELS`] (and that there is at least one),
+/// before any level is computed or allocated; [`Query::isolines`] makes the same
+/// check.
+///
+/// # Errors
+/// [`Error::InvalidIsolineOption`] naming `levels`.
+pub fn check_level_count(count: usize) -> Result<(), Error> {
+    if count == 0 || count > MAX_LEVELS {
+        return Err(Error::InvalidIsolineOption {
+            option: "number of levels",
+            value: count as f64,
+            expected: "between 1 and 1000 (draw more in several calls)",
+        });
+    }
+    Ok(())
 }
 
 /// `count` levels spread evenly over `(0, max)`, excluding both ends: the level at 0
@@ -150,15 +174,32 @@ impl<M: Metric> Query<'_, M> {
     ///
     /// # Errors
     /// [`Error::InvalidValue`] for a level that is not finite,
-    /// [`Error::InvalidIsolineOption`] for options out of range.
+    /// [`Error::InvalidIsolineOption`] for options out of range or more than
+    /// [`MAX_LEVELS`] levels.
     pub fn isolines(
         &self,
         levels: &[f64],
         options: &IsolineOptions,
     ) -> Result<Vec<Isoline>, Error> {
         check_options(levels, options)?;
+        Ok(self.isolines_gated(levels, options, true))
+    }
+
+    /// The isolines, with `gate`: faces whose values bound away from every level are
+    /// skipped before their grid is evaluated (see [`Query::may_cross`]), so the work
+    /// follows the faces the lines cross, not the mesh. Without it (the tests compare
+    /// both), every face's grid is evaluated.
+    pub(crate) fn isolines_gated(
+        &self,
+        levels: &[f64],
+        options: &IsolineOptions,
+        gate: bool,
+    ) -> Vec<Isoline> {
         let mesh = self.mesh();
         let scale = mesh.mean_edge_length();
+        let mut sorted = levels.to_vec();
+        sorted.sort_by(f64::total_cmp);
+        let starts = gate.then(|| self.least_starts());
         let segments: Vec<Segment> = (0..mesh.face_count() as u32)
             .into_par_iter()
             // One cache of candidates per worker's run of faces: neighbouring faces
@@ -166,15 +207,114 @@ impl<M: Metric> Query<'_, M> {
             // again.
             .map_init(
                 || RefCell::new(FaceFields::default()),
-                |cache, f| FaceGrid::new(self, f, options, scale, cache).segments(levels),
+                |cache, f| match &starts {
+                    Some(starts) if !self.may_cross(f, &sorted, starts, cache) => Vec::new(),
+                    _ => FaceGrid::new(self, f, options, scale, cache).segments(levels),
+                },
             )
             .flatten_iter()
             .collect();
-        Ok(link(levels, segments))
+        link(levels, segments)
+    }
+
+    /// Per face, the least start of the run's sources on its closure (`inf`: none).
+    fn least_starts(&self) -> Vec<f64> {
+        let mesh = self.mesh();
+        let mut least = vec![f64::INFINITY; mesh.face_count()];
+        for source in self.field.sources {
+            for &f in source.point.faces(mesh).iter() {
+                least[f as usize] = least[f as usize].min(source.start);
+            }
+        }
+        least
+    }
+
+    /// Whether a level of `sorted` may lie within face `f`'s grid values, from bounds
+    /// on every value in the face that cost no evaluation of them (a face whose
+    /// bounds hold no level has no grid value below a level and another not below
+    /// it, so [`FaceGrid::segments`] would draw nothing there):
+    ///
+    /// - from below: a value in the face (on its edges, the least over the faces
+    ///   around) is a candidate's, never below its floor; for the Steiner-graph
+    ///   engines the candidates are the nodes of the face (value plus a cost ≥ 0) and
+    ///   the sources on it (start plus a cost), so the least node value and start over
+    ///   the face and the faces across its edges bound it. The wavefront engine's
+    ///   waves give less than their nodes, by at most the distance from the node: a
+    ///   first, cheap bound allows for that; where it holds a level, the face's
+    ///   candidates are built and their floors read.
+    /// - from above, where the metric flattens the face and the run did not stop
+    ///   early: every reached vertex of the face is a candidate, giving its value plus
+    ///   the flattened distance, at most the face's longest flattened edge; a vertex's
+    ///   own grid value is the run's value there.
+    fn may_cross(
+        &self,
+        f: u32,
+        sorted: &[f64],
+        starts: &[f64],
+        cache: &RefCell<FaceFields>,
+    ) -> bool {
+        let mesh = self.mesh();
+        let field = &self.field;
+        let mut around = vec![f];
+        for e in mesh.face_edges(f) {
+            around.extend(mesh.edge_faces(e).iter().filter(|&&g| g != f));
+        }
+        let vertices = mesh.face_vertices(f).map(|v| field.distance[v as usize]);
+        let hi = match flat_frame(self.metric, f, mesh.frame(f)) {
+            Some(frame) if !field.horizon.is_bounded() => {
+                let nearest = vertices.iter().copied().fold(f64::INFINITY, f64::min);
+                let farthest = vertices.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                (nearest + frame.diameter()).max(farthest)
+            }
+            _ => f64::INFINITY,
+        };
+        // Whether a level lies in `[lo, hi)`: the least level at or above `lo`, if
+        // below `hi`.
+        let holds = |lo: f64| {
+            let first = sorted.partition_point(|&level| level < lo);
+            sorted.get(first).is_some_and(|&level| level < hi)
+        };
+        // The nodes' values (and the starts) bound the Steiner-graph engines'
+        // candidates from below. A wave gives a point `x` its value at its node `n`
+        // less at most the distance from `n` to `x` (its lines are straight), so for
+        // the wavefront engine the bound is lowered by twice the largest flattened
+        // face diameter around (`x` in the face, `n` on it or on a face across).
+        let mut lo = vertices.iter().copied().fold(f64::INFINITY, f64::min);
+        let mut reach = 0.0f64;
+        for &g in &around {
+            lo = lo.min(starts[g as usize]);
+            for (node, _) in field.layout.face_nodes(mesh, g) {
+                lo = lo.min(field.distance[node as usize]);
+            }
+            if self.has_waves() {
+                let diameter = flat_frame(self.metric, g, mesh.frame(g))
+                    .map_or(f64::INFINITY, |frame| frame.diameter());
+                reach = reach.max(2.0 * diameter);
+            }
+        }
+        if !holds(lo - reach) {
+            return false;
+        }
+        if !self.has_waves() {
+            return true;
+        }
+        // The wavefront engine's candidates, built (the grid would build them anyway):
+        // none is below its floor, on the face and on the faces across its edges.
+        let mut lo = vertices.iter().copied().fold(f64::INFINITY, f64::min);
+        let mut cache = cache.borrow_mut();
+        for &g in &around {
+            lo = lo.min(starts[g as usize]);
+            let least = cache.get(self, g).candidates.first();
+            lo = lo.min(least.map_or(f64::INFINITY, |c| c.floor));
+        }
+        holds(lo)
     }
 }
 
 fn check_options(levels: &[f64], options: &IsolineOptions) -> Result<(), Error> {
+    if levels.len() > MAX_LEVELS {
+        check_level_count(levels.len())?;
+    }
     if let Some((index, &value)) = levels.iter().enumerate().find(|(_, l)| !l.is_finite()) {
         return Err(Error::InvalidValue {
             which: ValueRole::IsolineLevel { index },
@@ -718,4 +858,125 @@ fn link(levels: &[f64], segments: Vec<Segment>) -> Vec<Isoline> {
     }
     lines.sort_by(|a, b| a.level.total_cmp(&b.level));
     lines
+}
+
+#[cfg(test)]
+mod tests {
+    use super::IsolineOptions;
+    use crate::mesh::TriMesh;
+    use crate::terrain::Impassable;
+    use crate::{Density, Euclidean, Method, Options, Solver, Source, Stop, Tensor};
+    use geotracks_metrics::Metric;
+
+    /// A small deterministic generator (xorshift).
+    struct Rng(u64);
+    impl Rng {
+        fn next(&mut self) -> f64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// An `n` × `n` grid, jittered in the plane and lifted by `lift` (0: flat), with
+    /// random diagonals.
+    fn mesh(rng: &mut Rng, n: usize, lift: f64) -> TriMesh {
+        let mut positions = Vec::new();
+        for j in 0..=n {
+            for i in 0..=n {
+                let jitter = |rng: &mut Rng| 0.3 * (rng.next() - 0.5);
+                let (x, y) = (i as f64 + jitter(rng), j as f64 + jitter(rng));
+                positions.push([x, y, lift * (rng.next() - 0.5)]);
+            }
+        }
+        let id = |i: usize, j: usize| (j * (n + 1) + i) as u32;
+        let mut faces = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+                if rng.next() < 0.5 {
+                    faces.extend([[a, b, c], [a, c, d]]);
+                } else {
+                    faces.extend([[a, b, d], [b, c, d]]);
+                }
+            }
+        }
+        TriMesh::new(positions, faces).unwrap()
+    }
+
+    /// Skipping the faces whose bounds hold no level draws exactly what evaluating
+    /// every face draws: same lines, same points, bit for bit, for every engine, flat
+    /// and non-flat metrics, walls, several sources (point sources, start values), and
+    /// stopped runs.
+    fn same_with_and_without_the_gate<M: Metric>(
+        mesh: &TriMesh,
+        metric: M,
+        method: Method,
+        rng: &mut Rng,
+    ) -> usize {
+        let options = Options::DEFAULT.with_method(method).with_k(3.0);
+        let solver = Solver::new(mesh, metric, &options).unwrap();
+        let n = mesh.vertex_count() as u32;
+        let mut sources = vec![Source::new((rng.next() * n as f64) as u32)];
+        if rng.next() < 0.5 {
+            let f = (rng.next() * mesh.face_count() as f64) as u32;
+            let point: crate::SurfacePoint = format!("f:{f}:0.2,0.3,0.5").parse().unwrap();
+            sources.push(Source::new(point).with_start(rng.next()));
+        }
+        let mut drawn = 0;
+        for stop in [Stop::NONE, Stop::NONE.with_max_distance(3.0)] {
+            let field = solver.solve_from(&sources, &stop).unwrap();
+            let query = solver.query(&field).unwrap();
+            let max = query.max_reached_distance();
+            let mut levels = super::spread_levels(max, 7);
+            levels.push(0.0);
+            levels.push(max * 0.999);
+            let options = IsolineOptions::DEFAULT;
+            let gated = query.isolines_gated(&levels, &options, true);
+            let every = query.isolines_gated(&levels, &options, false);
+            // (Compared whole; reported by the first line that differs.)
+            if gated != every {
+                let first = gated.iter().zip(&every).position(|(a, b)| a != b);
+                panic!(
+                    "{method}, {}: {} lines gated against {} ungated, first difference at line {first:?}",
+                    solver.metric().name(),
+                    gated.len(),
+                    every.len()
+                );
+            }
+            drawn += every.len();
+        }
+        drawn
+    }
+
+    #[test]
+    fn the_gate_skips_only_faces_that_draw_nothing() {
+        let mut rng = Rng(0x9e3779b97f4a7c15);
+        let mut drawn = 0;
+        for case in 0..4 {
+            let lift = [0.0, 0.5, 2.0][case % 3];
+            let mesh = mesh(&mut rng, 6, lift);
+            let rho: Vec<f64> = (0..mesh.vertex_count()).map(|_| 0.5 + rng.next()).collect();
+            let tensors: Vec<[f64; 6]> = (0..mesh.face_count())
+                .map(|_| [1.0 + 3.0 * rng.next(), 0.3, 0.0, 1.0 + rng.next(), 0.0, 1.0])
+                .collect();
+            let walls: Vec<bool> = (0..mesh.face_count()).map(|_| rng.next() < 0.15).collect();
+            for method in [
+                Method::Wave,
+                Method::Tracks,
+                Method::Graph,
+                Method::Dijkstra,
+            ] {
+                drawn += same_with_and_without_the_gate(&mesh, Euclidean, method, &mut rng);
+                let density = Density::new(&mesh, rho.clone()).unwrap();
+                drawn += same_with_and_without_the_gate(&mesh, density, method, &mut rng);
+                let tensor = Tensor::from_world(&mesh, &tensors).unwrap();
+                drawn += same_with_and_without_the_gate(&mesh, tensor, method, &mut rng);
+                let walled = Impassable::new(&mesh, Euclidean, walls.clone()).unwrap();
+                drawn += same_with_and_without_the_gate(&mesh, walled, method, &mut rng);
+            }
+        }
+        assert!(drawn > 300, "{drawn} lines: the comparison compared little");
+    }
 }

@@ -22,7 +22,7 @@ use geotracks_metrics::Metric;
 use glam::DVec3;
 
 pub use face_field::ValueSource;
-pub use isolines::{spread_levels, Isoline, IsolineOptions};
+pub use isolines::{check_level_count, spread_levels, Isoline, IsolineOptions, MAX_LEVELS};
 use query::Origin;
 pub use query::Query;
 pub use regions::{Gradient, Region, DEFAULT_REGION_SUBDIVISIONS};
