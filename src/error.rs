@@ -49,7 +49,9 @@ impl ValueRole {
     /// the others any finite number.
     pub fn expected(self) -> &'static str {
         match self {
-            ValueRole::MaxDistance => "a number >= 0 (inf: no limit)",
+            ValueRole::MaxDistance => {
+                "a number >= 0, or >= the least start value of the sources (inf: no limit)"
+            }
             ValueRole::Start { .. } | ValueRole::IsolineLevel { .. } => "a finite number",
         }
     }

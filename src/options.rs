@@ -254,16 +254,21 @@ impl Stop {
         both_ends: true,
     };
 
-    /// Checks the stop's numbers, as every run does before it starts (the command line
-    /// and the Python package call this same check): `max_distance` must be ≥ 0 and
-    /// not NaN (`inf`: no limit). A negative one would leave every node unreached,
-    /// the sources included.
+    /// Checks the stop's numbers for sources that start at 0 (the command line and the
+    /// Python package call this same check): `max_distance` must be ≥ 0 and not NaN
+    /// (`inf`: no limit). A negative one would leave every node unreached, the sources
+    /// included. Runs check it against their sources' start values
+    /// ([`Stop::check_from`]).
     ///
     /// ```
     /// use geotracks::Stop;
     /// assert!(Stop::NONE.with_max_distance(0.0).check().is_ok());
     /// let err = Stop::NONE.with_max_distance(-1.0).check().unwrap_err();
-    /// assert_eq!(err.to_string(), "the maximum distance is -1; it must be a number >= 0 (inf: no limit)");
+    /// assert_eq!(
+    ///     err.to_string(),
+    ///     "the maximum distance is -1; it must be a number >= 0, or >= the least start \
+    ///      value of the sources (inf: no limit)"
+    /// );
     /// assert!(Stop::NONE.with_max_distance(f64::NAN).check().is_err());
     /// ```
     ///
@@ -271,7 +276,25 @@ impl Stop {
     /// [`Error::InvalidValue`](crate::Error::InvalidValue) naming
     /// [`ValueRole::MaxDistance`](crate::ValueRole::MaxDistance).
     pub fn check(&self) -> Result<(), crate::Error> {
-        if self.max_distance.is_nan() || self.max_distance < 0.0 {
+        self.check_from(0.0)
+    }
+
+    /// As [`Stop::check`] for sources whose least start value is `lowest_start`
+    /// ([`Source::with_start`](crate::Source::with_start)): `max_distance` must not be
+    /// NaN nor below `lowest_start`, where it would leave every node unreached. Every
+    /// run makes this check before it starts, with its sources' least start.
+    ///
+    /// ```
+    /// use geotracks::Stop;
+    /// // A source that starts at -2 is reached within a maximum of -1.
+    /// assert!(Stop::NONE.with_max_distance(-1.0).check_from(-2.0).is_ok());
+    /// assert!(Stop::NONE.with_max_distance(-3.0).check_from(-2.0).is_err());
+    /// ```
+    ///
+    /// # Errors
+    /// As [`Stop::check`].
+    pub fn check_from(&self, lowest_start: f64) -> Result<(), crate::Error> {
+        if self.max_distance.is_nan() || self.max_distance < lowest_start {
             return Err(crate::Error::InvalidValue {
                 which: crate::ValueRole::MaxDistance,
                 value: self.max_distance,

@@ -576,8 +576,13 @@ impl<'m, M: Metric> Solver<'m, M> {
         if workspace.sources.is_empty() {
             return Err(Error::NoSource);
         }
-        stop.check()?;
         self.validate_sources(&mut workspace.sources)?;
+        let lowest_start = workspace
+            .sources
+            .iter()
+            .map(|s| s.start)
+            .fold(f64::INFINITY, f64::min);
+        stop.check_from(lowest_start)?;
         workspace.targets.clear();
         for (i, target) in stop.targets.iter().enumerate() {
             let point = target
