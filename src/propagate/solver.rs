@@ -1285,8 +1285,15 @@ fn check_per_length<M: Metric>(
     let edges = (0..steps.len() as u32).into_par_iter().map(|e| {
         let length = mesh.edge_length(e);
         let cost = steps[e as usize] * (layout.count(e) + 1) as f64;
-        let allowance = rounding_allowance(mesh, mesh.edge_faces(e), mesh.edge_vertices(e));
-        if cost < per_length * (length - allowance) * tolerance {
+        // The allowance is only worked out for an edge below the bound.
+        let short = |allowance: f64| cost < per_length * (length - allowance) * tolerance;
+        if short(0.0)
+            && short(rounding_allowance(
+                mesh,
+                mesh.edge_faces(e),
+                mesh.edge_vertices(e),
+            ))
+        {
             Err((e, length, cost))
         } else {
             Ok(if length > 0.0 {
@@ -1312,8 +1319,8 @@ fn check_per_length<M: Metric>(
     for a in 0..wires.rows() as u32 {
         for &(b, cost) in wires.row(a) {
             let length = mesh.position(a).distance(mesh.position(b));
-            let allowance = rounding_allowance(mesh, &[], [a, b]);
-            if cost < per_length * (length - allowance) * tolerance {
+            let short = |allowance: f64| cost < per_length * (length - allowance) * tolerance;
+            if short(0.0) && short(rounding_allowance(mesh, &[], [a, b])) {
                 return Err(Error::WireBelowBound {
                     metric: metric.name().to_string(),
                     per_length,
