@@ -376,10 +376,14 @@ impl MeshSolverCore {
         let sources = vertex_ids(&sources, "source")?;
         let targets = targets.map(|t| vertex_ids(&t, "target")).transpose()?;
         let solver = self.cell.borrow_dependent();
+        let width = targets.as_ref().map_or(self.vertex_count(), |t| t.len());
+        // The rows, then the array they are copied into: twice the values at once.
+        solver
+            .check_rows_fit(sources.len(), width, 16)
+            .map_err(error)?;
         let rows = py
             .detach(|| solver.distance_rows(&sources, targets.as_deref()))
             .map_err(error)?;
-        let width = targets.map_or(self.vertex_count(), |t| t.len());
         let matrix = Array2::from_shape_fn((rows.len(), width), |(i, j)| rows[i][j]);
         Ok(matrix.into_pyarray(py))
     }

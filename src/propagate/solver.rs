@@ -936,17 +936,7 @@ impl<'m, M: Metric> Solver<'m, M> {
         }
         // The rows are kept in memory: refuse before any run what cannot fit.
         let columns = targets.map_or(vertex_count, <[u32]>::len);
-        let bytes = (sources.len() as u64).saturating_mul(columns as u64 * 8);
-        if let Some(available) = self.memory_limit.or_else(budget::available_memory) {
-            if bytes > available {
-                return Err(Error::OutputTooLarge {
-                    rows: sources.len(),
-                    columns,
-                    bytes,
-                    available,
-                });
-            }
-        }
+        self.check_rows_fit(sources.len(), columns, 8)?;
         let stop = match targets {
             Some(t) => {
                 Stop::NONE.with_targets(t.iter().map(|&v| SurfacePoint::Vertex(v)).collect())
@@ -982,6 +972,34 @@ impl<'m, M: Metric> Solver<'m, M> {
                 row
             })
             .collect()
+    }
+
+    /// Checks, before any run, that `rows` rows of `columns` values fit in memory at
+    /// `bytes_per_value` bytes a value: within [`Options::memory_limit`], by default what
+    /// the system reports available. [`Solver::distance_rows`] checks its rows at 8
+    /// bytes a value; a caller that copies them into another array (the Python
+    /// package's matrix) checks at 16.
+    ///
+    /// # Errors
+    /// [`Error::OutputTooLarge`], with the bytes needed and available.
+    pub fn check_rows_fit(
+        &self,
+        rows: usize,
+        columns: usize,
+        bytes_per_value: u64,
+    ) -> Result<(), Error> {
+        let bytes = (rows as u64)
+            .saturating_mul(columns as u64)
+            .saturating_mul(bytes_per_value);
+        match self.memory_limit.or_else(budget::available_memory) {
+            Some(available) if bytes > available => Err(Error::OutputTooLarge {
+                rows,
+                columns,
+                bytes,
+                available,
+            }),
+            _ => Ok(()),
+        }
     }
 
     /// For each of `sources` (vertices), the vertices within `max_distance` of it and
