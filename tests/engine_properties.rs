@@ -351,7 +351,9 @@ fn multiscale_flat_patch(seed: u64, n: usize) -> Option<TriMesh> {
 /// engine may be on a flat patch whose edges span ten orders of magnitude. Waves count
 /// as one when their sources agree to 1e-9 of the lengths around them, and a wave
 /// carried across a cluster of edges 1e-7 long from a source 10 away is placed to
-/// rounding of that distance: measured over 2·10⁵ patches, 2.7e-8 at worst, below 1e-9
+/// rounding of that distance: measured over 2·10⁵ patches (`MEASURE=1
+/// PROPTEST_CASES=200000 cargo test --release --test engine_properties
+/// wave_is_exact_on_multiscale`, the largest figure printed), 2.7e-8 at worst, below 1e-9
 /// in all but a handful.
 const EXACT_MULTISCALE: f64 = 1e-7;
 
@@ -360,7 +362,8 @@ proptest! {
 
     /// A flat convex patch with coordinates from 1e-7 to 1e3, one vertex source: the
     /// wavefront engine is exact (the straight line, to 1e-9 of it and to rounding of
-    /// the coordinates, see `EXACT_MULTISCALE`) at every vertex, at any k.
+    /// the coordinates, see `EXACT_MULTISCALE`) at every vertex, at any k. Set
+    /// `MEASURE=1` to print every vertex's relative deviation instead of checking it.
     #[test]
     fn wave_is_exact_on_multiscale_flat_patches(
         seed in any::<u64>(), n in 4usize..40, k in 1u32..5, source in any::<u32>(),
@@ -380,6 +383,11 @@ proptest! {
         for (v, &d) in field.vertex_distances().iter().enumerate() {
             let straight = from.distance(mesh.position(v as u32));
             let slack = EXACT_MULTISCALE * straight + 1e-12 * scale;
+            if std::env::var("MEASURE").is_ok() {
+                let off = ((d - straight).abs() - 1e-12 * scale).max(0.0) / straight.max(f64::MIN_POSITIVE);
+                eprintln!("flat patch: {off:e} (seed {seed}, n {n}, k {k}, vertex {v})");
+                continue;
+            }
             prop_assert!((d - straight).abs() <= slack, "vertex {v}: {d}, straight line {straight}");
         }
     }
