@@ -13,6 +13,7 @@
 
 mod common;
 
+use common::relief::RoughRelief;
 use common::Rng;
 use geotracks::terrain::{
     route, route_and_field, route_on_grid, ElevationGrid, GridGeometry, TerrainCost,
@@ -50,19 +51,8 @@ const STRAIGHTENED_SPREAD: f64 = 0.3;
 /// along random lines), rounded to multiples of `quantum` (0: not rounded).
 fn rough_grid(seed: u64, ncols: usize, nrows: usize, spacing: f64, quantum: f64) -> ElevationGrid {
     let mut rng = Rng(seed | 1);
-    let octaves: Vec<(usize, Vec<f64>)> = (0..5)
-        .map(|o| {
-            let s = 2usize << o;
-            (s, (0..(s + 2) * (s + 2)).map(|_| rng.next()).collect())
-        })
-        .collect();
-    let relief = spacing * (1.0 + 4.0 * rng.next());
-    let cliffs: Vec<[f64; 4]> = (0..3)
-        .map(|_| {
-            let angle = std::f64::consts::TAU * rng.next();
-            [rng.next(), rng.next(), angle, 20.0 + 40.0 * rng.next()]
-        })
-        .collect();
+    let relief = RoughRelief::new(|| rng.next(), 2, (20.0, 40.0));
+    let height = spacing * (1.0 + 4.0 * rng.next());
     let geometry = GridGeometry {
         ncols,
         nrows,
@@ -71,32 +61,7 @@ fn rough_grid(seed: u64, ncols: usize, nrows: usize, spacing: f64, quantum: f64)
     };
     let (w, h) = ((ncols - 1) as f64 * spacing, (nrows - 1) as f64 * spacing);
     ElevationGrid::from_fn(geometry, |x, y| {
-        let (u, v) = (x / w, y / h);
-        let mut z = 0.0;
-        let mut amplitude = relief;
-        for (o, (s, values)) in octaves.iter().enumerate() {
-            let (fx, fy) = (u * *s as f64, v * *s as f64);
-            let (i, j) = (fx.floor() as usize, fy.floor() as usize);
-            let smooth = |t: f64| t * t * (3.0 - 2.0 * t);
-            let (tx, ty) = (smooth(fx - i as f64), smooth(fy - j as f64));
-            let at = |a: usize, b: usize| values[b.min(s + 1) * (s + 2) + a.min(s + 1)];
-            let n = at(i, j) * (1.0 - tx) * (1.0 - ty)
-                + at(i + 1, j) * tx * (1.0 - ty)
-                + at(i, j + 1) * (1.0 - tx) * ty
-                + at(i + 1, j + 1) * tx * ty;
-            z += amplitude
-                * if o == 1 || o == 2 {
-                    1.0 - (2.0 * n - 1.0).abs()
-                } else {
-                    n
-                };
-            amplitude *= 0.5;
-        }
-        for &[cx, cy, angle, height] in &cliffs {
-            if (u - cx) * angle.cos() + (v - cy) * angle.sin() > 0.0 {
-                z += height;
-            }
-        }
+        let z = relief.height(x / w, y / h, height);
         Some(if quantum > 0.0 {
             (z / quantum).round() * quantum
         } else {

@@ -1,8 +1,11 @@
 //! `geotracks terrain` end to end: GeoJSON, CSV and PNG outputs, costs, walls, GeoTIFF
 //! input, and bad input that fails with one line and no file.
 
+#[path = "../../tests/common/relief.rs"]
+mod relief;
 mod support;
 
+use relief::RoughRelief;
 use std::path::Path;
 use support::{assert_fails, geotracks, geotracks_ok, last_value};
 
@@ -646,28 +649,13 @@ fn verbose_routes_say_where_the_time_went() {
 /// under the walking times).
 fn rough_asc(dir: &Path, ncols: usize, nrows: usize, seed: u64) -> std::path::PathBuf {
     let mut state = seed | 1;
-    let mut next = move || {
+    let next = move || {
         state ^= state << 13;
         state ^= state >> 7;
         state ^= state << 17;
         (state >> 11) as f64 / (1u64 << 53) as f64
     };
-    let octaves: Vec<(usize, Vec<f64>)> = (0..5)
-        .map(|o| {
-            let s = 4usize << o;
-            (s, (0..(s + 2) * (s + 2)).map(|_| next()).collect())
-        })
-        .collect();
-    let cliffs: Vec<[f64; 4]> = (0..3)
-        .map(|_| {
-            [
-                next(),
-                next(),
-                std::f64::consts::TAU * next(),
-                30.0 + 60.0 * next(),
-            ]
-        })
-        .collect();
+    let relief = RoughRelief::new(next, 4, (30.0, 60.0));
     let mut text = format!(
         "ncols {ncols}\nnrows {nrows}\nxllcorner 0\nyllcorner 0\ncellsize 90\nnodata_value -9999\n"
     );
@@ -676,30 +664,7 @@ fn rough_asc(dir: &Path, ncols: usize, nrows: usize, seed: u64) -> std::path::Pa
         let row: Vec<String> = (0..ncols)
             .map(|c| {
                 let u = c as f64 / (ncols - 1) as f64;
-                let (mut z, mut amplitude) = (0.0, 400.0);
-                for (o, (s, values)) in octaves.iter().enumerate() {
-                    let (fx, fy) = (u * *s as f64, v * *s as f64);
-                    let (i, j) = (fx.floor() as usize, fy.floor() as usize);
-                    let smooth = |t: f64| t * t * (3.0 - 2.0 * t);
-                    let (tx, ty) = (smooth(fx - i as f64), smooth(fy - j as f64));
-                    let at = |a: usize, b: usize| values[b.min(s + 1) * (s + 2) + a.min(s + 1)];
-                    let n = at(i, j) * (1.0 - tx) * (1.0 - ty)
-                        + at(i + 1, j) * tx * (1.0 - ty)
-                        + at(i, j + 1) * (1.0 - tx) * ty
-                        + at(i + 1, j + 1) * tx * ty;
-                    z += amplitude
-                        * if o == 1 || o == 2 {
-                            1.0 - (2.0 * n - 1.0).abs()
-                        } else {
-                            n
-                        };
-                    amplitude *= 0.5;
-                }
-                for &[cx, cy, angle, height] in &cliffs {
-                    if (u - cx) * angle.cos() + (v - cy) * angle.sin() > 0.0 {
-                        z += height;
-                    }
-                }
+                let z = relief.height(u, v, 400.0);
                 format!("{}", z.round())
             })
             .collect();

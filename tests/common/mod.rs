@@ -97,6 +97,8 @@ pub fn book(
     (TriMesh::new(positions, triangles).unwrap(), id)
 }
 
+/// Rough relief for terrain tests.
+pub mod relief;
 #[path = "../../examples/shared_data/mod.rs"]
 mod shared_data;
 #[allow(unused_imports)] // not every test binary uses both
