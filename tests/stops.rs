@@ -132,8 +132,12 @@ proptest! {
             .copied()
             .filter(|d| d.is_finite())
             .fold(0.0, f64::max);
+        // A maximum below every source's start is refused (nothing would be reached):
+        // draw maxima between the least start and the farthest value.
+        let lowest = sources.iter().map(|s| s.start).fold(f64::INFINITY, f64::min);
+        let within = |t: f64| lowest + t * (far - lowest).max(0.0);
         let stop = match stop {
-            0 => Stop::NONE.with_max_distance(rng.next() * far),
+            0 => Stop::NONE.with_max_distance(within(rng.next())),
             1 => Stop::NONE.with_targets((0..1 + rng.below(3)).map(|_| random_surface_point(&mesh, &mut rng)).collect()),
             2 => Stop::NONE
                 .with_max_distance((0.5 + rng.next()) * far)
@@ -141,7 +145,7 @@ proptest! {
             // Targets that may lie beyond the maximum: a goal-directed run leaves out
             // the nodes whose key (value plus estimate) is beyond it.
             _ => Stop::NONE
-                .with_max_distance(rng.next() * far)
+                .with_max_distance(within(rng.next()))
                 .with_targets((0..1 + rng.below(2)).map(|_| random_surface_point(&mesh, &mut rng)).collect()),
         };
         for method in [Method::Wave, Method::Tracks, Method::Graph] {
