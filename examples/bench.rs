@@ -28,6 +28,7 @@
 //! fractions): propagation seconds, distance tests, and a check that every value they
 //! keep is the full run's.
 
+use geotracks::Sources;
 use geotracks::{
     mesh::io::read_mesh, Euclidean, Method, Options, Solver, Source, Stop, SurfacePoint,
 };
@@ -278,7 +279,11 @@ fn child(args: &[String]) -> Result<(), String> {
     for _ in 0..reps.max(1) {
         let solver = Solver::new(&mesh, Euclidean, &options).map_err(|e| e.to_string())?;
         let mut ws = solver.workspace();
-        let stats = solver.run(&mut ws, &[source]).map_err(|e| e.to_string())?;
+        let stats = solver
+            .run(&mut ws, &[source])
+            .map_err(|e| e.to_string())?
+            .stats()
+            .clone();
         let total = stats.setup_seconds + stats.propagate_seconds;
         if best
             .as_ref()
@@ -388,7 +393,10 @@ fn threads_demo(e: &Entry) -> Result<(), String> {
             .map_err(|err| err.to_string())?;
         let rows = pool
             .install(|| solver.distance_rows(&sources, None))
-            .map_err(|err| err.to_string())?;
+            .map_err(|err| err.to_string())?
+            .into_iter()
+            .map(|row| row.distances)
+            .collect::<Vec<_>>();
         times.push((t.elapsed().as_secs_f64(), cpu_seconds() - cpu));
         match &first {
             None => first = Some(rows),
@@ -424,8 +432,10 @@ fn early_stops(e: &Entry) -> Result<(), String> {
     let source = [Source::new(e.source)];
     let mut ws = solver.workspace();
     let full = solver
-        .run_from(&mut ws, &source, &Stop::NONE)
-        .map_err(|err| err.to_string())?;
+        .run(&mut ws, Sources::from(&source).until(&Stop::NONE))
+        .map_err(|err| err.to_string())?
+        .stats()
+        .clone();
     let reference: Vec<f64> = ws.node_distances().to_vec();
     let far = ws
         .vertex_distances()
@@ -464,8 +474,10 @@ fn early_stops(e: &Entry) -> Result<(), String> {
         ];
         for (name, stop) in stops {
             let stats = solver
-                .run_from(&mut ws, &source, &stop)
-                .map_err(|err| err.to_string())?;
+                .run(&mut ws, Sources::from(&source).until(&stop))
+                .map_err(|err| err.to_string())?
+                .stats()
+                .clone();
             let agree = ws
                 .node_distances()
                 .iter()

@@ -100,8 +100,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let tobler = Tobler::new(mesh);
     let options = Options::DEFAULT.with_k(3.0);
     let from = [Source::new(from)];
-    let fastest = Solver::new(mesh, &tobler, &options)?.shortest_path(&from, to)?;
-    let shortest = Solver::new(mesh, Euclidean, &options)?.shortest_path(&from, to)?;
+    let fastest = Solver::new(mesh, &tobler, &options)?
+        .shortest_path(&from, to)?
+        .0;
+    let shortest = Solver::new(mesh, Euclidean, &options)?
+        .shortest_path(&from, to)?
+        .0;
     for (name, path) in [("shortest", &shortest), ("fastest", &fastest)] {
         println!(
             "{name} route: {:.0} m, {:.2} h on foot",
@@ -111,7 +115,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     // The way back costs another time: the walk is directed.
     let back = [Source::new(to)];
-    let returning = Solver::new(mesh, &tobler, &options)?.shortest_path(&back, from[0].point)?;
+    let returning = Solver::new(mesh, &tobler, &options)?
+        .shortest_path(&back, from[0].point)?
+        .0;
     println!("fastest way back: {:.2} h", returning.length);
     Ok(())
 }

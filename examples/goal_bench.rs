@@ -10,10 +10,11 @@
 //! plain (`Stop::goal_directed` says when), and the two rows should match.
 //!
 //! Then the same 20 paths to the one target, traced and straightened
-//! (`Solver::shortest_path_with`), searched from both ends at once (two threads) and
+//! (`Solver::shortest_path`), searched from both ends at once (two threads) and
 //! from one end.
 
 use geotracks::mesh::io::read_mesh;
+use geotracks::Sources;
 use geotracks::{Euclidean, Method, Options, Solver, Source, Stop, SurfacePoint};
 use std::time::Instant;
 
@@ -45,7 +46,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let (start, mut settles) = (Instant::now(), 0);
             for &s in &sources {
                 settles += solver
-                    .run_from(&mut workspace, &[Source::new(s)], &stop)?
+                    .run(
+                        &mut workspace,
+                        Sources::from(&[Source::new(s)]).until(&stop),
+                    )?
+                    .stats()
                     .settles;
             }
             let seconds = start.elapsed().as_secs_f64();
@@ -60,7 +65,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let stop = Stop::NONE.with_both_ends(both_ends);
         let (start, mut settles, mut cost) = (Instant::now(), 0, 0.0);
         for &s in &sources {
-            let (path, stats) = solver.shortest_path_with(&[Source::new(s)], target, &stop)?;
+            let (path, stats) =
+                solver.shortest_path(Sources::from(&[Source::new(s)]).until(&stop), target)?;
             settles += stats.settles;
             cost += path.length;
         }

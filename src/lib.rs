@@ -17,7 +17,7 @@
 //!   [`Options`] (Steiner points and method) and [`Stop`] (early stops).
 //! - [`propagate`]: the engines, [`distance_field`] for one run, and [`Solver`] /
 //!   [`Workspace`] for many (reused buffers, parallel rows).
-//! - [`field`]: [`GeodesicField`], what a run returns: plain data.
+//! - [`field`]: [`FieldData`], what a run returns: plain data.
 //! - [`trace`]: [`Query`], made by the solver that computed a field
 //!   ([`Solver::query`]): the distance and gradient at any surface point, each face's
 //!   regions, paths ([`GeodesicPath`], straightened), isolines and nearest sources.
@@ -36,33 +36,21 @@
 //!
 //! ## Example
 //! ```
-//! use geotracks::{distance_field, mesh::TriMesh, Euclidean, Options};
+//! use geotracks::{mesh::TriMesh, Euclidean, Options, Solver, SurfacePoint};
 //!
 //! // A flat 1 × 1 square made of two triangles.
 //! let mesh = TriMesh::new(
 //!     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
 //!     vec![[0, 1, 2], [0, 2, 3]],
 //! )?;
-//! let field = distance_field(&mesh, &Euclidean, &[0], &Options::DEFAULT.with_k(3.0))?;
+//! let solver = Solver::new(mesh, Euclidean, &Options::DEFAULT)?;
+//! let field = solver.field(0)?; // one run from vertex 0
 //! assert!((field.distance(2) - 2f64.sqrt()).abs() < 1e-12);
-//! println!("{} distance tests", field.stats().distance_tests);
-//! # Ok::<(), geotracks::Error>(())
-//! ```
-//!
-//! Paths and the distance at any surface point ask the solver that made the field:
-//! ```
-//! use geotracks::{mesh::TriMesh, Euclidean, Options, Solver, SurfacePoint};
-//!
-//! let mesh = TriMesh::new(
-//!     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
-//!     vec![[0, 1, 2], [0, 2, 3]],
-//! )?;
-//! let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT)?;
-//! let field = solver.solve(&[0])?;
-//! let query = solver.query(&field)?;
+//! // Every query is a method on the field: no run again, no mesh passed again.
 //! let middle = SurfacePoint::Edge { edge: 1, t: 0.5 };
-//! let path = query.path(middle)?; // from the point back to vertex 0
-//! assert!((path.length - query.distance_at(middle)?).abs() < 1e-12);
+//! let path = field.path(middle)?; // from the point back to vertex 0, straightened
+//! assert!((path.length - field.distance_at(middle)?).abs() < 1e-12);
+//! println!("{} distance tests", field.stats().distance_tests);
 //! # Ok::<(), geotracks::Error>(())
 //! ```
 #![forbid(unsafe_code)]
@@ -74,6 +62,7 @@ pub mod mesh;
 pub mod options;
 pub mod propagate;
 pub mod render;
+mod route;
 pub mod skeleton;
 pub mod steiner;
 pub mod surface;
@@ -89,16 +78,16 @@ pub use geotracks_metrics as metrics;
 pub use glam;
 
 pub use error::{Error, PointRole, SizeLimit, ValueRole};
-pub use field::{GeodesicField, Stats};
+pub use field::{Field, FieldData, FieldStorage, Stats};
 pub use geotracks_metrics::{
     BuiltinMetric, Density, Euclidean, FacePoint, Metric, MetricError, Reversed, Tensor,
     TensorField,
 };
-pub use options::{Method, Options, Stop};
-pub use propagate::{distance_field, Solver, Workspace};
+pub use options::{Method, Options, Sources, Stop};
+pub use propagate::{DistanceRow, Solver, Workspace};
 pub use steiner::{SteinerLayout, SteinerScheme};
 pub use surface::{PointError, Source, SurfacePoint};
-pub use trace::{GeodesicPath, Query};
+pub use trace::GeodesicPath;
 
 /// The README's code blocks, compiled and run as doctests so they stay true.
 #[cfg(doctest)]

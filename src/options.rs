@@ -6,7 +6,8 @@
 //! the command line parses these by name.
 
 use crate::steiner::SteinerScheme;
-use crate::surface::SurfacePoint;
+use crate::surface::{Source, SurfacePoint};
+use std::borrow::Cow;
 use std::fmt;
 use std::str::FromStr;
 
@@ -39,21 +40,30 @@ impl Method {
         }
     }
 
-    /// The mean number of Steiner points per edge to run with when none is asked for:
-    /// 2 for the wavefront engine, 5 for the Steiner graph (`Tracks`, `Graph`, and
-    /// `Wave` on a metric that is not `face_flat`, where the tracks engine runs), which
-    /// needs more points for the same accuracy. Dijkstra uses none (2 is given).
+    /// The mean number of Steiner points per edge this engine runs with when none is
+    /// asked for ([`Options::steiner`] `None`): 2 for the wavefront engine, 5 for the
+    /// Steiner-graph engines (`Tracks`, `Graph`), which need more points for the same
+    /// accuracy; Dijkstra uses none (2 is given). The solver asks the engine that
+    /// actually runs: the tracks engine's 5 for a metric that is not flat on each face,
+    /// where the wavefront engine gives way to it.
     ///
     /// ```
-    /// use geotracks::Method;
-    /// assert_eq!(Method::Wave.default_k(true), 2.0);
-    /// assert_eq!(Method::Wave.default_k(false), 5.0); // a density: tracks run
-    /// assert_eq!(Method::Graph.default_k(true), 5.0);
+    /// use geotracks::{mesh::TriMesh, Density, Method, Options, Solver};
+    /// assert_eq!(Method::Wave.default_k(), 2.0);
+    /// assert_eq!(Method::Tracks.default_k(), 5.0);
+    /// let mesh = TriMesh::new(
+    ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0]],
+    ///     vec![[0, 1, 2]],
+    /// )?;
+    /// // A density is not flat on each face: the tracks engine runs, at its own k.
+    /// let density = Density::constant(&mesh, 2.0)?;
+    /// let solver = Solver::new(mesh, density, &Options::DEFAULT)?;
+    /// assert_eq!((solver.method(), solver.k()), (Method::Tracks, 5.0));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
-    pub fn default_k(self, face_flat: bool) -> f64 {
+    pub fn default_k(self) -> f64 {
         match self {
             Method::Tracks | Method::Graph => 5.0,
-            Method::Wave if !face_flat => 5.0,
             Method::Wave | Method::Dijkstra => 2.0,
         }
     }
@@ -84,12 +94,12 @@ impl FromStr for Method {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct Options {
-    /// Steiner points per edge. Default: `Interval { k: 2.0 }`: the wavefront engine's
-    /// default (mean error 0.003–0.07 % on the shared real meshes; the README's
-    /// Accuracy section). The Steiner-graph engines need more for the same accuracy
-    /// (k = 5: 0.3–0.6 %), which a run with a metric that is not face-flat (`Density`,
-    /// most custom metrics), where the tracks engine runs, should ask for.
-    pub steiner: SteinerScheme,
+    /// Steiner points per edge. Default `None`: the engine that runs picks its own
+    /// ([`Method::default_k`]): k = 2 for the wavefront engine (mean error
+    /// 0.003–0.07 % on the shared real meshes; the guide's accuracy page), k = 5 for the
+    /// Steiner-graph engines, which need more for the same accuracy (0.3–0.6 %), and
+    /// run for a metric that is not flat on each face (`Density`, most custom metrics).
+    pub steiner: Option<SteinerScheme>,
     /// The engine. Default: [`Method::Wave`] (which runs [`Method::Tracks`] for a
     /// metric that is not face-flat).
     pub method: Method,
@@ -130,9 +140,10 @@ impl Options {
     /// 18-face grid fits up to k ≈ 9,700 with the wavefront engine.
     pub const DEFAULT_WORK_LIMIT: u64 = 4_000_000_000;
 
-    /// The defaults: interval scheme with k = 2, the wavefront engine.
+    /// The defaults: the wavefront engine, with the Steiner points of the engine that
+    /// runs ([`Method::default_k`]).
     pub const DEFAULT: Options = Options {
-        steiner: SteinerScheme::Interval { k: 2.0 },
+        steiner: None,
         method: Method::Wave,
         memory_limit: None,
         mean_edge_length: None,
@@ -141,14 +152,28 @@ impl Options {
 
     /// Interval scheme with a mean of `k` points per edge.
     pub const fn with_k(mut self, k: f64) -> Self {
-        self.steiner = SteinerScheme::Interval { k };
+        self.steiner = Some(SteinerScheme::Interval { k });
         self
     }
 
     /// Exactly `count` points on every edge.
     pub const fn with_fixed_count(mut self, count: u32) -> Self {
-        self.steiner = SteinerScheme::Fixed { count };
+        self.steiner = Some(SteinerScheme::Fixed { count });
         self
+    }
+
+    /// The Steiner scheme `scheme` (see [`Options::steiner`]).
+    pub const fn with_scheme(mut self, scheme: SteinerScheme) -> Self {
+        self.steiner = Some(scheme);
+        self
+    }
+
+    /// The scheme a run with `method` uses: the one asked for, else the engine's own
+    /// ([`Method::default_k`]).
+    pub fn steiner_for(&self, method: Method) -> SteinerScheme {
+        self.steiner.unwrap_or(SteinerScheme::Interval {
+            k: method.default_k(),
+        })
     }
 
     /// The memory budget in bytes (see [`Options::memory_limit`]).
@@ -340,5 +365,180 @@ impl Default for Stop {
 impl Default for Options {
     fn default() -> Self {
         Options::DEFAULT
+    }
+}
+
+/// Where a run starts, and when it may stop: what [`Solver::field`](crate::Solver::field),
+/// [`Solver::run`](crate::Solver::run) and
+/// [`Solver::shortest_path`](crate::Solver::shortest_path) take.
+///
+/// Anything that names sources converts into it: a vertex id (`u32`), a
+/// [`SurfacePoint`], a [`Source`] (a point with a start value), or a slice, array or
+/// `Vec` of any of them (borrowed ones are not copied: a run in a warm
+/// [`Workspace`](crate::Workspace) allocates nothing). [`Sources::until`] adds a
+/// [`Stop`]; without one the run goes to the end.
+///
+/// ```
+/// use geotracks::{Source, Sources, Stop, SurfacePoint};
+/// let one = Sources::from(7);
+/// let several = Sources::from(&[0, 4, 9]);
+/// let points = Sources::from(vec![Source::new(SurfacePoint::Edge { edge: 2, t: 0.5 })]);
+/// let near = Sources::from(7).until(Stop::NONE.with_max_distance(1.5));
+/// assert_eq!((one.len(), several.len(), points.len()), (1, 3, 1));
+/// assert_eq!(near.stop().max_distance, 1.5);
+/// ```
+#[derive(Clone, Debug)]
+pub struct Sources<'a> {
+    list: SourceList<'a>,
+    stop: Cow<'a, Stop>,
+}
+
+/// The sources themselves, borrowed where they can be.
+#[derive(Clone, Debug)]
+enum SourceList<'a> {
+    One(Source),
+    Vertices(Cow<'a, [u32]>),
+    Points(Cow<'a, [Source]>),
+}
+
+impl<'a> Sources<'a> {
+    /// These sources, stopping as `stop` says (a [`Stop`] or a `&Stop`).
+    pub fn until(self, stop: impl Into<Cow<'a, Stop>>) -> Self {
+        Sources {
+            stop: stop.into(),
+            ..self
+        }
+    }
+
+    /// When the run may stop ([`Stop::NONE`] unless [`Sources::until`] said).
+    pub fn stop(&self) -> &Stop {
+        &self.stop
+    }
+
+    /// How many sources.
+    pub fn len(&self) -> usize {
+        match &self.list {
+            SourceList::One(_) => 1,
+            SourceList::Vertices(v) => v.len(),
+            SourceList::Points(p) => p.len(),
+        }
+    }
+
+    /// Whether there are none (a run refuses that: [`Error::NoSource`](crate::Error::NoSource)).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Appends the sources to `out` (which allocates only if it must grow).
+    pub(crate) fn append_to(&self, out: &mut Vec<Source>) {
+        match &self.list {
+            SourceList::One(source) => out.push(*source),
+            SourceList::Vertices(v) => out.extend(v.iter().map(|&v| Source::new(v))),
+            SourceList::Points(p) => out.extend_from_slice(p),
+        }
+    }
+
+    /// The sources, as a list.
+    pub fn to_vec(&self) -> Vec<Source> {
+        let mut out = Vec::with_capacity(self.len());
+        self.append_to(&mut out);
+        out
+    }
+
+    fn new(list: SourceList<'a>) -> Self {
+        Sources {
+            list,
+            stop: Cow::Owned(Stop::NONE),
+        }
+    }
+}
+
+impl From<u32> for Sources<'_> {
+    fn from(vertex: u32) -> Self {
+        Sources::new(SourceList::One(Source::new(vertex)))
+    }
+}
+
+impl From<SurfacePoint> for Sources<'_> {
+    fn from(point: SurfacePoint) -> Self {
+        Sources::new(SourceList::One(Source::new(point)))
+    }
+}
+
+impl From<Source> for Sources<'_> {
+    fn from(source: Source) -> Self {
+        Sources::new(SourceList::One(source))
+    }
+}
+
+impl<'a> From<&'a [u32]> for Sources<'a> {
+    fn from(vertices: &'a [u32]) -> Self {
+        Sources::new(SourceList::Vertices(Cow::Borrowed(vertices)))
+    }
+}
+
+impl<'a, const N: usize> From<&'a [u32; N]> for Sources<'a> {
+    fn from(vertices: &'a [u32; N]) -> Self {
+        Sources::new(SourceList::Vertices(Cow::Borrowed(vertices)))
+    }
+}
+
+impl<'a> From<&'a Vec<u32>> for Sources<'a> {
+    fn from(vertices: &'a Vec<u32>) -> Self {
+        Sources::new(SourceList::Vertices(Cow::Borrowed(vertices)))
+    }
+}
+
+impl From<Vec<u32>> for Sources<'_> {
+    fn from(vertices: Vec<u32>) -> Self {
+        Sources::new(SourceList::Vertices(Cow::Owned(vertices)))
+    }
+}
+
+impl<'a> From<&'a [Source]> for Sources<'a> {
+    fn from(sources: &'a [Source]) -> Self {
+        Sources::new(SourceList::Points(Cow::Borrowed(sources)))
+    }
+}
+
+impl<'a, const N: usize> From<&'a [Source; N]> for Sources<'a> {
+    fn from(sources: &'a [Source; N]) -> Self {
+        Sources::new(SourceList::Points(Cow::Borrowed(sources)))
+    }
+}
+
+impl<'a> From<&'a Vec<Source>> for Sources<'a> {
+    fn from(sources: &'a Vec<Source>) -> Self {
+        Sources::new(SourceList::Points(Cow::Borrowed(sources)))
+    }
+}
+
+impl From<Vec<Source>> for Sources<'_> {
+    fn from(sources: Vec<Source>) -> Self {
+        Sources::new(SourceList::Points(Cow::Owned(sources)))
+    }
+}
+
+impl From<&[SurfacePoint]> for Sources<'_> {
+    fn from(points: &[SurfacePoint]) -> Self {
+        Sources::from(points.iter().map(|&p| Source::new(p)).collect::<Vec<_>>())
+    }
+}
+
+impl From<Vec<SurfacePoint>> for Sources<'_> {
+    fn from(points: Vec<SurfacePoint>) -> Self {
+        Sources::from(&points[..])
+    }
+}
+
+impl<'a> From<&'a Stop> for Cow<'a, Stop> {
+    fn from(stop: &'a Stop) -> Self {
+        Cow::Borrowed(stop)
+    }
+}
+
+impl From<Stop> for Cow<'_, Stop> {
+    fn from(stop: Stop) -> Self {
+        Cow::Owned(stop)
     }
 }

@@ -439,14 +439,14 @@ impl Source {
     /// accepts).
     ///
     /// ```
-    /// use geotracks::{mesh::TriMesh, Euclidean, Options, Solver, Source, Stop};
+    /// use geotracks::{mesh::TriMesh, Euclidean, Options, Solver, Source};
     /// let mesh = TriMesh::new(
     ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
     ///     vec![[0, 1, 2]],
     /// )?;
     /// let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT)?;
     /// let sources = [Source::new(0).with_start(-0.5), Source::new(1).with_start(0.25)];
-    /// let field = solver.solve_from(&sources, &Stop::NONE)?;
+    /// let field = solver.field(&sources)?;
     /// assert_eq!(field.distance(0), -0.5);
     /// assert_eq!(field.distance(1), 0.25); // 0.25 < -0.5 + 1
     /// assert!((field.distance(2) - 0.5).abs() < 1e-12);

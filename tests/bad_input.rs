@@ -4,7 +4,7 @@ mod common;
 
 use geotracks::mesh::{MeshError, TriMesh};
 use geotracks::{
-    distance_field, Density, Error, Euclidean, FacePoint, Metric, MetricError, Options, Tensor,
+    Density, Error, Euclidean, FacePoint, Metric, MetricError, Options, Solver, Tensor,
 };
 
 fn square() -> TriMesh {
@@ -115,9 +115,13 @@ fn no_usable_face() {
 #[test]
 fn sources_and_k_are_checked() {
     let mesh = square();
-    let e = distance_field(&mesh, &Euclidean, &[], &Options::DEFAULT).unwrap_err();
+    let e = Solver::new(&mesh, &Euclidean, &Options::DEFAULT)
+        .and_then(|solver| solver.field(&[] as &[u32]))
+        .unwrap_err();
     assert!(matches!(e, Error::NoSource), "{e}");
-    let e = distance_field(&mesh, &Euclidean, &[0, 4], &Options::DEFAULT).unwrap_err();
+    let e = Solver::new(&mesh, &Euclidean, &Options::DEFAULT)
+        .and_then(|solver| solver.field(&[0, 4]))
+        .unwrap_err();
     assert!(
         matches!(
             e,
@@ -130,16 +134,14 @@ fn sources_and_k_are_checked() {
     );
     assert!(e.to_string().contains("source vertex 4"));
     for k in [0.0, -1.0, f64::NAN, f64::INFINITY] {
-        let e = distance_field(&mesh, &Euclidean, &[0], &Options::DEFAULT.with_k(k)).unwrap_err();
+        let e = Solver::new(&mesh, &Euclidean, &Options::DEFAULT.with_k(k))
+            .and_then(|solver| solver.field(&[0]))
+            .unwrap_err();
         assert!(matches!(e, Error::InvalidK { .. }), "{e}");
     }
-    let e = distance_field(
-        &mesh,
-        &Euclidean,
-        &[0],
-        &Options::DEFAULT.with_fixed_count(0),
-    )
-    .unwrap_err();
+    let e = Solver::new(&mesh, &Euclidean, &Options::DEFAULT.with_fixed_count(0))
+        .and_then(|solver| solver.field(&[0]))
+        .unwrap_err();
     assert!(matches!(e, Error::InvalidK { .. }), "{e}");
 }
 
@@ -231,7 +233,9 @@ impl Metric for Broken {
 
 #[test]
 fn a_metric_that_returns_nan_is_reported() {
-    let e = distance_field(&square(), &Broken, &[0], &Options::DEFAULT).unwrap_err();
+    let e = Solver::new(square(), &Broken, &Options::DEFAULT)
+        .and_then(|solver| solver.field(&[0]))
+        .unwrap_err();
     assert!(matches!(e, Error::InvalidCost { face: 1, .. }), "{e}");
     assert!(e.to_string().contains("broken"));
 }

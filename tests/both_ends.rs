@@ -11,6 +11,7 @@ use common::{
     oracle, oracle_mesh, random_metric, random_randers, random_surface_point, sphere, Rng,
 };
 use geotracks::mesh::TriMesh;
+use geotracks::Sources;
 use geotracks::{Error, Euclidean, Method, Metric, Options, Solver, Source, Stop, SurfacePoint};
 use proptest::prelude::*;
 
@@ -52,7 +53,7 @@ proptest! {
         for method in [Method::Tracks, Method::Graph] {
             let options = Options::DEFAULT.with_method(method).with_k(k as f64);
             let solver = Solver::new(&mesh, &metric, &options).unwrap();
-            match solver.shortest_path_with(&[Source::new(from)], to, &Stop::NONE) {
+            match solver.shortest_path(Sources::from(&[Source::new(from)]).until(&Stop::NONE), to) {
                 Ok((path, stats)) => {
                     prop_assert_eq!(stats.both_ends, two_threads());
                     let traced = path.traced_length;
@@ -84,7 +85,7 @@ proptest! {
         let solver = Solver::new(&mesh, Euclidean, &options).unwrap();
         for max in [0.999 * expected, 1.001 * expected + 1e-12] {
             let stop = Stop::NONE.with_max_distance(max);
-            match solver.shortest_path_with(&[Source::new(from)], to, &stop) {
+            match solver.shortest_path(Sources::from(&[Source::new(from)]).until(&stop), to) {
                 Ok((path, _)) => {
                     prop_assert!(max >= expected, "{} found beyond {}", path.traced_length, max);
                     prop_assert!((path.traced_length - expected).abs() <= 1e-9 * expected);
@@ -106,11 +107,11 @@ fn the_same_query_gives_the_same_path() {
     let solver = Solver::new(&mesh, Euclidean, &options).unwrap();
     let (from, to) = (SurfacePoint::Vertex(0), SurfacePoint::Vertex(80 * 81 + 57));
     let first = solver
-        .shortest_path_with(&[Source::new(from)], to, &Stop::NONE)
+        .shortest_path(Sources::from(&[Source::new(from)]).until(&Stop::NONE), to)
         .unwrap();
     for _ in 0..6 {
         let again = solver
-            .shortest_path_with(&[Source::new(from)], to, &Stop::NONE)
+            .shortest_path(Sources::from(&[Source::new(from)]).until(&Stop::NONE), to)
             .unwrap();
         assert_eq!(again.0.points, first.0.points);
         assert_eq!(again.1.settles, first.1.settles);
@@ -131,9 +132,13 @@ fn together_the_sides_settle_about_what_one_run_settles() {
     let solver = Solver::new(&mesh, Euclidean, &options).unwrap();
     let (from, to) = (SurfacePoint::Vertex(0), SurfacePoint::Vertex(80 * 81 + 57));
     let source = [Source::new(from)];
-    let (both, both_stats) = solver.shortest_path_with(&source, to, &Stop::NONE).unwrap();
+    let (both, both_stats) = solver
+        .shortest_path(Sources::from(&source).until(&Stop::NONE), to)
+        .unwrap();
     let one_end = Stop::NONE.with_both_ends(false);
-    let (one, one_stats) = solver.shortest_path_with(&source, to, &one_end).unwrap();
+    let (one, one_stats) = solver
+        .shortest_path(Sources::from(&source).until(&one_end), to)
+        .unwrap();
     assert!(both_stats.both_ends && !one_stats.both_ends);
     assert!((both.traced_length - one.traced_length).abs() <= 1e-9 * one.traced_length);
     let ratio = both_stats.settles as f64 / one_stats.settles as f64;
@@ -155,14 +160,16 @@ fn one_thread_or_sources_search_from_one_end() {
         .build()
         .unwrap();
     let (path, stats) = pool
-        .install(|| solver.shortest_path_with(&[Source::new(from)], to, &Stop::NONE))
+        .install(|| {
+            solver.shortest_path(Sources::from(&[Source::new(from)]).until(&Stop::NONE), to)
+        })
         .unwrap();
     assert!(!stats.both_ends);
     assert!((path.traced_length - expected).abs() <= 1e-9 * expected);
 
     let sources = [Source::new(from), Source::new(SurfacePoint::Vertex(500))];
     let (_, stats) = solver
-        .shortest_path_with(&sources, to, &Stop::NONE)
+        .shortest_path(Sources::from(&sources).until(&Stop::NONE), to)
         .unwrap();
     assert!(!stats.both_ends);
 
@@ -171,7 +178,7 @@ fn one_thread_or_sources_search_from_one_end() {
     let solver = Solver::new(&mesh, &wind, &options).unwrap();
     for (a, b) in [(from, to), (to, from)] {
         let (path, stats) = solver
-            .shortest_path_with(&[Source::new(a)], b, &Stop::NONE)
+            .shortest_path(Sources::from(&[Source::new(a)]).until(&Stop::NONE), b)
             .unwrap();
         assert_eq!(stats.both_ends, two_threads());
         let expected = oracle(&mesh, &wind, 2.0, a, b);
@@ -212,7 +219,7 @@ fn a_second_run_must_fit_the_memory_budget() {
     for (limit, both) in [(hi, false), (3 * hi, true)] {
         let solver = Solver::new(&mesh, Euclidean, &options.with_memory_limit(limit)).unwrap();
         let (_, stats) = solver
-            .shortest_path_with(&[Source::new(from)], to, &Stop::NONE)
+            .shortest_path(Sources::from(&[Source::new(from)]).until(&Stop::NONE), to)
             .unwrap();
         assert_eq!(stats.both_ends, both, "limit {limit}");
     }
@@ -225,16 +232,25 @@ fn islands_and_short_paths() {
     let mesh = common::two_islands();
     let options = Options::DEFAULT.with_method(Method::Tracks).with_k(2.0);
     let solver = Solver::new(&mesh, Euclidean, &options).unwrap();
-    let far = solver.shortest_path_with(&[Source::new(0)], SurfacePoint::Vertex(4), &Stop::NONE);
+    let far = solver.shortest_path(
+        Sources::from(&[Source::new(0)]).until(&Stop::NONE),
+        SurfacePoint::Vertex(4),
+    );
     assert!(matches!(far, Err(Error::Unreachable { .. })), "{far:?}");
     let nan = Stop::NONE.with_max_distance(f64::NAN);
-    let refused = solver.shortest_path_with(&[Source::new(0)], SurfacePoint::Vertex(1), &nan);
+    let refused = solver.shortest_path(
+        Sources::from(&[Source::new(0)]).until(&nan),
+        SurfacePoint::Vertex(1),
+    );
     assert!(
         matches!(refused, Err(Error::InvalidValue { .. })),
         "{refused:?}"
     );
     let (same, _) = solver
-        .shortest_path_with(&[Source::new(1)], SurfacePoint::Vertex(1), &Stop::NONE)
+        .shortest_path(
+            Sources::from(&[Source::new(1)]).until(&Stop::NONE),
+            SurfacePoint::Vertex(1),
+        )
         .unwrap();
     assert_eq!(same.points, [SurfacePoint::Vertex(1)]);
     let (a, b) = (
@@ -248,7 +264,7 @@ fn islands_and_short_paths() {
         },
     );
     let (straight, _) = solver
-        .shortest_path_with(&[Source::new(a)], b, &Stop::NONE)
+        .shortest_path(Sources::from(&[Source::new(a)]).until(&Stop::NONE), b)
         .unwrap();
     assert_eq!(straight.points, [b, a]);
     assert!((straight.length - 0.4).abs() < 1e-12);

@@ -7,9 +7,9 @@ mod common;
 
 use common::{random_book, random_mesh, random_randers, sphere, Randers, Rng};
 use geotracks::mesh::TriMesh;
+use geotracks::Sources;
 use geotracks::{
-    distance_field, Euclidean, Method, Metric, Options, Reversed, Solver, Source, Stop,
-    SurfacePoint, Tensor,
+    Euclidean, Method, Metric, Options, Reversed, Solver, Source, Stop, SurfacePoint, Tensor,
 };
 use glam::DVec3;
 use proptest::prelude::*;
@@ -51,10 +51,10 @@ proptest! {
         let method = if tracks { Method::Tracks } else { Method::Graph };
         let options = Options::DEFAULT.with_k(3.0).with_method(method);
         let [s, t] = [s, t].map(|v| v % mesh.vertex_count() as u32);
-        let from_s = distance_field(&mesh, &metric, &[s], &options).unwrap();
-        let to_s = distance_field(&mesh, &Reversed(&metric), &[s], &options).unwrap();
+        let from_s = Solver::new(&mesh, &metric, &options).and_then(|solver| solver.field(&[s])).unwrap();
+        let to_s = Solver::new(&mesh, Reversed(&metric), &options).and_then(|solver| solver.field(&[s])).unwrap();
         let (there, back) = (from_s.distance(t), to_s.distance(t));
-        let from_t = distance_field(&mesh, &metric, &[t], &options).unwrap();
+        let from_t = Solver::new(&mesh, &metric, &options).and_then(|solver| solver.field(&[t])).unwrap();
         // Under the reversed metric, from s to t costs what t to s costs.
         let expected = from_t.distance(s);
         prop_assert!(back == expected || (back - expected).abs() <= 1e-12 * expected, "{} vs {}", back, expected);
@@ -83,7 +83,9 @@ fn on_a_windy_plane_the_field_approaches_the_norm_and_is_directed() {
     let centre = mesh.position(source);
     let mut worst = [0.0f64; 2];
     for (i, k) in [2.0, 8.0].into_iter().enumerate() {
-        let field = distance_field(&mesh, &metric, &[source], &Options::DEFAULT.with_k(k)).unwrap();
+        let field = Solver::new(&mesh, &metric, &Options::DEFAULT.with_k(k))
+            .and_then(|solver| solver.field(&[source]))
+            .unwrap();
         assert_eq!(field.stats().method, Method::Tracks);
         for v in 0..mesh.vertex_count() as u32 {
             let exact = randers_norm(mesh.position(v) - centre, wind);
@@ -101,7 +103,9 @@ fn on_a_windy_plane_the_field_approaches_the_norm_and_is_directed() {
     );
     assert!(worst[1] < worst[0] && worst[1] < 0.01, "{worst:?}");
     // Along ω (+x) costs more than against it: 0.5 along the edges, times 1 ± 0.6.
-    let field = distance_field(&mesh, &metric, &[source], &Options::DEFAULT.with_k(4.0)).unwrap();
+    let field = Solver::new(&mesh, &metric, &Options::DEFAULT.with_k(4.0))
+        .and_then(|solver| solver.field(&[source]))
+        .unwrap();
     let (east, west) = (field.distance(44), field.distance(36));
     assert!((east - 0.5 * 1.6).abs() < 1e-12, "{east}");
     assert!((west - 0.5 * 0.4).abs() < 1e-12, "{west}");
@@ -110,12 +114,14 @@ fn on_a_windy_plane_the_field_approaches_the_norm_and_is_directed() {
 /// The traced and the straightened path from `s` to `t`, after checking that the
 /// traced path's cost, segment by segment from the source, is the field's value at `t`.
 fn traced_and_straightened<M: Metric>(
-    solver: &Solver<'_, M>,
+    solver: &Solver<M>,
     s: SurfacePoint,
     t: SurfacePoint,
 ) -> (geotracks::GeodesicPath, geotracks::GeodesicPath) {
-    let field = solver.solve_from(&[Source::new(s)], &Stop::NONE).unwrap();
-    let query = solver.query(&field).unwrap();
+    let field = solver
+        .field(Sources::from(&[Source::new(s)]).until(&Stop::NONE))
+        .unwrap();
+    let query = &field;
     let traced = query.trace(t).unwrap();
     let at_t = query.distance_at(t).unwrap();
     assert!(
@@ -210,8 +216,8 @@ fn a_path_bends_where_travelling_it_costs_least() {
     // right face, 1 − 0.6; up: the left one, 1).
     let (top, bottom) = (9 * 11 + 5, 11 + 5);
     for (from, to, per_unit) in [(top, bottom, 0.4), (bottom, top, 1.0)] {
-        let field = solver.solve(&[from]).unwrap();
-        let query = solver.query(&field).unwrap();
+        let field = solver.field(&[from]).unwrap();
+        let query = &field;
         let path = query.trace(SurfacePoint::Vertex(to)).unwrap();
         assert!((field.distance(to) - 0.8 * per_unit).abs() < 1e-12);
         assert!(
@@ -249,8 +255,12 @@ fn locate(mesh: &TriMesh, p: DVec3) -> SurfacePoint {
 fn symmetric_metrics_say_so_and_reversing_them_changes_nothing() {
     let mesh = sphere(2, 0.2, 3);
     assert!(Euclidean.is_symmetric() && Reversed(Euclidean).face_gram(0).is_some());
-    let a = distance_field(&mesh, &Euclidean, &[0], &Options::DEFAULT).unwrap();
-    let b = distance_field(&mesh, &Reversed(Euclidean), &[0], &Options::DEFAULT).unwrap();
+    let a = Solver::new(&mesh, &Euclidean, &Options::DEFAULT)
+        .and_then(|solver| solver.field(&[0]))
+        .unwrap();
+    let b = Solver::new(&mesh, &Reversed(Euclidean), &Options::DEFAULT)
+        .and_then(|solver| solver.field(&[0]))
+        .unwrap();
     assert_eq!(a.stats().method, Method::Wave);
     assert_eq!(a.node_distances(), b.node_distances());
     let point = SurfacePoint::Face {

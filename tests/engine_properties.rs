@@ -24,6 +24,7 @@ use common::{
     sphere, Rng,
 };
 use geotracks::mesh::TriMesh;
+use geotracks::Sources;
 use geotracks::{Method, Metric, Options, Solver, Source, Stop, SurfacePoint, Tensor};
 use proptest::prelude::*;
 
@@ -101,10 +102,10 @@ fn solve<M: Metric>(
     metric: M,
     sources: &[Source],
     options: Options,
-) -> geotracks::GeodesicField {
+) -> geotracks::Field<M> {
     Solver::new(mesh, metric, &options)
         .unwrap()
-        .solve_from(sources, &Stop::NONE)
+        .field(Sources::from(sources).until(&Stop::NONE))
         .unwrap()
 }
 
@@ -206,7 +207,7 @@ proptest! {
         let source = [Source::new(SurfacePoint::Vertex((seed % 3) as u32))];
         let field = Solver::new(&mesh, geotracks::Euclidean, &Options::DEFAULT.with_method(method))
             .map_err(|e| TestCaseError::fail(format!("refused: {e}")))?
-            .solve_from(&source, &Stop::NONE)
+            .field(Sources::from(&source).until(&Stop::NONE))
             .map_err(|e| TestCaseError::fail(format!("refused: {e}")))?;
         // Lengths are computed to rounding of the coordinates, not of the length.
         let scale = mesh.positions().iter().map(|p| p.abs().max_element()).fold(0.0, f64::max);

@@ -12,6 +12,7 @@ mod common;
 
 use geotracks::mesh::io::read_mesh;
 use geotracks::mesh::TriMesh;
+use geotracks::Sources;
 use geotracks::{
     Density, Euclidean, Method, Metric, Options, Solver, Source, Stats, Stop, SurfacePoint, Tensor,
 };
@@ -143,7 +144,9 @@ fn run<M: Metric>(case: &Case, metric: &M, method: Method) -> Option<(Vec<f64>, 
     } else {
         case.max_distance
     });
-    let field = solver.solve_from(&case.sources, &stop).unwrap();
+    let field = solver
+        .field(Sources::from(&case.sources).until(&stop))
+        .unwrap();
     let nodes = solver.layout().node_count() as u64;
     let stats = field.stats().clone();
     eprintln!(
@@ -157,7 +160,7 @@ fn run<M: Metric>(case: &Case, metric: &M, method: Method) -> Option<(Vec<f64>, 
         case.name,
         stats.settles
     );
-    let query = solver.query(&field).unwrap();
+    let query = &field;
     for &q in &case.queries {
         let d = query.distance_at(q).unwrap();
         assert!(!d.is_nan(), "{}: distance at {q} is NaN", case.name);
@@ -314,8 +317,10 @@ fn straightening_beside_a_wall_does_not_panic() {
         "e:100:0.3".parse().unwrap(),
     ] {
         let solver = Solver::new(&mesh, &wall, &Options::DEFAULT.with_k(3.0)).unwrap();
-        let field = solver.solve_from(&[Source::new(0)], &Stop::NONE).unwrap();
-        match solver.query(&field).unwrap().path(target) {
+        let field = solver
+            .field(Sources::from(&[Source::new(0)]).until(&Stop::NONE))
+            .unwrap();
+        match field.path(target) {
             Ok(path) => assert!(
                 path.length <= path.traced_length * (1.0 + 1e-12),
                 "{target}: {} > {}",

@@ -8,6 +8,7 @@ mod common;
 
 use common::{oracle, oracle_mesh, random_metric, sphere, Rng};
 use geotracks::mesh::TriMesh;
+use geotracks::Sources;
 use geotracks::{
     Error, Euclidean, FacePoint, Method, Metric, Options, Solver, Source, Stop, SurfacePoint,
 };
@@ -16,13 +17,15 @@ use proptest::prelude::*;
 /// The value at `target` from `source` after a goal-directed run stopped there, with
 /// the run's settles.
 fn goal_directed<M: Metric>(
-    solver: &Solver<'_, M>,
+    solver: &Solver<M>,
     source: SurfacePoint,
     target: SurfacePoint,
 ) -> (f64, u64) {
     let stop = Stop::NONE.with_targets(vec![target]);
-    let field = solver.solve_from(&[Source::new(source)], &stop).unwrap();
-    let value = solver.query(&field).unwrap().distance_at(target).unwrap();
+    let field = solver
+        .field(Sources::from(&[Source::new(source)]).until(&stop))
+        .unwrap();
+    let value = field.distance_at(target).unwrap();
     (value, field.stats().settles)
 }
 
@@ -75,8 +78,8 @@ proptest! {
         let (from, to) = (random_point(&mesh, &mut rng), random_point(&mesh, &mut rng));
         let (value, settles) = goal_directed(&solver, from, to);
         let plain = Stop::NONE.with_targets(vec![to]).with_goal_directed(false);
-        let field = solver.solve_from(&[Source::new(from)], &plain).unwrap();
-        prop_assert_eq!(value, solver.query(&field).unwrap().distance_at(to).unwrap());
+        let field = solver.field(Sources::from(&[Source::new(from)]).until(&plain)).unwrap();
+        prop_assert_eq!(value, field.distance_at(to).unwrap());
         prop_assert_eq!(settles, field.stats().settles);
     }
 }
@@ -101,8 +104,10 @@ fn goal_direction_settles_a_corridor() {
     );
     let (value, settles) = goal_directed(&solver, from, to);
     let plain = Stop::NONE.with_targets(vec![to]).with_goal_directed(false);
-    let field = solver.solve_from(&[Source::new(from)], &plain).unwrap();
-    let expected = solver.query(&field).unwrap().distance_at(to).unwrap();
+    let field = solver
+        .field(Sources::from(&[Source::new(from)]).until(&plain))
+        .unwrap();
+    let expected = field.distance_at(to).unwrap();
     println!(
         "{n} × {n} hills, corner to corner: {settles} settles against {}",
         field.stats().settles
@@ -145,9 +150,7 @@ fn a_metric_that_promises_too_much_is_refused() {
         wire_fraction: 1.0,
     };
     let mesh = common::grid(2, 2.0);
-    let error = Solver::new(&mesh, boastful, &Options::DEFAULT)
-        .err()
-        .expect("refused");
+    let error = Solver::new(&mesh, boastful, &Options::DEFAULT).expect_err("refused");
     assert!(
         matches!(error, Error::CostBelowBound { per_length, .. } if per_length == 1.5),
         "{error}"
@@ -170,9 +173,7 @@ fn a_metric_that_promises_too_much_is_refused() {
         vec![[2, 3]],
     )
     .unwrap();
-    let error = Solver::new(&mesh, cheap_wires, &Options::DEFAULT)
-        .err()
-        .expect("refused");
+    let error = Solver::new(&mesh, cheap_wires, &Options::DEFAULT).expect_err("refused");
     assert!(matches!(error, Error::WireBelowBound { .. }), "{error}");
 }
 
@@ -215,7 +216,13 @@ fn targets_all_over_the_mesh_run_plain() {
         SurfacePoint::Vertex((n * (n + 1)) as u32),
     ];
     let source = [Source::new((n / 2) as u32)];
-    let settles = |stop: Stop| solver.solve_from(&source, &stop).unwrap().stats().settles;
+    let settles = |stop: Stop| {
+        solver
+            .field(Sources::from(&source).until(&stop))
+            .unwrap()
+            .stats()
+            .settles
+    };
     let spread = Stop::NONE.with_targets(corners);
     assert_eq!(
         settles(spread.clone()),

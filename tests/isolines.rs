@@ -6,17 +6,16 @@ mod common;
 
 use geotracks::mesh::TriMesh;
 use geotracks::trace::{spread_levels, Isoline, IsolineOptions};
+use geotracks::Sources;
 use geotracks::{Error, Euclidean, Options, Solver, Source, SurfacePoint};
 use glam::DVec3;
 
 fn isolines(mesh: &TriMesh, sources: &[Source], levels: &[f64]) -> Vec<Isoline> {
     let solver = Solver::new(mesh, Euclidean, &Options::DEFAULT).unwrap();
-    let field = solver.solve_from(sources, &geotracks::Stop::NONE).unwrap();
-    solver
-        .query(&field)
-        .unwrap()
-        .isolines(levels, &IsolineOptions::DEFAULT)
-        .unwrap()
+    let field = solver
+        .field(Sources::from(sources).until(&geotracks::Stop::NONE))
+        .unwrap();
+    field.isolines(levels, &IsolineOptions::DEFAULT).unwrap()
 }
 
 /// The largest relative distance from its level of a point, on a plane where the exact
@@ -227,8 +226,8 @@ fn isolines_wrap_round_a_cone_and_a_saddle() {
 /// `distance_at`) by more than 1e-9 relative, the worst, and the count.
 fn check_lines(mesh: &TriMesh, sources: &[u32], levels: usize) -> (usize, f64, usize) {
     let solver = Solver::new(mesh, Euclidean, &Options::DEFAULT).unwrap();
-    let field = solver.solve(sources).unwrap();
-    let query = solver.query(&field).unwrap();
+    let field = solver.field(sources).unwrap();
+    let query = &field;
     let levels = spread_levels(query.max_reached_distance(), levels);
     let lines = query.isolines(&levels, &IsolineOptions::DEFAULT).unwrap();
     let (mut off, mut worst, mut count) = (0usize, 0.0f64, 0usize);
@@ -292,8 +291,8 @@ fn check_lines(mesh: &TriMesh, sources: &[u32], levels: usize) -> (usize, f64, u
 fn bad_levels_and_options_are_refused() {
     let mesh = common::grid(2, 1.0);
     let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
-    let field = solver.solve(&[0]).unwrap();
-    let query = solver.query(&field).unwrap();
+    let field = solver.field(&[0]).unwrap();
+    let query = &field;
     let err = query
         .isolines(&[0.5, f64::NAN], &IsolineOptions::DEFAULT)
         .unwrap_err();
@@ -313,8 +312,8 @@ fn more_levels_than_the_bound_are_refused_at_once() {
     use geotracks::trace::{check_level_count, MAX_LEVELS};
     let mesh = common::grid(3, 3.0);
     let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
-    let field = solver.solve(&[0]).unwrap();
-    let query = solver.query(&field).unwrap();
+    let field = solver.field(&[0]).unwrap();
+    let query = &field;
     let max = query.max_reached_distance();
     let start = std::time::Instant::now();
     let err = query

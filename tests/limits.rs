@@ -38,8 +38,8 @@ fn too_many_points_on_one_edge_is_refused_with_the_largest_k() {
         matches!(limit, SizeLimit::PointsOnEdge { points, limit: 65535, .. } if points > 65535)
     );
     // The largest k fits, and the message says so.
-    Solver::new(&triangle(), Euclidean, &Options::DEFAULT.with_k(largest)).unwrap();
-    let message = Solver::new(&triangle(), Euclidean, &Options::DEFAULT.with_k(1e5))
+    Solver::new(triangle(), Euclidean, &Options::DEFAULT.with_k(largest)).unwrap();
+    let message = Solver::new(triangle(), Euclidean, &Options::DEFAULT.with_k(1e5))
         .err()
         .unwrap()
         .to_string();
@@ -109,7 +109,7 @@ fn a_k_whose_work_breaks_the_limit_is_refused_before_any_work() {
         .with_work_limit(Some(10_000_000));
     for method in [Method::Wave, Method::Graph] {
         let solver = Solver::new(&mesh, Euclidean, &options.with_method(method)).unwrap();
-        let tests = solver.solve(&[0]).unwrap().stats().distance_tests as f64;
+        let tests = solver.field(&[0]).unwrap().stats().distance_tests as f64;
         let (limit, _) = refused(&mesh, options.with_method(method).with_work_limit(Some(1)));
         let SizeLimit::Work {
             tests: estimate, ..
@@ -124,7 +124,7 @@ fn a_k_whose_work_breaks_the_limit_is_refused_before_any_work() {
     }
     // Lifted: the layout's own limits remain.
     let lifted = Options::DEFAULT.with_k(20_000.0).with_work_limit(None);
-    let _ = Solver::new(&triangle(), Euclidean, &lifted).unwrap();
+    let _ = Solver::new(triangle(), Euclidean, &lifted).unwrap();
 }
 
 /// The default work limit keeps every shared benchmark mesh runnable at k = 20 with
@@ -161,7 +161,7 @@ fn the_graph_is_refused_past_32_bit_nodes_or_the_memory_budget() {
         matches!(limit, SizeLimit::Memory { needed, available: 100_000_000 } if needed > 100_000_000)
     );
     Solver::new(
-        &spot(),
+        spot(),
         Euclidean,
         &graph.with_k(largest).with_memory_limit(100_000_000),
     )
@@ -204,7 +204,7 @@ fn squares_from_1e_minus_300_to_1e300_give_exact_distances() {
         for method in [Method::Tracks, Method::Graph, Method::Dijkstra] {
             let options = Options::DEFAULT.with_k(3.0).with_method(method);
             let solver = Solver::new(&mesh, Euclidean, &options).unwrap();
-            let field = solver.solve(&[0]).unwrap();
+            let field = solver.field(&[0]).unwrap();
             let expected = [0.0, side, side * 2f64.sqrt(), side];
             for (v, (&d, &e)) in field.vertex_distances().iter().zip(&expected).enumerate() {
                 assert!(
@@ -216,7 +216,7 @@ fn squares_from_1e_minus_300_to_1e300_give_exact_distances() {
         let density = geotracks::Density::constant(&mesh, 2.0).unwrap();
         let field = Solver::new(&mesh, &density, &Options::DEFAULT)
             .unwrap()
-            .solve(&[0])
+            .field(&[0])
             .unwrap();
         let d = field.distance(2);
         assert!(
@@ -253,7 +253,7 @@ fn costs_beyond_the_f64_range_are_refused_by_every_engine() {
     let density = geotracks::Density::constant(&mesh, 1e290).unwrap();
     let field = Solver::new(&mesh, &density, &Options::DEFAULT)
         .unwrap()
-        .solve(&[0])
+        .field(&[0])
         .unwrap();
     assert!((field.distance(2) - 1e300 * 2f64.sqrt()).abs() < 1e-12 * 1e300);
 }
@@ -320,7 +320,7 @@ fn local_rows_that_outgrow_the_memory_stop_the_call() {
     let radius = 0.05;
     let rows = solver.local_distance_rows(&all[..50], radius).unwrap();
     for (&source, row) in all.iter().zip(&rows) {
-        let full = solver.solve(&[source]).unwrap();
+        let full = solver.field(&[source]).unwrap();
         let within: Vec<u32> = (0..mesh.vertex_count() as u32)
             .filter(|&v| full.distance(v) <= radius)
             .collect();

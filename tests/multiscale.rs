@@ -8,6 +8,7 @@ mod common;
 
 use common::{multiscale_mesh, Rng};
 use geotracks::mesh::TriMesh;
+use geotracks::Sources;
 use geotracks::{
     Density, Euclidean, Method, Metric, Options, Solver, Source, Stop, SurfacePoint, Tensor,
 };
@@ -52,7 +53,7 @@ fn run<M: Metric>(
 ) -> Run {
     let options = Options::DEFAULT.with_k(k).with_method(method);
     let solver = Solver::new(mesh, metric, &options).unwrap();
-    let field = solver.solve_from(sources, stop).unwrap();
+    let field = solver.field(Sources::from(sources).until(stop)).unwrap();
     Run {
         nodes: field.node_distances().to_vec(),
         settles: field.stats().settles,

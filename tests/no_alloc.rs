@@ -5,6 +5,7 @@
 #![allow(unsafe_code)]
 
 use geotracks::mesh::io::read_mesh;
+use geotracks::Sources;
 use geotracks::{Density, Euclidean, Metric, Options, Solver, Source, Stop, Workspace};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -31,7 +32,7 @@ unsafe impl GlobalAlloc for Counting {
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
-fn allocations_of_warm_runs<M: Metric>(solver: &Solver<'_, M>) -> usize {
+fn allocations_of_warm_runs<M: Metric>(solver: &Solver<M>) -> usize {
     let mut ws = solver.workspace();
     // Full runs, and local ones (which clear only what they touched).
     // (Spot is about a unit across: this reaches a few percent of it.)
@@ -39,7 +40,9 @@ fn allocations_of_warm_runs<M: Metric>(solver: &Solver<'_, M>) -> usize {
     let runs = |ws: &mut Workspace| {
         for s in [0, 1000, 2000] {
             solver.run(ws, &[s]).unwrap();
-            solver.run_from(ws, &[Source::new(s)], &local).unwrap();
+            solver
+                .run(ws, Sources::from(&[Source::new(s)]).until(&local))
+                .unwrap();
         }
     };
     // Warm up: the first runs size the buffers (and the queue's buckets).

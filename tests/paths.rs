@@ -5,9 +5,10 @@ mod common;
 use common::{book, grid, random_book, random_face_point, random_mesh, sphere, Rng, GRAPH, TRACKS};
 use geotracks::glam::DVec3;
 use geotracks::mesh::{io::read_mesh, TriMesh};
+use geotracks::Sources;
 use geotracks::{
-    Density, Error, Euclidean, GeodesicField, GeodesicPath, Method, Metric, Options, PointError,
-    PointRole, Query, Solver, Source, Stop, SurfacePoint, Tensor, ValueRole,
+    Density, Error, Euclidean, Field, GeodesicPath, Method, Metric, Options, PointError, PointRole,
+    Solver, Source, Stop, SurfacePoint, Tensor, ValueRole,
 };
 
 fn spot() -> TriMesh {
@@ -22,7 +23,7 @@ fn random_edge_point(mesh: &TriMesh, rng: &mut Rng) -> SurfacePoint {
 }
 
 /// Everything a path must satisfy, whatever the mesh and metric.
-fn check_path<M: Metric>(query: &Query<'_, M>, target: SurfacePoint, path: &GeodesicPath) {
+fn check_path<M: Metric>(query: &Field<M>, target: SurfacePoint, path: &GeodesicPath) {
     let (mesh, metric) = (query.mesh(), query.metric());
     let target = target.validated(mesh).unwrap();
     assert_eq!(path.points[0], target, "the path starts at the target");
@@ -85,9 +86,9 @@ fn paths_from_any_point_to_any_source_are_consistent() {
             Source::new(rng.below(mesh.vertex_count()) as u32),
         ];
         let field = solver
-            .solve_from(&sources[..1 + round % 3], &Stop::NONE)
+            .field(Sources::from(&sources[..1 + round % 3]).until(&Stop::NONE))
             .unwrap();
-        let query = solver.query(&field).unwrap();
+        let query = &field;
         for _ in 0..8 {
             let target = match rng.below(3) {
                 0 => random_face_point(&mesh, &mut rng),
@@ -95,7 +96,7 @@ fn paths_from_any_point_to_any_source_are_consistent() {
                 _ => SurfacePoint::Vertex(rng.below(mesh.vertex_count()) as u32),
             };
             let path = query.path(target).unwrap();
-            check_path(&query, target, &path);
+            check_path(query, target, &path);
             let traced = query.trace(target).unwrap();
             assert_eq!(traced.length, path.traced_length);
         }
@@ -120,12 +121,14 @@ fn paths_under_a_tensor_metric_and_on_non_manifold_meshes() {
         let metric = Tensor::from_principal(&mesh, &principal).unwrap();
         let solver = Solver::new(&mesh, &metric, &Options::DEFAULT.with_k(3.0)).unwrap();
         let source = Source::new(random_face_point(&mesh, &mut rng));
-        let field = solver.solve_from(&[source], &Stop::NONE).unwrap();
-        let query = solver.query(&field).unwrap();
+        let field = solver
+            .field(Sources::from(&[source]).until(&Stop::NONE))
+            .unwrap();
+        let query = &field;
         for _ in 0..10 {
             let target = random_face_point(&mesh, &mut rng);
             match query.path(target) {
-                Ok(path) => check_path(&query, target, &path),
+                Ok(path) => check_path(query, target, &path),
                 Err(Error::Unreachable { .. }) => {
                     assert!(query.distance_at(target).unwrap().is_infinite())
                 }
@@ -140,18 +143,18 @@ fn a_path_on_a_flat_grid_is_a_straight_line() {
     let mesh = grid(12, 1.0);
     let solver = Solver::new(&mesh, Euclidean, &TRACKS.with_k(3.0)).unwrap();
     let field = solver
-        .solve_from(
-            &[Source::new(
+        .field(
+            Sources::from(&[Source::new(
                 SurfacePoint::nearest(&mesh, [0.07, 0.11, 0.0]).unwrap(),
-            )],
-            &Stop::NONE,
+            )])
+            .until(&Stop::NONE),
         )
         .unwrap();
     let mut rng = Rng(3);
     for _ in 0..10 {
         let xyz = [0.1 + 0.85 * rng.next(), 0.1 + 0.85 * rng.next(), 0.0];
         let target = SurfacePoint::nearest(&mesh, xyz).unwrap();
-        let path = solver.query(&field).unwrap().path(target).unwrap();
+        let path = field.path(target).unwrap();
         let (a, b) = (DVec3::new(0.07, 0.11, 0.0), DVec3::from(xyz));
         if std::env::var("DUMP").is_ok() {
             for (i, p) in path.points.iter().enumerate() {
@@ -187,13 +190,9 @@ fn a_path_between_pages_crosses_the_spine_where_the_unfolding_says() {
     let (source, target) = ((0.6, 0.2), (0.3, 0.85));
     let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
     let field = solver
-        .solve_from(&[Source::new(on_page(0, source.0, source.1))], &Stop::NONE)
+        .field(Sources::from(&[Source::new(on_page(0, source.0, source.1))]).until(&Stop::NONE))
         .unwrap();
-    let path = solver
-        .query(&field)
-        .unwrap()
-        .path(on_page(1, target.0, target.1))
-        .unwrap();
+    let path = field.path(on_page(1, target.0, target.1)).unwrap();
     // Unfolded: source at (−0.6, 0.2), target at (0.3, 0.85); the spine is x = 0.
     let z_cross = source.1 + (target.1 - source.1) * source.0 / (source.0 + target.0);
     let exact = ((source.0 + target.0).powi(2) + (target.1 - source.1).powi(2)).sqrt();
@@ -247,12 +246,15 @@ fn prism_paths_match_the_unfolding() {
     assert!(matches!(source, SurfacePoint::Face { .. }));
     let solvers =
         [Options::DEFAULT, common::DIJKSTRA].map(|o| Solver::new(&mesh, Euclidean, &o).unwrap());
-    let fields: Vec<GeodesicField> = solvers
+    let fields: Vec<geotracks::Field<Euclidean>> = solvers
         .iter()
-        .map(|s| s.solve_from(&[Source::new(source)], &Stop::NONE).unwrap())
+        .map(|s| {
+            s.field(Sources::from(&[Source::new(source)]).until(&Stop::NONE))
+                .unwrap()
+        })
         .collect();
-    let tracks = solvers[0].query(&fields[0]).unwrap();
-    let dijkstra = solvers[1].query(&fields[1]).unwrap();
+    let tracks = &fields[0];
+    let dijkstra = &fields[1];
     let mut worst_dijkstra: f64 = 0.0;
     for (u, e) in [(0.5, 0.05), (0.3, 0.08), (0.65, 0.03), (0.45, 0.12)] {
         // Near the ridge over the edge from base[0] to base[1] (y = 0), `e` inside.
@@ -260,7 +262,7 @@ fn prism_paths_match_the_unfolding() {
         // Unfolded across the side y = 0: the top face lies beyond it.
         let exact = ((u - source_xy.x).powi(2) + (source_xy.y + h + e).powi(2)).sqrt();
         let path = tracks.path(target).unwrap();
-        check_path(&tracks, target, &path);
+        check_path(tracks, target, &path);
         assert!(
             (path.length - exact).abs() <= 0.005 * exact,
             "tracks path {} vs exact {exact}",
@@ -290,10 +292,10 @@ fn face_and_edge_sources_give_the_graphs_distances() {
             Source::new(random_edge_point(&mesh, &mut rng)).with_start(0.3 * rng.next()),
         ];
         let options = TRACKS.with_k(1.0 + (seed % 5) as f64);
-        let [tracks, graph] = [options, GRAPH.with_k(options.steiner.k())].map(|o| {
+        let [tracks, graph] = [options, GRAPH.with_k(options.steiner.unwrap().k())].map(|o| {
             Solver::new(&mesh, Euclidean, &o)
                 .unwrap()
-                .solve_from(&sources, &Stop::NONE)
+                .field(Sources::from(&sources).until(&Stop::NONE))
                 .unwrap()
         });
         for (a, b) in tracks.node_distances().iter().zip(graph.node_distances()) {
@@ -321,12 +323,18 @@ fn many_sources_with_start_values_are_the_minimum_and_label_vertices() {
         .with_start(0.1),
         Source::new(SurfacePoint::Edge { edge: 900, t: 0.4 }).with_start(0.05),
     ];
-    let together = solver.solve_from(&sources, &Stop::NONE).unwrap();
-    let alone: Vec<GeodesicField> = sources
+    let together = solver
+        .field(Sources::from(&sources).until(&Stop::NONE))
+        .unwrap();
+    let alone: Vec<geotracks::Field<Euclidean>> = sources
         .iter()
-        .map(|s| solver.solve_from(&[*s], &Stop::NONE).unwrap())
+        .map(|s| {
+            solver
+                .field(Sources::from(&[*s]).until(&Stop::NONE))
+                .unwrap()
+        })
         .collect();
-    let query = solver.query(&together).unwrap();
+    let query = &together;
     let labels = query.vertex_labels();
     let mut seen = [false; 3];
     for (v, &label) in labels.iter().enumerate() {
@@ -345,7 +353,7 @@ fn many_sources_with_start_values_are_the_minimum_and_label_vertices() {
     let v = (0..mesh.vertex_count() as u32)
         .find(|&v| labels[v as usize] == 1)
         .unwrap();
-    let path = query.path(v.into()).unwrap();
+    let path = query.path(v).unwrap();
     assert_eq!(path.source, 1);
 }
 
@@ -358,15 +366,20 @@ fn early_stops_keep_the_full_runs_values() {
     })];
     for options in [Options::DEFAULT, GRAPH] {
         let solver = Solver::new(&mesh, Euclidean, &options).unwrap();
-        let full = solver.solve_from(&source, &Stop::NONE).unwrap();
+        let full = solver
+            .field(Sources::from(&source).until(&Stop::NONE))
+            .unwrap();
         let far = full.node_distances().iter().copied().fold(0.0f64, f64::max);
         let max = 0.3 * far;
         let mut ws = solver.workspace();
         let bounded = solver
-            .run_from(&mut ws, &source, &Stop::NONE.with_max_distance(max))
+            .run(
+                &mut ws,
+                Sources::from(&source).until(Stop::NONE.with_max_distance(max)),
+            )
             .unwrap();
         let mut reached = 0;
-        for (a, b) in ws.node_distances().iter().zip(full.node_distances()) {
+        for (a, b) in bounded.node_distances().iter().zip(full.node_distances()) {
             if *b <= max {
                 assert_eq!(a, b);
                 reached += 1;
@@ -375,7 +388,7 @@ fn early_stops_keep_the_full_runs_values() {
             }
         }
         assert!(reached > 0);
-        assert!(bounded.distance_tests < full.stats().distance_tests / 2);
+        assert!(bounded.stats().distance_tests < full.stats().distance_tests / 2);
 
         // Targets at about a fifth of the farthest distance.
         let near = (0..mesh.vertex_count() as u32)
@@ -389,8 +402,13 @@ fn early_stops_keep_the_full_runs_values() {
             },
         ];
         let stats = solver
-            .run_from(&mut ws, &source, &Stop::NONE.with_targets(targets.clone()))
-            .unwrap();
+            .run(
+                &mut ws,
+                Sources::from(&source).until(Stop::NONE.with_targets(targets.clone())),
+            )
+            .unwrap()
+            .stats()
+            .clone();
         assert!(stats.stopped_early);
         assert!(stats.distance_tests < full.stats().distance_tests);
         let mut finite = 0;
@@ -401,8 +419,12 @@ fn early_stops_keep_the_full_runs_values() {
             }
         }
         assert!(finite < ws.node_distances().len() / 2);
-        let stopped = solver.query_workspace(&ws).unwrap();
-        let full = solver.query(&full).unwrap();
+        let stopped = solver
+            .run(
+                &mut ws,
+                Sources::from(&source).until(Stop::NONE.with_targets(targets.clone())),
+            )
+            .unwrap();
         for t in targets {
             assert_eq!(
                 stopped.distance_at(t).unwrap(),
@@ -419,7 +441,9 @@ fn bad_points_and_unreachable_targets_are_errors() {
     let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
     let mut ws = solver.workspace();
     let run = |ws: &mut geotracks::Workspace, point: SurfacePoint| {
-        solver.run_from(ws, &[Source::new(point)], &Stop::NONE)
+        solver
+            .run(ws, Sources::from(&[Source::new(point)]).until(&Stop::NONE))
+            .map(|run| run.stats().clone())
     };
     let faces = mesh.face_count() as u32;
     match run(
@@ -447,7 +471,10 @@ fn bad_points_and_unreachable_targets_are_errors() {
     let err = run(&mut ws, SurfacePoint::Vertex(u32::MAX)).unwrap_err();
     assert!(matches!(err, Error::SourceOutOfRange { .. }));
     let start = solver
-        .run_from(&mut ws, &[Source::new(0).with_start(f64::NAN)], &Stop::NONE)
+        .run(
+            &mut ws,
+            Sources::from(&[Source::new(0).with_start(f64::NAN)]).until(&Stop::NONE),
+        )
         .unwrap_err();
     assert!(matches!(
         start,
@@ -467,7 +494,7 @@ fn bad_points_and_unreachable_targets_are_errors() {
     let huge_solver = Solver::new(&huge, Euclidean, &Options::DEFAULT).unwrap();
     let mut huge_ws = huge_solver.workspace();
     let sources = [Source::new(0), Source::new(1).with_start(f64::MAX)];
-    match huge_solver.run_from(&mut huge_ws, &sources, &Stop::NONE) {
+    match huge_solver.run(&mut huge_ws, Sources::from(&sources).until(&Stop::NONE)) {
         Err(Error::StartTooLarge {
             index: 1,
             cost_total,
@@ -478,17 +505,19 @@ fn bad_points_and_unreachable_targets_are_errors() {
     for start in [-f64::MAX, 1e307] {
         let sources = [Source::new(0).with_start(start)];
         huge_solver
-            .run_from(&mut huge_ws, &sources, &Stop::NONE)
+            .run(&mut huge_ws, Sources::from(&sources).until(&Stop::NONE))
             .unwrap();
         assert_eq!(huge_ws.vertex_distances()[0], start);
         assert!(huge_ws.vertex_distances().iter().all(|d| d.is_finite()));
     }
     let top = [Source::new(0).with_start(f64::MAX)];
-    solver.run_from(&mut ws, &top, &Stop::NONE).unwrap();
+    solver
+        .run(&mut ws, Sources::from(&top).until(&Stop::NONE))
+        .unwrap();
     assert!(ws.vertex_distances().iter().all(|&d| d == f64::MAX));
     let stop = Stop::NONE.with_targets(vec![SurfacePoint::Edge { edge: 0, t: 2.0 }]);
     let err = solver
-        .run_from(&mut ws, &[Source::new(0)], &stop)
+        .run(&mut ws, Sources::from(&[Source::new(0)]).until(&stop))
         .unwrap_err();
     assert!(err.to_string().starts_with("target 0:"), "{err}");
     assert!(matches!(
@@ -502,63 +531,73 @@ fn bad_points_and_unreachable_targets_are_errors() {
     // Two components: the second is unreachable, by distance and by path.
     let two = common::two_islands();
     let two_solver = Solver::new(&two, Euclidean, &Options::DEFAULT).unwrap();
-    let field = two_solver.solve(&[0]).unwrap();
-    let query = two_solver.query(&field).unwrap();
+    let field = two_solver.field(&[0]).unwrap();
+    let query = &field;
     let far = SurfacePoint::Face {
         face: 1,
         bary: [0.3, 0.3, 0.4],
     };
     assert!(query.distance_at(far).unwrap().is_infinite());
     assert!(matches!(query.path(far), Err(Error::Unreachable { point }) if point == far));
-    // A field given to a solver on another mesh.
-    assert!(matches!(solver.query(&field), Err(Error::ForeignField)));
+    // A field's data given to a solver on another mesh.
+    let other = Solver::new(spot(), Euclidean, &Options::DEFAULT).unwrap();
+    assert!(matches!(
+        other.attach(field.into_data()),
+        Err(Error::ForeignField)
+    ));
 }
 
-/// A field can only be queried through the solver that computed it: not with another
-/// metric on the same mesh (before, `field.distance_at(&mesh, &other_metric, p)` gave
-/// a silently wrong value, and only the mesh's counts were compared), nor from a
-/// workspace whose run failed or never happened.
+/// A field is queried only with the solver that computed it: it carries it, so another
+/// metric on the same mesh cannot be used (before, `field.distance_at(&mesh,
+/// &other_metric, p)` gave a silently wrong value, and only the mesh's counts were
+/// compared); its plain data is given back its queries only by that solver (or a clone).
 #[test]
 fn a_field_is_queried_only_through_its_own_solver() {
     let mesh = spot();
     let euclidean = Solver::new(&mesh, Euclidean, &TRACKS).unwrap();
     let doubled = Density::constant(&mesh, 2.0).unwrap();
     let dense = Solver::new(&mesh, &doubled, &TRACKS).unwrap();
-    let field = euclidean.solve(&[0]).unwrap();
-    // Same mesh, same layout, another metric: refused.
-    assert!(matches!(dense.query(&field), Err(Error::ForeignField)));
-    // Same mesh, metric and options, but another solver: refused too (it cannot tell).
-    let twin = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
-    assert!(matches!(twin.query(&field), Err(Error::ForeignField)));
     let target = SurfacePoint::Face {
         face: 7,
         bary: [0.2, 0.3, 0.5],
     };
-    let d = euclidean
-        .query(&field)
-        .unwrap()
-        .distance_at(target)
-        .unwrap();
-    let dense_field = dense.solve(&[0]).unwrap();
-    let d2 = dense
-        .query(&dense_field)
-        .unwrap()
-        .distance_at(target)
-        .unwrap();
+    let field = euclidean.field(0).unwrap();
+    let d = field.distance_at(target).unwrap();
+    let d2 = dense.field(0).unwrap().distance_at(target).unwrap();
     assert!((d2 - 2.0 * d).abs() < 1e-9 * d);
-
-    // Workspaces: no run yet, a run by another solver, a failed run.
-    let mut ws = euclidean.workspace();
-    assert!(matches!(euclidean.query_workspace(&ws), Err(Error::NoRun)));
-    dense.run(&mut ws, &[0]).unwrap();
+    // Plain data: refused by another metric's solver on the same mesh and layout, and
+    // by another solver with the same mesh, metric and options (it cannot tell);
+    // given back by its own solver and by a clone of it.
+    let data = field.into_data();
     assert!(matches!(
-        euclidean.query_workspace(&ws),
+        dense.attach(data.clone()),
         Err(Error::ForeignField)
     ));
-    assert!(dense.query_workspace(&ws).is_ok());
-    assert!(dense.run(&mut ws, &[u32::MAX]).is_err());
-    assert!(matches!(dense.query_workspace(&ws), Err(Error::NoRun)));
-    euclidean.run(&mut ws, &[0]).unwrap();
-    let from_ws = euclidean.query_workspace(&ws).unwrap().distance_at(target);
-    assert_eq!(from_ws.unwrap(), d);
+    let twin = Solver::new(&mesh, Euclidean, &TRACKS).unwrap();
+    assert!(matches!(
+        twin.attach(data.clone()),
+        Err(Error::ForeignField)
+    ));
+    let back = euclidean.clone().attach(data).unwrap();
+    assert_eq!(back.distance_at(target).unwrap(), d);
+
+    // A workspace's field: the last run's, whichever solver ran in it before.
+    let mut ws = euclidean.workspace();
+    dense.run(&mut ws, 0).unwrap();
+    assert!(dense.run(&mut ws, u32::MAX).is_err());
+    let from_ws = euclidean
+        .run(&mut ws, 0)
+        .unwrap()
+        .distance_at(target)
+        .unwrap();
+    assert_eq!(from_ws, d);
+    assert_eq!(
+        euclidean
+            .run(&mut ws, 0)
+            .unwrap()
+            .to_owned()
+            .distance_at(target)
+            .unwrap(),
+        d
+    );
 }

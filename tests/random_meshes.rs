@@ -3,7 +3,7 @@
 mod common;
 
 use common::{random_mesh, Rng, DIJKSTRA, GRAPH};
-use geotracks::{distance_field, Euclidean, Tensor};
+use geotracks::{Euclidean, Solver, Tensor};
 use proptest::prelude::*;
 
 // These tests are about the Steiner graph itself (the tracks engine is checked
@@ -22,8 +22,8 @@ proptest! {
         let a = pick.0 % mesh.vertex_count() as u32;
         let b = pick.1 % mesh.vertex_count() as u32;
         let options = GRAPH.with_k(k as f64);
-        let from_a = distance_field(&mesh, &Euclidean, &[a], &options).unwrap();
-        let from_b = distance_field(&mesh, &Euclidean, &[b], &options).unwrap();
+        let from_a = Solver::new(&mesh, &Euclidean, &options).and_then(|solver| solver.field(&[a])).unwrap();
+        let from_b = Solver::new(&mesh, &Euclidean, &options).and_then(|solver| solver.field(&[b])).unwrap();
         for (v, &d) in from_a.vertex_distances().iter().enumerate() {
             if labels[v] == labels[a as usize] {
                 prop_assert!(d.is_finite() && d >= 0.0, "vertex {} distance {}", v, d);
@@ -37,7 +37,7 @@ proptest! {
             prop_assert!((ab - ba).abs() <= 1e-9 * ab.max(ba), "{} vs {}", ab, ba);
         }
         // Dijkstra on edges is a path in the graph too: never shorter than the graph.
-        let dijkstra = distance_field(&mesh, &Euclidean, &[a], &DIJKSTRA.with_k(1.0)).unwrap();
+        let dijkstra = Solver::new(&mesh, &Euclidean, &DIJKSTRA.with_k(1.0)).and_then(|solver| solver.field(&[a])).unwrap();
         for (g, d) in from_a.vertex_distances().iter().zip(dijkstra.vertex_distances()) {
             prop_assert!(*g <= *d + 1e-12 * d.abs().min(1e300));
         }
@@ -56,8 +56,8 @@ proptest! {
         };
         let a = pick.0 % mesh.vertex_count() as u32;
         let b = pick.1 % mesh.vertex_count() as u32;
-        let from_a = distance_field(&mesh, &tensor, &[a], &GRAPH.with_k(3.0)).unwrap();
-        let from_b = distance_field(&mesh, &tensor, &[b], &GRAPH.with_k(3.0)).unwrap();
+        let from_a = Solver::new(&mesh, &tensor, &GRAPH.with_k(3.0)).and_then(|solver| solver.field(&[a])).unwrap();
+        let from_b = Solver::new(&mesh, &tensor, &GRAPH.with_k(3.0)).and_then(|solver| solver.field(&[b])).unwrap();
         let (ab, ba) = (from_a.distance(b), from_b.distance(a));
         if ab.is_finite() || ba.is_finite() {
             prop_assert!((ab - ba).abs() <= 1e-9 * ab.max(ba), "{} vs {}", ab, ba);

@@ -7,6 +7,7 @@ mod common;
 
 use geotracks::mesh::TriMesh;
 use geotracks::trace::DEFAULT_REGION_SUBDIVISIONS;
+use geotracks::Sources;
 use geotracks::{Error, Euclidean, Metric, Options, Solver, Source, SurfacePoint, Tensor};
 use glam::DVec3;
 
@@ -41,9 +42,9 @@ fn gradients_on_a_plane_point_straight_away_from_the_source() {
     let at = source.position(&mesh);
     let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
     let field = solver
-        .solve_from(&[Source::new(source)], &geotracks::Stop::NONE)
+        .field(Sources::from(&[Source::new(source)]).until(&geotracks::Stop::NONE))
         .unwrap();
-    let query = solver.query(&field).unwrap();
+    let query = &field;
     let mut worst = 0.0f64;
     for f in 0..mesh.face_count() as u32 {
         for bary in bary_points(5, f as u64) {
@@ -71,8 +72,8 @@ fn under_a_constant_tensor_the_gradient_is_the_metric_one() {
     let world = [4.0, 1.0, 0.0, 2.0, 0.0, 1.0];
     let metric = Tensor::uniform_world(&mesh, world).unwrap();
     let solver = Solver::new(&mesh, metric, &Options::DEFAULT).unwrap();
-    let field = solver.solve(&[0]).unwrap();
-    let query = solver.query(&field).unwrap();
+    let field = solver.field(&[0]).unwrap();
+    let query = &field;
     let m = |v: DVec3| DVec3::new(4.0 * v.x + v.y, v.x + 2.0 * v.y, v.z);
     let mut worst = 0.0f64;
     for f in 0..mesh.face_count() as u32 {
@@ -103,8 +104,8 @@ fn under_a_density_the_gradient_is_the_derivative_of_the_distance() {
         .collect();
     let metric = geotracks::Density::new(&mesh, density).unwrap();
     let solver = Solver::new(&mesh, metric, &Options::DEFAULT).unwrap();
-    let field = solver.solve(&[0]).unwrap();
-    let query = solver.query(&field).unwrap();
+    let field = solver.field(&[0]).unwrap();
+    let query = &field;
     let mut worst = 0.0f64;
     for f in (0..mesh.face_count() as u32).step_by(5) {
         for bary in bary_points(3, 300 + f as u64) {
@@ -203,9 +204,9 @@ fn on_the_prism_the_gradient_backtracks_along_the_true_geodesic() {
     let mesh = prism(h);
     let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
     let field = solver
-        .solve_from(&[prism_source()], &geotracks::Stop::NONE)
+        .field(Sources::from(&[prism_source()]).until(&geotracks::Stop::NONE))
         .unwrap();
-    let query = solver.query(&field).unwrap();
+    let query = &field;
     // The top's corners are all but equally far: interpolated vertex values give no
     // direction there (the paper's point).
     let top: Vec<f64> = (3..6).map(|v| query.vertex_distances()[v]).collect();
@@ -245,9 +246,9 @@ fn isolines_on_the_prism_top_follow_the_ridge() {
     let mesh = prism(h);
     let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
     let field = solver
-        .solve_from(&[prism_source()], &geotracks::Stop::NONE)
+        .field(Sources::from(&[prism_source()]).until(&geotracks::Stop::NONE))
         .unwrap();
-    let query = solver.query(&field).unwrap();
+    let query = &field;
     let top_corner = query.vertex_distances()[3];
     let top_centre = prism_exact(&mesh, h, DVec3::new(0.5, 3f64.sqrt() / 6.0, h)).0;
     // Between the corners' distance and the centre's: closed loops round the top (the
@@ -310,9 +311,9 @@ fn the_prism_top_splits_into_three_regions_along_the_ridge() {
     let mesh = prism(h);
     let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
     let field = solver
-        .solve_from(&[prism_source()], &geotracks::Stop::NONE)
+        .field(Sources::from(&[prism_source()]).until(&geotracks::Stop::NONE))
         .unwrap();
-    let query = solver.query(&field).unwrap();
+    let query = &field;
     let regions = query.regions(1, DEFAULT_REGION_SUBDIVISIONS).unwrap();
     let area: f64 = regions.iter().map(|r| r.area).sum();
     let face_area = 3f64.sqrt() / 4.0;
@@ -373,8 +374,8 @@ fn nodes_on_a_sources_line_cut_no_slivers() {
     let mesh = common::grid(n, 1.0);
     let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
     let corners = [0, ((n + 1) * (n + 1) - 1) as u32];
-    let field = solver.solve(&corners).unwrap();
-    let query = solver.query(&field).unwrap();
+    let field = solver.field(&corners).unwrap();
+    let query = &field;
     let mut split = 0;
     for f in 0..mesh.face_count() as u32 {
         let regions = query.regions(f, DEFAULT_REGION_SUBDIVISIONS).unwrap();
@@ -399,8 +400,8 @@ fn nodes_on_a_sources_line_cut_no_slivers() {
 /// `gradient_at`'s direction. Returns the worst gaps (area and value relative).
 fn check_regions<M: Metric + Clone>(mesh: &TriMesh, metric: M) -> (f64, f64, f64) {
     let solver = Solver::new(mesh, metric, &Options::DEFAULT).unwrap();
-    let field = solver.solve(&[0]).unwrap();
-    let query = solver.query(&field).unwrap();
+    let field = solver.field(&[0]).unwrap();
+    let query = &field;
     let (mut worst_area, mut worst_value, mut worst_direction) = (0.0f64, 0.0f64, 0.0f64);
     for f in 0..mesh.face_count() as u32 {
         let regions = query.regions(f, 8).unwrap();
@@ -433,8 +434,8 @@ fn check_regions<M: Metric + Clone>(mesh: &TriMesh, metric: M) -> (f64, f64, f64
 fn bad_faces_and_options_are_refused() {
     let mesh = common::grid(2, 1.0);
     let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
-    let field = solver.solve(&[0]).unwrap();
-    let query = solver.query(&field).unwrap();
+    let field = solver.field(&[0]).unwrap();
+    let query = &field;
     let faces = mesh.face_count() as u32;
     assert!(matches!(
         query.regions(faces, 8),

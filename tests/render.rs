@@ -18,8 +18,8 @@ fn drawn(p: &Picture) -> usize {
 
 fn picture(mesh: &TriMesh, source: u32, options: &PictureOptions) -> Picture {
     let solver = Solver::new(mesh, Euclidean, &Options::DEFAULT).unwrap();
-    let field = solver.solve(&[source]).unwrap();
-    let query = solver.query(&field).unwrap();
+    let field = solver.field(&[source]).unwrap();
+    let query = &field;
     let levels = geotracks::trace::spread_levels(query.max_reached_distance(), 5);
     let lines: Vec<Vec<_>> = query
         .isolines(&levels, &Default::default())

@@ -5,6 +5,7 @@ mod common;
 
 use geotracks::mesh::io::read_mesh;
 use geotracks::mesh::TriMesh;
+use geotracks::Sources;
 use geotracks::{Error, Euclidean, Method, Options, Solver, Source, Stop, SurfacePoint, Tensor};
 use std::path::Path;
 
@@ -20,7 +21,7 @@ fn a_reused_workspace_gives_the_same_fields_as_fresh_ones() {
     let mut ws = solver.workspace();
     for source in [0, 1000, 2000, 0] {
         solver.run(&mut ws, &[source]).unwrap();
-        let fresh = solver.solve(&[source]).unwrap();
+        let fresh = solver.field(&[source]).unwrap();
         assert_eq!(ws.vertex_distances(), fresh.vertex_distances());
         assert_eq!(ws.node_distances(), fresh.node_distances());
     }
@@ -72,13 +73,11 @@ fn local_and_full_runs_share_a_workspace() {
         let solver = Solver::new(&mesh, Euclidean, &options).unwrap();
         let mut ws = solver.workspace();
         for (sources, stop) in runs.iter().chain(runs.iter().rev()) {
-            solver.run_from(&mut ws, sources, stop).unwrap();
-            let fresh = solver.solve_from(sources, stop).unwrap();
-            assert_eq!(ws.node_distances(), fresh.node_distances(), "{stop:?}");
-            let (reused, fresh) = (
-                solver.query_workspace(&ws).unwrap(),
-                solver.query(&fresh).unwrap(),
-            );
+            let fresh = solver.field(Sources::from(sources).until(stop)).unwrap();
+            let reused = solver
+                .run(&mut ws, Sources::from(sources).until(stop))
+                .unwrap();
+            assert_eq!(reused.node_distances(), fresh.node_distances(), "{stop:?}");
             for &p in &probes {
                 assert_eq!(
                     reused.distance_at(p).unwrap(),
@@ -98,22 +97,25 @@ fn rows_with_targets_stop_early_with_the_full_rows_values() {
     for options in [Options::DEFAULT, common::GRAPH] {
         let solver = Solver::new(&mesh, Euclidean, &options).unwrap();
         let sources = [0, 1500];
-        let full = solver.distance_rows_with_stats(&sources, None).unwrap();
+        let full = solver.distance_rows(&sources, None).unwrap();
         for (i, &s) in sources.iter().enumerate() {
             // The three vertices nearest the source (itself excluded).
             let mut order: Vec<u32> = (0..mesh.vertex_count() as u32)
                 .filter(|&v| v != s)
                 .collect();
-            order.sort_by(|&a, &b| full[i].0[a as usize].total_cmp(&full[i].0[b as usize]));
+            order.sort_by(|&a, &b| {
+                full[i].distances[a as usize].total_cmp(&full[i].distances[b as usize])
+            });
             let targets = &order[..3];
-            let stopped = solver
-                .distance_rows_with_stats(&[s], Some(targets))
-                .unwrap();
-            let (row, stats) = &stopped[0];
-            let expected: Vec<f64> = targets.iter().map(|&t| full[i].0[t as usize]).collect();
+            let stopped = solver.distance_rows(&[s], Some(targets)).unwrap();
+            let (row, stats) = (&stopped[0].distances, &stopped[0].stats);
+            let expected: Vec<f64> = targets
+                .iter()
+                .map(|&t| full[i].distances[t as usize])
+                .collect();
             assert_eq!(*row, expected, "source {s}");
             assert!(stats.stopped_early, "source {s}");
-            let whole = &full[i].1;
+            let whole = &full[i].stats;
             assert!(!whole.stopped_early);
             assert!(
                 stats.pushes * 10 < whole.pushes
@@ -128,7 +130,7 @@ fn rows_with_targets_stop_early_with_the_full_rows_values() {
         // Every vertex a target: the row is the full row.
         let all: Vec<u32> = (0..mesh.vertex_count() as u32).collect();
         let rows = solver.distance_rows(&sources, Some(&all)).unwrap();
-        assert_eq!(rows[0], full[0].0);
+        assert_eq!(rows[0].distances, full[0].distances);
     }
 }
 
@@ -141,16 +143,16 @@ fn parallel_rows_equal_single_runs() {
     let rows = solver.distance_rows(&sources, Some(&targets)).unwrap();
     let full = solver.distance_rows(&sources, None).unwrap();
     for (i, &s) in sources.iter().enumerate() {
-        let field = solver.solve(&[s]).unwrap();
-        assert_eq!(full[i], field.vertex_distances());
+        let field = solver.field(&[s]).unwrap();
+        assert_eq!(full[i].distances, field.vertex_distances());
         for (j, &t) in targets.iter().enumerate() {
-            assert_eq!(rows[i][j], field.distance(t));
+            assert_eq!(rows[i].distances[j], field.distance(t));
         }
     }
     // The Steiner graph is symmetric: d(a, b) = d(b, a). (The wavefront engine's
     // values are each a real path's length, within its error of the geodesic, so
     // both directions agree only to about that.)
-    let (ab, ba) = (full[0][2929], full[5][0]);
+    let (ab, ba) = (full[0].distances[2929], full[5].distances[0]);
     assert!((ab - ba).abs() <= 1e-2 * ab, "{ab} {ba}");
     let tracks = Solver::new(
         &mesh,
@@ -159,7 +161,8 @@ fn parallel_rows_equal_single_runs() {
     )
     .unwrap();
     let rows = tracks.distance_rows(&[0, 2929], None).unwrap();
-    assert!((rows[0][2929] - rows[1][0]).abs() <= 1e-9 * rows[0][2929]);
+    let (ab, ba) = (rows[0].distances[2929], rows[1].distances[0]);
+    assert!((ab - ba).abs() <= 1e-9 * ab);
     let e = solver.distance_rows(&[0], Some(&[3000])).unwrap_err();
     assert!(
         matches!(e, Error::TargetOutOfRange { vertex: 3000, .. }),
@@ -180,7 +183,7 @@ fn tests_at(mesh: &TriMesh, method: Method, k: f64) -> u64 {
         &Options::DEFAULT.with_k(k).with_method(method),
     )
     .unwrap();
-    solver.solve(&[0]).unwrap().stats().distance_tests
+    solver.field(&[0]).unwrap().stats().distance_tests
 }
 
 fn check_linear_work(mesh: &TriMesh, name: &str) {

@@ -5,7 +5,7 @@ mod common;
 
 use common::{read_reference, relative_error, DIJKSTRA, GRAPH};
 use geotracks::mesh::io::read_mesh;
-use geotracks::{distance_field, Euclidean};
+use geotracks::{Euclidean, Solver};
 
 // These tests are about the Steiner graph itself (the tracks engine is checked
 // against it in tracks_oracle.rs).
@@ -21,7 +21,9 @@ fn steiner_graph_at_k5_is_within_0_35_percent() {
     let mesh = read_mesh(format!("{DATA}/spot.obj")).unwrap();
     let exact = exact();
     assert_eq!(exact.len(), mesh.positions().len());
-    let graph = distance_field(&mesh, &Euclidean, &[0], &GRAPH.with_k(5.0)).unwrap();
+    let graph = Solver::new(&mesh, &Euclidean, &GRAPH.with_k(5.0))
+        .and_then(|solver| solver.field(&[0]))
+        .unwrap();
     let (mean, max) = relative_error(graph.vertex_distances(), &exact);
     println!(
         "graph k=5: mean {:.4} %, max {:.4} %",
@@ -34,7 +36,9 @@ fn steiner_graph_at_k5_is_within_0_35_percent() {
         assert!(*d >= e * (1.0 - 1e-9), "{d} < exact {e}");
     }
 
-    let dijkstra = distance_field(&mesh, &Euclidean, &[0], &DIJKSTRA).unwrap();
+    let dijkstra = Solver::new(&mesh, &Euclidean, &DIJKSTRA)
+        .and_then(|solver| solver.field(&[0]))
+        .unwrap();
     let (dmean, _) = relative_error(dijkstra.vertex_distances(), &exact);
     println!("dijkstra: mean {:.4} %", 100.0 * dmean);
     assert!(dmean > 0.02, "Dijkstra on edges mean error {dmean}");
@@ -47,7 +51,9 @@ fn more_steiner_points_cost_more_tests_and_err_less() {
     let runs: Vec<(u64, f64)> = [2.0, 4.0, 8.0]
         .iter()
         .map(|&k| {
-            let f = distance_field(&mesh, &Euclidean, &[0], &GRAPH.with_k(k)).unwrap();
+            let f = Solver::new(&mesh, &Euclidean, &GRAPH.with_k(k))
+                .and_then(|solver| solver.field(&[0]))
+                .unwrap();
             (
                 f.stats().distance_tests,
                 relative_error(f.vertex_distances(), &exact).0,

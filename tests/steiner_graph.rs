@@ -4,7 +4,7 @@
 mod common;
 
 use common::{book, grid, relative_error, DIJKSTRA, GRAPH};
-use geotracks::{distance_field, Density, Euclidean, Metric, Tensor};
+use geotracks::{Density, Euclidean, Metric, Solver, Tensor};
 
 // These tests are about the Steiner graph itself (the tracks engine is checked
 // against it in tracks_oracle.rs).
@@ -22,7 +22,9 @@ fn flat_grid_error_falls_with_k() {
     let errors: Vec<(f64, f64)> = [1.0, 3.0, 8.0]
         .iter()
         .map(|&k| {
-            let f = distance_field(&mesh, &Euclidean, &[source], &GRAPH.with_k(k)).unwrap();
+            let f = Solver::new(&mesh, &Euclidean, &GRAPH.with_k(k))
+                .and_then(|solver| solver.field(&[source]))
+                .unwrap();
             relative_error(f.vertex_distances(), &exact)
         })
         .collect();
@@ -33,7 +35,9 @@ fn flat_grid_error_falls_with_k() {
     );
     assert!(errors[2].0 < 2e-3, "{errors:?}");
     // Never shorter than the straight line (a graph path is a path on the surface).
-    let f = distance_field(&mesh, &Euclidean, &[source], &GRAPH).unwrap();
+    let f = Solver::new(&mesh, &Euclidean, &GRAPH)
+        .and_then(|solver| solver.field(&[source]))
+        .unwrap();
     for (d, e) in f.vertex_distances().iter().zip(&exact) {
         assert!(*d >= e - 1e-12);
     }
@@ -43,8 +47,12 @@ fn flat_grid_error_falls_with_k() {
 fn dijkstra_on_edges_is_much_worse_than_the_graph() {
     let mesh = grid(16, 1.0);
     let exact = euclid_on_grid(&mesh, 0);
-    let dijkstra = distance_field(&mesh, &Euclidean, &[0], &DIJKSTRA).unwrap();
-    let graph = distance_field(&mesh, &Euclidean, &[0], &GRAPH).unwrap();
+    let dijkstra = Solver::new(&mesh, &Euclidean, &DIJKSTRA)
+        .and_then(|solver| solver.field(&[0]))
+        .unwrap();
+    let graph = Solver::new(&mesh, &Euclidean, &GRAPH)
+        .and_then(|solver| solver.field(&[0]))
+        .unwrap();
     let (dm, _) = relative_error(dijkstra.vertex_distances(), &exact);
     let (gm, _) = relative_error(graph.vertex_distances(), &exact);
     assert!(dm > 10.0 * gm, "dijkstra {dm}, graph {gm}");
@@ -59,7 +67,9 @@ fn book_pages_unfold() {
     assert_eq!(mesh.report().non_manifold_edges, 8);
     assert_eq!(mesh.report().max_edge_valence, 3);
     let source = id(0, 4, 2); // r = 0.5, z = 0.25 on page 0
-    let f = distance_field(&mesh, &Euclidean, &[source], &GRAPH.with_k(8.0)).unwrap();
+    let f = Solver::new(&mesh, &Euclidean, &GRAPH.with_k(8.0))
+        .and_then(|solver| solver.field(&[source]))
+        .unwrap();
     let mut worst = 0.0f64;
     for page in 1..3 {
         for j in 0..=8 {
@@ -89,10 +99,14 @@ fn book_pages_unfold() {
 #[test]
 fn constant_density_scales_distances() {
     let (mesh, _) = book(4, 1.0, 2.0, 5);
-    let base = distance_field(&mesh, &Euclidean, &[7], &GRAPH).unwrap();
+    let base = Solver::new(&mesh, &Euclidean, &GRAPH)
+        .and_then(|solver| solver.field(&[7]))
+        .unwrap();
     for c in [0.25, 3.0] {
         let density = Density::constant(&mesh, c).unwrap();
-        let f = distance_field(&mesh, &density, &[7], &GRAPH).unwrap();
+        let f = Solver::new(&mesh, &density, &GRAPH)
+            .and_then(|solver| solver.field(&[7]))
+            .unwrap();
         for (a, b) in f.vertex_distances().iter().zip(base.vertex_distances()) {
             assert!(
                 (a - c * b).abs() <= 1e-12 * (1.0 + c * b),
@@ -122,7 +136,9 @@ fn constant_tensor_approaches_the_analytic_norm() {
     let errors: Vec<f64> = [1.0, 3.0, 8.0]
         .iter()
         .map(|&k| {
-            let f = distance_field(&mesh, &tensor, &[source], &GRAPH.with_k(k)).unwrap();
+            let f = Solver::new(&mesh, &tensor, &GRAPH.with_k(k))
+                .and_then(|solver| solver.field(&[source]))
+                .unwrap();
             relative_error(f.vertex_distances(), &exact).0
         })
         .collect();

@@ -9,6 +9,7 @@ mod common;
 
 use common::{random_mesh, random_surface_point, sphere, Rng};
 use geotracks::mesh::TriMesh;
+use geotracks::Sources;
 use geotracks::{Euclidean, Method, Options, Solver, Source, Stop, SurfacePoint};
 use proptest::prelude::*;
 
@@ -31,12 +32,11 @@ fn check(
     let same = |a: f64, b: f64| a == b || (a - b).abs() <= rounding * b.abs().max(1.0);
     let options = Options::DEFAULT.with_method(method).with_k(k);
     let solver = Solver::new(mesh, Euclidean, &options).unwrap();
-    let full = solver.solve_from(sources, &Stop::NONE).unwrap();
-    let stopped = solver.solve_from(sources, stop).unwrap();
-    let (full, stopped) = (
-        solver.query(&full).unwrap(),
-        solver.query(&stopped).unwrap(),
-    );
+    let full = solver
+        .field(Sources::from(sources).until(&Stop::NONE))
+        .unwrap();
+    let stopped = solver.field(Sources::from(sources).until(stop)).unwrap();
+    let (full, stopped) = (full, stopped);
     let longest = (0..mesh.edge_count() as u32)
         .map(|e| mesh.edge_length(e))
         .fold(0.0, f64::max);
@@ -125,7 +125,7 @@ proptest! {
         let queries: Vec<SurfacePoint> = (0..60).map(|_| random_surface_point(&mesh, &mut rng)).collect();
         let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
         let far = solver
-            .solve_from(&sources, &Stop::NONE)
+            .field(Sources::from(&sources).until(&Stop::NONE))
             .unwrap()
             .node_distances()
             .iter()
@@ -173,7 +173,7 @@ fn a_negative_maximum_distance_is_refused() {
         let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT.with_method(method)).unwrap();
         for bad in [-1.0, -1e-300, f64::NEG_INFINITY, f64::NAN] {
             let err = solver
-                .solve_from(&[Source::new(0)], &Stop::NONE.with_max_distance(bad))
+                .field(Sources::from(&[Source::new(0)]).until(Stop::NONE.with_max_distance(bad)))
                 .err()
                 .unwrap_or_else(|| panic!("{method}: max distance {bad} accepted"));
             assert!(
@@ -188,7 +188,7 @@ fn a_negative_maximum_distance_is_refused() {
             );
         }
         let field = solver
-            .solve_from(&[Source::new(0)], &Stop::NONE.with_max_distance(0.0))
+            .field(Sources::from(&[Source::new(0)]).until(Stop::NONE.with_max_distance(0.0)))
             .unwrap();
         assert_eq!(field.vertex_distances()[0], 0.0, "{method}");
     }
@@ -200,13 +200,13 @@ fn a_point_beyond_the_maximum_is_unreached() {
     for method in [Method::Wave, Method::Tracks, Method::Graph] {
         let options = Options::DEFAULT.with_method(method).with_k(1.0);
         let solver = Solver::new(&mesh, Euclidean, &options).unwrap();
-        let full = solver.solve(&[0]).unwrap();
-        let query = solver.query(&full).unwrap();
+        let full = solver.field(&[0]).unwrap();
+        let query = &full;
         let max = 2.5;
         let bounded = solver
-            .solve_from(&[Source::new(0)], &Stop::NONE.with_max_distance(max))
+            .field(Sources::from(&[Source::new(0)]).until(Stop::NONE.with_max_distance(max)))
             .unwrap();
-        let bounded_query = solver.query(&bounded).unwrap();
+        let bounded_query = bounded;
         let mut cut_faces = 0;
         for (face, triangle) in mesh.triangles().iter().enumerate() {
             let values = triangle.map(|v| full.distance(v));

@@ -7,8 +7,7 @@ mod common;
 
 use common::{random_mesh, sphere, Rng};
 use geotracks::{
-    distance_field, FacePoint, Method, Metric, Options, Solver, Source, SurfacePoint, Tensor,
-    TensorField,
+    FacePoint, Method, Metric, Options, Solver, Source, SurfacePoint, Tensor, TensorField,
 };
 use proptest::prelude::*;
 
@@ -55,8 +54,12 @@ fn a_constant_field_is_the_constant_tensor() {
     // flat there and runs the wavefront engine by default, as the tensor does.
     for method in [Method::Tracks, Method::Wave] {
         let options = Options::DEFAULT.with_k(3.0).with_method(method);
-        let a = distance_field(&mesh, &field, &[0], &options).unwrap();
-        let b = distance_field(&mesh, &tensor, &[0], &options).unwrap();
+        let a = Solver::new(&mesh, &field, &options)
+            .and_then(|solver| solver.field(&[0]))
+            .unwrap();
+        let b = Solver::new(&mesh, &tensor, &options)
+            .and_then(|solver| solver.field(&[0]))
+            .unwrap();
         assert_eq!(a.stats().method, method);
         for (x, y) in a.node_distances().iter().zip(b.node_distances()) {
             assert!((x - y).abs() <= 1e-12 * y.max(1.0), "{method}: {x} vs {y}");
@@ -107,7 +110,7 @@ fn a_linear_field_gives_its_closed_form_and_converges() {
         let solver = Solver::new(&mesh, &field, &Options::DEFAULT.with_k(3.0)).unwrap();
         assert_eq!(solver.method(), Method::Tracks);
         let id = |i: usize, j: usize| (j * (n + 1) + i) as u32;
-        let along = solver.solve(&[id(0, n / 2)]).unwrap();
+        let along = solver.field(&[id(0, n / 2)]).unwrap();
         let d = along.distance(id(n, n / 2));
         let exact = exact_along_x(0.0, 1.0);
         assert!(
@@ -117,7 +120,8 @@ fn a_linear_field_gives_its_closed_form_and_converges() {
         // Corner to corner: the straightened path's cost.
         let path = solver
             .shortest_path(&[Source::new(id(0, 0))], SurfacePoint::Vertex(id(n, n)))
-            .unwrap();
+            .unwrap()
+            .0;
         diagonal.push(path.length);
     }
     let steps: Vec<f64> = diagonal.windows(2).map(|w| (w[0] - w[1]).abs()).collect();

@@ -12,9 +12,9 @@ use geotracks::terrain::{
     incline_tensor, read_asc, read_geotiff, read_grid, slope_density, steeper_than, DirectedCost,
     DirectedModel, ElevationGrid, GridGeometry, Impassable, TerrainCost, TerrainError, TerrainMesh,
 };
+use geotracks::Sources;
 use geotracks::{
-    distance_field, Density, Error, Euclidean, GeodesicPath, Method, Metric, Options, Solver,
-    Source, Stop, Tensor,
+    Density, Error, Euclidean, GeodesicPath, Method, Metric, Options, Solver, Source, Stop, Tensor,
 };
 use proptest::prelude::*;
 use std::path::Path;
@@ -38,7 +38,9 @@ fn route<M: Metric>(
 ) -> Result<GeodesicPath, Error> {
     let from = terrain.locate(from[0], from[1]).unwrap();
     let to = terrain.locate(to[0], to[1]).unwrap();
-    Solver::new(&terrain.mesh, metric, options)?.shortest_path(&[Source::new(from)], to)
+    Ok(Solver::new(&terrain.mesh, metric, options)?
+        .shortest_path(&[Source::new(from)], to)?
+        .0)
 }
 
 fn relative(a: f64, b: f64) -> f64 {
@@ -580,12 +582,16 @@ fn on_a_flat_grid_every_cost_is_euclidean() {
     let (from, to): ([f64; 2], [f64; 2]) = ([1.3, 0.7], [8.6, 9.1]);
     let straight = (to[0] - from[0]).hypot(to[1] - from[1]);
     let options = TRACKS;
-    let euclid = distance_field(mesh, &Euclidean, &[0], &options).unwrap();
+    let euclid = Solver::new(mesh, &Euclidean, &options)
+        .and_then(|solver| solver.field(&[0]))
+        .unwrap();
     let mut worst: f64 = 0.0;
     for cost in ["none", "slope:5", "slope:5,max:10", "incline:7", "uphill:7"] {
         let cost: TerrainCost = cost.parse().unwrap();
         let metric = cost.metric(mesh).unwrap();
-        let field = distance_field(mesh, &metric, &[0], &options).unwrap();
+        let field = Solver::new(mesh, &metric, &options)
+            .and_then(|solver| solver.field(&[0]))
+            .unwrap();
         let field_dev = field
             .vertex_distances()
             .iter()
@@ -722,7 +728,7 @@ fn directed_costs_up_down_and_across_a_tilted_plane_match_their_formulas() {
                 terrain.locate(from[0], from[1]).unwrap(),
                 terrain.locate(to[0], to[1]).unwrap(),
             );
-            let path = solver.shortest_path(&[Source::new(a)], b).unwrap();
+            let path = solver.shortest_path(&[Source::new(a)], b).unwrap().0;
             let error = relative(path.length, expected);
             // Across, the route follows a contour, where uphill, Naismith and r.walk
             // have a kink (climbing starts to cost): straightening moves one crossing
@@ -756,7 +762,9 @@ fn directed_costs_up_down_and_across_a_tilted_plane_match_their_formulas() {
 fn on_a_flat_grid_the_walking_times_are_distance_over_speed() {
     let terrain = tilted(15, 1.0, 0.0, 0.0);
     let mesh = &terrain.mesh;
-    let euclid = distance_field(mesh, &Euclidean, &[7], &TRACKS).unwrap();
+    let euclid = Solver::new(mesh, &Euclidean, &TRACKS)
+        .and_then(|solver| solver.field(&[7]))
+        .unwrap();
     let flat = 0.6 * 0.175f64.exp();
     for (cost, per_metre) in [
         ("uphill:5", 1.0),
@@ -766,7 +774,9 @@ fn on_a_flat_grid_the_walking_times_are_distance_over_speed() {
         ("tobler:offpath", flat / 0.6),
     ] {
         let metric = cost.parse::<TerrainCost>().unwrap().metric(mesh).unwrap();
-        let field = distance_field(mesh, &metric, &[7], &TRACKS).unwrap();
+        let field = Solver::new(mesh, &metric, &TRACKS)
+            .and_then(|solver| solver.field(&[7]))
+            .unwrap();
         for (d, e) in field
             .vertex_distances()
             .iter()
@@ -808,9 +818,9 @@ fn tobler_zigzags_up_a_steep_slope() {
         let options = Options::DEFAULT.with_k(k);
         let solver = Solver::new(mesh, &metric, &options).unwrap();
         let field = solver
-            .solve_from(&[Source::new(from)], &Stop::NONE)
+            .field(Sources::from(&[Source::new(from)]).until(&Stop::NONE))
             .unwrap();
-        let up = solver.query(&field).unwrap().distance_at(to).unwrap();
+        let up = field.distance_at(to).unwrap();
         println!(
             "tobler up 30°, k = {k}: {up:.2} s; straight {straight:.2} s, best zig-zag {best:.2} s"
         );
@@ -1045,7 +1055,9 @@ fn a_closed_wall_makes_the_target_unreachable() {
     let mesh = &terrain.mesh;
     let row: Vec<bool> = mesh.positions().iter().map(|p| p.y == 20.0).collect();
     let walls = Impassable::from_vertices(mesh, Euclidean, &row).unwrap();
-    let field = distance_field(mesh, &walls, &[0], &TRACKS).unwrap();
+    let field = Solver::new(mesh, &walls, &TRACKS)
+        .and_then(|solver| solver.field(&[0]))
+        .unwrap();
     for (v, p) in mesh.positions().iter().enumerate() {
         let d = field.distance(v as u32);
         assert!(!d.is_nan());

@@ -18,6 +18,7 @@ use common::Rng;
 use geotracks::terrain::{
     route, route_and_field, route_on_grid, ElevationGrid, GridGeometry, TerrainCost,
 };
+use geotracks::Sources;
 use geotracks::{Error, Method, Options, Solver, Source, Stop};
 use proptest::prelude::*;
 
@@ -107,11 +108,11 @@ proptest! {
         let (a, b) = ([ends[0] * w, ends[1] * h], [ends[2] * w, ends[3] * h]);
         let (from, to) = (terrain.locate(a[0], a[1]).unwrap(), terrain.locate(b[0], b[1]).unwrap());
         let source = [Source::new(from)];
-        let field = solver.solve_from(&source, &Stop::NONE).unwrap();
-        let expected = solver.query(&field).unwrap().distance_at(to).unwrap();
-        let both = solver.shortest_path_with(&source, to, &Stop::NONE);
+        let field = solver.field(Sources::from(&source).until(&Stop::NONE)).unwrap();
+        let expected = field.distance_at(to).unwrap();
+        let both = solver.shortest_path(Sources::from(&source).until(&Stop::NONE), to);
         let one_end = Stop::NONE.with_both_ends(false);
-        let one = solver.shortest_path_with(&source, to, &one_end);
+        let one = solver.shortest_path(Sources::from(&source).until(&one_end), to);
         let ((both, stats), (one, _)) = match (both, one) {
             (Ok(both), Ok(one)) => (both, one),
             (Err(Error::Unreachable { .. }), Err(Error::Unreachable { .. })) => {
@@ -142,7 +143,7 @@ proptest! {
         }
         prop_assert!(both.length <= both.traced_length * (1.0 + 1e-12));
         // The one-ended runs' paths, straightened (the full run's is the map's).
-        let full = solver.query(&field).unwrap().path(to).unwrap();
+        let full = field.path(to).unwrap();
         for (how, other) in [("one end", one.length), ("the full run", full.length)] {
             let spread = both.length / other - 1.0;
             if spread.abs() > 1e-9 {

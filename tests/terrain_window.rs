@@ -9,6 +9,7 @@ use common::Rng;
 use geotracks::terrain::{
     route_on_grid, ElevationGrid, GridGeometry, TerrainCost, TerrainError, TerrainMesh,
 };
+use geotracks::Sources;
 use geotracks::{Error, Method, Metric, Options, Solver, Source, Stop};
 use proptest::prelude::*;
 
@@ -53,8 +54,8 @@ fn whole_grid_cost(
         terrain.locate(from[0], from[1])?,
         terrain.locate(to[0], to[1])?,
     );
-    let field = solver.solve_from(&[Source::new(a)], &Stop::NONE)?;
-    Ok(solver.query(&field)?.trace(b)?.traced_length)
+    let field = solver.field(Sources::from(&[Source::new(a)]).until(&Stop::NONE))?;
+    Ok(field.trace(b)?.traced_length)
 }
 
 const COSTS: [&str; 8] = [

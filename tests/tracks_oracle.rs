@@ -5,7 +5,7 @@ mod common;
 
 use common::{random_book, random_mesh, sphere, Rng};
 use geotracks::mesh::TriMesh;
-use geotracks::{distance_field, Density, Euclidean, Method, Metric, Options, Tensor};
+use geotracks::{Density, Euclidean, Method, Metric, Options, Solver, Tensor};
 use proptest::prelude::*;
 
 /// Largest relative difference between the two engines over all nodes.
@@ -15,9 +15,12 @@ fn deviation<M: Metric>(
     sources: &[u32],
     options: Options,
 ) -> (f64, f64) {
-    let graph = distance_field(mesh, metric, sources, &options.with_method(Method::Graph)).unwrap();
-    let tracks =
-        distance_field(mesh, metric, sources, &options.with_method(Method::Tracks)).unwrap();
+    let graph = Solver::new(mesh, metric, &options.with_method(Method::Graph))
+        .and_then(|solver| solver.field(sources))
+        .unwrap();
+    let tracks = Solver::new(mesh, metric, &options.with_method(Method::Tracks))
+        .and_then(|solver| solver.field(sources))
+        .unwrap();
     assert_eq!(tracks.stats().method, Method::Tracks);
     let (mut max, mut sum) = (0.0f64, 0.0);
     for (g, t) in graph.node_distances().iter().zip(tracks.node_distances()) {

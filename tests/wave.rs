@@ -21,8 +21,9 @@ use common::{
 use geotracks::glam::{DVec2, DVec3};
 use geotracks::mesh::{io::read_mesh, TriMesh};
 use geotracks::steiner::NodeKind;
+use geotracks::Sources;
 use geotracks::{
-    Density, Euclidean, GeodesicField, Method, Metric, Options, Solver, Source, Stop, SurfacePoint,
+    Density, Euclidean, FieldData, Method, Metric, Options, Solver, Source, Stop, SurfacePoint,
     Tensor,
 };
 use proptest::prelude::*;
@@ -294,12 +295,7 @@ impl Deviation {
 
 /// Compares every node of `field` (vertices and Steiner points) with the exact distance
 /// in `region` from `sources`.
-fn deviation(
-    mesh: &TriMesh,
-    region: &Region,
-    field: &GeodesicField,
-    sources: &[Source],
-) -> Deviation {
+fn deviation(mesh: &TriMesh, region: &Region, field: &FieldData, sources: &[Source]) -> Deviation {
     let points: Vec<(DVec2, f64)> = sources
         .iter()
         .map(|s| (region.point(mesh, s.point), s.start))
@@ -332,9 +328,11 @@ fn deviation(
 /// Runs the wave engine and compares it with the exact distances.
 fn wave_deviation(mesh: &TriMesh, region: &Region, k: f64, sources: &[Source]) -> Deviation {
     let solver = Solver::new(mesh, Euclidean, &wave(k)).unwrap();
-    let field = solver.solve_from(sources, &Stop::NONE).unwrap();
+    let field = solver
+        .field(Sources::from(sources).until(&Stop::NONE))
+        .unwrap();
     assert_eq!(field.stats().method, Method::Wave);
-    deviation(mesh, region, &field, sources)
+    deviation(mesh, region, field.data(), sources)
 }
 
 fn random_edge_point(mesh: &TriMesh, rng: &mut Rng) -> SurfacePoint {
@@ -516,7 +514,7 @@ fn wave_over_graph<M: Metric>(mesh: &TriMesh, metric: &M, sources: &[Source], co
     let run = |method| {
         Solver::new(mesh, metric, &options.with_method(method))
             .unwrap()
-            .solve_from(sources, &Stop::NONE)
+            .field(Sources::from(sources).until(&Stop::NONE))
             .unwrap()
     };
     let (w, g) = (run(Method::Wave), run(Method::Graph));
@@ -603,7 +601,7 @@ fn square_hole_by_hand() {
     for k in [1.0, 2.0, 3.0] {
         let field = Solver::new(&mesh, Euclidean, &wave(k))
             .unwrap()
-            .solve(&[source])
+            .field(&[source])
             .unwrap();
         for ((x, y), d, _) in &by_hand {
             let got = field.distance(vertex_at(*x, *y));
@@ -613,7 +611,7 @@ fn square_hole_by_hand() {
                 got / d - 1.0
             );
         }
-        let dev = deviation(&mesh, &region, &field, &[Source::new(source)]);
+        let dev = deviation(&mesh, &region, field.data(), &[Source::new(source)]);
         assert!(dev.below <= 1e-9, "k = {k}: {dev:?}");
     }
 }
@@ -885,9 +883,11 @@ fn constant_tensor_on_flat_meshes_is_the_mapped_plane() {
             for k in [1.0, 2.0, 3.0] {
                 for sources in single_sources(mesh, 7 * seed as u64 + trial) {
                     let solver = Solver::new(mesh, &tensor, &wave(k)).unwrap();
-                    let field = solver.solve_from(&sources, &Stop::NONE).unwrap();
+                    let field = solver
+                        .field(Sources::from(&sources).until(&Stop::NONE))
+                        .unwrap();
                     assert_eq!(field.stats().method, Method::Wave);
-                    let dev = deviation(&image, &region, &field, &sources);
+                    let dev = deviation(&image, &region, field.data(), &sources);
                     assert!(
                         dev.direct <= 1e-9 && dev.below <= 1e-9,
                         "{name}, A = {a:?}, k = {k}, {sources:?}: {dev:?}"
@@ -931,11 +931,11 @@ fn constant_tensor_on_spot_is_euclidean_on_the_mapped_spot() {
             for sources in [&sources[..1], &sources[1..]] {
                 let t = Solver::new(&mesh, &tensor, &wave(k))
                     .unwrap()
-                    .solve_from(sources, &Stop::NONE)
+                    .field(Sources::from(sources).until(&Stop::NONE))
                     .unwrap();
                 let e = Solver::new(&image, Euclidean, &wave(k))
                     .unwrap()
-                    .solve_from(sources, &Stop::NONE)
+                    .field(Sources::from(sources).until(&Stop::NONE))
                     .unwrap();
                 assert_eq!(
                     (t.stats().method, e.stats().method),
@@ -984,7 +984,7 @@ fn constant_tensor_on_spot_against_the_exact_reference() {
     for (k, bound) in [(2.0, 0.0010), (3.0, 0.0010)] {
         let field = Solver::new(&mesh, &tensor, &wave(k))
             .unwrap()
-            .solve(&[0])
+            .field(&[0])
             .unwrap();
         let (mean, max) = relative_error(field.vertex_distances(), &exact);
         let below = below_exact(field.vertex_distances(), &exact);
@@ -1015,7 +1015,7 @@ fn spot_error(options: &Options) -> (f64, f64, f64, Method) {
     let exact = read_reference(std::path::Path::new(&format!("{DATA}/spot.src0.f64"))).unwrap();
     let field = Solver::new(&mesh, Euclidean, options)
         .unwrap()
-        .solve(&[0])
+        .field(&[0])
         .unwrap();
     let (mean, max) = relative_error(field.vertex_distances(), &exact);
     let below = below_exact(field.vertex_distances(), &exact);
@@ -1054,12 +1054,17 @@ fn spot_default_within_0_10_percent() {
 fn wave_falls_back_to_tracks_without_a_flat_metric() {
     let mesh = holey_grid(5, 6, 0.2, 1);
     let density = Density::constant(&mesh, 2.0).unwrap();
-    let field = geotracks::distance_field(&mesh, &density, &[0], &wave(3.0)).unwrap();
+    let field = geotracks::Solver::new(&mesh, &density, &wave(3.0))
+        .and_then(|solver| solver.field(&[0]))
+        .unwrap();
     assert_eq!(field.stats().method, Method::Tracks);
-    let tracks =
-        geotracks::distance_field(&mesh, &density, &[0], &Options::DEFAULT.with_k(3.0)).unwrap();
+    let tracks = geotracks::Solver::new(&mesh, &density, &Options::DEFAULT.with_k(3.0))
+        .and_then(|solver| solver.field(&[0]))
+        .unwrap();
     assert_eq!(field.node_distances(), tracks.node_distances());
-    let euclidean = geotracks::distance_field(&mesh, &Euclidean, &[0], &wave(3.0)).unwrap();
+    let euclidean = geotracks::Solver::new(&mesh, &Euclidean, &wave(3.0))
+        .and_then(|solver| solver.field(&[0]))
+        .unwrap();
     assert_eq!(euclidean.stats().method, Method::Wave);
 }
 
@@ -1134,14 +1139,14 @@ fn wave_versus_graph<M: Metric>(
     let run = |method| {
         Solver::new(mesh, metric, &options.with_method(method))
             .unwrap()
-            .solve_from(sources, &Stop::NONE)
+            .field(Sources::from(sources).until(&Stop::NONE))
             .unwrap()
     };
     let (w, g) = (run(Method::Wave), run(Method::Graph));
     assert_eq!(w.stats().method, Method::Wave);
     let same_points =
         (0..mesh.edge_count() as u32).all(|e| w.layout().count(e) == g.layout().count(e));
-    if let geotracks::SteinerScheme::Fixed { .. } = options.steiner {
+    if let Some(geotracks::SteinerScheme::Fixed { .. }) = options.steiner {
         assert!(same_points);
     }
     let compared = if same_points {
@@ -1415,7 +1420,7 @@ fn below_converged<M: Metric>(
     let solve = |options: Options| {
         Solver::new(mesh, metric, &options)
             .unwrap()
-            .solve_from(sources, &Stop::NONE)
+            .field(Sources::from(sources).until(&Stop::NONE))
             .unwrap()
     };
     let w = solve(options.with_method(Method::Wave));
@@ -1437,7 +1442,7 @@ fn below_converged<M: Metric>(
 /// segments lie on their faces, its length is its segments' sum and at most the traced
 /// length. Returns its length.
 fn check_path<M: Metric>(
-    query: &geotracks::Query<'_, M>,
+    query: &geotracks::Field<M>,
     target: SurfacePoint,
     path: &geotracks::GeodesicPath,
 ) -> f64 {
@@ -1475,7 +1480,7 @@ fn check_path<M: Metric>(
     path.length
 }
 
-/// `distance_at` and `path` through `solver.query(&field)` on wave fields: at a vertex
+/// `distance_at` and `path` through `Ok::<_, geotracks::Error>(&field)` on wave fields: at a vertex
 /// `distance_at` is the node's value; at any point it is finite where reached and never
 /// below the exact distance (planar meshes); every path ends at its source, is no longer
 /// than traced, and (planar) no shorter than the exact distance. Paths from every vertex
@@ -1496,8 +1501,10 @@ fn queries_and_paths_on_wave_fields() {
         sets.extend(several_sources(mesh, 100 + seed as u64));
         for sources in &sets {
             let solver = Solver::new(mesh, Euclidean, &wave(2.0)).unwrap();
-            let field = solver.solve_from(sources, &Stop::NONE).unwrap();
-            let query = solver.query(&field).unwrap();
+            let field = solver
+                .field(Sources::from(sources).until(&Stop::NONE))
+                .unwrap();
+            let query = &field;
             let points: Vec<(DVec2, f64)> = sources
                 .iter()
                 .map(|s| (region.point(mesh, s.point), s.start))
@@ -1535,7 +1542,7 @@ fn queries_and_paths_on_wave_fields() {
                     Ok(path) => path,
                     Err(err) => panic!("{name}, {sources:?}: path from {target}: {err}"),
                 };
-                let length = check_path(&query, target, &path);
+                let length = check_path(query, target, &path);
                 let start = sources[path.source as usize].start;
                 assert!(
                     start + length >= e - 1e-9 * scale,
@@ -1578,9 +1585,9 @@ fn queries_and_paths_on_wave_fields() {
         },
     ] {
         let field = solver
-            .solve_from(&[Source::new(source)], &Stop::NONE)
+            .field(Sources::from(&[Source::new(source)]).until(&Stop::NONE))
             .unwrap();
-        let query = solver.query(&field).unwrap();
+        let query = &field;
         let mut worst = 0.0f64;
         for v in 0..mesh.vertex_count() as u32 {
             let target = SurfacePoint::Vertex(v);
@@ -1592,7 +1599,7 @@ fn queries_and_paths_on_wave_fields() {
                 }
                 Err(err) => panic!("spot, path from {v}: {err}"),
             };
-            let length = check_path(&query, target, &path);
+            let length = check_path(query, target, &path);
             if source == SurfacePoint::Vertex(0) {
                 let e = reference[v as usize];
                 assert!(
@@ -1613,7 +1620,7 @@ fn queries_and_paths_on_wave_fields() {
     }
 }
 /// The nodes whose parent chain loops (never reaches a root).
-fn looping_nodes(field: &GeodesicField) -> Vec<u32> {
+fn looping_nodes(field: &FieldData) -> Vec<u32> {
     let count = field.node_distances().len();
     (0..count as u32)
         .filter(|&start| {
@@ -1647,9 +1654,9 @@ fn no_parent_cycles() {
             for k in [1.0, 2.0, 3.0] {
                 let field = Solver::new(mesh, Euclidean, &wave(k))
                     .unwrap()
-                    .solve_from(&sources, &Stop::NONE)
+                    .field(Sources::from(&sources).until(&Stop::NONE))
                     .unwrap();
-                let looping = looping_nodes(&field);
+                let looping = looping_nodes(field.data());
                 if !looping.is_empty() {
                     found.push(format!(
                         "{name}, k = {k}, {sources:?}: {} nodes, e.g. {:?}",
@@ -1679,7 +1686,7 @@ fn wave_queue_counts_do_not_overflow() {
     let source = Source::new(2).with_start(-0.7817997580942447);
     let field = Solver::new(&mesh, Euclidean, &wave(2.0))
         .unwrap()
-        .solve_from(&[source], &Stop::NONE)
+        .field(Sources::from(&[source]).until(&Stop::NONE))
         .unwrap();
     assert_eq!(field.stats().method, Method::Wave);
 }
@@ -1716,8 +1723,8 @@ fn traced_paths_are_as_long_as_their_values() {
     for (name, mesh, exact) in &cases {
         for k in [1.0, 2.0] {
             let solver = Solver::new(mesh, Euclidean, &wave(k)).unwrap();
-            let field = solver.solve(&[0]).unwrap();
-            let query = solver.query(&field).unwrap();
+            let field = solver.field(&[0]).unwrap();
+            let query = &field;
             let (mut longer, mut shorter, mut worst) = (0usize, 0usize, 0.0f64);
             let count = mesh.vertex_count() as u32;
             for v in 1..count {
@@ -1772,8 +1779,12 @@ fn a_flattening_without_is_face_norm_still_runs_the_wave_exactly() {
     }
     let mesh = common::sphere(2, 0.2, 9);
     let options = geotracks::Options::DEFAULT;
-    let flat = geotracks::distance_field(&mesh, &FlatOnly, &[0], &options).unwrap();
-    let euclid = geotracks::distance_field(&mesh, &geotracks::Euclidean, &[0], &options).unwrap();
+    let flat = geotracks::Solver::new(&mesh, &FlatOnly, &options)
+        .and_then(|solver| solver.field(&[0]))
+        .unwrap();
+    let euclid = geotracks::Solver::new(&mesh, &geotracks::Euclidean, &options)
+        .and_then(|solver| solver.field(&[0]))
+        .unwrap();
     assert_eq!(flat.stats().method, geotracks::Method::Wave);
     assert_eq!(flat.node_distances(), euclid.node_distances());
 }

@@ -6,9 +6,10 @@ mod common;
 
 use common::{random_mesh, Rng, DIJKSTRA, GRAPH, TRACKS};
 use geotracks::mesh::{TriMesh, NONE};
+use geotracks::Sources;
 use geotracks::{
-    distance_field, Density, Error, Euclidean, FacePoint, Method, Metric, Options, Solver, Source,
-    Stop, SurfacePoint,
+    Density, Error, Euclidean, FacePoint, Method, Metric, Options, Solver, Source, Stop,
+    SurfacePoint,
 };
 
 /// Two flat `n × n` grids of side 1: A on [0, 1]², B on [3, 4] × [0, 1], both at
@@ -97,11 +98,19 @@ fn every_engine_crosses_the_wire() {
             2f64.sqrt() + 0.5f64.hypot(1.0) + (p.x - 2.0)
         }
     };
-    let wave = distance_field(&mesh, &Euclidean, &[source], &Options::DEFAULT).unwrap();
+    let wave = Solver::new(&mesh, &Euclidean, &Options::DEFAULT)
+        .and_then(|solver| solver.field(&[source]))
+        .unwrap();
     assert_eq!(wave.stats().method, Method::Wave);
-    let graph = distance_field(&mesh, &Euclidean, &[source], &GRAPH).unwrap();
-    let tracks = distance_field(&mesh, &Euclidean, &[source], &TRACKS).unwrap();
-    let dijkstra = distance_field(&mesh, &Euclidean, &[source], &DIJKSTRA).unwrap();
+    let graph = Solver::new(&mesh, &Euclidean, &GRAPH)
+        .and_then(|solver| solver.field(&[source]))
+        .unwrap();
+    let tracks = Solver::new(&mesh, &Euclidean, &TRACKS)
+        .and_then(|solver| solver.field(&[source]))
+        .unwrap();
+    let dijkstra = Solver::new(&mesh, &Euclidean, &DIJKSTRA)
+        .and_then(|solver| solver.field(&[source]))
+        .unwrap();
     for v in 0..mesh.vertex_count() as u32 {
         let e = exact(v);
         assert!(
@@ -123,7 +132,9 @@ fn every_engine_crosses_the_wire() {
     }
     // From B's far corner, A is reached the other way.
     let far = (2 * side * side - 1) as u32; // (4, 1)
-    let back = distance_field(&mesh, &Euclidean, &[far], &Options::DEFAULT).unwrap();
+    let back = Solver::new(&mesh, &Euclidean, &Options::DEFAULT)
+        .and_then(|solver| solver.field(&[far]))
+        .unwrap();
     assert!((back.distance(0) - (1.0 + wire_length() + 2f64.sqrt())).abs() < 1e-9);
 }
 
@@ -136,7 +147,9 @@ fn a_density_weighs_the_wire() {
     rho[p as usize] = 3.0;
     let density = Density::new(&mesh, rho).unwrap();
     let a_corner = (side * side - 1) as u32;
-    let field = distance_field(&mesh, &density, &[a_corner], &TRACKS).unwrap();
+    let field = Solver::new(&mesh, &density, &TRACKS)
+        .and_then(|solver| solver.field(&[a_corner]))
+        .unwrap();
     let first = 1.0f64.hypot(0.5) * (1.0 + 3.0) / 2.0;
     assert!((field.distance(p) - first).abs() < 1e-12);
     assert!((field.distance(p + 1) - (first + 0.5 * 2.0)).abs() < 1e-12);
@@ -148,7 +161,9 @@ fn a_source_on_a_curve_reaches_the_faces() {
     let (mesh, side) = two_squares_and_a_wire(4);
     let p = (2 * side * side) as u32;
     for options in [Options::DEFAULT, GRAPH, TRACKS, DIJKSTRA] {
-        let field = distance_field(&mesh, &Euclidean, &[p], &options).unwrap();
+        let field = Solver::new(&mesh, &Euclidean, &options)
+            .and_then(|solver| solver.field(&[p]))
+            .unwrap();
         assert_eq!(field.unreachable_vertices(), 0);
         assert!((field.distance(0) - (1.0f64.hypot(0.5) + 2f64.sqrt())).abs() < 1e-9);
     }
@@ -167,7 +182,7 @@ fn paths_run_along_wires() {
         let source = Source::new(0);
         // B's vertex (4, 0): straight across B to the wire, then straight in A.
         let target = SurfacePoint::Vertex((side * side + side - 1) as u32);
-        let path = solver.shortest_path(&[source], target).unwrap();
+        let path = solver.shortest_path(&[source], target).unwrap().0;
         let wire_segments = path.faces.iter().filter(|&&f| f == NONE).count();
         assert_eq!(wire_segments, 3, "{:?}", path.faces);
         let expected = 2f64.sqrt() + wire_length() + 2f64.sqrt();
@@ -198,9 +213,11 @@ fn early_stops_across_a_wire_keep_exact_values() {
     let target = (side * side + (side - 1) * side + 1) as u32;
     for options in [Options::DEFAULT, TRACKS, GRAPH] {
         let solver = Solver::new(&mesh, Euclidean, &options).unwrap();
-        let full = solver.solve(&[0]).unwrap();
+        let full = solver.field(&[0]).unwrap();
         let stop = Stop::NONE.with_targets(vec![SurfacePoint::Vertex(target)]);
-        let stopped = solver.solve_from(&[Source::new(0)], &stop).unwrap();
+        let stopped = solver
+            .field(Sources::from(&[Source::new(0)]).until(&stop))
+            .unwrap();
         assert!(stopped.stats().stopped_early, "{:?}", options.method);
         assert_eq!(stopped.distance(target), full.distance(target));
     }
@@ -230,8 +247,12 @@ fn tracks_equal_the_graph_with_random_wires() {
         let mesh =
             TriMesh::with_line_elements(positions, mesh.triangles().to_vec(), wires).unwrap();
         let sources = [rng.below(n) as u32];
-        let graph = distance_field(&mesh, &Euclidean, &sources, &GRAPH).unwrap();
-        let tracks = distance_field(&mesh, &Euclidean, &sources, &TRACKS).unwrap();
+        let graph = Solver::new(&mesh, &Euclidean, &GRAPH)
+            .and_then(|solver| solver.field(&sources))
+            .unwrap();
+        let tracks = Solver::new(&mesh, &Euclidean, &TRACKS)
+            .and_then(|solver| solver.field(&sources))
+            .unwrap();
         for (g, t) in graph.node_distances().iter().zip(tracks.node_distances()) {
             assert!(
                 (g - t).abs() <= 1e-9 * g.max(1.0) || (g.is_infinite() && t.is_infinite()),

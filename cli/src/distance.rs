@@ -7,7 +7,8 @@ use crate::picture::{self, PictureArgs};
 use crate::{points, ui, CliResult, Short, Value};
 use geotracks::mesh::{io, TriMesh, NONE};
 use geotracks::render::PictureOptions;
-use geotracks::{Euclidean, GeodesicField, Metric, Options, Solver, Source, Stop, SurfacePoint};
+use geotracks::Sources;
+use geotracks::{Euclidean, Field, Metric, Options, Solver, Source, Stop, SurfacePoint};
 use std::path::{Path, PathBuf};
 
 /// Arguments of `geotracks distance`.
@@ -90,35 +91,27 @@ pub fn run(args: &DistanceArgs) -> CliResult {
     let mesh = load_mesh(&args.mesh, args.weld)?;
     let sources = points::sources(&mesh, &args.sources)?;
     let metric = args.metric.metric(&mesh)?;
-    let options = args.metric.options(&metric);
+    let options = args.metric.options();
     let solver = Solver::new(&mesh, metric, &options)?;
     let field = compute(&solver, &sources, &stop)?;
-    let labels = match args.voronoi {
-        Some(_) => Some(solver.query(&field)?.vertex_labels()),
-        None => None,
-    };
+    let labels = args.voronoi.as_ref().map(|_| field.vertex_labels());
     drop(spinner);
-    write_field(&mut outputs, &args.output, format, &mesh, &field)?;
+    write_field(&mut outputs, &args.output, format, &mesh, field.data())?;
     if let (Some(voronoi), Some(labels)) = (&args.voronoi, labels) {
         write_labels(&mut outputs, voronoi, labels)?;
     }
     if let Some(stats) = &args.stats {
-        write_stats(&mut outputs, stats, &field)?;
+        write_stats(&mut outputs, stats, field.data())?;
     }
-    args.picture
-        .draw(&mut outputs, &solver.query(&field)?, &sources, None)?;
+    args.picture.draw(&mut outputs, &field, &sources, None)?;
     outputs.commit()?;
     crate::report_run(&args.mesh, field.stats(), &args.output);
     Ok(())
 }
 
 /// The field from `sources`, with a line on stderr about the vertices it does not reach.
-fn compute<M: Metric>(
-    solver: &Solver<'_, M>,
-    sources: &[Source],
-    stop: &Stop,
-) -> CliResult<GeodesicField> {
-    let field = solver.solve_from(sources, stop)?;
+fn compute<M: Metric>(solver: &Solver<M>, sources: &[Source], stop: &Stop) -> CliResult<Field<M>> {
+    let field = solver.field(Sources::from(sources).until(stop))?;
     let unreachable = field.unreachable_vertices();
     if unreachable > 0 {
         if stop.max_distance.is_finite() {
@@ -155,7 +148,7 @@ fn write_field(
     path: &Path,
     format: OutputFormat,
     mesh: &TriMesh,
-    field: &GeodesicField,
+    field: &geotracks::FieldData,
 ) -> CliResult {
     let d = field.vertex_distances();
     match format {
@@ -177,7 +170,7 @@ fn write_field(
     Ok(())
 }
 
-fn write_stats(outputs: &mut Outputs, path: &Path, field: &GeodesicField) -> CliResult {
+fn write_stats(outputs: &mut Outputs, path: &Path, field: &geotracks::FieldData) -> CliResult {
     let s = field.stats();
     let json = serde_json::json!({
         "vertices": s.vertices,
@@ -224,14 +217,13 @@ pub fn demo(output: &Path) -> CliResult {
     let options = Options::DEFAULT;
     let solver = Solver::new(&mesh, Euclidean, &options)?;
     let field = compute(&solver, &[Source::new(source)], &Stop::NONE)?;
-    write_field(&mut outputs, output, format, &mesh, &field)?;
+    write_field(&mut outputs, output, format, &mesh, field.data())?;
     if let Some(png) = &png {
-        let query = solver.query(&field)?;
         let options = PictureOptions::DEFAULT;
         picture::draw(
             &mut outputs,
             png,
-            &query,
+            &field,
             &[Source::new(source)],
             None,
             &options,

@@ -7,7 +7,8 @@ use crate::picture::PictureArgs;
 use crate::{points, ui, CliResult, Value};
 use geotracks::mesh::TriMesh;
 use geotracks::trace::{spread_levels, Isoline, IsolineOptions};
-use geotracks::{Query, Solver, Stop, SurfacePoint};
+use geotracks::Sources;
+use geotracks::{Field, Solver, Stop, SurfacePoint};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -81,16 +82,15 @@ pub fn run(args: &IsolinesArgs) -> CliResult {
     let mesh = load_mesh(&args.mesh, args.weld)?;
     let sources = points::sources(&mesh, &args.sources)?;
     let metric = args.metric.metric(&mesh)?;
-    let run = args.metric.options(&metric);
+    let run = args.metric.options();
     let solver = Solver::new(&mesh, metric, &run)?;
-    let field = solver.solve_from(&sources, &Stop::NONE)?;
-    let query = solver.query(&field)?;
-    let levels = levels_of(&query, args.levels, &args.at);
-    let lines = query.isolines(&levels, &options)?;
+    let field = solver.field(Sources::from(&sources).until(&Stop::NONE))?;
+    let levels = levels_of(&field, args.levels, &args.at);
+    let lines = field.isolines(&levels, &options)?;
     drop(spinner);
     write_isolines(&mut outputs, &args.output, format, &mesh, &lines)?;
     args.picture
-        .draw(&mut outputs, &query, &sources, Some(&lines))?;
+        .draw(&mut outputs, &field, &sources, Some(&lines))?;
     outputs.commit()?;
     let closed = lines.iter().filter(|l| l.closed).count();
     let points: usize = lines.iter().map(|l| l.points.len()).sum();
@@ -143,7 +143,7 @@ pub fn check_levels(count: usize, at: &[f64], flags: (&str, &str)) -> CliResult 
 }
 
 /// The levels `at`, or else `count` levels spread over the field's range.
-pub fn levels_of<M: geotracks::Metric>(query: &Query<'_, M>, count: usize, at: &[f64]) -> Vec<f64> {
+pub fn levels_of<M: geotracks::Metric>(query: &Field<M>, count: usize, at: &[f64]) -> Vec<f64> {
     if at.is_empty() {
         spread_levels(query.max_reached_distance(), count)
     } else {

@@ -49,17 +49,17 @@ pub fn run(args: &MatrixArgs) -> CliResult {
     };
     let start = std::time::Instant::now();
     let metric = args.metric.metric(&mesh)?;
-    let options = args.metric.options(&metric);
+    let options = args.metric.options();
     let solver = Solver::new(&mesh, metric, &options)?;
     // With targets, each row stops once they are final.
-    let rows = solver.distance_rows_with_stats(&sources, targets.as_deref())?;
-    let stopped = rows.iter().filter(|(_, s)| s.stopped_early).count();
+    let rows = solver.distance_rows(&sources, targets.as_deref())?;
+    let stopped = rows.iter().filter(|r| r.stats.stopped_early).count();
     if ui::verbose() {
-        let tests: u64 = rows.iter().map(|(_, s)| s.distance_tests).sum();
-        let pushes: u64 = rows.iter().map(|(_, s)| s.pushes).sum();
+        let tests: u64 = rows.iter().map(|r| r.stats.distance_tests).sum();
+        let pushes: u64 = rows.iter().map(|r| r.stats.pushes).sum();
         eprintln!("  {pushes} pushes and {tests} distance tests over all rows");
     }
-    let rows: Vec<Vec<f64>> = rows.into_iter().map(|(row, _)| row).collect();
+    let rows: Vec<Vec<f64>> = rows.into_iter().map(|r| r.distances).collect();
     drop(spinner);
     let unreachable = rows.iter().flatten().filter(|d| d.is_infinite()).count();
     if unreachable > 0 {

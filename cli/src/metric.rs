@@ -69,19 +69,14 @@ pub fn parse_work_limit(text: &str) -> Result<WorkLimit, String> {
 }
 
 impl MetricArgs {
-    /// The k to run `metric` with: as given, else 2 for the wavefront engine, 5 where
-    /// the Steiner graph runs (a density, a tensor field that varies across a face, or
-    /// `--method tracks|graph`). As Python's `MeshSolver` decides it.
-    pub fn k(&self, metric: &BuiltinMetric) -> f64 {
-        let face_flat = geotracks::Metric::is_face_norm(metric);
-        self.k.unwrap_or(self.method.default_k(face_flat))
-    }
-
-    /// The run options for `metric`.
-    pub fn options(&self, metric: &BuiltinMetric) -> Options {
-        let options = Options::DEFAULT
-            .with_k(self.k(metric))
-            .with_method(self.method);
+    /// The run options: the method and work limit asked for, and `--k` if given (else
+    /// the engine that runs picks its own: `Method::default_k`).
+    pub fn options(&self) -> Options {
+        let options = Options::DEFAULT.with_method(self.method);
+        let options = match self.k {
+            Some(k) => options.with_k(k),
+            None => options,
+        };
         WorkLimit::apply(self.work_limit, options)
     }
 

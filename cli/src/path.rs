@@ -5,6 +5,7 @@ use crate::metric::MetricArgs;
 use crate::output::Outputs;
 use crate::{points, ui, CliResult, Value};
 use geotracks::mesh::TriMesh;
+use geotracks::Sources;
 use geotracks::{GeodesicPath, Solver, Stop, SurfacePoint};
 use std::path::{Path, PathBuf};
 
@@ -57,11 +58,12 @@ pub fn run(args: &PathArgs) -> CliResult {
     let sources = points::sources(&mesh, &args.sources)?;
     let target = points::check(&mesh, "target", args.target)?;
     let metric = args.metric.metric(&mesh)?;
-    let options = args.metric.options(&metric);
+    let options = args.metric.options();
     let solver = Solver::new(&mesh, metric, &options)?;
     // The run stops once the target's value is final.
-    let field = solver.solve_from(&sources, &Stop::NONE.with_targets(vec![target]))?;
-    let path = solver.query(&field)?.path(target)?;
+    let field =
+        solver.field(Sources::from(&sources).until(Stop::NONE.with_targets(vec![target])))?;
+    let path = field.path(target)?;
     drop(spinner);
     write_path(&mut outputs, &args.output, format, &mesh, &path)?;
     outputs.commit()?;

@@ -6,7 +6,7 @@ use crate::output::Outputs;
 use crate::CliResult;
 use geotracks::render::{render_field, PictureOptions, View};
 use geotracks::trace::{spread_levels, Isoline, IsolineOptions};
-use geotracks::{Metric, Query, Source};
+use geotracks::{Field, Metric, Source};
 use std::path::{Path, PathBuf};
 
 /// Isolines drawn on a `distance` picture.
@@ -81,7 +81,7 @@ impl PictureArgs {
     pub fn draw<M: Metric>(
         &self,
         outputs: &mut Outputs,
-        query: &Query<'_, M>,
+        query: &Field<M>,
         sources: &[Source],
         lines: Option<&[Isoline]>,
     ) -> CliResult {
@@ -96,7 +96,7 @@ impl PictureArgs {
 pub fn draw<M: Metric>(
     outputs: &mut Outputs,
     path: &Path,
-    query: &Query<'_, M>,
+    query: &Field<M>,
     sources: &[Source],
     lines: Option<&[Isoline]>,
     options: &PictureOptions,

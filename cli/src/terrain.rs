@@ -5,6 +5,7 @@ use crate::output::Outputs;
 use crate::{ui, CliResult, Value};
 use geotracks::terrain::{self, map, Route, TerrainCost, TerrainError};
 use geotracks::trace::IsolineOptions;
+use geotracks::Sources;
 use geotracks::{Error, Method, Options, Solver, Source, Stop};
 use std::path::{Path, PathBuf};
 
@@ -152,12 +153,11 @@ pub fn run(args: &TerrainArgs) -> CliResult {
         let from = locate(args.from)?;
         let metric = args.cost.metric_on_grid(&grid, &terrain)?;
         let solver = Solver::new(&terrain.mesh, metric, &options)?;
-        let field = solver.solve_from(&[Source::new(from)], &Stop::NONE)?;
+        let field = solver.field(Sources::from(&[Source::new(from)]).until(&Stop::NONE))?;
         let contours = match &args.contours {
             Some(_) => {
-                let query = solver.query(&field)?;
-                let levels = isolines::levels_of(&query, args.contour_levels, &args.contour_at);
-                Some(query.isolines(&levels, &IsolineOptions::DEFAULT)?)
+                let levels = isolines::levels_of(&field, args.contour_levels, &args.contour_at);
+                Some(field.isolines(&levels, &IsolineOptions::DEFAULT)?)
             }
             None => None,
         };

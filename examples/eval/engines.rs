@@ -634,7 +634,11 @@ fn measure<M: Metric>(
         }
         let mut best: Option<Stats> = None;
         for _ in 0..reps.max(1) {
-            let s = solver.run(&mut ws, &[*source]).map_err(|e| e.to_string())?;
+            let s = solver
+                .run(&mut ws, &[*source])
+                .map_err(|e| e.to_string())?
+                .stats()
+                .clone();
             if let Some(b) = &best {
                 let counts = |s: &Stats| (s.distance_tests, s.settles, s.pushes);
                 if counts(b) != counts(&s) {

@@ -42,11 +42,9 @@ pub fn isolines(args: &Args, meshes: &[&MeshEntry], levels: usize) -> Result<(),
                 .filter(|d| d.is_finite())
                 .fold(0.0, f64::max);
             let levels = spread_levels(max, levels);
-            let field = ours.solve(&[source]).map_err(|e| e.to_string())?;
+            let field = ours.field(&[source]).map_err(|e| e.to_string())?;
             let start = Instant::now();
-            let lines = ours
-                .query(&field)
-                .map_err(|e| e.to_string())?
+            let lines = field
                 .isolines(&levels, &IsolineOptions::DEFAULT)
                 .map_err(|e| e.to_string())?;
             seconds += start.elapsed().as_secs_f64();
@@ -65,8 +63,8 @@ pub fn isolines(args: &Args, meshes: &[&MeshEntry], levels: usize) -> Result<(),
                     }
                 }
             }
-            let judge_field = judge.solve(&[source]).map_err(|e| e.to_string())?;
-            let estimate = judge.query(&judge_field).map_err(|e| e.to_string())?;
+            let judge_field = judge.field(&[source]).map_err(|e| e.to_string())?;
+            let estimate = Ok::<_, geotracks::Error>(&judge_field).map_err(|e| e.to_string())?;
             for (row, points) in rows.iter_mut().zip([&our_points, &linear]) {
                 let stride = (points.len() / SAMPLES).max(1);
                 for &(p, level) in points.iter().step_by(stride) {

@@ -88,7 +88,7 @@
 //! (|d − d*| / d* over vertices with d* > 0).
 
 use geotracks::mesh::{io::read_mesh, TriMesh};
-use geotracks::{distance_field, Euclidean, Method, Options, Solver, SurfacePoint};
+use geotracks::{Euclidean, Method, Options, Solver, SurfacePoint};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -281,7 +281,9 @@ fn run() -> Result<(), String> {
             let (mut mean, mut max) = (0.0, 0.0f64);
             for reference in references {
                 let exact = read_reference(&args.data.join(reference))?;
-                let field = distance_field(&mesh, &Euclidean, &[source_of(reference)?], options)
+                let source = source_of(reference)?;
+                let field = Solver::new(&mesh, &Euclidean, options)
+                    .and_then(|solver| solver.field(source))
                     .map_err(|e| e.to_string())?;
                 let (m, x) = relative_error(field.vertex_distances(), &exact);
                 mean += m / references.len() as f64;
@@ -364,12 +366,12 @@ fn equality(args: &Args, meshes: &[&MeshEntry]) -> Result<(), String> {
             let (mut worst, mut graph_tests, mut tracks_tests) = (0.0f64, 0u64, 0u64);
             for &source in sources {
                 let run = |method| {
-                    distance_field(
+                    Solver::new(
                         mesh,
                         &Euclidean,
-                        &[source],
                         &Options::DEFAULT.with_k(k).with_method(method),
                     )
+                    .and_then(|solver| solver.field(&[source]))
                     .map_err(|e| e.to_string())
                 };
                 let (graph, tracks) = (run(Method::Graph)?, run(Method::Tracks)?);
@@ -416,9 +418,9 @@ fn paths(args: &Args, meshes: &[&MeshEntry], count: usize) -> Result<(), String>
             for reference in &entry.references {
                 let exact = read_reference(&args.data.join(reference))?;
                 let field = solver
-                    .solve(&[source_of(reference)?])
+                    .field(&[source_of(reference)?])
                     .map_err(|e| e.to_string())?;
-                let query = solver.query(&field).map_err(|e| e.to_string())?;
+                let query = Ok::<_, geotracks::Error>(&field).map_err(|e| e.to_string())?;
                 // Vertices spread over the mesh by a multiplicative hash of 0, 1, 2, …
                 let vertices = mesh.vertex_count() as u64;
                 for i in 0..count as u64 {

@@ -8,9 +8,10 @@
 
 use geotracks::mesh::io::read_mesh as read_mesh_file;
 use geotracks::mesh::TriMesh;
+use geotracks::Sources;
 use geotracks::{
-    BuiltinMetric, Density, Euclidean, Method, Options, Solver, Source, Stop, SurfacePoint, Tensor,
-    TensorField,
+    BuiltinMetric, Density, Euclidean, Field, Method, Options, Solver, Source, Stop, SurfacePoint,
+    Tensor, TensorField,
 };
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
@@ -49,17 +50,6 @@ fn matrix3<T>(items: &[T], xyz: impl Fn(&T) -> [f64; 3]) -> Array2<f64> {
 type Vector<'py, T> = Bound<'py, PyArray1<T>>;
 /// A numpy matrix owned by Python.
 type Matrix<'py, T> = Bound<'py, PyArray2<T>>;
-
-/// A solver borrows its mesh: both live in one cell.
-type SolverOf<'m> = Solver<'m, BuiltinMetric>;
-
-self_cell::self_cell!(
-    struct MeshAndSolver {
-        owner: TriMesh,
-        #[covariant]
-        dependent: SolverOf,
-    }
-);
 
 /// A source or target as Python gives it: a vertex id, or a surface point in the
 /// command line's form (`"e:E:t"`, `"f:F:b0,b1,b2"`).
@@ -103,7 +93,7 @@ fn positions(vertices: &PyReadonlyArray2<'_, f64>) -> Vec<[f64; 3]> {
 /// The mesh and a solver on it, reused by every query (`geotracks.MeshSolver` wraps it).
 #[pyclass(module = "geotracks._geotracks", frozen)]
 struct MeshSolverCore {
-    cell: MeshAndSolver,
+    solver: Solver<BuiltinMetric>,
 }
 
 #[pymethods]
@@ -148,37 +138,36 @@ impl MeshSolverCore {
             }
             (other, _) => return Err(error(format!("unknown metric '{other}'"))),
         };
-        // The wavefront engine's k where the metric flattens every face (Euclidean, a
-        // tensor, a tensor field constant on each face), the Steiner graph's elsewhere.
-        let face_flat = geotracks::Metric::is_face_norm(&metric);
-        let k = k.unwrap_or(method.default_k(face_flat));
+        // Without a k, the engine that runs picks its own (`Method::default_k`).
         let options = Options::DEFAULT
-            .with_k(k)
             .with_method(method)
             .with_work_limit(work_limit);
-        let cell =
-            py.detach(|| MeshAndSolver::try_new(mesh, |mesh| Solver::new(mesh, metric, &options)));
+        let options = match k {
+            Some(k) => options.with_k(k),
+            None => options,
+        };
+        let solver = py.detach(|| Solver::new(mesh, metric, &options));
         Ok(MeshSolverCore {
-            cell: cell.map_err(error)?,
+            solver: solver.map_err(error)?,
         })
     }
 
     /// Number of vertices.
     #[getter]
     fn vertex_count(&self) -> usize {
-        self.cell.borrow_owner().vertex_count()
+        self.solver.mesh().vertex_count()
     }
 
     /// Number of faces kept (degenerate ones are dropped).
     #[getter]
     fn face_count(&self) -> usize {
-        self.cell.borrow_owner().face_count()
+        self.solver.mesh().face_count()
     }
 
     /// The engine that runs (a metric that is not flat on each face runs "tracks").
     #[getter]
     fn method(&self) -> String {
-        self.cell.borrow_dependent().method().to_string()
+        self.solver.method().to_string()
     }
 
     /// Distance to every vertex from the nearest source; `inf` where unreached.
@@ -221,10 +210,11 @@ impl MeshSolverCore {
     ) -> PyResult<(Matrix<'py, f64>, Vec<String>, f64)> {
         let sources = sources_of(&sources)?;
         let target = target.point()?;
-        let (mesh, solver) = (self.cell.borrow_owner(), self.cell.borrow_dependent());
+        let (mesh, solver) = (self.solver.mesh(), &self.solver);
         let path = py
             .detach(|| solver.shortest_path(&sources, target))
-            .map_err(error)?;
+            .map_err(error)?
+            .0;
         let points = matrix3(&path.points, |p| p.position(mesh).to_array());
         let names = path.points.iter().map(|p| p.to_string()).collect();
         Ok((points.into_pyarray(py), names, path.length))
@@ -278,7 +268,7 @@ impl MeshSolverCore {
         subdivisions: Option<u32>,
     ) -> PyResult<Vec<(f64, Matrix<'py, f64>, bool)>> {
         use geotracks::trace::IsolineOptions;
-        let mesh = self.cell.borrow_owner();
+        let mesh = self.solver.mesh();
         // The library's bound on levels, before the field is computed (no level at
         // all draws nothing, as the library does).
         if !levels.is_empty() {
@@ -312,7 +302,7 @@ impl MeshSolverCore {
     ) -> PyResult<Vec<Bound<'py, pyo3::types::PyTuple>>> {
         use geotracks::trace::{ValueSource, DEFAULT_REGION_SUBDIVISIONS};
         use rayon::prelude::*;
-        let mesh = self.cell.borrow_owner();
+        let mesh = self.solver.mesh();
         let faces: Vec<u32> = match faces {
             Some(ids) => ids
                 .as_array()
@@ -375,7 +365,7 @@ impl MeshSolverCore {
     ) -> PyResult<Matrix<'py, f64>> {
         let sources = vertex_ids(&sources, "source")?;
         let targets = targets.map(|t| vertex_ids(&t, "target")).transpose()?;
-        let solver = self.cell.borrow_dependent();
+        let solver = &self.solver;
         let width = targets.as_ref().map_or(self.vertex_count(), |t| t.len());
         // The rows, then the array they are copied into: twice the values at once.
         solver
@@ -384,7 +374,7 @@ impl MeshSolverCore {
         let rows = py
             .detach(|| solver.distance_rows(&sources, targets.as_deref()))
             .map_err(error)?;
-        let matrix = Array2::from_shape_fn((rows.len(), width), |(i, j)| rows[i][j]);
+        let matrix = Array2::from_shape_fn((rows.len(), width), |(i, j)| rows[i].distances[j]);
         Ok(matrix.into_pyarray(py))
     }
 
@@ -403,7 +393,7 @@ impl MeshSolverCore {
             .check()
             .map_err(|e| error(format!("max_distance = {max_distance}: {e}")))?;
         let sources = vertex_ids(&sources, "source")?;
-        let solver = self.cell.borrow_dependent();
+        let solver = &self.solver;
         let rows = py.detach(|| solver.local_distance_rows(&sources, max_distance));
         let rows = rows.map_err(error)?;
         let total: usize = rows.iter().map(Vec::len).sum();
@@ -429,12 +419,11 @@ impl MeshSolverCore {
         &self,
         py: Python<'_>,
         sources: &[PointArg],
-        work: impl FnOnce(&geotracks::Query<'_, BuiltinMetric>) -> Result<T, geotracks::Error> + Send,
+        work: impl FnOnce(&Field<BuiltinMetric>) -> Result<T, geotracks::Error> + Send,
     ) -> PyResult<T> {
         let sources = sources_of(sources)?;
-        let solver = self.cell.borrow_dependent();
-        py.detach(|| work(&solver.query(&solver.solve_from(&sources, &Stop::NONE)?)?))
-            .map_err(error)
+        let solver = &self.solver;
+        py.detach(|| work(&solver.field(sources)?)).map_err(error)
     }
 
     /// One run from `sources`: vertex distances and, if asked, labels.
@@ -455,12 +444,12 @@ impl MeshSolverCore {
         let stop = Stop::NONE
             .with_max_distance(max_distance)
             .with_targets(targets);
-        let solver = self.cell.borrow_dependent();
+        let solver = &self.solver;
         py.detach(|| {
-            let field = solver.solve_from(&sources, &stop)?;
+            let field = solver.field(Sources::from(&sources).until(&stop))?;
             let distances = field.vertex_distances().to_vec();
             let labels = if labels {
-                let query = solver.query(&field)?;
+                let query = &field;
                 query
                     .vertex_labels()
                     .into_iter()

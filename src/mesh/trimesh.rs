@@ -163,6 +163,14 @@ pub struct TriMesh {
     spatially_ordered: bool,
 }
 
+/// A `&TriMesh` where a shared mesh is wanted ([`Solver::new`](crate::Solver::new)) is
+/// copied: pass the mesh itself, or an `Arc` of it, to share it without a copy.
+impl From<&TriMesh> for std::sync::Arc<TriMesh> {
+    fn from(mesh: &TriMesh) -> Self {
+        std::sync::Arc::new(mesh.clone())
+    }
+}
+
 impl TriMesh {
     /// Builds a mesh from positions and triangles (0-based vertex ids).
     ///

@@ -123,6 +123,32 @@ pub(super) struct Outcome {
     pub level: f64,
 }
 
+/// How an engine settles the node its frontier hands it; the loop around it,
+/// [`settle_all`], is written once for every engine.
+pub(super) trait Settle {
+    /// The run's next node and its value ([`Frontier::next`]).
+    fn next(&mut self) -> Option<(u32, f64)>;
+    /// The mesh's vertex count (nodes below it are vertices).
+    fn vertex_count(&self) -> u32;
+    /// Settles vertex `v` at value `d`.
+    fn settle_vertex(&mut self, v: u32, d: f64);
+    /// Settles Steiner node `q` at value `d`.
+    fn settle_steiner(&mut self, q: u32, d: f64);
+}
+
+/// Settles nodes in the frontier's order until the run is over ([`Frontier::next`]).
+#[inline(always)]
+pub(super) fn settle_all(engine: &mut impl Settle) {
+    let vertex_count = engine.vertex_count();
+    while let Some((q, d)) = engine.next() {
+        if q < vertex_count {
+            engine.settle_vertex(q, d);
+        } else {
+            engine.settle_steiner(q, d);
+        }
+    }
+}
+
 impl<'a, M: Metric> Frontier<'a, M, ()> {
     /// Attaches `queue`, gives the seeds their values, runs `engine`, and returns the
     /// counters. A run stopped by its targets then forgets every value that was not

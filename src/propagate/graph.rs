@@ -5,13 +5,34 @@
 //! next neighbours). Nothing is stored per arc: costs are asked of the metric when a
 //! node is settled. With no Steiner points this is Dijkstra on mesh edges.
 
-use super::frontier::{Frontier, Queue};
+use super::frontier::{settle_all, Frontier, Queue, Settle};
 use crate::steiner::NodeKind;
 use geotracks_metrics::{FacePoint, Metric};
 
-/// Settles nodes until the run is over ([`Frontier::next`]).
+/// Settles nodes until the run is over ([`settle_all`]).
 pub(super) fn propagate<M: Metric, Q: Queue>(search: &mut Frontier<'_, M, Q>) {
-    while let Some((q, d)) = search.next() {
+    settle_all(&mut Graph(search));
+}
+
+/// The complete graph's settling: the same for vertices and Steiner points.
+struct Graph<'r, 'a, M, Q>(&'r mut Frontier<'a, M, Q>);
+
+impl<M: Metric, Q: Queue> Settle for Graph<'_, '_, M, Q> {
+    #[inline(always)]
+    fn next(&mut self) -> Option<(u32, f64)> {
+        self.0.next()
+    }
+    #[inline(always)]
+    fn vertex_count(&self) -> u32 {
+        self.0.layout.vertex_count()
+    }
+    #[inline(always)]
+    fn settle_vertex(&mut self, v: u32, d: f64) {
+        self.settle_steiner(v, d);
+    }
+    #[inline(always)]
+    fn settle_steiner(&mut self, q: u32, d: f64) {
+        let search = &mut *self.0;
         let kind = search.layout.kind(q);
         search.relax_along_edges(q, kind, d);
         settle_in_faces(search, q, kind, d);

@@ -45,7 +45,7 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::Mutex;
 
 /// What the two sides of a search from both ends share.
-pub(super) struct Meeting {
+pub(crate) struct Meeting {
     /// Per side, the nodes it settled in its last round, with their values: the other
     /// side adds its own values to them. (Lists, not a per-node array: a search costs
     /// what it settles, not the mesh.)
@@ -120,7 +120,7 @@ impl Meeting {
 }
 
 /// One side's part in a [`Meeting`], held by its run.
-pub(super) struct Side<'a> {
+pub(crate) struct Side<'a> {
     meeting: &'a Meeting,
     side: usize,
     rounds: usize,

@@ -61,7 +61,7 @@
 //! source, or its bend, is nearer the source than the node), by at most an edge's
 //! length: the solver's `reach` widens finality by that much.
 
-use super::frontier::{Frontier, Queue, Seed};
+use super::frontier::{settle_all, Frontier, Queue, Seed, Settle};
 use super::tracks::{FaceRecord, TrackTables};
 use crate::field::Wave;
 use crate::flat::{
@@ -72,7 +72,7 @@ use crate::mesh::NONE;
 use crate::surface::Source;
 use geotracks_metrics::Metric;
 
-/// Settles nodes until the run is over ([`Frontier::next`]). `waves` holds one
+/// Settles nodes until the run is over ([`settle_all`]). `waves` holds one
 /// [`Wave`] per Steiner node (reset by the caller); `seeds` are the sources' offers,
 /// already given to their nodes; `sources` the run's (validated) sources.
 pub(super) fn propagate<M: Metric, Q: Queue>(
@@ -92,12 +92,25 @@ pub(super) fn propagate<M: Metric, Q: Queue>(
         vertex_count,
     };
     run.seed_waves(seeds, sources);
-    while let Some((q, d)) = run.search.next() {
-        if q < vertex_count {
-            run.settle_vertex(q, d);
-        } else {
-            run.settle_steiner(q, d);
-        }
+    settle_all(&mut run);
+}
+
+impl<M: Metric, Q: Queue> Settle for Waves<'_, '_, M, Q> {
+    #[inline(always)]
+    fn next(&mut self) -> Option<(u32, f64)> {
+        self.search.next()
+    }
+    #[inline(always)]
+    fn vertex_count(&self) -> u32 {
+        self.search.layout.vertex_count()
+    }
+    #[inline(always)]
+    fn settle_vertex(&mut self, v: u32, d: f64) {
+        Self::settle_vertex(self, v, d);
+    }
+    #[inline(always)]
+    fn settle_steiner(&mut self, q: u32, d: f64) {
+        Self::settle_steiner(self, q, d);
     }
 }
 

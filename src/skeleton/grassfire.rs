@@ -1,11 +1,11 @@
 //! The grassfire: a distance field burnt into a surface from its whole boundary.
 
 use crate::mesh::TriMesh;
-use crate::options::{Options, Stop};
+use crate::options::Options;
 use crate::propagate::Solver;
 use crate::surface::Source;
-use crate::trace::Query;
-use crate::{Error, GeodesicField, Metric};
+use crate::{Error, Field, Metric};
+use std::sync::Arc;
 
 /// A distance field from every boundary edge (edges with one face) of a surface, all at
 /// start value 0.
@@ -14,9 +14,9 @@ use crate::{Error, GeodesicField, Metric};
 /// fronts meet, the surface has its ridges, which [`crate::skeleton::Skeleton`] keeps
 /// as it thins the surface in the order it burns.
 ///
-/// It keeps the solver it burnt with ([`Grassfire::solver`], [`Grassfire::query`]), so
-/// later questions (paths back to the border, distances at any point) use the same
-/// mesh, metric and Steiner points.
+/// Its field keeps the solver it burnt with ([`Grassfire::field`]), so later questions
+/// (paths back to the border, distances at any point) use the same mesh, metric and
+/// Steiner points.
 ///
 /// ```
 /// use geotracks::{mesh::TriMesh, skeleton::Grassfire, Euclidean, Options};
@@ -31,21 +31,25 @@ use crate::{Error, GeodesicField, Metric};
 /// assert!((fire.field().distance(4) - 0.5).abs() < 1e-12);
 /// # Ok::<(), geotracks::Error>(())
 /// ```
-pub struct Grassfire<'m, M> {
-    solver: Solver<'m, M>,
-    field: GeodesicField,
+pub struct Grassfire<M> {
+    field: Field<M>,
 }
 
-impl<'m, M: Metric> Grassfire<'m, M> {
+impl<M: Metric> Grassfire<M> {
     /// Burns `mesh` from its boundary under `metric` (a metric or a reference to one).
     /// Every node on a boundary edge (its vertices and Steiner points) is a source at 0;
     /// components without a boundary stay unreached (`inf`).
     ///
     /// # Errors
     /// [`Error::NoBoundary`] if no edge has exactly one face; as [`Solver::new`] and
-    /// [`Solver::solve_from`] otherwise.
-    pub fn burn(mesh: &'m TriMesh, metric: M, options: &Options) -> Result<Self, Error> {
+    /// [`Solver::field`] otherwise.
+    pub fn burn(
+        mesh: impl Into<Arc<TriMesh>>,
+        metric: M,
+        options: &Options,
+    ) -> Result<Self, Error> {
         let solver = Solver::new(mesh, metric, options)?;
+        let mesh = solver.mesh();
         let layout = solver.layout();
         let mut nodes: Vec<u32> = (0..mesh.edge_count() as u32)
             .filter(|&e| mesh.edge_faces(e).len() == 1)
@@ -63,29 +67,23 @@ impl<'m, M: Metric> Grassfire<'m, M> {
             .iter()
             .map(|&node| Source::new(layout.surface_point(node)))
             .collect();
-        let field = solver.solve_from(&sources, &Stop::NONE)?;
-        Ok(Grassfire { solver, field })
+        let field = solver.field(sources)?;
+        Ok(Grassfire { field })
     }
 
-    /// The distance field (every boundary node a source at 0).
-    pub fn field(&self) -> &GeodesicField {
+    /// The distance field (every boundary node a source at 0): distances at any
+    /// point, paths back to the boundary.
+    pub fn field(&self) -> &Field<M> {
         &self.field
     }
 
     /// The distance field, given up.
-    pub fn into_field(self) -> GeodesicField {
+    pub fn into_field(self) -> Field<M> {
         self.field
     }
 
     /// The solver the fire burnt with (its mesh, metric and Steiner layout).
-    pub fn solver(&self) -> &Solver<'m, M> {
-        &self.solver
-    }
-
-    /// Queries on the field: distances at any point, paths back to the boundary.
-    pub fn query(&self) -> Query<'_, M> {
-        self.solver
-            .query(&self.field)
-            .expect("the fire's own solver computed its field")
+    pub fn solver(&self) -> &Solver<M> {
+        self.field.solver()
     }
 }

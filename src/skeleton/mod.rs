@@ -51,7 +51,7 @@ use crate::mesh::io::MedialAxis;
 use crate::mesh::{unique_edges, DisjointSets, TriMesh, NONE};
 use crate::options::Options;
 use crate::surface::SurfacePoint;
-use crate::{Error, Euclidean, GeodesicField, Metric};
+use crate::{Error, Euclidean, Field, Metric};
 
 /// The pruning threshold the command line uses by default, in % of the bounding-box
 /// diagonal of what is skeletonized: branches whose erosion thickness is less go. It is
@@ -164,7 +164,7 @@ impl Skeleton {
     /// The unpruned skeleton of a grassfire's surface, each vertex reached when the
     /// grassfire reaches it: [`Skeleton::from_reach`] with its vertex distances, under
     /// its metric.
-    pub fn from_grassfire<M: Metric>(fire: &Grassfire<'_, M>) -> Skeleton {
+    pub fn from_grassfire<M: Metric>(fire: &Grassfire<M>) -> Skeleton {
         let solver = fire.solver();
         Skeleton::from_reach(
             solver.mesh(),
@@ -482,7 +482,7 @@ pub fn medial_axis_skeleton(
     burn: Burn,
     options: &Options,
     prune: f64,
-) -> Result<(Skeleton, Option<GeodesicField>), Error> {
+) -> Result<(Skeleton, Option<Field<Euclidean>>), Error> {
     let (skeleton, field) = Skeleton::of_medial_axis(axis, burn, options)?;
     let skeleton = skeleton.pruned(prune);
     let skeleton = match &axis.surface {
@@ -507,7 +507,7 @@ impl Skeleton {
         axis: &MedialAxis,
         burn: Burn,
         options: &Options,
-    ) -> Result<(Skeleton, Option<GeodesicField>), Error> {
+    ) -> Result<(Skeleton, Option<Field<Euclidean>>), Error> {
         let Some(mesh) = &axis.surface else {
             let reach = matches!(burn, Burn::Radius).then_some(axis.radii.as_slice());
             let skeleton = Skeleton::from_curves(&axis.positions, &axis.free_edges, reach);
@@ -515,23 +515,23 @@ impl Skeleton {
         };
         Ok(match burn {
             Burn::Radius => (Skeleton::from_reach(mesh, &Euclidean, &axis.radii), None),
-            Burn::Boundary => burn_from_border(mesh, &Euclidean, options)?,
+            Burn::Boundary => burn_from_border(mesh, Euclidean, options)?,
         })
     }
 }
 
 /// The unpruned skeleton of `mesh` burnt from its border, with the grassfire's field;
 /// without a border, punctured (no fire reaches: every reach is `inf`) and no field.
-fn burn_from_border<M: Metric>(
+fn burn_from_border<M: Metric + Clone>(
     mesh: &TriMesh,
-    metric: &M,
+    metric: M,
     options: &Options,
-) -> Result<(Skeleton, Option<GeodesicField>), Error> {
-    match Grassfire::burn(mesh, metric, options) {
+) -> Result<(Skeleton, Option<Field<M>>), Error> {
+    match Grassfire::burn(mesh, metric.clone(), options) {
         Ok(fire) => Ok((Skeleton::from_grassfire(&fire), Some(fire.into_field()))),
         Err(Error::NoBoundary) => {
             let unreached = vec![f64::INFINITY; mesh.vertex_count()];
-            Ok((Skeleton::from_reach(mesh, metric, &unreached), None))
+            Ok((Skeleton::from_reach(mesh, &metric, &unreached), None))
         }
         Err(e) => Err(e),
     }

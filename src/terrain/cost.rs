@@ -223,7 +223,7 @@ pub fn incline_tensor(mesh: &TriMesh, b: f64) -> Result<Tensor, TerrainError> {
 ///     vec![[0, 1, 2], [0, 2, 3]],
 /// )?;
 /// let walls = Impassable::new(&mesh, Euclidean, vec![false, true])?;
-/// let field = distance_field(&mesh, &walls, &[1], &Options::DEFAULT)?;
+/// let field = Solver::new(&mesh, &walls, &Options::DEFAULT).and_then(|solver| solver.field(&[1]))?;
 /// // The diagonal 0–2 is shared with the free face: walkable, along the wall.
 /// assert!((field.distance(2) - 1.0).abs() < 1e-12);
 /// // Vertex 3 belongs to the blocked face only: no route reaches it.

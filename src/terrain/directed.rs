@@ -332,8 +332,8 @@ impl DirectedModel {
 /// let solver = Solver::new(&terrain.mesh, &naismith, &Options::DEFAULT)?;
 /// let (west, east) = (terrain.locate(0.0, 1.0)?, terrain.locate(10.0, 1.0)?);
 /// let time = |from, to| -> Result<f64, geotracks::Error> {
-///     let field = solver.solve_from(&[Source::new(from)], &Stop::NONE)?;
-///     solver.query(&field)?.distance_at(to)
+///     let field = solver.field(Sources::from(&[Source::new(from)]).until(&Stop::NONE))?;
+///     field.distance_at(to)
 /// };
 /// // 10 m east and 1 m up: 0.72 s/m × 10 + 6 s per metre climbed.
 /// assert!((time(west, east)? - 13.2).abs() < 1e-9);

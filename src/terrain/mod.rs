@@ -27,8 +27,8 @@
 //! let (from, to) = (terrain.locate(2.0, 10.0)?, terrain.locate(18.0, 10.0)?);
 //! let density = slope_density(&terrain.mesh, 4.0)?; // ρ = 1 + 4 · 0.5² = 2
 //! let solver = Solver::new(&terrain.mesh, &density, &Options::DEFAULT.with_k(2.0))?;
-//! let field = solver.solve_from(&[Source::new(from)], &Stop::NONE.with_targets(vec![to]))?;
-//! let route = solver.query(&field)?.path(to)?;
+//! let field = solver.field(Sources::from(&[Source::new(from)]).until(&Stop::NONE.with_targets(vec![to])))?;
+//! let route = field.path(to)?;
 //! let expected = 2.0 * 16.0 * 1.25f64.sqrt(); // ρ × the 3D length
 //! assert!((route.length - expected).abs() < 1e-6 * expected);
 //! # Ok::<(), Box<dyn std::error::Error>>(())

@@ -2,10 +2,10 @@
 //! cumulative cost and lengths.
 
 use super::{ElevationGrid, TerrainCost, TerrainMesh};
-use crate::field::{GeodesicField, Stats};
-use crate::options::{Method, Options, Stop};
+use crate::field::{Field, Stats};
+use crate::options::{Method, Options, Sources, Stop};
 use crate::propagate::Solver;
-use crate::surface::{Source, SurfacePoint};
+use crate::surface::SurfacePoint;
 use crate::Error;
 use geotracks_metrics::Metric;
 use glam::DVec3;
@@ -57,7 +57,7 @@ impl Route {
 }
 
 /// The cheapest route from `from` to `to` under the solver's metric, as a path query
-/// finds it ([`Solver::shortest_path_with`]: from both ends at once where it can, else
+/// finds it ([`Solver::shortest_path`]: from both ends at once where it can, else
 /// a run from `from` that stops once `to` is final), straightened and reversed so that
 /// it starts at `from`; with `whole_field`, also the cost from `from` at every vertex
 /// (a second run, over the whole surface, for maps and contours).
@@ -88,9 +88,9 @@ impl Route {
 ///
 /// # Errors
 /// [`Error::Unreachable`] when no route joins the two points (walls, NODATA, separate
-/// islands); as [`Solver::solve_from`] otherwise.
+/// islands); as [`Solver::field`] otherwise.
 pub fn route<M: Metric>(
-    solver: &Solver<'_, M>,
+    solver: &Solver<M>,
     from: SurfacePoint,
     to: SurfacePoint,
     whole_field: bool,
@@ -104,16 +104,15 @@ pub fn route<M: Metric>(
 /// As [`route`] stopping at the end, going no farther than `max_cost` (`inf`: no
 /// limit): [`Error::Unreachable`] when the route would cost more.
 fn route_within<M: Metric>(
-    solver: &Solver<'_, M>,
+    solver: &Solver<M>,
     from: SurfacePoint,
     to: SurfacePoint,
     max_cost: f64,
 ) -> Result<Route, Error> {
     let started = Instant::now();
-    let (path, stats) = solver.shortest_path_with(
-        &[Source::new(from)],
+    let (path, stats) = solver.shortest_path(
+        Sources::from(from).until(Stop::NONE.with_max_distance(max_cost)),
         to,
-        &Stop::NONE.with_max_distance(max_cost),
     )?;
     let mut route = path_route(solver, path, stats, None, started);
     // (The path was traced and straightened after the propagation, in the call.)
@@ -123,19 +122,19 @@ fn route_within<M: Metric>(
 
 /// As [`route`] with the whole field, also handing back the field (the cost from
 /// `from` everywhere): for queries on it, such as cost contours with
-/// [`Query::isolines`](crate::Query::isolines). The route is the path query's, as
-/// [`route`] finds it without the field (its [`stats`](Route::stats) are that
-/// query's; the field's are [`GeodesicField::stats`]).
+/// [`Field::isolines`]. The route is the path query's, as [`route`] finds it without the
+/// field (its [`stats`](Route::stats) are that query's; the field's are
+/// [`Field::stats`]).
 ///
 /// # Errors
 /// As [`route`].
 pub fn route_and_field<M: Metric>(
-    solver: &Solver<'_, M>,
+    solver: &Solver<M>,
     from: SurfacePoint,
     to: SurfacePoint,
-) -> Result<(Route, GeodesicField), Error> {
+) -> Result<(Route, Field<M>), Error> {
     let mut route = route_within(solver, from, to, f64::INFINITY)?;
-    let field = solver.solve_from(&[Source::new(from)], &Stop::NONE)?;
+    let field = solver.field(from)?;
     route.vertex_costs = Some(field.vertex_distances().to_vec());
     Ok((route, field))
 }
@@ -143,7 +142,7 @@ pub fn route_and_field<M: Metric>(
 /// `path` (from the end back to the start) as a route from the start, with the run's
 /// `stats` and the vertex costs; the path's seconds counted from `start`.
 fn path_route<M: Metric>(
-    solver: &Solver<'_, M>,
+    solver: &Solver<M>,
     path: crate::GeodesicPath,
     stats: Stats,
     vertex_costs: Option<Vec<f64>>,
@@ -260,7 +259,7 @@ const WHOLE_GRID_ABOVE: f64 = 0.75;
 ///
 /// `options` as for a [`Solver`]; its `mean_edge_length` is replaced by the grid's.
 /// Maps and cost contours need the whole field: a run from the start over the whole
-/// grid's mesh ([`Solver::solve_from`]) besides this route, which stays the one to
+/// grid's mesh ([`Solver::field`]) besides this route, which stays the one to
 /// draw (a route found on the whole grid's mesh costs the same in the Steiner graph,
 /// but among paths of equal cost it may keep another, which straightens differently).
 ///

@@ -149,29 +149,6 @@ impl<M: Metric> Query<'_, M> {
     /// reaches gives none), each as polylines of surface points; see the module docs
     /// for how they are drawn and what they guarantee.
     ///
-    /// ```
-    /// use geotracks::mesh::TriMesh;
-    /// use geotracks::trace::IsolineOptions;
-    /// use geotracks::{Euclidean, Options, Solver};
-    ///
-    /// // A unit square of two triangles, source at corner 0.
-    /// let mesh = TriMesh::new(
-    ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
-    ///     vec![[0, 1, 2], [0, 2, 3]],
-    /// )?;
-    /// let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT)?;
-    /// let field = solver.solve(&[0])?;
-    /// let query = solver.query(&field)?;
-    /// let lines = query.isolines(&[0.5], &IsolineOptions::DEFAULT)?;
-    /// // One quarter circle of radius 0.5 from edge to edge, every point on it.
-    /// assert_eq!(lines.len(), 1);
-    /// assert!(!lines[0].closed);
-    /// for p in &lines[0].points {
-    ///     assert!((p.position(&mesh).length() - 0.5).abs() < 1e-9);
-    /// }
-    /// # Ok::<(), Box<dyn std::error::Error>>(())
-    /// ```
-    ///
     /// # Errors
     /// [`Error::InvalidValue`] for a level that is not finite,
     /// [`Error::InvalidIsolineOption`] for options out of range or more than
@@ -865,7 +842,7 @@ mod tests {
     use super::IsolineOptions;
     use crate::mesh::TriMesh;
     use crate::terrain::Impassable;
-    use crate::{Density, Euclidean, Method, Options, Solver, Source, Stop, Tensor};
+    use crate::{Density, Euclidean, Method, Options, Solver, Source, Sources, Stop, Tensor};
     use geotracks_metrics::Metric;
 
     /// A small deterministic generator (xorshift).
@@ -926,8 +903,8 @@ mod tests {
         }
         let mut drawn = 0;
         for stop in [Stop::NONE, Stop::NONE.with_max_distance(3.0)] {
-            let field = solver.solve_from(&sources, &stop).unwrap();
-            let query = solver.query(&field).unwrap();
+            let field = solver.field(Sources::from(&sources).until(&stop)).unwrap();
+            let query = field.query();
             let max = query.max_reached_distance();
             let mut levels = super::spread_levels(max, 7);
             levels.push(0.0);

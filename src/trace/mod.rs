@@ -24,7 +24,7 @@ use glam::DVec3;
 pub use face_field::ValueSource;
 pub use isolines::{check_level_count, spread_levels, Isoline, IsolineOptions, MAX_LEVELS};
 use query::Origin;
-pub use query::Query;
+pub(crate) use query::Query;
 pub use regions::{Gradient, Region, DEFAULT_REGION_SUBDIVISIONS};
 pub use straighten::straighten;
 
@@ -304,8 +304,8 @@ mod tests {
         )
         .unwrap();
         let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT).unwrap();
-        let field = solver.solve(&[0]).unwrap();
-        let query = solver.query(&field).unwrap();
+        let field = solver.field(&[0]).unwrap();
+        let query = field.query();
         let inside = SurfacePoint::Face {
             face: 1,
             bary: [0.2, 0.3, 0.5],

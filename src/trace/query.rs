@@ -4,40 +4,15 @@ use super::face_field::FaceField;
 use super::ValueSource;
 use crate::field::FieldView;
 use crate::mesh::{TriMesh, NONE};
-use crate::steiner::SteinerLayout;
-use crate::surface::{Source, SurfacePoint};
-use crate::{Error, Method, PointRole};
+use crate::surface::SurfacePoint;
+use crate::{Error, PointRole};
 use geotracks_metrics::Metric;
 use std::fmt;
 
-/// A finished run's field together with the mesh and metric it was computed with: the
-/// distance at any surface point, paths ([`Query::trace`], [`Query::path`]) and the
-/// nearest source of each node ([`Query::vertex_labels`]). Later isolines and regions
-/// go here too.
-///
-/// Made only by the solver that computed the field —
-/// [`Solver::query`](crate::Solver::query) for a [`GeodesicField`](crate::GeodesicField),
-/// [`Solver::query_workspace`](crate::Solver::query_workspace) for a
-/// [`Workspace`](crate::Workspace)'s last run — so the mesh, the metric and the Steiner
-/// layout are the ones the field was computed on, and none of them is passed again.
-///
-/// ```
-/// use geotracks::{mesh::TriMesh, Euclidean, Options, Solver, SurfacePoint};
-/// let mesh = TriMesh::new(
-///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
-///     vec![[0, 1, 2], [0, 2, 3]],
-/// )?;
-/// let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT)?;
-/// let field = solver.solve(&[0])?;
-/// let query = solver.query(&field)?;
-/// let centre = SurfacePoint::Face { face: 0, bary: [1.0 / 3.0; 3] };
-/// let d = query.distance_at(centre)?;
-/// assert!((d - 5f64.sqrt() / 3.0).abs() < 1e-12); // straight from vertex 0
-/// let path = query.path(centre)?; // from the point to its source, straightened
-/// assert!((path.length - d).abs() < 1e-12);
-/// # Ok::<(), geotracks::Error>(())
-/// ```
-pub struct Query<'a, M> {
+/// A finished run's state together with the mesh and metric it was computed with,
+/// borrowed: what the queries of a [`Field`](crate::Field) (and the joins of a route
+/// searched from both ends) run on. Cheap to make and copy.
+pub(crate) struct Query<'a, M> {
     pub(super) mesh: &'a TriMesh,
     pub(super) metric: &'a M,
     pub(super) field: FieldView<'a>,
@@ -140,32 +115,6 @@ impl<'a, M: Metric> Query<'a, M> {
         self.mesh
     }
 
-    /// The metric the field was computed with.
-    pub fn metric(&self) -> &'a M {
-        self.metric
-    }
-
-    /// The engine that computed the field (for [`Method::Wave`] with a metric that is
-    /// not face-flat, the tracks engine that ran instead).
-    pub fn method(&self) -> Method {
-        self.field.method
-    }
-
-    /// The Steiner layout the field was computed on.
-    pub fn layout(&self) -> &'a SteinerLayout {
-        self.field.layout
-    }
-
-    /// Distance at every vertex (`inf` where unreached).
-    pub fn vertex_distances(&self) -> &'a [f64] {
-        &self.field.distance[..self.field.layout.vertex_count() as usize]
-    }
-
-    /// Distance at every node (vertices, then Steiner points in [`SteinerLayout`] order).
-    pub fn node_distances(&self) -> &'a [f64] {
-        self.field.distance
-    }
-
     /// The largest finite distance over the nodes (vertices and Steiner points): the
     /// top of the field's range, to spread isoline levels over
     /// ([`spread_levels`](crate::trace::spread_levels)); 0 when nothing is reached.
@@ -176,11 +125,6 @@ impl<'a, M: Metric> Query<'a, M> {
             .copied()
             .filter(|d| d.is_finite())
             .fold(0.0, f64::max)
-    }
-
-    /// The run's sources, validated (in canonical form).
-    pub fn sources(&self) -> &'a [Source] {
-        self.field.sources
     }
 
     /// The distance at any surface point, as the engine defines it: at a vertex, its

@@ -114,25 +114,6 @@ impl<M: Metric> Query<'_, M> {
     /// a node whose value comes from nowhere else in its faces). At a vertex or edge
     /// point, the face (of those around it) whose candidate gives the least value.
     ///
-    /// ```
-    /// use geotracks::{mesh::TriMesh, Euclidean, Options, Solver, SurfacePoint};
-    /// let mesh = TriMesh::new(
-    ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
-    ///     vec![[0, 1, 2], [0, 2, 3]],
-    /// )?;
-    /// let solver = Solver::new(&mesh, Euclidean, &Options::DEFAULT)?;
-    /// let field = solver.solve(&[0])?;
-    /// let query = solver.query(&field)?;
-    /// let g = query
-    ///     .gradient_at(SurfacePoint::Face { face: 0, bary: [0.2, 0.5, 0.3] })?
-    ///     .expect("a reached point");
-    /// // Straight away from the source at the origin: the point is (0.8, 0.3, 0).
-    /// let away = glam::DVec3::new(0.8, 0.3, 0.0).normalize();
-    /// assert!((g.direction - away).length() < 1e-12);
-    /// assert!((g.vector - away).length() < 1e-12);
-    /// # Ok::<(), geotracks::Error>(())
-    /// ```
-    ///
     /// # Complexity
     /// As [`Query::distance_at`]: the candidates of the faces around the point.
     ///

@@ -3,7 +3,8 @@
 
 use geotracks::mesh::TriMesh;
 use geotracks::metrics::FaceGeometry;
-use geotracks::{distance_field, FacePoint, Method, Metric, Options, Tensor};
+use geotracks::Sources;
+use geotracks::{FacePoint, Method, Metric, Options, Solver, Tensor};
 use glam::DVec3;
 
 /// The naive Steiner graph, the oracle.
@@ -816,8 +817,12 @@ pub fn torus(around: usize, across: usize, big: f64, small: f64) -> TriMesh {
 /// reach the same nodes.
 pub fn tracks_vs_graph<M: Metric>(mesh: &TriMesh, metric: &M, sources: &[u32], k: f64) -> f64 {
     let options = TRACKS.with_k(k);
-    let graph = distance_field(mesh, metric, sources, &options.with_method(Method::Graph)).unwrap();
-    let tracks = distance_field(mesh, metric, sources, &options).unwrap();
+    let graph = Solver::new(mesh, metric, &options.with_method(Method::Graph))
+        .and_then(|solver| solver.field(sources))
+        .unwrap();
+    let tracks = Solver::new(mesh, metric, &options)
+        .and_then(|solver| solver.field(sources))
+        .unwrap();
     assert_eq!(tracks.stats().method, Method::Tracks);
     let mut max: f64 = 0.0;
     for (g, t) in graph.node_distances().iter().zip(tracks.node_distances()) {
@@ -926,9 +931,9 @@ pub fn oracle<M: Metric>(
 ) -> f64 {
     let solver = geotracks::Solver::new(mesh, metric, &GRAPH.with_k(k)).unwrap();
     let field = solver
-        .solve_from(&[geotracks::Source::new(source)], &geotracks::Stop::NONE)
+        .field(Sources::from(&[geotracks::Source::new(source)]).until(&geotracks::Stop::NONE))
         .unwrap();
-    solver.query(&field).unwrap().distance_at(target).unwrap()
+    field.distance_at(target).unwrap()
 }
 
 /// A random point of `mesh`: a vertex, an edge point or a face point.

@@ -33,7 +33,7 @@
 
 mod tables;
 
-use super::frontier::{Frontier, Queue, Seed};
+use super::frontier::{settle_all, Frontier, Queue, Seed, Settle};
 use crate::mesh::NONE;
 use crate::steiner::SlotPoints;
 use geotracks_metrics::{FacePoint, Metric};
@@ -232,7 +232,7 @@ impl Arc {
     }
 }
 
-/// Settles nodes until the run is over ([`Frontier::next`]). `tracks` holds one
+/// Settles nodes until the run is over ([`settle_all`]). `tracks` holds one
 /// [`Track`] per instance, reset by the caller; `seeds` are the sources' offers, already
 /// given to their nodes.
 pub(super) fn propagate<M: Metric, Q: Queue>(
@@ -260,13 +260,25 @@ pub(super) fn propagate<M: Metric, Q: Queue>(
         tables,
         tracks,
     };
-    let vertex_count = run.search.layout.vertex_count();
-    while let Some((q, d)) = run.search.next() {
-        if q < vertex_count {
-            run.settle_vertex(q, d);
-        } else {
-            run.settle_steiner(q, d);
-        }
+    settle_all(&mut run);
+}
+
+impl<M: Metric, Q: Queue> Settle for Tracks<'_, '_, M, Q> {
+    #[inline(always)]
+    fn next(&mut self) -> Option<(u32, f64)> {
+        self.search.next()
+    }
+    #[inline(always)]
+    fn vertex_count(&self) -> u32 {
+        self.search.layout.vertex_count()
+    }
+    #[inline(always)]
+    fn settle_vertex(&mut self, v: u32, d: f64) {
+        Self::settle_vertex(self, v, d);
+    }
+    #[inline(always)]
+    fn settle_steiner(&mut self, q: u32, d: f64) {
+        Self::settle_steiner(self, q, d);
     }
 }
 

@@ -1,11 +1,9 @@
-//! [`GeodesicField`]: what a propagation returns, as plain data: per node its value and
-//! parent, the sources, and the run's [`Stats`].
+//! [`FieldData`]: what a propagation leaves, as plain data: per node its value and
+//! parent, the sources, and the run's [`Stats`]; and the small types a run and its
+//! queries share (the goal estimate, the horizon of an early stop, the waves).
 //!
-//! A field knows nothing of the engine or of paths. Queries that need the mesh and the
-//! metric (the distance at any surface point, paths, nearest-source labels) go through a
-//! [`Query`](crate::trace::Query) made by the [`Solver`](crate::Solver) that computed
-//! the field ([`Solver::query`](crate::Solver::query)), which refuses a field made by
-//! another solver.
+//! The data knows nothing of the engine or of paths: the [`Field`](crate::Field) that
+//! holds it with its solver answers the queries that need the mesh and the metric.
 
 use crate::mesh::{TriMesh, NONE};
 use crate::options::Method;
@@ -214,14 +212,14 @@ pub(crate) struct Root {
 }
 
 /// A distance field over a mesh's nodes (vertices and Steiner points), with the parent of
-/// each node for tracing paths back to a source.
+/// each node for tracing paths back to a source: plain data (values at vertices and
+/// nodes, parents, sources and the run's [`Stats`]), without its solver.
 ///
-/// Plain data: values at vertices and nodes, parents, sources and the run's
-/// [`Stats`]. For the distance at any surface point, paths and labels, ask the solver
-/// that made it for a [`Query`](crate::trace::Query):
-/// [`Solver::query`](crate::Solver::query).
+/// [`Field::into_data`](crate::Field::into_data) makes one, to keep or send;
+/// [`Solver::attach`](crate::Solver::attach) gives it back its queries (the distance at
+/// any surface point, paths, isolines, ...), on the solver that computed it.
 #[derive(Clone, Debug)]
-pub struct GeodesicField {
+pub struct FieldData {
     layout: Arc<SteinerLayout>,
     solver: SolverId,
     distance: Vec<f64>,
@@ -236,35 +234,35 @@ pub struct GeodesicField {
     stats: Stats,
 }
 
-/// The per-node state of a finished run, borrowed: what [`GeodesicField`] owns and a
+/// The per-node state of a finished run, borrowed: what [`FieldData`] owns and a
 /// [`Workspace`](crate::Workspace) holds after a run.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct FieldView<'a> {
-    pub layout: &'a SteinerLayout,
-    pub distance: &'a [f64],
-    pub parent: &'a [u32],
-    pub parent_face: &'a [u32],
-    pub sources: &'a [Source],
+pub struct FieldView<'a> {
+    pub(crate) layout: &'a SteinerLayout,
+    pub(crate) distance: &'a [f64],
+    pub(crate) parent: &'a [u32],
+    pub(crate) parent_face: &'a [u32],
+    pub(crate) sources: &'a [Source],
     /// Per node that a source reached directly, its source, sorted by node.
-    pub roots: &'a [Root],
+    pub(crate) roots: &'a [Root],
     /// Per Steiner node, the wave it carries (empty unless the wavefront engine ran).
-    pub waves: &'a [Wave],
+    pub(crate) waves: &'a [Wave],
     /// The engine that ran.
-    pub method: Method,
+    pub(crate) method: Method,
     /// Where an early stop left the field: below it every value is the full run's,
     /// beyond it nodes may be unreached; it holds the run's maximum distance.
-    pub horizon: Horizon,
+    pub(crate) horizon: Horizon,
 }
 
 impl<'a> FieldView<'a> {
     /// The source (index into the run's sources) that gave a root node its value.
-    pub fn root_source(&self, node: u32) -> Option<u32> {
+    pub(crate) fn root_source(&self, node: u32) -> Option<u32> {
         let at = self.roots.binary_search_by_key(&node, |r| r.node).ok()?;
         Some(self.roots[at].source)
     }
 }
 
-impl GeodesicField {
+impl FieldData {
     /// Assembles a field from per-node state (used by the solver).
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn new(
@@ -278,9 +276,9 @@ impl GeodesicField {
         waves: Vec<Wave>,
         horizon: Horizon,
         stats: Stats,
-    ) -> GeodesicField {
+    ) -> FieldData {
         debug_assert_eq!(distance.len(), layout.node_count());
-        GeodesicField {
+        FieldData {
             layout,
             solver,
             distance,
