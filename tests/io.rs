@@ -2,6 +2,7 @@
 //! bad input of every kind (written into a temporary directory), and the writers'
 //! round trip and atomicity.
 
+use approx::assert_abs_diff_eq;
 use geotracks::mesh::io::{
     read_medial_axis, read_mesh, read_obj_bytes, write_atomically, write_obj_polylines,
     write_ply_with_distance,
@@ -1145,7 +1146,7 @@ fn report_gives_duplicates_bounding_box_and_mean_edge_length() {
     assert_eq!(report.duplicate_positions, 2);
     assert_eq!(report.bounding_box, [[0.0, 0.0, 0.0], [2.0, 1.0, 0.0]]);
     let mean = (4.0 + 2.0 * 2f64.sqrt()) / 6.0;
-    assert!((report.mean_edge_length - mean).abs() < 1e-15);
+    assert_abs_diff_eq!(report.mean_edge_length, mean, epsilon = 1e-15);
     assert_eq!(report.components, 2);
     let text = report.to_string();
     for line in [

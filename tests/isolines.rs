@@ -2,6 +2,7 @@
 //! linear interpolation of vertex values is not), closed where the level set is,
 //! continuous across edges and non-manifold spines, lines of one field never crossing.
 
+use approx::abs_diff_eq;
 mod common;
 
 use geotracks::mesh::TriMesh;
@@ -120,7 +121,10 @@ fn isolines_cross_a_non_manifold_spine_into_every_page() {
         .collect();
     let h = (0.49f64 - 0.25).sqrt();
     for z in [0.5 - h, 0.5 + h] {
-        let meeting = on_spine.iter().filter(|p| (p.z - z).abs() < 1e-9).count();
+        let meeting = on_spine
+            .iter()
+            .filter(|p| abs_diff_eq!(p.z, z, epsilon = 1e-9))
+            .count();
         assert_eq!(
             meeting, 3,
             "lines meeting on the spine at z = {z}: {on_spine:?}"
@@ -137,7 +141,7 @@ fn isolines_cross_a_non_manifold_spine_into_every_page() {
                 let r = (x.x * x.x + x.y * x.y).sqrt();
                 ((r + 0.5).powi(2) + (x.z - 0.5).powi(2)).sqrt()
             };
-            assert!((d - 0.7).abs() < 1e-9, "{x:?}: {d}");
+            assert!(abs_diff_eq!(d, 0.7, epsilon = 1e-9), "{x:?}: {d}");
         }
     }
 }

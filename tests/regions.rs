@@ -3,6 +3,7 @@
 //! direction on the top face, where vertex values are all but equal), regions that
 //! tile their face and agree with `distance_at`.
 
+use approx::{abs_diff_eq, assert_abs_diff_eq};
 mod common;
 
 use geotracks::mesh::TriMesh;
@@ -317,14 +318,17 @@ fn the_prism_top_splits_into_three_regions_along_the_ridge() {
     let regions = query.regions(1, DEFAULT_REGION_SUBDIVISIONS).unwrap();
     let area: f64 = regions.iter().map(|r| r.area).sum();
     let face_area = 3f64.sqrt() / 4.0;
-    assert!((area - face_area).abs() < 1e-12, "{area} vs {face_area}");
+    assert_abs_diff_eq!(area, face_area, epsilon = 1e-12);
     // By symmetry, the three largest regions (one per side) hold equal shares: each
     // a third of the face, up to the chords of the grid.
     let mut areas: Vec<f64> = regions.iter().map(|r| r.area).collect();
     areas.sort_by(|a, b| b.total_cmp(a));
     println!("prism top: {} regions, areas {areas:?}", regions.len());
     for a in &areas[..3] {
-        assert!((a - face_area / 3.0).abs() < 0.02 * face_area, "{areas:?}");
+        assert!(
+            abs_diff_eq!(*a, face_area / 3.0, epsilon = 0.02 * face_area),
+            "{areas:?}"
+        );
     }
     // The ridge meets at the centre: each big region's polygon comes within a grid
     // step of it.

@@ -1,6 +1,7 @@
 //! Skeletons of medial axes: grassfire from the boundary, homotopy-preserving thinning,
 //! pruning by erosion thickness, smoothing, radii; topology against the Betti numbers.
 
+use approx::abs_diff_eq;
 mod common;
 
 use common::{book, holey_grid, rectangle, sphere};
@@ -169,7 +170,7 @@ fn pruning_removes_whole_branches_least_significant_first() {
     assert_eq!(all.points.len(), 1);
     let last = DVec3::from(all.points[0].position);
     assert!(
-        (last.y - 0.5).abs() < 0.06 && (0.4..1.6).contains(&last.x),
+        abs_diff_eq!(last.y, 0.5, epsilon = 0.06) && (0.4..1.6).contains(&last.x),
         "{last}"
     );
 }
@@ -279,7 +280,7 @@ fn saw_teeth_on_the_border_give_no_comb() {
         let middle = skeleton
             .points
             .iter()
-            .filter(|p| (p.position[1] - h / 2.0).abs() < cell)
+            .filter(|p| abs_diff_eq!(p.position[1], h / 2.0, epsilon = cell))
             .count();
         assert!(
             middle as f64 > 0.9 * (w - h) / cell,
@@ -323,8 +324,8 @@ fn a_graph_burns_from_its_tips_by_branch_length() {
             .filter(move |p| p.position[axis] > 0.0)
             .map(|p| p.significance)
     };
-    assert!(branch(0).all(|s| (s - 0.75).abs() < 1e-12));
-    assert!(branch(1).all(|s| (s - 2.25).abs() < 1e-12));
+    assert!(branch(0).all(|s| abs_diff_eq!(s, 0.75, epsilon = 1e-12)));
+    assert!(branch(1).all(|s| abs_diff_eq!(s, 2.25, epsilon = 1e-12)));
     // The shortest branch goes whole, and only it; then all but the last point.
     let kept = |t: f64| skeleton.pruned(t).points.len();
     assert_eq!(kept(0.7), positions.len());
@@ -477,7 +478,10 @@ fn grassfire_burns_from_every_boundary_edge() {
     for v in 0..mesh.vertex_count() as u32 {
         let p = mesh.position(v);
         let exact = p.x.min(2.0 - p.x).min(p.y).min(1.0 - p.y);
-        assert!((field.distance(v) - exact).abs() < 1e-9, "vertex {v}");
+        assert!(
+            abs_diff_eq!(field.distance(v), exact, epsilon = 1e-9),
+            "vertex {v}"
+        );
     }
 }
 

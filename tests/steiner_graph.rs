@@ -1,6 +1,7 @@
 //! The Steiner graph against analytic distances: flat grids, a non-manifold book,
 //! constant densities and constant tensors.
 
+use approx::{abs_diff_eq, assert_abs_diff_eq};
 mod common;
 
 use common::{book, grid, relative_error, DIJKSTRA, GRAPH};
@@ -58,7 +59,7 @@ fn dijkstra_on_edges_is_much_worse_than_the_graph() {
     assert!(dm > 10.0 * gm, "dijkstra {dm}, graph {gm}");
     assert_eq!(dijkstra.stats().steiner_points, 0);
     // Along an axis Dijkstra is exact.
-    assert!((dijkstra.distance(16) - 1.0).abs() < 1e-12);
+    assert_abs_diff_eq!(dijkstra.distance(16), 1.0, epsilon = 1e-12);
 }
 
 #[test]
@@ -91,7 +92,7 @@ fn book_pages_unfold() {
     for j in 0..=8 {
         for i in 1..=8 {
             let (a, b) = (f.distance(id(1, i, j)), f.distance(id(2, i, j)));
-            assert!((a - b).abs() < 1e-9 * a, "{a} vs {b}");
+            assert!(abs_diff_eq!(a, b, epsilon = 1e-9 * a), "{a} vs {b}");
         }
     }
 }
@@ -109,7 +110,7 @@ fn constant_density_scales_distances() {
             .unwrap();
         for (a, b) in f.vertex_distances().iter().zip(base.vertex_distances()) {
             assert!(
-                (a - c * b).abs() <= 1e-12 * (1.0 + c * b),
+                abs_diff_eq!(*a, c * b, epsilon = 1e-12 * (1.0 + c * b)),
                 "{a} vs {c} × {b}"
             );
         }

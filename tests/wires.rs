@@ -2,6 +2,7 @@
 //! axis's free curves) are travelled from end to end at the metric's wire cost, by
 //! every engine, and paths run along them.
 
+use approx::{abs_diff_eq, assert_abs_diff_eq};
 mod common;
 
 use common::{random_mesh, Rng, DIJKSTRA, GRAPH, TRACKS};
@@ -114,18 +115,24 @@ fn every_engine_crosses_the_wire() {
     for v in 0..mesh.vertex_count() as u32 {
         let e = exact(v);
         assert!(
-            (wave.distance(v) - e).abs() < 1e-9,
+            abs_diff_eq!(wave.distance(v), e, epsilon = 1e-9),
             "wave at {v}: {} vs {e}",
             wave.distance(v)
         );
         let g = graph.distance(v);
         assert!(g >= e - 1e-9 && g <= e * 1.02, "graph at {v}: {g} vs {e}");
-        assert!((tracks.distance(v) - g).abs() <= 1e-9 * g, "tracks at {v}");
+        assert!(
+            abs_diff_eq!(tracks.distance(v), g, epsilon = 1e-9 * g),
+            "tracks at {v}"
+        );
         assert!(dijkstra.distance(v) >= g - 1e-9, "dijkstra at {v}");
     }
     // Every node agrees too (the oracle relation, not only at vertices).
     for (g, t) in graph.node_distances().iter().zip(tracks.node_distances()) {
-        assert!((g - t).abs() <= 1e-9 * g.max(1.0), "{g} vs {t}");
+        assert!(
+            abs_diff_eq!(*g, *t, epsilon = 1e-9 * g.max(1.0)),
+            "{g} vs {t}"
+        );
     }
     for field in [&wave, &graph, &tracks, &dijkstra] {
         assert_eq!(field.unreachable_vertices(), 0);
@@ -135,7 +142,11 @@ fn every_engine_crosses_the_wire() {
     let back = Solver::new(&mesh, &Euclidean, &Options::DEFAULT)
         .and_then(|solver| solver.field(&[far]))
         .unwrap();
-    assert!((back.distance(0) - (1.0 + wire_length() + 2f64.sqrt())).abs() < 1e-9);
+    assert_abs_diff_eq!(
+        back.distance(0),
+        1.0 + wire_length() + 2f64.sqrt(),
+        epsilon = 1e-9
+    );
 }
 
 /// A density charges a wire its length times the mean of its ends' densities.
@@ -151,8 +162,8 @@ fn a_density_weighs_the_wire() {
         .and_then(|solver| solver.field(&[a_corner]))
         .unwrap();
     let first = 1.0f64.hypot(0.5) * (1.0 + 3.0) / 2.0;
-    assert!((field.distance(p) - first).abs() < 1e-12);
-    assert!((field.distance(p + 1) - (first + 0.5 * 2.0)).abs() < 1e-12);
+    assert_abs_diff_eq!(field.distance(p), first, epsilon = 1e-12);
+    assert_abs_diff_eq!(field.distance(p + 1), first + 0.5 * 2.0, epsilon = 1e-12);
 }
 
 /// A source on a vertex of no face (the free end of a curve) reaches the sheets.
@@ -165,7 +176,11 @@ fn a_source_on_a_curve_reaches_the_faces() {
             .and_then(|solver| solver.field(&[p]))
             .unwrap();
         assert_eq!(field.unreachable_vertices(), 0);
-        assert!((field.distance(0) - (1.0f64.hypot(0.5) + 2f64.sqrt())).abs() < 1e-9);
+        assert_abs_diff_eq!(
+            field.distance(0),
+            1.0f64.hypot(0.5) + 2f64.sqrt(),
+            epsilon = 1e-9
+        );
     }
 }
 
@@ -187,7 +202,7 @@ fn paths_run_along_wires() {
         assert_eq!(wire_segments, 3, "{:?}", path.faces);
         let expected = 2f64.sqrt() + wire_length() + 2f64.sqrt();
         assert!(
-            (path.length - expected).abs() < 1e-6,
+            abs_diff_eq!(path.length, expected, epsilon = 1e-6),
             "{:?}: {} vs {expected}",
             options.method,
             path.length
@@ -255,7 +270,8 @@ fn tracks_equal_the_graph_with_random_wires() {
             .unwrap();
         for (g, t) in graph.node_distances().iter().zip(tracks.node_distances()) {
             assert!(
-                (g - t).abs() <= 1e-9 * g.max(1.0) || (g.is_infinite() && t.is_infinite()),
+                abs_diff_eq!(*g, *t, epsilon = 1e-9 * g.max(1.0))
+                    || (g.is_infinite() && t.is_infinite()),
                 "seed {seed}: {g} vs {t}"
             );
         }
