@@ -77,10 +77,6 @@ pub enum Error {
     /// A metric could not be built from its data.
     #[error(transparent)]
     Metric(#[from] MetricError),
-    /// An elevation grid could not be meshed, a point of it located, or a terrain cost
-    /// built ([`route_on_grid`](crate::terrain::route_on_grid)).
-    #[error(transparent)]
-    Terrain(#[from] crate::terrain::TerrainError),
     /// No source was given.
     #[error("no source given: at least one source vertex is needed")]
     NoSource,

@@ -26,13 +26,18 @@
 //! - [`skeleton`]: curve skeletons of medial axes with the axis's topology: burnt from
 //!   the border or by radius, thinned by collapses in burn order, pruned by erosion
 //!   thickness.
-//! - [`terrain`]: elevation grids (ESRI ASCII, GeoTIFF) as meshes, terrain costs (slope
-//!   density, impassable faces, uphill tensor), routes ([`terrain::route`]) and maps.
 //!
-//! Dependencies point one way: applications ([`skeleton`], [`terrain`]) use
-//! [`propagate`], which makes fields and hands out [`Query`]s; [`trace`] reads fields;
-//! [`field`] is plain data over [`steiner`] and [`mesh`]; [`render`] draws a mesh and
-//! values on it; the metrics know nothing of the rest. The command-line tool is the separate crate `geotracks-cli`.
+//! Dependencies point one way: applications ([`skeleton`]) use [`propagate`], which
+//! makes fields and hands out [`Query`]s; [`trace`] reads fields; [`field`] is plain
+//! data over [`steiner`] and [`mesh`]; [`render`] draws a mesh and values on it; the
+//! metrics know nothing of the rest.
+//!
+//! ## Sibling crates
+//! Built on this one, which knows nothing of them:
+//! - `geotracks-terrain`: elevation grids (ESRI ASCII, GeoTIFF) as meshes, terrain
+//!   costs (slope density, impassable faces, uphill and walking-time costs), routes
+//!   and maps;
+//! - `geotracks-cli`: the command-line tool `geotracks`.
 //!
 //! ## Example
 //! ```
@@ -77,7 +82,6 @@ pub mod render;
 pub mod skeleton;
 pub mod steiner;
 pub mod surface;
-pub mod terrain;
 pub mod trace;
 
 /// The metric crate, `geotracks-metrics`.

@@ -27,7 +27,7 @@
 //!   radius, tips and junctions as dots.
 //! - Drawn at twice the size and averaged down (anti-aliasing).
 
-pub(crate) mod font;
+pub mod font;
 mod raster;
 mod skeleton;
 
@@ -311,9 +311,15 @@ impl Picture {
     }
 }
 
-/// Writes an RGBA buffer as an 8-bit PNG file, atomically (pictures and terrain maps).
+/// Writes an RGBA buffer (`width × height` pixels, row-major from the top) as an 8-bit
+/// PNG file, atomically (no partial file on error): for pictures drawn outside this
+/// crate, such as terrain maps.
+///
+/// # Errors
+/// [`MeshError::Io`](crate::mesh::MeshError::Io) naming `path` if it cannot be
+/// written.
 #[cfg(feature = "png")]
-pub(crate) fn write_png_file(
+pub fn write_png_file(
     path: &std::path::Path,
     width: u32,
     height: u32,
@@ -322,9 +328,13 @@ pub(crate) fn write_png_file(
     crate::mesh::io::write_atomically(path, |w| encode_png(w, width, height, rgba))
 }
 
-/// Encodes an RGBA buffer as an 8-bit PNG into `w` (pictures and terrain maps).
+/// Encodes an RGBA buffer (`width × height` pixels, row-major from the top) as an
+/// 8-bit PNG into `w`: for pictures drawn outside this crate, such as terrain maps.
+///
+/// # Errors
+/// What `w` or the PNG encoder returns.
 #[cfg(feature = "png")]
-pub(crate) fn encode_png(
+pub fn encode_png(
     w: &mut dyn std::io::Write,
     width: u32,
     height: u32,
