@@ -136,16 +136,6 @@ pub enum Error {
         /// What it must be.
         expected: &'static str,
     },
-    /// A picture option is out of range ([`render_field`](crate::render::render_field)).
-    #[error("picture option {option} is {}; it must be {expected}", geotracks_metrics::Num(*value))]
-    InvalidPictureOption {
-        /// The option's name.
-        option: &'static str,
-        /// The value given.
-        value: f64,
-        /// What it must be.
-        expected: &'static str,
-    },
     /// No source reaches the point a path was asked for: it lies on another component,
     /// beyond the maximum distance, or past an early stop (a run that stopped at other
     /// targets). Run without the stop, or with the point among the targets.

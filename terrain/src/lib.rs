@@ -8,9 +8,15 @@
 //! [`TriMesh`](geotracks::mesh::TriMesh)es and [`Metric`](geotracks::Metric)s, and
 //! routes with the core's [`Solver`](geotracks::Solver) as any caller would; the core
 //! knows nothing of it. Its error is [`TerrainError`], which wraps the engine's
-//! ([`TerrainError::Engine`]). Maps ([`map`]) draw with the core's picture primitives
-//! (the bitmap font of their labels, the PNG encoder of the `png` feature), so a map's
-//! scale bar reads as the pictures' colour bars do.
+//! ([`TerrainError::Engine`]).
+//!
+//! Maps ([`map`]) depend on the picture crate, `geotracks-render`, always: their labels
+//! use its bitmap font (a map's scale bar reads as a picture's colour bar does) and
+//! their PNGs its encoder, so both stay written once. Maps are part of what a route is
+//! for (the command line draws them), so they are not behind a feature of their own:
+//! without `png` the picture crate brings no image codec, only its rasterizer and
+//! nalgebra (for its automatic camera). This crate's `png` feature (on by default)
+//! turns on the picture crate's.
 //!
 //! - [`read_grid`] (by extension), [`read_asc`], [`read_geotiff`]: an
 //!   [`ElevationGrid`] of sample centres in the grid's own units, NODATA kept as holes.

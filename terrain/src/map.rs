@@ -248,9 +248,9 @@ fn decorate(
     }
     let label = match options.map_unit {
         "m" if length >= 1000.0 => {
-            format!("{} km", geotracks::render::font::number(length / 1000.0))
+            format!("{} km", geotracks_render::font::number(length / 1000.0))
         }
-        unit => format!("{} {unit}", geotracks::render::font::number(length)),
+        unit => format!("{} {unit}", geotracks_render::font::number(length)),
     };
     text(
         rgba,
@@ -296,7 +296,7 @@ fn decorate(
     if let Some(step) = interval {
         let label = format!(
             "every {} {}",
-            geotracks::render::font::number(step),
+            geotracks_render::font::number(step),
             options.cost_unit
         );
         let width = 6.0 * font as f64 * label.chars().count() as f64;
@@ -337,7 +337,7 @@ fn text(
 ) {
     let f = font as f64;
     for (ink, grow) in [(HALO, f), (colour, 0.0)] {
-        for (col, row) in geotracks::render::font::cells(text) {
+        for (col, row) in geotracks_render::font::cells(text) {
             let (x0, y0) = (x + col as f64 * f - grow, y + row as f64 * f - grow);
             let (x1, y1) = (x0 + f + 2.0 * grow, y0 + f + 2.0 * grow);
             for py in y0.max(0.0) as usize..(y1.max(0.0) as usize).min(h) {
@@ -485,7 +485,7 @@ impl MapImage {
         &self,
         path: impl AsRef<std::path::Path>,
     ) -> Result<(), geotracks::mesh::MeshError> {
-        geotracks::render::write_png_file(path.as_ref(), self.width, self.height, &self.rgba)
+        geotracks_render::write_png_file(path.as_ref(), self.width, self.height, &self.rgba)
     }
 
     /// As [`MapImage::write_png`], into `w`.
@@ -493,7 +493,7 @@ impl MapImage {
     /// # Errors
     /// What `w` or the PNG encoder returns.
     pub fn write_png_to(&self, w: &mut dyn std::io::Write) -> std::io::Result<()> {
-        geotracks::render::encode_png(w, self.width, self.height, &self.rgba)
+        geotracks_render::encode_png(w, self.width, self.height, &self.rgba)
     }
 }
 
