@@ -7,7 +7,7 @@
 //!
 //! ## How it layers
 //! Built on the core crate, which knows nothing of it: it draws a
-//! [`TriMesh`](geotracks::mesh::TriMesh) and values on it, and a
+//! [`TriMesh`] and values on it, and a
 //! [`Skeleton`](geotracks::skeleton::Skeleton) over its
 //! [`MedialAxis`](geotracks::mesh::io::MedialAxis). Its error is [`RenderError`]. Its
 //! bitmap font ([`font`]) and PNG encoder ([`write_png_file`], [`encode_png`]) serve
