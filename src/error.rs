@@ -77,10 +77,6 @@ pub enum Error {
     /// A metric could not be built from its data.
     #[error(transparent)]
     Metric(#[from] MetricError),
-    /// An elevation grid could not be meshed, a point of it located, or a terrain cost
-    /// built ([`route_on_grid`](crate::terrain::route_on_grid)).
-    #[error(transparent)]
-    Terrain(#[from] crate::terrain::TerrainError),
     /// No source was given.
     #[error("no source given: at least one source vertex is needed")]
     NoSource,
@@ -133,16 +129,6 @@ pub enum Error {
     /// A region option is out of range ([`Query::regions`](crate::trace::Query::regions)).
     #[error("region option {option} is {}; it must be {expected}", geotracks_metrics::Num(*value))]
     InvalidRegionOption {
-        /// The option's name.
-        option: &'static str,
-        /// The value given.
-        value: f64,
-        /// What it must be.
-        expected: &'static str,
-    },
-    /// A picture option is out of range ([`render_field`](crate::render::render_field)).
-    #[error("picture option {option} is {}; it must be {expected}", geotracks_metrics::Num(*value))]
-    InvalidPictureOption {
         /// The option's name.
         option: &'static str,
         /// The value given.

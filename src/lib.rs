@@ -21,18 +21,22 @@
 //! - [`trace`]: [`Query`], made by the solver that computed a field
 //!   ([`Solver::query`]): the distance and gradient at any surface point, each face's
 //!   regions, paths ([`GeodesicPath`], straightened), isolines and nearest sources.
-//! - [`render`]: pictures of fields (the mesh coloured by distance, isolines, sources)
-//!   and of skeletons over their medial axis.
 //! - [`skeleton`]: curve skeletons of medial axes with the axis's topology: burnt from
 //!   the border or by radius, thinned by collapses in burn order, pruned by erosion
 //!   thickness.
-//! - [`terrain`]: elevation grids (ESRI ASCII, GeoTIFF) as meshes, terrain costs (slope
-//!   density, impassable faces, uphill tensor), routes ([`terrain::route`]) and maps.
 //!
-//! Dependencies point one way: applications ([`skeleton`], [`terrain`]) use
-//! [`propagate`], which makes fields and hands out [`Query`]s; [`trace`] reads fields;
-//! [`field`] is plain data over [`steiner`] and [`mesh`]; [`render`] draws a mesh and
-//! values on it; the metrics know nothing of the rest. The command-line tool is the separate crate `geotracks-cli`.
+//! Dependencies point one way: applications ([`skeleton`]) use [`propagate`], which
+//! makes fields and hands out [`Query`]s; [`trace`] reads fields; [`field`] is plain
+//! data over [`steiner`] and [`mesh`]; the metrics know nothing of the rest.
+//!
+//! ## Sibling crates
+//! Built on this one, which knows nothing of them:
+//! - `geotracks-terrain`: elevation grids (ESRI ASCII, GeoTIFF) as meshes, terrain
+//!   costs (slope density, impassable faces, uphill and walking-time costs), routes
+//!   and maps;
+//! - `geotracks-render`: pictures of fields (the mesh coloured by distance, isolines,
+//!   sources) and of skeletons over their medial axis;
+//! - `geotracks-cli`: the command-line tool `geotracks`.
 //!
 //! ## Example
 //! ```
@@ -61,12 +65,10 @@ mod flat;
 pub mod mesh;
 pub mod options;
 pub mod propagate;
-pub mod render;
 mod route;
 pub mod skeleton;
 pub mod steiner;
 pub mod surface;
-pub mod terrain;
 pub mod trace;
 
 /// The metric crate, `geotracks-metrics`.

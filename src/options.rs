@@ -116,9 +116,8 @@ pub struct Options {
     /// The edge length the interval scheme's `k` is relative to: edges are cut every
     /// `mean_edge_length / k` (in the lengths the points are spaced by: 3D lengths, or
     /// the metric's for the wavefront engine). `None` (the default): the mean over the
-    /// mesh's edges. Give the whole mesh's mean to run on a part of it with the points
-    /// the whole would have (as terrain routes do on their window, see
-    /// [`route_on_grid`](crate::terrain::route_on_grid)).
+    /// mesh's edges. Give the whole mesh's mean to run on a part of it (a window cut
+    /// out of a larger surface) with the points the whole would have.
     pub mean_edge_length: Option<f64>,
     /// The most distance tests one full run may be estimated to make, checked before
     /// anything is allocated: a k that would need more is refused with

@@ -1,6 +1,5 @@
-//! Headers that lie: every reader that sizes something from a count in a header (ESRI
-//! ASCII `ncols`/`nrows`, GeoTIFF image size and tag counts, PLY element counts, OFF and
-//! `.ma` counts) refuses a count the file cannot hold with an error naming where it was
+//! Headers that lie: every mesh reader that sizes something from a count in a header
+//! (PLY element counts, OFF and `.ma` counts) refuses a count the file cannot hold with an error naming where it was
 //! declared, and allocates nothing for it.
 //!
 //! The fixtures are in `tests/data/io/lying_*`. Each is read twice: here, for the error
@@ -10,7 +9,6 @@
 
 use geotracks::mesh::io::{read_medial_axis, read_mesh};
 use geotracks::mesh::MeshError;
-use geotracks::terrain::{read_grid, TerrainError};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -20,78 +18,16 @@ fn fixture(name: &str) -> PathBuf {
         .join(name)
 }
 
-const LYING: [&str; 6] = [
-    "lying_header.asc",
-    "lying_size.tif",
-    "lying_tag.tif",
-    "lying_header.ply",
-    "lying_header.off",
-    "lying_header.ma",
-];
+const LYING: [&str; 3] = ["lying_header.ply", "lying_header.off", "lying_header.ma"];
 
 /// Reads a fixture with the reader its extension calls for; the error as text.
 fn read_error(path: &Path) -> String {
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
     match ext {
-        "asc" | "tif" => read_grid(path).err().map(|e| e.to_string()),
         "ma" => read_medial_axis(path).err().map(|e| e.to_string()),
         _ => read_mesh(path).err().map(|e| e.to_string()),
     }
     .unwrap_or_else(|| panic!("{} was read, but its header lies", path.display()))
-}
-
-#[test]
-fn esri_ascii_names_the_header_lines() {
-    let path = fixture("lying_header.asc");
-    let err = read_grid(&path).unwrap_err();
-    assert!(
-        matches!(
-            err,
-            TerrainError::ValueCount {
-                expected: 1_800_000_000,
-                found: 3,
-                header_lines: [1, 2],
-                ..
-            }
-        ),
-        "{err:?}"
-    );
-    assert!(err.to_string().contains("header's lines 1 and 2"), "{err}");
-}
-
-#[test]
-fn geotiff_image_size_beyond_the_file_is_refused() {
-    let err = read_grid(fixture("lying_size.tif")).unwrap_err();
-    match &err {
-        TerrainError::ImplausibleSize {
-            declared, bytes, ..
-        } => {
-            assert_eq!(*declared, 32768 * 32768);
-            assert_eq!(*bytes, 242);
-        }
-        other => panic!("{other:?}"),
-    }
-    let message = err.to_string();
-    assert!(
-        message.contains("ImageWidth 32768 × ImageLength 32768"),
-        "{message}"
-    );
-}
-
-#[test]
-fn geotiff_tag_count_beyond_the_file_is_refused() {
-    let err = read_grid(fixture("lying_tag.tif")).unwrap_err();
-    assert!(
-        matches!(
-            &err,
-            TerrainError::ImplausibleSize {
-                declared: 4_000_000_000,
-                ..
-            }
-        ),
-        "{err:?}"
-    );
-    assert!(err.to_string().contains("tag 42113"), "{err}");
 }
 
 #[test]
@@ -171,7 +107,7 @@ fn lying_headers_allocate_nothing() {
 ///   now gets an out-of-memory error;
 /// - under 1 GiB, a binary PLY declaring 30 million vertices over 720 MB: the same, on
 ///   the vertices;
-/// - under 2 GiB, 2 GB of NUL bytes named `.obj`, `.ply`, `.off`, `.ma`, `.asc`: read
+/// - under 2 GiB, 2 GB of NUL bytes named `.obj`, `.ply`, `.off`, `.ma`: read
 ///   whole before their first byte was looked at (the read failed under the limit),
 ///   now refused from their start as not the format; named `.stl`, the header's
 ///   triangle count (0) says that nothing after it is needed.
@@ -209,11 +145,6 @@ property list uchar int vertex_indices\nend_header\n";
         (sparse("nul.ply", &[], two_gb), two_gib, "not a PLY file"),
         (sparse("nul.off", &[], two_gb), two_gib, "not an OFF file"),
         (sparse("nul.ma", &[], two_gb), two_gib, "not a medial axis"),
-        (
-            sparse("nul.asc", &[], two_gb),
-            two_gib,
-            "not an ESRI ASCII grid",
-        ),
         (sparse("nul.stl", &[], two_gb), two_gib, "no usable face"),
     ];
     let exe = std::env::current_exe().expect("the test binary");

@@ -343,24 +343,12 @@ fn more_levels_than_the_bound_are_refused_at_once() {
 
 #[test]
 fn a_level_through_vertices_has_no_lost_points() {
-    // On a unit grid (a flat terrain's) from a vertex, the circle of radius 2 passes
-    // through four vertices: segments of a rounding's length there once split into
-    // NaN points.
-    use geotracks::terrain::{ElevationGrid, GridGeometry};
-    let geometry = GridGeometry {
-        ncols: 21,
-        nrows: 21,
-        lower_left: [0.5, 0.5],
-        spacing: [1.0, 1.0],
-    };
-    let terrain = ElevationGrid::from_fn(geometry, |_, _| Some(5.0))
-        .unwrap()
-        .to_mesh()
-        .unwrap();
-    let SurfacePoint::Vertex(centre) = terrain.locate(10.5, 10.5).unwrap() else {
-        panic!("a sample is a vertex");
-    };
-    let mesh = terrain.mesh;
+    // On a unit grid from a vertex, the circle of radius 2 passes through four
+    // vertices: segments of a rounding's length there once split into NaN points.
+    // (Each cell cut along its north-west to south-east diagonal, as a flat elevation
+    // grid's are: y mirrored.)
+    let mesh = common::grid_with(20, 20.0, |x, y| [x + 0.5, 20.5 - y, 5.0]);
+    let centre = 10 * 21 + 10;
     let levels = [2.0, 5.0, 8.0];
     let lines = isolines(&mesh, &[Source::new(SurfacePoint::Vertex(centre))], &levels);
     assert_eq!(lines.len(), 3);

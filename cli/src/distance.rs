@@ -6,9 +6,9 @@ use crate::output::Outputs;
 use crate::picture::{self, PictureArgs};
 use crate::{points, ui, CliResult, Short, Value};
 use geotracks::mesh::{io, TriMesh, NONE};
-use geotracks::render::PictureOptions;
 use geotracks::Sources;
 use geotracks::{Euclidean, Field, Metric, Options, Solver, Source, Stop, SurfacePoint};
+use geotracks_render::PictureOptions;
 use std::path::{Path, PathBuf};
 
 /// Arguments of `geotracks distance`.

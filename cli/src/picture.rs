@@ -1,12 +1,12 @@
 //! `--png`, `--view`, `--size`: a picture of a distance field (library:
-//! `geotracks::render`), for `distance`, `isolines` and `demo`; `skeleton` shares the
+//! `geotracks_render`), for `distance`, `isolines` and `demo`; `skeleton` shares the
 //! camera arguments.
 
 use crate::output::Outputs;
 use crate::CliResult;
-use geotracks::render::{render_field, PictureOptions, View};
 use geotracks::trace::{spread_levels, Isoline, IsolineOptions};
 use geotracks::{Field, Metric, Source};
+use geotracks_render::{render_field, PictureOptions, View};
 use std::path::{Path, PathBuf};
 
 /// Isolines drawn on a `distance` picture.

@@ -4,9 +4,9 @@ use crate::output::Outputs;
 use crate::picture::CameraArgs;
 use crate::{ui, CliResult, Short};
 use geotracks::mesh::io::{read_medial_axis, write_obj_lines_to, write_ply_with_distance_to};
-use geotracks::render::render_skeleton;
 use geotracks::skeleton::{medial_axis_skeleton, Burn, Prune, DEFAULT_PRUNE_PERCENT};
 use geotracks::{Method, Options};
+use geotracks_render::render_skeleton;
 use std::path::PathBuf;
 use std::time::Instant;
 

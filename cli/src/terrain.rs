@@ -3,10 +3,10 @@
 use crate::isolines;
 use crate::output::Outputs;
 use crate::{ui, CliResult, Value};
-use geotracks::terrain::{self, map, Route, TerrainCost, TerrainError};
 use geotracks::trace::IsolineOptions;
 use geotracks::Sources;
 use geotracks::{Error, Method, Options, Solver, Source, Stop};
+use geotracks_terrain::{self as terrain, map, Route, TerrainCost, TerrainError};
 use std::path::{Path, PathBuf};
 
 /// Arguments of `geotracks terrain`.
@@ -148,8 +148,7 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     let field_start = std::time::Instant::now();
     let whole = if args.png.is_some() || args.contours.is_some() {
         let terrain = grid.to_mesh_named(Some(&args.dem))?;
-        let locate =
-            |[x, y]: [f64; 2]| routing_error(terrain.locate(x, y).map_err(Error::from), args);
+        let locate = |[x, y]: [f64; 2]| routing_error(terrain.locate(x, y), args);
         let from = locate(args.from)?;
         let metric = args.cost.metric_on_grid(&grid, &terrain)?;
         let solver = Solver::new(&terrain.mesh, metric, &options)?;
@@ -288,7 +287,7 @@ pub fn run(args: &TerrainArgs) -> CliResult {
 
 /// A routing error in the command line's words: which end lies off the grid or on
 /// NODATA, or that no route joins them.
-fn routing_error<T>(routed: Result<T, Error>, args: &TerrainArgs) -> Result<T, String> {
+fn routing_error<T>(routed: Result<T, TerrainError>, args: &TerrainArgs) -> Result<T, String> {
     let end = |x: f64, y: f64| {
         if [x, y] == args.from {
             "--from"
@@ -297,12 +296,14 @@ fn routing_error<T>(routed: Result<T, Error>, args: &TerrainArgs) -> Result<T, S
         }
     };
     routed.map_err(|e| match e {
-        Error::Unreachable { .. } => "no route: --to cannot be reached from --from \
-                                      (impassable faces or NODATA separate them)"
-            .to_string(),
-        Error::Terrain(
-            ref t @ (TerrainError::Outside { x, y, .. } | TerrainError::NoData { x, y }),
-        ) => format!("{} {},{}: {t}", end(x, y), Value(x), Value(y)),
+        TerrainError::Engine(Error::Unreachable { .. }) => {
+            "no route: --to cannot be reached from --from \
+             (impassable faces or NODATA separate them)"
+                .to_string()
+        }
+        ref t @ (TerrainError::Outside { x, y, .. } | TerrainError::NoData { x, y }) => {
+            format!("{} {},{}: {t}", end(x, y), Value(x), Value(y))
+        }
         e => e.to_string(),
     })
 }

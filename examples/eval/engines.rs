@@ -1067,7 +1067,6 @@ fn print_plot_data(case: &Case, rows: &[Row], i: usize) {
     println!();
 }
 
-#[cfg(feature = "png")]
 fn plot(
     file: &Path,
     c: &Context,
@@ -1186,16 +1185,4 @@ fn plot(
         series,
     }
     .write_png(file)
-}
-
-#[cfg(not(feature = "png"))]
-fn plot(
-    _: &Path,
-    _: &Context,
-    _: &Case,
-    _: &[Row],
-    _: usize,
-    _: Option<&Peers>,
-) -> Result<(), String> {
-    Err("--plot needs the `png` feature (on by default)".into())
 }

@@ -79,7 +79,7 @@
 //! - `--plot MESH:FILE.png` also runs `--plot-methods` on that mesh (default wave k = 1 to
 //!   5, tracks k = 1, 2, 3, 5, 8, dijkstra), prints their table and draws mean error
 //!   against propagate time, log-log, one curve per method, with the peers' points from
-//!   `peers.md` hollow (needs the default `png` feature).
+//!   `peers.md` hollow.
 //!
 //! The directory holds `manifest.json` (a list of meshes with `name`, `file`, `faces`
 //! and `references`), the meshes, and `reference/<mesh>.src<v>.f64` files (exact
@@ -94,7 +94,6 @@ use std::time::Instant;
 
 mod engines;
 mod isolines;
-#[cfg(feature = "png")]
 mod plot;
 #[path = "../shared_data/mod.rs"]
 mod shared_data;

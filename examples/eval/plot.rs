@@ -1,5 +1,5 @@
 //! A log-log scatter plot with lines, drawn pixel by pixel and written as a PNG with the
-//! `image` crate the library already uses (no plotting dependency: a plotting crate needs
+//! `image` crate the pictures already use (no plotting dependency: a plotting crate needs
 //! a font file or the system's fonts for its text; a 5×7 bitmap font is enough here).
 
 use std::path::Path;

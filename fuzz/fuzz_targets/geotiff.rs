@@ -4,7 +4,7 @@
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
-    if let Ok(grid) = geotracks::terrain::read_geotiff_bytes("fuzz.tif", data) {
+    if let Ok(grid) = geotracks_terrain::read_geotiff_bytes("fuzz.tif", data) {
         if grid.values().len() <= 1 << 16 {
             let _ = grid.to_mesh();
         }

@@ -492,7 +492,7 @@ fn terrain_route<'py>(
     k: f64,
     method: &str,
 ) -> PyResult<(Matrix<'py, f64>, Vector<'py, f64>, f64)> {
-    use geotracks::terrain::{read_grid, route_on_grid, TerrainCost, TerrainError};
+    use geotracks_terrain::{read_grid, route_on_grid, TerrainCost, TerrainError};
     let cost: TerrainCost = cost.parse().map_err(error)?;
     let method: geotracks::Method = method.parse().map_err(error)?;
     let route = py
@@ -503,15 +503,13 @@ fn terrain_route<'py>(
             route_on_grid(&grid, &cost, &options, start, end)
                 .map(|r| r.route)
                 .map_err(|e| match e {
-                    geotracks::Error::Unreachable { .. } => {
+                    TerrainError::Engine(geotracks::Error::Unreachable { .. }) => {
                         "no route: the end cannot be reached from the start (impassable \
                          faces or NODATA separate them)"
                             .to_string()
                     }
-                    geotracks::Error::Terrain(
-                        ref
-                        t @ (TerrainError::Outside { x, y, .. } | TerrainError::NoData { x, y }),
-                    ) => {
+                    ref
+                    t @ (TerrainError::Outside { x, y, .. } | TerrainError::NoData { x, y }) => {
                         let which = if [x, y] == start { "start" } else { "end" };
                         format!("{which} ({x}, {y}): {t}")
                     }

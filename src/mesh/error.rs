@@ -198,7 +198,13 @@ impl MeshError {
 
 /// Room for `additional` more elements in `vec`, or [`MeshError::OutOfMemory`] naming
 /// `what` (`Vec::reserve` aborts the process when memory runs out).
-pub(crate) fn try_reserve<T>(
+///
+/// Public for the readers of the sibling crates (elevation grids), which size their
+/// buffers from untrusted headers the same way the mesh readers do.
+///
+/// # Errors
+/// [`MeshError::OutOfMemory`] when the allocator refuses the room.
+pub fn try_reserve<T>(
     vec: &mut Vec<T>,
     additional: usize,
     what: impl FnOnce() -> String,

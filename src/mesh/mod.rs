@@ -12,8 +12,9 @@ mod sets;
 mod trimesh;
 
 pub use csr::Csr;
+pub(crate) use error::try_grow;
+pub use error::try_reserve;
 pub use error::MeshError;
-pub(crate) use error::{try_grow, try_reserve};
 pub use homology::{graph_betti_numbers, Betti};
 pub(crate) use homology::{unique_edges, CycleSheets};
 pub(crate) use report::bounding_box;

@@ -213,11 +213,16 @@ impl TriMesh {
     /// keep that order instead of sorting them along a space-filling curve.
     ///
     /// A face that turns out degenerate would renumber the faces after it: the edges
-    /// are then numbered as [`TriMesh::new`] does.
+    /// are then numbered as [`TriMesh::new`] does, and so they are for a table that is
+    /// not the one [`TriMesh::new`] would build (checked in one pass over the faces, far
+    /// cheaper than the sort): a wrong table costs the time saved, never a wrong mesh.
+    ///
+    /// Public for the sibling crates whose meshes have a known structure (elevation
+    /// grids, which number their edges tile by tile).
     ///
     /// # Errors
     /// As [`TriMesh::new`].
-    pub(crate) fn with_edge_table(
+    pub fn with_edge_table(
         positions: Vec<[f64; 3]>,
         triangles: Vec<[u32; 3]>,
         face_edges: Vec<[u32; 3]>,
@@ -225,18 +230,11 @@ impl TriMesh {
         spatially_ordered: bool,
     ) -> Result<Self, MeshError> {
         let faces = Faces::new(positions, triangles)?;
-        if !faces.dropped.is_empty() {
-            // A degenerate face renumbers the faces after it: the table no longer fits.
+        // A degenerate face renumbers the faces after it: the table no longer fits.
+        if !faces.dropped.is_empty() || !edge_table_fits(&faces.kept, &face_edges, &edge_vertices) {
             let (face_edges, edge_vertices) = build_edges(&faces.kept);
             return Ok(faces.assemble(face_edges, edge_vertices, false));
         }
-        debug_assert!(
-            {
-                let (expected_faces, expected_edges) = build_edges(&faces.kept);
-                expected_faces == face_edges && expected_edges == edge_vertices
-            },
-            "an edge table that is not the one TriMesh::new builds"
-        );
         Ok(faces.assemble(face_edges, edge_vertices, spatially_ordered))
     }
 
@@ -633,6 +631,35 @@ impl Faces {
 
 /// Numbers the undirected edges of the faces (sorted by their vertex pair): each face's
 /// edges, and each edge's vertices.
+/// Whether `face_edges` and `edge_vertices` are the table [`build_edges`] makes for
+/// `triangles`: the edges sorted by their vertices (lower first) without repeats, each
+/// one some face's, and each face's edge `i` the one from its corner `i` to corner
+/// `i + 1`. (The edges a face names are then exactly the sorted set of the faces'
+/// edges, which is how `build_edges` numbers them.)
+fn edge_table_fits(
+    triangles: &[[u32; 3]],
+    face_edges: &[[u32; 3]],
+    edge_vertices: &[[u32; 2]],
+) -> bool {
+    if face_edges.len() != triangles.len()
+        || !edge_vertices.iter().all(|&[a, b]| a < b)
+        || !edge_vertices.windows(2).all(|w| w[0] < w[1])
+    {
+        return false;
+    }
+    let mut used = vec![false; edge_vertices.len()];
+    for (t, edges) in triangles.iter().zip(face_edges) {
+        for i in 0..3 {
+            let (a, b) = (t[i], t[(i + 1) % 3]);
+            match edge_vertices.get(edges[i] as usize) {
+                Some(&e) if e == [a.min(b), a.max(b)] => used[edges[i] as usize] = true,
+                _ => return false,
+            }
+        }
+    }
+    used.into_iter().all(|u| u)
+}
+
 fn build_edges(triangles: &[[u32; 3]]) -> (Vec<[u32; 3]>, Vec<[u32; 2]>) {
     let key = |a: u32, b: u32| ((a.min(b) as u64) << 32) | a.max(b) as u64;
     let mut slots: Vec<(u64, u32)> = triangles
@@ -746,5 +773,66 @@ impl FaceGeometry for TriMesh {
         let u = e1.normalize();
         let v = (w - w.dot(u) * u).normalize();
         [u.to_array(), v.to_array()]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::TriMesh;
+
+    /// The edges of `mesh`, as its faces name them and as it lists them.
+    fn table(mesh: &TriMesh) -> (Vec<[u32; 3]>, Vec<[u32; 2]>) {
+        let faces = (0..mesh.face_count() as u32)
+            .map(|f| mesh.face_edges(f))
+            .collect();
+        let edges = (0..mesh.edge_count() as u32)
+            .map(|e| mesh.edge_vertices(e))
+            .collect();
+        (faces, edges)
+    }
+
+    /// A table given to `with_edge_table` that is not the one `TriMesh::new` builds
+    /// (wrong corners, unsorted, an edge missing, one no face names, an index out of
+    /// range) is rebuilt: the mesh comes out as `TriMesh::new` makes it, never wrong.
+    #[test]
+    fn a_wrong_edge_table_is_rebuilt() {
+        let positions = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
+        let triangles = vec![[0, 1, 2], [0, 2, 3]];
+        let expected = TriMesh::new(positions.clone(), triangles.clone()).unwrap();
+        let (faces, edges) = table(&expected);
+        assert_eq!(edges, vec![[0, 1], [0, 2], [0, 3], [1, 2], [2, 3]]);
+        let mut swapped = faces.clone();
+        swapped[0].swap(0, 1);
+        let mut unsorted = edges.clone();
+        unsorted.swap(0, 1);
+        let mut extra = edges.clone();
+        extra.push([2, 9]);
+        let mut out_of_range = faces.clone();
+        out_of_range[1][2] = 40;
+        let wrong = [
+            (faces.clone(), edges.clone()),
+            (swapped, edges.clone()),
+            (faces.clone(), unsorted),
+            (faces.clone(), edges[..4].to_vec()),
+            (faces.clone(), extra),
+            (out_of_range, edges.clone()),
+            (faces[..1].to_vec(), edges.clone()),
+        ];
+        for (i, (face_edges, edge_vertices)) in wrong.into_iter().enumerate() {
+            let mesh = TriMesh::with_edge_table(
+                positions.clone(),
+                triangles.clone(),
+                face_edges,
+                edge_vertices,
+                i == 0,
+            )
+            .unwrap();
+            assert_eq!(table(&mesh), (faces.clone(), edges.clone()), "table {i}");
+        }
     }
 }

@@ -29,7 +29,7 @@ mod ma;
 mod obj;
 mod off;
 mod ply;
-pub(crate) mod sniff;
+pub mod sniff;
 mod stl;
 mod text;
 mod write;
@@ -275,7 +275,9 @@ fn reader_for(path: &Path) -> Result<(Reader, Check), MeshError> {
 }
 
 /// A file's extension in lower case, for choosing a format (`None` without one).
-pub(crate) fn lowercase_extension(path: &Path) -> Option<String> {
+/// Public so that the readers of the sibling crates choose by extension as the mesh
+/// readers do.
+pub fn lowercase_extension(path: &Path) -> Option<String> {
     path.extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase)

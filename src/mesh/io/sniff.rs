@@ -1,5 +1,9 @@
 //! What a file looks like from its first bytes, for the message when it is not what its
 //! extension says (binary data given as OBJ, an OBJ named `.stl`, a PLY named `.off`).
+//!
+//! Public (its three functions [`binary`], [`describe`] and [`without_bom`]) so that
+//! the readers of the sibling crates (elevation grids) refuse and describe a file the
+//! same way the mesh readers do.
 
 use crate::mesh::MeshError;
 use std::path::Path;
@@ -9,7 +13,7 @@ const PROBE: usize = 1024;
 
 /// If the start of the file is not text (a NUL byte, or bytes that are not UTF-8), what
 /// it is, as a phrase ("binary data (byte 0x00 at offset 80)").
-pub(crate) fn binary(bytes: &[u8]) -> Option<String> {
+pub fn binary(bytes: &[u8]) -> Option<String> {
     let head = &bytes[..bytes.len().min(PROBE)];
     if let Some(at) = head.iter().position(|&b| b == 0) {
         return Some(format!("binary data (a NUL byte at offset {at})"));
@@ -30,7 +34,7 @@ pub(crate) fn binary(bytes: &[u8]) -> Option<String> {
 
 /// What the file looks like, as a phrase for "not an OBJ file: {phrase}": a known
 /// format's signature, binary data, or the text its first line starts with.
-pub(crate) fn describe(bytes: &[u8]) -> String {
+pub fn describe(bytes: &[u8]) -> String {
     let first = first_line(bytes);
     let word = first.split_whitespace().next().unwrap_or("");
     if bytes.starts_with(b"II*\0") || bytes.starts_with(b"MM\0*") {
@@ -90,7 +94,7 @@ pub(crate) const BOM: &[u8] = b"\xEF\xBB\xBF";
 
 /// `bytes` without a leading UTF-8 byte-order mark: every text format skips it, as
 /// the editors that write it do, instead of reading it as part of the first line.
-pub(crate) fn without_bom(bytes: &[u8]) -> &[u8] {
+pub fn without_bom(bytes: &[u8]) -> &[u8] {
     bytes.strip_prefix(BOM).unwrap_or(bytes)
 }
 

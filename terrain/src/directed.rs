@@ -31,8 +31,8 @@
 
 use super::cost::{face_normal_up, tan2};
 use super::TerrainError;
-use crate::mesh::TriMesh;
-use geotracks_metrics::{FaceGeometry, FacePoint, Metric, SlidingCost};
+use geotracks::mesh::TriMesh;
+use geotracks::metrics::{FaceGeometry, FacePoint, Metric, SlidingCost};
 
 /// How a [`DirectedCost`] charges a segment (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -320,10 +320,10 @@ impl DirectedModel {
 
 /// A directed terrain cost on a mesh (z up): [`DirectedModel`] applied to each
 /// segment's horizontal length and rise. Going up and down cost differently, so a
-/// field is the cost *from* its sources ([`crate::Reversed`] gives the cost *to* them).
+/// field is the cost *from* its sources ([`geotracks::Reversed`] gives the cost *to* them).
 ///
 /// ```
-/// use geotracks::terrain::{DirectedCost, DirectedModel, ElevationGrid, GridGeometry};
+/// use geotracks_terrain::{DirectedCost, DirectedModel, ElevationGrid, GridGeometry};
 /// use geotracks::{Options, Solver, Source, Stop};
 /// // A plane rising 0.1 m per metre eastwards, 1 m cells.
 /// let geometry = GridGeometry { ncols: 11, nrows: 3, lower_left: [0.0, 0.0], spacing: [1.0, 1.0] };
@@ -458,9 +458,9 @@ impl Metric for DirectedCost {
 #[cfg(test)]
 mod tests {
     use super::{DirectedCost, DirectedModel};
-    use crate::mesh::TriMesh;
-    use crate::surface::SurfacePoint;
-    use geotracks_metrics::{FacePoint, Metric, SlidingCost};
+    use geotracks::mesh::TriMesh;
+    use geotracks::metrics::{FacePoint, Metric, SlidingCost};
+    use geotracks::surface::SurfacePoint;
 
     /// The models' formulas for a segment's derivatives against central differences of
     /// its cost (step 1e-4), on a tilted face, for segments between interior and edge

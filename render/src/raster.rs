@@ -2,7 +2,7 @@
 //! discs) drawn at a multiple of the picture's size and averaged down.
 
 use super::{Picture, PictureOptions, View, SUPERSAMPLE};
-use crate::mesh::TriMesh;
+use geotracks::mesh::TriMesh;
 use glam::DVec3;
 
 /// An orthographic camera fitted to a scene: screen `x` along `right`, `y` down along

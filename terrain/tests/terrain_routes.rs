@@ -11,15 +11,16 @@
 //! on the order it settles nodes in, and each straightens to its own local optimum. The measured spread is printed
 //! (`cargo test --release --test terrain_routes -- --nocapture`).
 
+#[path = "../../tests/common/mod.rs"]
 mod common;
 
 use common::relief::RoughRelief;
 use common::Rng;
-use geotracks::terrain::{
-    route, route_and_field, route_on_grid, ElevationGrid, GridGeometry, TerrainCost,
-};
 use geotracks::Sources;
 use geotracks::{Error, Method, Options, Solver, Source, Stop};
+use geotracks_terrain::{
+    route, route_and_field, route_on_grid, ElevationGrid, GridGeometry, TerrainCost,
+};
 use proptest::prelude::*;
 
 /// Every terrain cost model, with its parameters.

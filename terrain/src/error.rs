@@ -1,8 +1,10 @@
-use geotracks_metrics::Num;
+use geotracks::metrics::Num;
 use std::path::PathBuf;
 use thiserror::Error;
 
-/// Why an elevation grid could not be read or meshed, or a terrain cost built.
+/// Why an elevation grid could not be read or meshed, a terrain cost built, or a route
+/// found: the error of this crate (the engine's own errors come wrapped, as
+/// [`TerrainError::Engine`]).
 ///
 /// File errors name the file, and the line (1-based), row and column (0-based, row 0 the
 /// northernmost) where that means something.
@@ -224,10 +226,15 @@ pub enum TerrainError {
     },
     /// The mesh could not be built.
     #[error(transparent)]
-    Mesh(#[from] crate::mesh::MeshError),
+    Mesh(#[from] geotracks::mesh::MeshError),
     /// A metric could not be built.
     #[error(transparent)]
-    Metric(#[from] geotracks_metrics::MetricError),
+    Metric(#[from] geotracks::metrics::MetricError),
+    /// The engine refused a run or a query: no route joins the two points
+    /// ([`geotracks::Error::Unreachable`]: walls, NODATA or separate islands between
+    /// them), or the options or the run's size are out of range.
+    #[error(transparent)]
+    Engine(#[from] geotracks::Error),
 }
 
 fn line_suffix(line: usize) -> String {

@@ -26,7 +26,7 @@ use std::path::Path;
 /// let path = dir.path().join("hill.asc");
 /// std::fs::write(&path, "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 10\n\
 ///                        NODATA_value -9999\n1 2 -9999\n3 4 5\n")?;
-/// let grid = geotracks::terrain::read_asc(&path)?;
+/// let grid = geotracks_terrain::read_asc(&path)?;
 /// assert_eq!(grid.geometry().lower_left, [5.0, 5.0]); // corner + half a cell
 /// assert_eq!(grid.elevation(0, 0), Some(1.0));        // the northern row first
 /// assert_eq!(grid.elevation(2, 0), None);
@@ -38,7 +38,7 @@ pub fn read_asc(path: impl AsRef<Path>) -> Result<ElevationGrid, TerrainError> {
     // GDAL writes an ESRI grid's CRS beside it, as WKT in a `.prj` of the same name.
     // Only a regular file: a FIFO of that name would block the read.
     let prj = path.with_extension("prj");
-    let epsg = matches!(crate::mesh::io::not_a_file(&prj), Ok(None))
+    let epsg = matches!(geotracks::mesh::io::not_a_file(&prj), Ok(None))
         .then(|| std::fs::read_to_string(&prj).ok())
         .flatten()
         .and_then(|wkt| epsg_of_wkt(&wkt));
@@ -60,7 +60,7 @@ fn read_checked(path: &Path) -> Result<Vec<u8>, TerrainError> {
     (&mut file).take(4096).read_to_end(&mut bytes).map_err(io)?;
     refuse_binary(path, &bytes)?;
     let rest = usize::try_from(size.saturating_sub(bytes.len() as u64)).unwrap_or(usize::MAX);
-    crate::mesh::try_reserve(&mut bytes, rest, || {
+    geotracks::mesh::try_reserve(&mut bytes, rest, || {
         format!("reading the file ({size} bytes)")
     })
     .map_err(|e| e.in_file(path))?;
@@ -70,11 +70,11 @@ fn read_checked(path: &Path) -> Result<Vec<u8>, TerrainError> {
 
 /// [`TerrainError::WrongFormat`] when the start of the file is not text.
 fn refuse_binary(path: &Path, bytes: &[u8]) -> Result<(), TerrainError> {
-    if crate::mesh::io::sniff::binary(bytes).is_some() {
+    if geotracks::mesh::io::sniff::binary(bytes).is_some() {
         return Err(TerrainError::WrongFormat {
             path: path.to_path_buf(),
             expected: "an ESRI ASCII grid",
-            found: crate::mesh::io::sniff::describe(bytes),
+            found: geotracks::mesh::io::sniff::describe(bytes),
         });
     }
     Ok(())
@@ -108,7 +108,7 @@ pub fn read_asc_bytes(path: impl AsRef<Path>, bytes: &[u8]) -> Result<ElevationG
     let path = path.as_ref();
     refuse_binary(path, bytes)?;
     // A leading byte-order mark is skipped, as the editors that write it do.
-    let bytes = crate::mesh::io::sniff::without_bom(bytes);
+    let bytes = geotracks::mesh::io::sniff::without_bom(bytes);
     let text = std::str::from_utf8(bytes).map_err(|e| {
         let at = e.valid_up_to();
         let line = 1 + bytes[..at].iter().filter(|&&b| b == b'\n').count();
@@ -257,7 +257,7 @@ fn parse_asc(path: &Path, text: &str) -> Result<ElevationGrid, TerrainError> {
     });
     let room = expected.min(data_bytes / 2 + 1);
     let mut values = Vec::new();
-    crate::mesh::try_reserve(&mut values, room, || format!("{room} samples"))
+    geotracks::mesh::try_reserve(&mut values, room, || format!("{room} samples"))
         .map_err(|e| e.in_file(path))?;
     for (i, line) in lines {
         for token in line.split_whitespace() {

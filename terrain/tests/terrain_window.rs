@@ -3,14 +3,15 @@
 //! grid's, cut down to where a cheaper route could go), under every terrain cost, with
 //! NODATA holes, walls and detours that make the first window too narrow.
 
+#[path = "../../tests/common/mod.rs"]
 mod common;
 
 use common::Rng;
-use geotracks::terrain::{
-    route_on_grid, ElevationGrid, GridGeometry, TerrainCost, TerrainError, TerrainMesh,
-};
 use geotracks::Sources;
 use geotracks::{Error, Method, Metric, Options, Solver, Source, Stop};
+use geotracks_terrain::{
+    route_on_grid, ElevationGrid, GridGeometry, TerrainCost, TerrainError, TerrainMesh,
+};
 use proptest::prelude::*;
 
 fn geometry(n: usize) -> GridGeometry {
@@ -45,7 +46,7 @@ fn whole_grid_cost(
     options: &Options,
     from: [f64; 2],
     to: [f64; 2],
-) -> Result<f64, Error> {
+) -> Result<f64, TerrainError> {
     let terrain = grid.to_mesh()?;
     let metric = cost.metric(&terrain.mesh)?;
     let options = options.with_mean_edge_length(grid.mean_edge_length().unwrap());
@@ -97,8 +98,8 @@ proptest! {
                 prop_assert!(deviation <= 1e-9, "{}: window {} ({:?}) against {}", COSTS[which], w.route.traced_cost, w.window, c);
                 prop_assert!(w.window.cells <= w.window.grid_cells);
             }
-            (Err(Error::Unreachable { .. }), Err(Error::Unreachable { .. })) => {}
-            (Err(Error::Terrain(TerrainError::NoData { .. })), Err(Error::Terrain(TerrainError::NoData { .. }))) => {}
+            (Err(TerrainError::Engine(Error::Unreachable { .. })), Err(TerrainError::Engine(Error::Unreachable { .. }))) => {}
+            (Err(TerrainError::NoData { .. }), Err(TerrainError::NoData { .. })) => {}
             (w, c) => prop_assert!(false, "window {:?} against whole {:?}", w.map(|w| w.route.traced_cost), c),
         }
     }
@@ -273,11 +274,11 @@ fn points_off_the_grid_or_on_nodata_and_unreachable_ends_are_errors() {
     let options = Options::DEFAULT;
     let none = TerrainCost::None;
     match route_on_grid(&grid, &none, &options, [-5.0, 3.0], [10.0, 10.0]) {
-        Err(Error::Terrain(TerrainError::Outside { x, .. })) => assert_eq!(x, -5.0),
+        Err(TerrainError::Outside { x, .. }) => assert_eq!(x, -5.0),
         other => panic!("{:?}", other.map(|r| r.window)),
     }
     match route_on_grid(&grid, &none, &options, [3.0, 3.0], [20.0, 20.0]) {
-        Err(Error::Terrain(TerrainError::NoData { x, y })) => assert_eq!((x, y), (20.0, 20.0)),
+        Err(TerrainError::NoData { x, y }) => assert_eq!((x, y), (20.0, 20.0)),
         other => panic!("{:?}", other.map(|r| r.window)),
     }
     // A wall all around the corner the route starts in: no route.
@@ -292,6 +293,6 @@ fn points_off_the_grid_or_on_nodata_and_unreachable_ends_are_errors() {
     let steep: TerrainCost = "slope:1,max:45".parse().unwrap();
     assert!(matches!(
         route_on_grid(&walled, &steep, &options, [3.0, 3.0], [20.0, 20.0]),
-        Err(Error::Unreachable { .. })
+        Err(TerrainError::Engine(Error::Unreachable { .. }))
     ));
 }

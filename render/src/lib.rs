@@ -1,6 +1,17 @@
-//! Pictures of distance fields ([`render_field`]: the mesh shaded and coloured by
-//! distance, isolines drawn on it, sources marked, a colour bar with the range written
-//! on it) and of curve skeletons over their medial axis ([`render_skeleton`]).
+//! # geotracks-render
+//!
+//! Pictures for [`geotracks`]: distance fields ([`render_field`]: the mesh shaded and
+//! coloured by distance, isolines drawn on it, sources marked, a colour bar with the
+//! range written on it) and curve skeletons over their medial axis
+//! ([`render_skeleton`]).
+//!
+//! ## How it layers
+//! Built on the core crate, which knows nothing of it: it draws a
+//! [`TriMesh`] and values on it, and a
+//! [`Skeleton`](geotracks::skeleton::Skeleton) over its
+//! [`MedialAxis`](geotracks::mesh::io::MedialAxis). Its error is [`RenderError`]. Its
+//! bitmap font ([`font`]) and PNG encoder ([`write_png_file`], [`encode_png`]) serve
+//! pictures drawn elsewhere too: the terrain crate's maps.
 //!
 //! A small software rasterizer, here rather than a rendering crate: a picture is one
 //! orthographic view of one triangle mesh, flat-shaded, with lines and discs on top —
@@ -27,14 +38,31 @@
 //!   radius, tips and junctions as dots.
 //! - Drawn at twice the size and averaged down (anti-aliasing).
 
-pub(crate) mod font;
+#![forbid(unsafe_code)]
+
+pub mod font;
 mod raster;
 mod skeleton;
 
 pub use skeleton::render_skeleton;
 
-use crate::mesh::TriMesh;
-use crate::Error;
+/// Why a picture could not be drawn.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum RenderError {
+    /// A picture option is out of range ([`render_field`], [`render_skeleton`]).
+    #[error("picture option {option} is {}; it must be {expected}", geotracks::metrics::Num(*value))]
+    InvalidPictureOption {
+        /// The option's name.
+        option: &'static str,
+        /// The value given.
+        value: f64,
+        /// What it must be.
+        expected: &'static str,
+    },
+}
+
+use geotracks::mesh::TriMesh;
 use glam::DVec3;
 use raster::Canvas;
 
@@ -166,7 +194,7 @@ const SUPERSAMPLE: u32 = 2;
 ///
 /// ```
 /// use geotracks::mesh::TriMesh;
-/// use geotracks::render::{render_field, PictureOptions};
+/// use geotracks_render::{render_field, PictureOptions};
 /// let mesh = TriMesh::new(
 ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
 ///     vec![[0, 1, 2], [0, 2, 3]],
@@ -178,19 +206,18 @@ const SUPERSAMPLE: u32 = 2;
 /// ```
 ///
 /// # Errors
-/// [`Error::InvalidPictureOption`] for a size outside 64–8192 pixels;
-/// [`Error::InvalidValue`]-like mismatches are reported as
-/// [`Error::InvalidPictureOption`] too (`vertex_values` not one per vertex).
+/// [`RenderError::InvalidPictureOption`] for a size outside 64–8192 pixels, or
+/// `vertex_values` not one per vertex.
 pub fn render_field(
     mesh: &TriMesh,
     vertex_values: &[f64],
     isolines: &[Vec<DVec3>],
     sources: &[DVec3],
     options: &PictureOptions,
-) -> Result<Picture, Error> {
+) -> Result<Picture, RenderError> {
     check_size(options)?;
     if vertex_values.len() != mesh.vertex_count() {
-        return Err(Error::InvalidPictureOption {
+        return Err(RenderError::InvalidPictureOption {
             option: "vertex values",
             value: vertex_values.len() as f64,
             expected: "one per vertex of the mesh",
@@ -235,11 +262,11 @@ pub fn render_field(
     Ok(picture)
 }
 
-/// [`Error::InvalidPictureOption`] unless both sides are 64 to 8192 pixels.
-fn check_size(options: &PictureOptions) -> Result<(), Error> {
+/// [`RenderError::InvalidPictureOption`] unless both sides are 64 to 8192 pixels.
+fn check_size(options: &PictureOptions) -> Result<(), RenderError> {
     for (option, value) in [("width", options.width), ("height", options.height)] {
         if !SIDES.contains(&value) {
-            return Err(Error::InvalidPictureOption {
+            return Err(RenderError::InvalidPictureOption {
                 option,
                 value: value as f64,
                 expected: "between 64 and 8192 pixels",
@@ -294,11 +321,11 @@ impl Picture {
     /// Writes the picture as an 8-bit RGBA PNG, atomically (no partial file on error).
     ///
     /// # Errors
-    /// [`crate::mesh::MeshError::Io`] naming `path` if it cannot be written.
+    /// [`geotracks::mesh::MeshError::Io`] naming `path` if it cannot be written.
     pub fn write_png(
         &self,
         path: impl AsRef<std::path::Path>,
-    ) -> Result<(), crate::mesh::MeshError> {
+    ) -> Result<(), geotracks::mesh::MeshError> {
         write_png_file(path.as_ref(), self.width, self.height, &self.rgba)
     }
 
@@ -311,20 +338,30 @@ impl Picture {
     }
 }
 
-/// Writes an RGBA buffer as an 8-bit PNG file, atomically (pictures and terrain maps).
+/// Writes an RGBA buffer (`width × height` pixels, row-major from the top) as an 8-bit
+/// PNG file, atomically (no partial file on error): for pictures drawn outside this
+/// crate, such as terrain maps.
+///
+/// # Errors
+/// [`MeshError::Io`](geotracks::mesh::MeshError::Io) naming `path` if it cannot be
+/// written.
 #[cfg(feature = "png")]
-pub(crate) fn write_png_file(
+pub fn write_png_file(
     path: &std::path::Path,
     width: u32,
     height: u32,
     rgba: &[u8],
-) -> Result<(), crate::mesh::MeshError> {
-    crate::mesh::io::write_atomically(path, |w| encode_png(w, width, height, rgba))
+) -> Result<(), geotracks::mesh::MeshError> {
+    geotracks::mesh::io::write_atomically(path, |w| encode_png(w, width, height, rgba))
 }
 
-/// Encodes an RGBA buffer as an 8-bit PNG into `w` (pictures and terrain maps).
+/// Encodes an RGBA buffer (`width × height` pixels, row-major from the top) as an
+/// 8-bit PNG into `w`: for pictures drawn outside this crate, such as terrain maps.
+///
+/// # Errors
+/// What `w` or the PNG encoder returns.
 #[cfg(feature = "png")]
-pub(crate) fn encode_png(
+pub fn encode_png(
     w: &mut dyn std::io::Write,
     width: u32,
     height: u32,
@@ -366,3 +403,8 @@ mod tests {
         }
     }
 }
+
+/// The README's code blocks, compiled and run as doctests so they stay true.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

@@ -3,8 +3,8 @@
 
 use super::cost::{normal_up, tan2};
 use super::TerrainError;
-use crate::mesh::{TriMesh, NONE};
-use crate::surface::SurfacePoint;
+use geotracks::mesh::{TriMesh, NONE};
+use geotracks::surface::SurfacePoint;
 use rayon::prelude::*;
 use std::ops::Range;
 
@@ -112,7 +112,7 @@ impl GridGeometry {
 /// Elevations on a regular grid, with missing samples (NODATA).
 ///
 /// ```
-/// use geotracks::terrain::{ElevationGrid, GridGeometry};
+/// use geotracks_terrain::{ElevationGrid, GridGeometry};
 /// // 3 × 2 samples 10 m apart; the south-west sample centre at (100, 200).
 /// let geometry = GridGeometry { ncols: 3, nrows: 2, lower_left: [100.0, 200.0], spacing: [10.0, 10.0] };
 /// let grid = ElevationGrid::new(geometry, vec![
@@ -125,7 +125,7 @@ impl GridGeometry {
 /// assert_eq!(terrain.mesh.face_count(), 3); // two in the full cell, one in the other
 /// let p = terrain.locate(105.0, 205.0)?;    // the middle of the first cell
 /// assert!((p.position(&terrain.mesh).z - 5.0).abs() < 1e-12);
-/// # Ok::<(), geotracks::terrain::TerrainError>(())
+/// # Ok::<(), geotracks_terrain::TerrainError>(())
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct ElevationGrid {
@@ -364,7 +364,7 @@ impl ElevationGrid {
     /// must be given to get the same points ([`Options::mean_edge_length`]). `None`
     /// when the grid has no triangle.
     ///
-    /// [`Options::mean_edge_length`]: crate::Options::mean_edge_length
+    /// [`Options::mean_edge_length`]: geotracks::Options::mean_edge_length
     pub fn mean_edge_length(&self) -> Option<f64> {
         *self
             .mean_edge

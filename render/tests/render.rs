@@ -1,12 +1,13 @@
-//! Pictures (`render::render_field`): non-manifold meshes and medial axes render, the
+//! Pictures (`render_field`): non-manifold meshes and medial axes render, the
 //! source is marked where it is, degenerate input draws without panicking, bad options
 //! are refused.
 
+#[path = "../../tests/common/mod.rs"]
 mod common;
 
 use geotracks::mesh::TriMesh;
-use geotracks::render::{render_field, Picture, PictureOptions, View};
-use geotracks::{Error, Euclidean, Options, Solver};
+use geotracks::{Euclidean, Options, Solver};
+use geotracks_render::{render_field, Picture, PictureOptions, RenderError, View};
 
 /// Pixels that are not the white background.
 fn drawn(p: &Picture) -> usize {
@@ -40,7 +41,7 @@ fn picture(mesh: &TriMesh, source: u32, options: &PictureOptions) -> Picture {
 #[test]
 fn a_book_and_a_medial_axis_render() {
     let (book, _) = common::book(3, 1.0, 1.0, 6);
-    let axis = geotracks::mesh::io::read_mesh("tests/data/ma/sheet_fins.ma").unwrap();
+    let axis = geotracks::mesh::io::read_mesh("../tests/data/ma/sheet_fins.ma").unwrap();
     for (name, mesh) in [("book", &book), ("sheet_fins.ma", &axis)] {
         for view in [
             View::Auto,
@@ -115,14 +116,14 @@ fn bad_sizes_and_value_counts_are_refused() {
             &PictureOptions::DEFAULT.with_size(w, h),
         );
         assert!(
-            matches!(err, Err(Error::InvalidPictureOption { .. })),
+            matches!(err, Err(RenderError::InvalidPictureOption { .. })),
             "{w}x{h}"
         );
     }
     let err = render_field(&mesh, &values[1..], &[], &[], &PictureOptions::DEFAULT);
     assert!(matches!(
         err,
-        Err(Error::InvalidPictureOption {
+        Err(RenderError::InvalidPictureOption {
             option: "vertex values",
             ..
         })

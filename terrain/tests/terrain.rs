@@ -3,18 +3,19 @@
 //! gap). Measured errors are printed (`cargo test --release --test terrain --
 //! --nocapture`); the README quotes them.
 
+#[path = "../../tests/common/mod.rs"]
 mod common;
 
 use common::{random_mesh, Rng, DIJKSTRA, GRAPH, TRACKS};
 use geotracks::glam::DVec3;
 use geotracks::mesh::TriMesh;
-use geotracks::terrain::{
-    incline_tensor, read_asc, read_geotiff, read_grid, slope_density, steeper_than, DirectedCost,
-    DirectedModel, ElevationGrid, GridGeometry, Impassable, TerrainCost, TerrainError, TerrainMesh,
-};
 use geotracks::Sources;
 use geotracks::{
     Density, Error, Euclidean, GeodesicPath, Method, Metric, Options, Solver, Source, Stop, Tensor,
+};
+use geotracks_terrain::{
+    incline_tensor, read_asc, read_geotiff, read_grid, slope_density, steeper_than, DirectedCost,
+    DirectedModel, ElevationGrid, GridGeometry, Impassable, TerrainCost, TerrainError, TerrainMesh,
 };
 use proptest::prelude::*;
 use std::path::Path;
@@ -276,7 +277,7 @@ fn asc_errors_name_the_file_and_place() {
     ];
     for (i, (text, expected)) in cases.iter().enumerate() {
         let path = write(dir.path(), &format!("bad{i}.asc"), text);
-        let e = geotracks::terrain::read_terrain(&path)
+        let e = geotracks_terrain::read_terrain(&path)
             .unwrap_err()
             .to_string();
         assert!(e.contains(&format!("bad{i}.asc")), "{e}");

@@ -1,18 +1,18 @@
 //! [`route`]: the cheapest route between two points of a terrain, start first, with its
 //! cumulative cost and lengths.
 
-use super::{ElevationGrid, TerrainCost, TerrainMesh};
-use crate::field::{Field, Stats};
-use crate::options::{Method, Options, Sources, Stop};
-use crate::propagate::Solver;
-use crate::surface::SurfacePoint;
-use crate::Error;
-use geotracks_metrics::Metric;
+use super::{ElevationGrid, TerrainCost, TerrainError, TerrainMesh};
+use geotracks::field::{Field, Stats};
+use geotracks::metrics::Metric;
+use geotracks::options::{Method, Options, Sources, Stop};
+use geotracks::propagate::Solver;
+use geotracks::surface::SurfacePoint;
+use geotracks::Error;
 use glam::DVec3;
 use std::time::Instant;
 
 /// A route across a terrain, from its start to its end (the reverse of a
-/// [`GeodesicPath`](crate::GeodesicPath), which runs from its query point back to the
+/// [`GeodesicPath`](geotracks::GeodesicPath), which runs from its query point back to the
 /// source).
 #[derive(Clone, Debug)]
 #[non_exhaustive]
@@ -70,7 +70,7 @@ impl Route {
 /// after straightening, at the same graph cost.)
 ///
 /// ```
-/// use geotracks::terrain::{route, ElevationGrid, GridGeometry, TerrainCost};
+/// use geotracks_terrain::{route, ElevationGrid, GridGeometry, TerrainCost};
 /// use geotracks::{Options, Solver};
 /// let geometry = GridGeometry { ncols: 11, nrows: 11, lower_left: [0.0, 0.0], spacing: [1.0, 1.0] };
 /// let terrain = ElevationGrid::from_fn(geometry, |_, _| Some(0.0))?.to_mesh()?;
@@ -87,8 +87,9 @@ impl Route {
 /// ```
 ///
 /// # Errors
-/// [`Error::Unreachable`] when no route joins the two points (walls, NODATA, separate
-/// islands); as [`Solver::field`] otherwise.
+/// The engine's error alone (nothing of the grid is read here; `?` turns it into a
+/// [`TerrainError::Engine`]): [`Error::Unreachable`] when no route joins the two points
+/// (walls, NODATA, separate islands); as [`Solver::field`] otherwise.
 pub fn route<M: Metric>(
     solver: &Solver<M>,
     from: SurfacePoint,
@@ -143,7 +144,7 @@ pub fn route_and_field<M: Metric>(
 /// `stats` and the vertex costs; the path's seconds counted from `start`.
 fn path_route<M: Metric>(
     solver: &Solver<M>,
-    path: crate::GeodesicPath,
+    path: geotracks::GeodesicPath,
     stats: Stats,
     vertex_costs: Option<Vec<f64>>,
     start: Instant,
@@ -264,7 +265,7 @@ const WHOLE_GRID_ABOVE: f64 = 0.75;
 /// but among paths of equal cost it may keep another, which straightens differently).
 ///
 /// ```
-/// use geotracks::terrain::{route_on_grid, ElevationGrid, GridGeometry, TerrainCost};
+/// use geotracks_terrain::{route_on_grid, ElevationGrid, GridGeometry, TerrainCost};
 /// use geotracks::Options;
 /// let geometry = GridGeometry { ncols: 101, nrows: 101, lower_left: [0.0, 0.0], spacing: [1.0, 1.0] };
 /// let grid = ElevationGrid::from_fn(geometry, |_, _| Some(0.0))?;
@@ -276,16 +277,17 @@ const WHOLE_GRID_ABOVE: f64 = 0.75;
 /// ```
 ///
 /// # Errors
-/// [`Error::Terrain`] when a point lies outside the grid or on NODATA, or the cost
-/// cannot be built; [`Error::Unreachable`] when no route joins the two points; as
-/// [`Solver::new`] and [`route`] otherwise.
+/// [`TerrainError::Outside`] or [`TerrainError::NoData`] when a point lies outside the
+/// grid or on NODATA; the cost's errors when it cannot be built;
+/// [`TerrainError::Engine`] wrapping [`Error::Unreachable`] when no route joins the
+/// two points, or [`Solver::new`]'s and [`route`]'s errors otherwise.
 pub fn route_on_grid(
     grid: &ElevationGrid,
     cost: &TerrainCost,
     options: &Options,
     from: [f64; 2],
     to: [f64; 2],
-) -> Result<GridRoute, Error> {
+) -> Result<GridRoute, TerrainError> {
     let g = *grid.geometry();
     let grid_cells = g.ncols.saturating_sub(1) * g.nrows.saturating_sub(1);
     let options = match grid.mean_edge_length() {
@@ -391,7 +393,7 @@ pub fn route_on_grid(
                 // (A bound that would not grow, at a zero straight cost: the whole.)
                 bound = if wider > bound { wider } else { f64::INFINITY };
             }
-            Err(e) => return Err(e),
+            Err(e) => return Err(e.into()),
         }
     }
 }
@@ -459,7 +461,7 @@ fn straight_line_cost(
 /// The 3D point of the grid's surface under map point `(x, y)`, as
 /// [`TerrainMesh::locate`] finds it, from the cells around it alone: the grid's errors
 /// for a point outside it or on NODATA.
-fn surface_position(grid: &ElevationGrid, x: f64, y: f64) -> Result<DVec3, Error> {
+fn surface_position(grid: &ElevationGrid, x: f64, y: f64) -> Result<DVec3, TerrainError> {
     let g = grid.geometry();
     let (fc, fr) = g.inside(x, y)?;
     // The cells around it: a point on a cell's border may lie in a neighbour's
@@ -470,7 +472,7 @@ fn surface_position(grid: &ElevationGrid, x: f64, y: f64) -> Result<DVec3, Error
     );
     let mesh = grid
         .to_mesh_within(cols, rows, |_, _| true)
-        .map_err(|_| super::TerrainError::NoData { x, y })?;
+        .map_err(|_| TerrainError::NoData { x, y })?;
     Ok(mesh.locate(x, y)?.position(&mesh.mesh))
 }
 

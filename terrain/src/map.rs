@@ -247,8 +247,10 @@ fn decorate(
         }
     }
     let label = match options.map_unit {
-        "m" if length >= 1000.0 => format!("{} km", crate::render::font::number(length / 1000.0)),
-        unit => format!("{} {unit}", crate::render::font::number(length)),
+        "m" if length >= 1000.0 => {
+            format!("{} km", geotracks_render::font::number(length / 1000.0))
+        }
+        unit => format!("{} {unit}", geotracks_render::font::number(length)),
     };
     text(
         rgba,
@@ -294,7 +296,7 @@ fn decorate(
     if let Some(step) = interval {
         let label = format!(
             "every {} {}",
-            crate::render::font::number(step),
+            geotracks_render::font::number(step),
             options.cost_unit
         );
         let width = 6.0 * font as f64 * label.chars().count() as f64;
@@ -335,7 +337,7 @@ fn text(
 ) {
     let f = font as f64;
     for (ink, grow) in [(HALO, f), (colour, 0.0)] {
-        for (col, row) in crate::render::font::cells(text) {
+        for (col, row) in geotracks_render::font::cells(text) {
             let (x0, y0) = (x + col as f64 * f - grow, y + row as f64 * f - grow);
             let (x1, y1) = (x0 + f + 2.0 * grow, y0 + f + 2.0 * grow);
             for py in y0.max(0.0) as usize..(y1.max(0.0) as usize).min(h) {
@@ -478,12 +480,12 @@ impl MapImage {
     /// Writes the picture as an 8-bit RGBA PNG, atomically (no partial file on error).
     ///
     /// # Errors
-    /// [`crate::mesh::MeshError::Io`] naming `path` if it cannot be written.
+    /// [`geotracks::mesh::MeshError::Io`] naming `path` if it cannot be written.
     pub fn write_png(
         &self,
         path: impl AsRef<std::path::Path>,
-    ) -> Result<(), crate::mesh::MeshError> {
-        crate::render::write_png_file(path.as_ref(), self.width, self.height, &self.rgba)
+    ) -> Result<(), geotracks::mesh::MeshError> {
+        geotracks_render::write_png_file(path.as_ref(), self.width, self.height, &self.rgba)
     }
 
     /// As [`MapImage::write_png`], into `w`.
@@ -491,7 +493,7 @@ impl MapImage {
     /// # Errors
     /// What `w` or the PNG encoder returns.
     pub fn write_png_to(&self, w: &mut dyn std::io::Write) -> std::io::Result<()> {
-        crate::render::encode_png(w, self.width, self.height, &self.rgba)
+        geotracks_render::encode_png(w, self.width, self.height, &self.rgba)
     }
 }
 
@@ -521,7 +523,7 @@ mod tests {
 
     #[test]
     fn the_corners_hold_a_scale_bar_a_north_arrow_and_the_interval() {
-        use crate::terrain::{ElevationGrid, GridGeometry};
+        use crate::{ElevationGrid, GridGeometry};
         // 100 × 50 samples 10 m apart: 1000 m across, a 200 m bar (a fifth).
         let geometry = GridGeometry {
             ncols: 100,

@@ -1,5 +1,22 @@
-//! Terrain: elevation grids (ESRI ASCII, GeoTIFF) turned into meshes, and terrain costs
-//! as metrics.
+//! # geotracks-terrain
+//!
+//! Terrain for [`geotracks`]: elevation grids (ESRI ASCII, GeoTIFF) turned into meshes,
+//! terrain costs as metrics, the cheapest routes between map points, and maps.
+//!
+//! ## How it layers
+//! An application of the core crate, beside its skeletons: it builds
+//! [`TriMesh`](geotracks::mesh::TriMesh)es and [`Metric`](geotracks::Metric)s, and
+//! routes with the core's [`Solver`](geotracks::Solver) as any caller would; the core
+//! knows nothing of it. Its error is [`TerrainError`], which wraps the engine's
+//! ([`TerrainError::Engine`]).
+//!
+//! Maps ([`map`]) depend on the picture crate, `geotracks-render`, always: their labels
+//! use its bitmap font (a map's scale bar reads as a picture's colour bar does) and
+//! their PNGs its encoder, so both stay written once. Maps are part of what a route is
+//! for (the command line draws them), so they are not behind a feature of their own:
+//! without `png` the picture crate brings no image codec, only its rasterizer and
+//! nalgebra (for its automatic camera). This crate's `png` feature (on by default)
+//! turns on the picture crate's.
 //!
 //! - [`read_grid`] (by extension), [`read_asc`], [`read_geotiff`]: an
 //!   [`ElevationGrid`] of sample centres in the grid's own units, NODATA kept as holes.
@@ -17,7 +34,7 @@
 //! - [`map`]: a hillshaded picture of the grid with cost contours and a route.
 //!
 //! ```
-//! use geotracks::terrain::{ElevationGrid, GridGeometry, slope_density};
+//! use geotracks_terrain::{ElevationGrid, GridGeometry, slope_density};
 //! use geotracks::{Options, Solver, Source, Stop};
 //!
 //! // A 21 × 21 grid, 1 m apart, on a plane rising 0.5 m per metre eastwards.
@@ -33,6 +50,8 @@
 //! assert!((route.length - expected).abs() < 1e-6 * expected);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+
+#![forbid(unsafe_code)]
 
 mod asc;
 pub mod cost;
@@ -66,7 +85,7 @@ use std::path::Path;
 pub fn read_grid(path: impl AsRef<Path>) -> Result<ElevationGrid, TerrainError> {
     let path = path.as_ref();
     refuse_non_file(path)?;
-    match crate::mesh::io::lowercase_extension(path).as_deref() {
+    match geotracks::mesh::io::lowercase_extension(path).as_deref() {
         Some("asc") => read_asc(path),
         Some("tif" | "tiff") => read_geotiff(path),
         _ => Err(TerrainError::UnknownFormat {
@@ -79,7 +98,7 @@ pub fn read_grid(path: impl AsRef<Path>) -> Result<ElevationGrid, TerrainError> 
 /// pipe, a socket or a device (refused before it is opened: opening a FIFO blocks until
 /// a writer comes). A path that cannot be looked at passes: the reader reports it.
 fn refuse_non_file(path: &Path) -> Result<(), TerrainError> {
-    match crate::mesh::io::not_a_file(path) {
+    match geotracks::mesh::io::not_a_file(path) {
         Ok(None) => Ok(()),
         Ok(Some("a directory")) => Err(TerrainError::IsDirectory {
             path: path.to_path_buf(),
@@ -104,3 +123,8 @@ pub fn read_terrain(path: impl AsRef<Path>) -> Result<(ElevationGrid, TerrainMes
     let mesh = grid.to_mesh_named(Some(path))?;
     Ok((grid, mesh))
 }
+
+/// The README's code blocks, compiled and run as doctests so they stay true.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

@@ -6,8 +6,8 @@
 
 use super::TerrainError;
 use super::{DirectedCost, DirectedModel, ElevationGrid, TerrainMesh};
-use crate::mesh::TriMesh;
-use geotracks_metrics::{Density, FacePoint, Metric, Tensor};
+use geotracks::mesh::TriMesh;
+use geotracks::metrics::{Density, FacePoint, Metric, Tensor};
 use glam::DVec3;
 use rayon::prelude::*;
 use std::fmt;
@@ -196,7 +196,7 @@ pub fn incline_tensor(mesh: &TriMesh, b: f64) -> Result<Tensor, TerrainError> {
     check_factor("the incline factor b", b)?;
     let local = (0..mesh.face_count() as u32)
         .map(|f| {
-            let [u, v] = geotracks_metrics::FaceGeometry::face_axes(mesh, f);
+            let [u, v] = geotracks::metrics::FaceGeometry::face_axes(mesh, f);
             // World z in the face's (u, v) frame.
             let (gu, gv) = (u[2], v[2]);
             [1.0 + b * gu * gu, b * gu * gv, 1.0 + b * gv * gv]
@@ -215,7 +215,7 @@ pub fn incline_tensor(mesh: &TriMesh, b: f64) -> Result<Tensor, TerrainError> {
 /// only touch at a vertex leave a gap there.
 ///
 /// ```
-/// use geotracks::terrain::Impassable;
+/// use geotracks_terrain::Impassable;
 /// use geotracks::{distance_field, mesh::TriMesh, Euclidean, Options};
 /// // Two triangles of a unit square; block the upper one.
 /// let mesh = TriMesh::new(
@@ -241,7 +241,7 @@ impl<M: Metric> Impassable<M> {
     ///
     /// # Errors
     /// [`TerrainError::CountMismatch`] unless `blocked` has one entry per face.
-    pub fn new<G: geotracks_metrics::FaceGeometry + ?Sized>(
+    pub fn new<G: geotracks::metrics::FaceGeometry + ?Sized>(
         mesh: &G,
         inner: M,
         blocked: Vec<bool>,
@@ -356,7 +356,7 @@ impl<M: Metric> Metric for Impassable<M> {
         da: &FacePoint,
         b: &FacePoint,
         db: &FacePoint,
-    ) -> Option<geotracks_metrics::SlidingCost> {
+    ) -> Option<geotracks::metrics::SlidingCost> {
         if self.blocked[face as usize] {
             None
         } else {
@@ -370,7 +370,7 @@ impl<M: Metric> Metric for Impassable<M> {
 /// `tobler[:offpath]`.
 ///
 /// ```
-/// use geotracks::terrain::{DirectedModel, TerrainCost};
+/// use geotracks_terrain::{DirectedModel, TerrainCost};
 /// let cost: TerrainCost = "slope:4,max:35".parse()?;
 /// assert_eq!(cost, TerrainCost::Slope { a: 4.0, max_degrees: Some(35.0) });
 /// assert_eq!(cost.to_string(), "slope:4,max:35");
@@ -378,11 +378,11 @@ impl<M: Metric> Metric for Impassable<M> {
 /// let walk: TerrainCost = "rwalk".parse()?;
 /// assert_eq!(walk, TerrainCost::Directed(DirectedModel::RWALK));
 /// assert!(walk.is_directed());
-/// # Ok::<(), geotracks::terrain::TerrainError>(())
+/// # Ok::<(), geotracks_terrain::TerrainError>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub enum TerrainCost {
-    /// The 3D length ([`geotracks_metrics::Euclidean`]).
+    /// The 3D length ([`geotracks::metrics::Euclidean`]).
     #[default]
     None,
     /// [`slope_density`] with factor `a`, and faces steeper than `max_degrees`
@@ -546,7 +546,7 @@ impl TerrainCost {
     /// faces). Shaded by 1e-9 against rounding (a face's computed bound can come out
     /// an ulp below the exact one).
     ///
-    /// [`Metric::min_cost_per_length`]: geotracks_metrics::Metric::min_cost_per_length
+    /// [`Metric::min_cost_per_length`]: geotracks::metrics::Metric::min_cost_per_length
     pub fn least_cost_per_length(&self, grid: &ElevationGrid) -> f64 {
         let exact = match self {
             TerrainCost::None | TerrainCost::Slope { .. } | TerrainCost::Incline { .. } => 1.0,
@@ -569,13 +569,13 @@ impl TerrainCost {
     /// Builds the metric on `mesh`.
     ///
     /// ```
-    /// use geotracks::terrain::{ElevationGrid, GridGeometry, TerrainCost};
+    /// use geotracks_terrain::{ElevationGrid, GridGeometry, TerrainCost};
     /// use geotracks::Metric;
     /// let geometry = GridGeometry { ncols: 3, nrows: 3, lower_left: [0.0, 0.0], spacing: [1.0, 1.0] };
     /// let terrain = ElevationGrid::from_fn(geometry, |x, _| Some(x))?.to_mesh()?;
     /// let metric = "slope:4,max:60".parse::<TerrainCost>()?.metric(&terrain.mesh)?;
     /// assert_eq!(metric.name(), "impassable");
-    /// # Ok::<(), geotracks::terrain::TerrainError>(())
+    /// # Ok::<(), geotracks_terrain::TerrainError>(())
     /// ```
     ///
     /// # Errors
@@ -607,7 +607,7 @@ impl TerrainCost {
         slopes: impl FnOnce(&TriMesh) -> Vec<f64>,
     ) -> Result<TerrainMetric, TerrainError> {
         Ok(match *self {
-            TerrainCost::None => TerrainMetric::Length(geotracks_metrics::Euclidean),
+            TerrainCost::None => TerrainMetric::Length(geotracks::metrics::Euclidean),
             TerrainCost::Slope {
                 a,
                 max_degrees: None,
@@ -638,7 +638,7 @@ impl TerrainCost {
 #[derive(Clone, Debug)]
 pub enum TerrainMetric {
     /// `none`: the 3D length.
-    Length(geotracks_metrics::Euclidean),
+    Length(geotracks::metrics::Euclidean),
     /// `slope:A`: [`slope_density`].
     Slope(Density),
     /// `slope:A,max:DEG`: [`slope_density`] with faces steeper than DEG impassable.
@@ -649,7 +649,7 @@ pub enum TerrainMetric {
     Directed(DirectedCost),
 }
 
-geotracks_metrics::metric_enum!(TerrainMetric {
+geotracks::metrics::metric_enum!(TerrainMetric {
     Length,
     Slope,
     WalledSlope,

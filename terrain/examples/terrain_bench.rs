@@ -20,8 +20,8 @@
 //! straightened at k = 1 and 2 and compared with the same route at k = 6 (a finer graph
 //! finds a better corridor; there is no exact reference on a hilly grid). Minutes.
 
-use geotracks::terrain::{read_terrain, route, route_on_grid, TerrainCost};
 use geotracks::{mesh::TriMesh, Method, Options, Solver, SurfacePoint};
+use geotracks_terrain::{read_terrain, route, route_on_grid, TerrainCost};
 use std::io::Write;
 use std::time::Instant;
 
@@ -77,7 +77,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             // The window (`route_on_grid`), end to end from the file, then the whole grid.
             reset_peak_memory();
             let t0 = Instant::now();
-            let grid = geotracks::terrain::read_grid(&path)?;
+            let grid = geotracks_terrain::read_grid(&path)?;
             let read = t0.elapsed().as_secs_f64();
             let options = Options::DEFAULT.with_k(k).with_method(method);
             let w = route_on_grid(&grid, &cost.parse()?, &options, from, to)?;
@@ -98,7 +98,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             );
             reset_peak_memory();
             let t0 = Instant::now();
-            let grid = geotracks::terrain::read_grid(&path)?;
+            let grid = geotracks_terrain::read_grid(&path)?;
             let read = t0.elapsed().as_secs_f64();
             let t = Instant::now();
             let terrain = grid.to_mesh()?;
@@ -126,7 +126,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
 /// Straightened route costs at k = 1 and 2 against k = 6, for four routes and three costs.
 fn route_accuracy(path: &std::path::Path, extent: f64) -> Result<(), Box<dyn std::error::Error>> {
-    let terrain = geotracks::terrain::read_grid(path)?.to_mesh()?;
+    let terrain = geotracks_terrain::read_grid(path)?.to_mesh()?;
     println!("| route (fractions of the extent) | cost | k = 6 | k = 1 | k = 2 |");
     println!("|---|---|---:|---:|---:|");
     for r in [

@@ -34,7 +34,7 @@ fn glyph(c: char) -> Option<[u8; 7]> {
 }
 
 /// `value` in at most 4 significant digits: `0`, `0.1234`, `12.35`, `1.235e6`.
-pub(crate) fn number(value: f64) -> String {
+pub fn number(value: f64) -> String {
     if value == 0.0 {
         return "0".into();
     }
@@ -55,7 +55,7 @@ pub(crate) fn number(value: f64) -> String {
 /// The inked font pixels of `text` as `(column, row)`, from its top-left corner: each
 /// character 6 columns on from the last (5 of glyph, 1 of gap), 7 rows. Characters the
 /// font lacks leave a gap.
-pub(crate) fn cells(text: &str) -> impl Iterator<Item = (i64, i64)> + '_ {
+pub fn cells(text: &str) -> impl Iterator<Item = (i64, i64)> + '_ {
     text.chars().enumerate().flat_map(|(k, c)| {
         let rows = glyph(c).unwrap_or([0; 7]);
         (0..7i64).flat_map(move |r| {

@@ -2,9 +2,9 @@
 
 use super::raster::{Camera, Canvas};
 use super::{check_size, colour_bar, viridis, Picture, PictureOptions, BAR_WIDTH, SUPERSAMPLE};
-use crate::mesh::io::MedialAxis;
-use crate::skeleton::Skeleton;
-use crate::Error;
+use crate::RenderError;
+use geotracks::mesh::io::MedialAxis;
+use geotracks::skeleton::Skeleton;
 use glam::DVec3;
 
 /// The axis's sheets: pale, so the skeleton stands out, and a little transparent.
@@ -30,7 +30,7 @@ const NODE: [f64; 3] = [25.0, 25.0, 25.0];
 ///
 /// ```
 /// use geotracks::mesh::io::read_medial_axis_bytes;
-/// use geotracks::render::{render_skeleton, PictureOptions};
+/// use geotracks_render::{render_skeleton, PictureOptions};
 /// use geotracks::skeleton::{medial_axis_skeleton, Burn};
 /// use geotracks::Options;
 /// // Two sheets sharing an edge, each with two triangles.
@@ -46,12 +46,12 @@ const NODE: [f64; 3] = [25.0, 25.0, 25.0];
 /// ```
 ///
 /// # Errors
-/// [`Error::InvalidPictureOption`] for a size outside 64–8192 pixels.
+/// [`RenderError::InvalidPictureOption`] for a size outside 64–8192 pixels.
 pub fn render_skeleton(
     axis: &MedialAxis,
     skeleton: &Skeleton,
     options: &PictureOptions,
-) -> Result<Picture, Error> {
+) -> Result<Picture, RenderError> {
     check_size(options)?;
     let positions: Vec<DVec3> = axis.positions.iter().map(|&p| p.into()).collect();
     let camera = Camera::fit_points(&positions, axis.surface.as_ref(), options, None, BAR_WIDTH);
@@ -109,10 +109,8 @@ pub fn render_skeleton(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::TriMesh;
-    use crate::render::View;
-    use crate::skeleton::SkeletonPoint;
-    use crate::surface::SurfacePoint;
+    use crate::View;
+    use geotracks::mesh::io::read_medial_axis_bytes;
 
     /// Two unit squares, at z = 0 and z = −1, and a skeleton of two straight curves:
     /// one on the front square, along y = 0.3, and one on the back square, along
@@ -128,29 +126,25 @@ mod tests {
             [1.0, 1.0, -1.0],
             [0.0, 1.0, -1.0],
         ];
-        let faces = vec![[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]];
-        let axis = MedialAxis {
-            surface: Some(TriMesh::new(positions.clone(), faces).unwrap()),
-            positions,
-            free_edges: Vec::new(),
-            radii: vec![0.5; 8],
-        };
-        let point = |position: [f64; 3], radius: f64| SkeletonPoint {
-            position,
-            on: SurfacePoint::Vertex(0),
-            significance: f64::INFINITY,
-            radius: Some(radius),
-        };
-        let skeleton = Skeleton {
-            points: vec![
-                point([0.1, 0.3, 0.0], 1.0),
-                point([0.9, 0.3, 0.0], 1.0),
-                point([0.1, 0.7, -1.0], 0.5),
-                point([0.9, 0.7, -1.0], 0.5),
-            ],
-            edges: vec![[0, 1], [2, 3]],
-            ..Skeleton::default()
-        };
+        // (The core's types are built through its public API: the `.ma` reader and
+        // the skeleton of curves.)
+        let mut text = String::from("8 0 4\n");
+        for p in &positions {
+            text += &format!("v {} {} {} 0.5\n", p[0], p[1], p[2]);
+        }
+        text += "f 0 1 2\nf 0 2 3\nf 4 5 6\nf 4 6 7\n";
+        let axis = read_medial_axis_bytes("scene.ma", text.as_bytes()).unwrap();
+        assert!(axis.surface.is_some() && axis.positions == positions);
+        let curves = [
+            [0.1, 0.3, 0.0],
+            [0.9, 0.3, 0.0],
+            [0.1, 0.7, -1.0],
+            [0.9, 0.7, -1.0],
+        ];
+        let radii = [1.0, 1.0, 0.5, 0.5];
+        let skeleton = Skeleton::from_curves(&curves, &[[0, 1], [2, 3]], Some(&radii))
+            .with_radii(None, &radii);
+        assert_eq!(skeleton.points.len(), 4);
         (axis, skeleton)
     }
 
@@ -195,12 +189,10 @@ mod tests {
     #[test]
     fn an_axis_of_curves_only_is_framed_and_drawn() {
         let positions = vec![[0.0, 0.0, 0.0], [4.0, 0.0, 0.0], [4.0, 3.0, 0.0]];
-        let axis = MedialAxis {
-            surface: None,
-            positions: positions.clone(),
-            free_edges: vec![[0, 1], [1, 2]],
-            radii: vec![0.1, 0.2, 0.1],
-        };
+        let text = "3 2 0\nv 0 0 0 0.1\nv 4 0 0 0.2\nv 4 3 0 0.1\ne 0 1\ne 1 2\n";
+        let axis = read_medial_axis_bytes("curves.ma", text.as_bytes()).unwrap();
+        assert!(axis.surface.is_none() && axis.positions == positions);
+        assert_eq!(axis.free_edges, vec![[0, 1], [1, 2]]);
         let skeleton = Skeleton::from_curves(&positions, &axis.free_edges, Some(&axis.radii))
             .with_radii(None, &axis.radii);
         let options = PictureOptions::DEFAULT.with_size(320, 240);
@@ -225,7 +217,7 @@ mod tests {
         let options = PictureOptions::DEFAULT.with_size(10, 200);
         assert!(matches!(
             render_skeleton(&axis, &skeleton, &options),
-            Err(Error::InvalidPictureOption {
+            Err(RenderError::InvalidPictureOption {
                 option: "width",
                 ..
             })

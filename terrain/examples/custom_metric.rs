@@ -11,14 +11,14 @@
 //! metric says it is directed (`is_symmetric` is false) and the engine measures every
 //! segment in the direction it is walked, from the start. The engine asks the metric
 //! only for the cost of straight segments inside one face; everything else is the same
-//! as for the built-in metrics. (`geotracks::terrain::DirectedModel::Tobler` is this cost
+//! as for the built-in metrics. (`geotracks_terrain::DirectedModel::Tobler` is this cost
 //! built in, over the map length and in seconds: `--cost tobler` on the command line.)
 //!
 //! Without arguments it builds a 300 m hill in memory and routes across it.
 
 use geotracks::mesh::TriMesh;
-use geotracks::terrain::{read_terrain, ElevationGrid, GridGeometry};
 use geotracks::{Euclidean, FacePoint, Metric, Options, Solver, Source};
+use geotracks_terrain::{read_terrain, ElevationGrid, GridGeometry};
 
 /// Walking time (hours, lengths in metres) by Tobler's hiking function.
 struct Tobler {
