@@ -95,3 +95,48 @@ pub use trace::GeodesicPath;
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
+
+/// The user guide's pages (`docs/src/`, an mdBook): their Rust code blocks are compiled
+/// and run as doctests, as the README's are, so the guide stays true to the API.
+#[cfg(doctest)]
+mod guide {
+    /// Introduction and installation.
+    #[doc = include_str!("../docs/src/introduction.md")]
+    struct Introduction;
+    /// Distances and engines.
+    #[doc = include_str!("../docs/src/distances.md")]
+    struct Distances;
+    /// Paths.
+    #[doc = include_str!("../docs/src/paths.md")]
+    struct Paths;
+    /// Isolines, regions and gradients.
+    #[doc = include_str!("../docs/src/isolines.md")]
+    struct Isolines;
+    /// Pictures.
+    #[doc = include_str!("../docs/src/pictures.md")]
+    struct Pictures;
+    /// Skeletons of medial axes.
+    #[doc = include_str!("../docs/src/skeletons.md")]
+    struct Skeletons;
+    /// Terrain.
+    #[doc = include_str!("../docs/src/terrain.md")]
+    struct Terrain;
+    /// Python.
+    #[doc = include_str!("../docs/src/python.md")]
+    struct Python;
+    /// Metrics: built-in, custom and directed.
+    #[doc = include_str!("../docs/src/metrics.md")]
+    struct Metrics;
+    /// The command line.
+    #[doc = include_str!("../docs/src/command-line.md")]
+    struct CommandLine;
+    /// Accuracy.
+    #[doc = include_str!("../docs/src/accuracy.md")]
+    struct Accuracy;
+    /// Performance.
+    #[doc = include_str!("../docs/src/performance.md")]
+    struct Performance;
+    /// Fuzzing.
+    #[doc = include_str!("../docs/src/fuzzing.md")]
+    struct Fuzzing;
+}

@@ -1,5 +1,5 @@
 """One machine against a Dask LocalCluster on a many-source distance matrix (the
-README's Python table): python python/bench/dask_scaling.py MESH [SOURCES] [CHUNK]."""
+guide's Performance page, Dask): python python/bench/dask_scaling.py MESH [SOURCES] [CHUNK]."""
 
 import os
 import platform

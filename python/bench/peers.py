@@ -1,5 +1,6 @@
 """geotracks against potpourri3d and tvb-gdist from Python, the same jobs on one shared
-mesh, timed and measured against the exact reference (the README's Python comparison):
+mesh, timed and measured against the exact reference (the README's table
+and the guide's Accuracy page):
 
     python python/bench/peers.py ../shared/data MESH [RADIUS_PERCENT] [SOURCES]
 
