@@ -12,7 +12,7 @@ pub enum PointRole {
     Source(usize),
     /// A target of a [`Stop`](crate::Stop), by its index in `Stop::targets`.
     Target(usize),
-    /// The point given to a [`Query`](crate::Query).
+    /// The point given to a [`Field`](crate::Field).
     Query,
 }
 
@@ -126,7 +126,7 @@ pub enum Error {
         /// What it must be.
         expected: &'static str,
     },
-    /// A region option is out of range ([`Query::regions`](crate::trace::Query::regions)).
+    /// A region option is out of range ([`Field::regions`](crate::Field::regions)).
     #[error("region option {option} is {}; it must be {expected}", geotracks_metrics::Num(*value))]
     InvalidRegionOption {
         /// The option's name.

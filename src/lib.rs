@@ -1,8 +1,13 @@
 //! # geotracks
 //!
-//! Geodesic distances on triangle meshes of any topology, under pluggable metrics, with
-//! the *geodesic tracks* method: evenly spaced Steiner points on edges and a
-//! Dijkstra-like propagation between them.
+//! Geodesic distances on triangle meshes of any topology, under pluggable metrics:
+//! Steiner points on edges, and engines that propagate between them (the default
+//! carries a wavefront on each Steiner point, exact on developable meshes).
+//!
+//! Build a [`Solver`] once per mesh, metric and [`Options`]; each run
+//! ([`Solver::field`]) returns a [`Field`] that answers everything else as methods —
+//! the distance at any surface point, gradients, paths, isolines, regions, nearest
+//! sources — without running the engine again.
 //!
 //! ## Map of the crate
 //! - [`mesh`]: [`TriMesh`](mesh::TriMesh) (an edge may have any number of faces; its
@@ -10,24 +15,28 @@
 //!   elements that are no face edge are wires, which distances travel too), readers
 //!   and writers ([`mesh::io`]).
 //! - [`metrics`] (re-exported crate `geotracks-metrics`): the [`Metric`] trait and the
-//!   built-ins [`Euclidean`], [`Density`], [`Tensor`].
+//!   built-ins [`Euclidean`], [`Density`], [`Tensor`], [`TensorField`].
 //! - [`steiner`]: where Steiner points go on each edge and how nodes are numbered.
-//! - [`options`]: how a run goes: [`Method`] (the track-pruned `Tracks` by default, the
-//!   complete Steiner graph `Graph` it is checked against, `Dijkstra` on edges),
-//!   [`Options`] (Steiner points and method) and [`Stop`] (early stops).
-//! - [`propagate`]: the engines, [`distance_field`] for one run, and [`Solver`] /
-//!   [`Workspace`] for many (reused buffers, parallel rows).
-//! - [`field`]: [`FieldData`], what a run returns: plain data.
-//! - [`trace`]: [`Query`], made by the solver that computed a field
-//!   ([`Solver::query`]): the distance and gradient at any surface point, each face's
-//!   regions, paths ([`GeodesicPath`], straightened), isolines and nearest sources.
+//! - [`options`]: how a run goes: [`Method`] (the wavefront engine `Wave` by default,
+//!   the track-pruned `Tracks`, the complete Steiner graph `Graph` they are checked
+//!   against, `Dijkstra` on edges), [`Options`] (engine and Steiner points; without a
+//!   k the engine that runs picks its own), [`Sources`] (where a run starts) and
+//!   [`Stop`] (early stops).
+//! - [`propagate`]: the engines side by side, and the [`Solver`] that runs them (one
+//!   field, or many in a reused [`Workspace`], or rows on every core).
+//! - [`field`]: [`Field`], a run with its solver, which every query is a method of;
+//!   [`FieldData`], the same as plain data.
+//! - [`trace`]: what the queries return and how they are computed: paths
+//!   ([`GeodesicPath`], straightened), isolines, regions and gradients.
+//! - point-to-point routes ([`Solver::shortest_path`]): a run stopped at the target,
+//!   searched from both ends at once where it can.
 //! - [`skeleton`]: curve skeletons of medial axes with the axis's topology: burnt from
 //!   the border or by radius, thinned by collapses in burn order, pruned by erosion
 //!   thickness.
 //!
-//! Dependencies point one way: applications ([`skeleton`]) use [`propagate`], which
-//! makes fields and hands out [`Query`]s; [`trace`] reads fields; [`field`] is plain
-//! data over [`steiner`] and [`mesh`]; the metrics know nothing of the rest.
+//! Dependencies point one way: applications ([`skeleton`], routes) run the engines in
+//! [`propagate`], which make fields; [`field`] answers its queries with [`trace`];
+//! [`steiner`] and [`mesh`] are below them; the metrics know nothing of the rest.
 //!
 //! ## Sibling crates
 //! Built on this one, which knows nothing of them:

@@ -205,7 +205,7 @@ impl Options {
 ///
 /// Both conditions leave every node they do not settle unreached (`inf`): a finite value
 /// after an early stop is always the value a full run gives, at a node and at any other
-/// surface point ([`Query::distance_at`](crate::Query::distance_at)). A point beyond the
+/// surface point ([`Field::distance_at`](crate::Field::distance_at)). A point beyond the
 /// maximum is unreached, and so is one that a node the stop left unreached might have
 /// given a smaller value. For the Steiner-graph engines (tracks, graph, Dijkstra) that
 /// never happens within the maximum (a node gives a point its value plus a cost ≥ 0);
@@ -250,7 +250,7 @@ pub struct Stop {
     /// which it gave others their values, and their paths can no longer be traced back
     /// exactly.
     pub goal_directed: bool,
-    /// For a path between two points ([`Solver::shortest_path_with`] from one source):
+    /// For a path between two points ([`Solver::shortest_path`] from one source):
     /// search from both ends at once, on two threads, and stop where the two searches
     /// meet. Each side settles about half of what a one-ended goal-directed run would,
     /// and the path is the same (the Steiner graph's cheapest; the sides work in lock
@@ -260,12 +260,12 @@ pub struct Stop {
     /// effect for the Steiner-graph engines (not [`Method::Wave`], which is not
     /// goal-directed), [`goal_directed`](Self::goal_directed) runs, when rayon's pool
     /// has two threads or more, and when a second run's buffers fit the memory budget
-    /// ([`Options::memory_limit`]). Fields ([`Solver::solve_from`]) come from their
+    /// ([`Options::memory_limit`]). Fields ([`Solver::field`]) come from their
     /// sources alone whatever this says. The backward side runs on a thread of its
     /// own: paths already run in parallel (one per core) are better one-ended.
     ///
-    /// [`Solver::shortest_path_with`]: crate::Solver::shortest_path_with
-    /// [`Solver::solve_from`]: crate::Solver::solve_from
+    /// [`Solver::shortest_path`]: crate::Solver::shortest_path
+    /// [`Solver::field`]: crate::Solver::field
     pub both_ends: bool,
 }
 

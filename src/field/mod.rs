@@ -326,7 +326,7 @@ impl<M: Metric, D: FieldStorage> Field<M, D> {
     /// # Errors
     /// [`Error::InvalidValue`] for a level that is not finite,
     /// [`Error::InvalidIsolineOption`] for options out of range or more than
-    /// [`MAX_LEVELS`] levels.
+    /// [`MAX_LEVELS`](crate::trace::MAX_LEVELS) levels.
     pub fn isolines(
         &self,
         levels: &[f64],
@@ -337,7 +337,7 @@ impl<M: Metric, D: FieldStorage> Field<M, D> {
 
     /// Face `face`'s regions: where each of its candidates gives the distance, as
     /// polygons (see the module docs for how they are drawn, to `subdivisions` grid
-    /// steps per edge; [`DEFAULT_REGION_SUBDIVISIONS`] is a good start). Sorted by
+    /// steps per edge; [`DEFAULT_REGION_SUBDIVISIONS`](crate::trace::DEFAULT_REGION_SUBDIVISIONS) is a good start). Sorted by
     /// candidate (nodes, sources, waves); a candidate whose region is cut in two gives
     /// two. Unreached parts of the face belong to no region.
     ///
@@ -353,7 +353,7 @@ impl<M: Metric, D: FieldStorage> Field<M, D> {
     }
 
     /// The index of the nearest source of every vertex (the geodesic Voronoi diagram of
-    /// the sources, start values included), [`NONE`] where unreached.
+    /// the sources, start values included), [`NONE`](crate::mesh::NONE) where unreached.
     ///
     /// # Complexity
     /// O(nodes): parents are followed to the source that started each chain, and every

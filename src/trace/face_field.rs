@@ -4,8 +4,8 @@
 //! line from its virtual source through its window, or bending at the window's end.
 //!
 //! Every query at a point of the face reads this one list: the distance
-//! ([`Query::distance_at`]), which candidate gives it ([`ValueSource`]), the gradient
-//! ([`Query::gradient_at`]) and the face's regions ([`Query::regions`]), so they agree
+//! ([`Field::distance_at`](crate::Field::distance_at)), which candidate gives it ([`ValueSource`]), the gradient
+//! ([`Field::gradient_at`](crate::Field::gradient_at)) and the face's regions ([`Field::regions`](crate::Field::regions)), so they agree
 //! by construction.
 
 use super::Query;
@@ -285,7 +285,7 @@ impl<M: Metric> Query<'_, M> {
         self.face_field_using(f, &mut Vec::new())
     }
 
-    /// As [`Query::face_field`], taking the neighbours' own candidates from `own` (and
+    /// As [`Field::face_field`](crate::Field::face_field), taking the neighbours' own candidates from `own` (and
     /// adding those it lacks): a face's own candidates serve it and three neighbours.
     pub(super) fn face_field_using(&self, f: u32, own: &mut Vec<FaceField>) -> FaceField {
         let mut field = self.own_candidates(f);
@@ -313,7 +313,7 @@ impl<M: Metric> Query<'_, M> {
         field
     }
 
-    /// Face `f`'s own candidates (see [`Query::face_field`]), unsorted.
+    /// Face `f`'s own candidates (see [`Field::face_field`](crate::Field::face_field)), unsorted.
     fn own_candidates(&self, f: u32) -> FaceField {
         let (mesh, metric, field) = (self.mesh, self.metric, &self.field);
         let flat = flat_frame(metric, f, mesh.frame(f));

@@ -3,7 +3,7 @@
 //! # How they are drawn
 //! Each face is cut into `n²` sub-triangles by a barycentric grid (`n` =
 //! [`IsolineOptions::subdivisions`]); the field is evaluated at the grid points with
-//! [`Query::distance_at`], the engine's own value at any point (from the waves where
+//! [`Field::distance_at`](crate::Field::distance_at), the engine's own value at any point (from the waves where
 //! the wavefront engine ran), not an interpolation of vertex values. In every
 //! sub-triangle that a level crosses, the crossings on its two sides are solved on the
 //! field itself (a root of `distance_at − level` along the side), so **every point of an
@@ -52,7 +52,7 @@ pub struct Isoline {
     pub closed: bool,
 }
 
-/// How finely isolines are drawn ([`Query::isolines`]).
+/// How finely isolines are drawn ([`Field::isolines`](crate::Field::isolines)).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct IsolineOptions {
@@ -88,14 +88,14 @@ impl Default for IsolineOptions {
     }
 }
 
-/// The most levels one call of [`Query::isolines`] draws. Each level costs a pass over
+/// The most levels one call of [`Field::isolines`](crate::Field::isolines) draws. Each level costs a pass over
 /// the faces its range crosses and writes its lines: a thousand levels draw a contour
 /// every 0.1 % of the range, finer than any picture or map shows, while a mistyped
 /// count (10⁸) would run for hours and fill the memory. Draw more in several calls.
 pub const MAX_LEVELS: usize = 1000;
 
 /// Checks a number of levels against [`MAX_LEVELS`] (and that there is at least one),
-/// before any level is computed or allocated; [`Query::isolines`] makes the same
+/// before any level is computed or allocated; [`Field::isolines`](crate::Field::isolines) makes the same
 /// check.
 ///
 /// # Errors
@@ -163,7 +163,7 @@ impl<M: Metric> Query<'_, M> {
     }
 
     /// The isolines, with `gate`: faces whose values bound away from every level are
-    /// skipped before their grid is evaluated (see [`Query::may_cross`]), so the work
+    /// skipped before their grid is evaluated (see [`Field::may_cross`](crate::Field::may_cross)), so the work
     /// follows the faces the lines cross, not the mesh. Without it (the tests compare
     /// both), every face's grid is evaluated.
     pub(crate) fn isolines_gated(

@@ -1,5 +1,5 @@
-//! Queries on a finished run ([`Query`]: the distance at any surface point, nearest
-//! sources) and geodesic paths: traced back from any surface point to its nearest source
+//! How a [`Field`](crate::Field) answers its queries (the distance at any surface point,
+//! nearest sources, isolines, regions) and geodesic paths: traced back from any surface point to its nearest source
 //! through the parents the propagation recorded, then straightened.
 //!
 //! A traced path is a polyline whose every segment lies inside one face (from a node to
@@ -221,11 +221,11 @@ impl<M: Metric> Query<'_, M> {
     /// want, at most as long as the traced one.
     ///
     /// # Complexity
-    /// As [`Query::trace`], then a few rounds of Newton's method on the path's edge
+    /// As [`Field::trace`](crate::Field::trace), then a few rounds of Newton's method on the path's edge
     /// crossings (tridiagonal: linear in the path's length per step).
     ///
     /// # Errors
-    /// As [`Query::trace`].
+    /// As [`Field::trace`](crate::Field::trace).
     pub fn path(&self, point: SurfacePoint) -> Result<GeodesicPath, Error> {
         let mut path = self.trace(point)?;
         straighten(&mut path, self.mesh, self.metric);

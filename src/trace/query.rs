@@ -36,7 +36,7 @@ impl<M> fmt::Debug for Query<'_, M> {
     }
 }
 
-/// The candidates of the last few faces queried (see [`Query::origin_cached`]).
+/// The candidates of the last few faces queried (see [`Field::origin_cached`](crate::Field::origin_cached)).
 #[derive(Default)]
 pub(super) struct FaceFields {
     fields: Vec<FaceField>,
@@ -156,7 +156,7 @@ impl<'a, M: Metric> Query<'a, M> {
         self.origin_cached(point, &mut FaceFields::default())
     }
 
-    /// As [`Query::origin`], reading the faces' candidates from `cache` (and adding
+    /// As [`Field::origin`](crate::Field::origin), reading the faces' candidates from `cache` (and adding
     /// those it lacks): for many queries in a few faces, each face's are built once.
     pub(super) fn origin_cached(
         &self,
@@ -225,7 +225,7 @@ impl<'a, M: Metric> Query<'a, M> {
         label
     }
 
-    /// As [`Query::vertex_labels`], for every node (vertices, then Steiner points in
+    /// As [`Field::vertex_labels`](crate::Field::vertex_labels), for every node (vertices, then Steiner points in
     /// [`SteinerLayout`] order).
     pub fn node_labels(&self) -> Vec<u32> {
         self.labels(self.field.distance.len() as u32)

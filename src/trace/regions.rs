@@ -30,7 +30,7 @@ use geotracks_metrics::{FacePoint, Metric};
 use glam::DVec3;
 use std::collections::HashMap;
 
-/// The gradient of a distance field at a point ([`Query::gradient_at`]).
+/// The gradient of a distance field at a point ([`Field::gradient_at`](crate::Field::gradient_at)).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct Gradient {
@@ -54,11 +54,11 @@ pub struct Gradient {
     /// The candidate that gives the distance there.
     pub source: ValueSource,
     /// For a candidate of the face across an edge (wavefront engine; see
-    /// [`Query::distance_at`]), that edge: its lines cross it.
+    /// [`Field::distance_at`](crate::Field::distance_at)), that edge: its lines cross it.
     pub across: Option<u32>,
 }
 
-/// One region of a face: where one candidate gives the distance ([`Query::regions`]),
+/// One region of a face: where one candidate gives the distance ([`Field::regions`](crate::Field::regions)),
 /// or several with the same formula (the waves of neighbouring nodes that carry one
 /// virtual source: the region is named after the first).
 #[derive(Clone, Debug, PartialEq)]
@@ -91,12 +91,12 @@ pub struct Region {
     /// A point inside the region (its polygon's mean point where that lies inside,
     /// else one nearer a corner of it); `None` for a sliver too thin to find one in.
     pub inside: Option<SurfacePoint>,
-    /// The gradient at [`Region::inside`] (see [`Query::gradient_at`]; inside a region
+    /// The gradient at [`Region::inside`] (see [`Field::gradient_at`](crate::Field::gradient_at); inside a region
     /// it turns, pointing away from the virtual source everywhere).
     pub gradient: Option<Gradient>,
 }
 
-/// Grid resolution of [`Query::regions`].
+/// Grid resolution of [`Field::regions`](crate::Field::regions).
 pub const DEFAULT_REGION_SUBDIVISIONS: u32 = 16;
 /// Above this a face's grid is refused as a mistake (as for isolines).
 const MAX_REGION_SUBDIVISIONS: u32 = 1024;
@@ -115,7 +115,7 @@ impl<M: Metric> Query<'_, M> {
     /// point, the face (of those around it) whose candidate gives the least value.
     ///
     /// # Complexity
-    /// As [`Query::distance_at`]: the candidates of the faces around the point.
+    /// As [`Field::distance_at`](crate::Field::distance_at): the candidates of the faces around the point.
     ///
     /// # Errors
     /// [`Error::InvalidPoint`] if `point` is not a point of the mesh.

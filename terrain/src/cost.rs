@@ -216,14 +216,14 @@ pub fn incline_tensor(mesh: &TriMesh, b: f64) -> Result<Tensor, TerrainError> {
 ///
 /// ```
 /// use geotracks_terrain::Impassable;
-/// use geotracks::{distance_field, mesh::TriMesh, Euclidean, Options};
+/// use geotracks::{mesh::TriMesh, Euclidean, Options, Solver};
 /// // Two triangles of a unit square; block the upper one.
 /// let mesh = TriMesh::new(
 ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
 ///     vec![[0, 1, 2], [0, 2, 3]],
 /// )?;
 /// let walls = Impassable::new(&mesh, Euclidean, vec![false, true])?;
-/// let field = Solver::new(&mesh, &walls, &Options::DEFAULT).and_then(|solver| solver.field(&[1]))?;
+/// let field = Solver::new(mesh, walls, &Options::DEFAULT)?.field(1)?;
 /// // The diagonal 0–2 is shared with the free face: walkable, along the wall.
 /// assert!((field.distance(2) - 1.0).abs() < 1e-12);
 /// // Vertex 3 belongs to the blocked face only: no route reaches it.

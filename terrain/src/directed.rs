@@ -324,7 +324,7 @@ impl DirectedModel {
 ///
 /// ```
 /// use geotracks_terrain::{DirectedCost, DirectedModel, ElevationGrid, GridGeometry};
-/// use geotracks::{Options, Solver, Source, Stop};
+/// use geotracks::{Options, Solver};
 /// // A plane rising 0.1 m per metre eastwards, 1 m cells.
 /// let geometry = GridGeometry { ncols: 11, nrows: 3, lower_left: [0.0, 0.0], spacing: [1.0, 1.0] };
 /// let terrain = ElevationGrid::from_fn(geometry, |x, _| Some(0.1 * x))?.to_mesh()?;
@@ -332,8 +332,7 @@ impl DirectedModel {
 /// let solver = Solver::new(&terrain.mesh, &naismith, &Options::DEFAULT)?;
 /// let (west, east) = (terrain.locate(0.0, 1.0)?, terrain.locate(10.0, 1.0)?);
 /// let time = |from, to| -> Result<f64, geotracks::Error> {
-///     let field = solver.field(Sources::from(&[Source::new(from)]).until(&Stop::NONE))?;
-///     field.distance_at(to)
+///     solver.field(from)?.distance_at(to)
 /// };
 /// // 10 m east and 1 m up: 0.72 s/m × 10 + 6 s per metre climbed.
 /// assert!((time(west, east)? - 13.2).abs() < 1e-9);

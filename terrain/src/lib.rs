@@ -35,7 +35,7 @@
 //!
 //! ```
 //! use geotracks_terrain::{ElevationGrid, GridGeometry, slope_density};
-//! use geotracks::{Options, Solver, Source, Stop};
+//! use geotracks::{Options, Solver, Sources, Stop};
 //!
 //! // A 21 × 21 grid, 1 m apart, on a plane rising 0.5 m per metre eastwards.
 //! let geometry = GridGeometry { ncols: 21, nrows: 21, lower_left: [0.0, 0.0], spacing: [1.0, 1.0] };
@@ -44,7 +44,8 @@
 //! let (from, to) = (terrain.locate(2.0, 10.0)?, terrain.locate(18.0, 10.0)?);
 //! let density = slope_density(&terrain.mesh, 4.0)?; // ρ = 1 + 4 · 0.5² = 2
 //! let solver = Solver::new(&terrain.mesh, &density, &Options::DEFAULT.with_k(2.0))?;
-//! let field = solver.field(Sources::from(&[Source::new(from)]).until(&Stop::NONE.with_targets(vec![to])))?;
+//! // One run that stops once the value at `to` is final, then the path from there.
+//! let field = solver.field(Sources::from(from).until(Stop::NONE.with_targets(vec![to])))?;
 //! let route = field.path(to)?;
 //! let expected = 2.0 * 16.0 * 1.25f64.sqrt(); // ρ × the 3D length
 //! assert!((route.length - expected).abs() < 1e-6 * expected);
