@@ -5,6 +5,9 @@ metric, a density per vertex (:class:`Density`), a tensor per face (:class:`Tens
 vertex (:class:`TensorField`);
 numpy arrays in and out. Build a :class:`MeshSolver` once per mesh and ask it many
 questions; the work runs in Rust with the GIL released, matrices on all cores.
+:meth:`MeshSolver.field` runs once from a set of sources and returns a :class:`Field`
+that answers every question about that run (distances anywhere, paths, gradients,
+isolines, regions, nearest sources) without running the engine again.
 
 >>> import numpy as np, geotracks
 >>> V = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], dtype=float)
@@ -13,6 +16,15 @@ questions; the work runs in Rust with the GIL released, matrices on all cores.
 >>> d = solver.distance(0)
 >>> round(float(d[2]), 12) == round(2 ** 0.5, 12)
 True
+>>> field = solver.field(0)                          # one run from vertex 0
+>>> at = field.distance_at([2, "f:0:0.2,0.3,0.5"])   # a vertex, and (0.8, 0.5) in face 0
+>>> bool(abs(at[1] - np.hypot(0.8, 0.5)) < 1e-12)
+True
+>>> path = field.path(2)                             # from vertex 0 to vertex 2
+>>> round(path.length, 12) == round(2 ** 0.5, 12)
+True
+>>> solver.runs                                      # solver.distance, then the field
+2
 """
 
 from __future__ import annotations
@@ -30,6 +42,7 @@ from ._geotracks import terrain_route as _terrain_route
 __all__ = [
     "DEFAULT_WORK_LIMIT",
     "Density",
+    "Field",
     "GeotracksError",
     "Isoline",
     "MeshSolver",
@@ -285,6 +298,32 @@ class MeshSolver:
         """The engine that runs."""
         return self._core.method
 
+    @property
+    def runs(self) -> int:
+        """How many times this solver's engine has run (read-only): one per
+        :meth:`field` and per one-call method (:meth:`distance`, :meth:`path`,
+        :meth:`gradient`, ...), one per row of :meth:`distance_matrix` and
+        :meth:`local_distance_rows`. Questions asked of a :class:`Field` add nothing."""
+        return self._core.runs
+
+    def field(self, sources, max_distance: Optional[float] = None, targets=None) -> "Field":
+        """One run from ``sources``: a :class:`Field` that answers every question about
+        it (distances at vertices and at any surface point, paths, gradients, isolines,
+        regions, nearest sources) without running the engine again. Ask a field rather
+        than the one-call methods when several questions share their sources.
+
+        :param sources: a vertex id or surface point, or a sequence of them.
+        :param max_distance: stop there (``None``: no limit); farther points are
+            ``inf``. A number ``>= 0`` (a negative one or NaN is refused).
+        :param targets: stop once the values at these points are final (the values
+            there are exact; others may be ``inf``, and paths from them unreachable).
+        :raises GeotracksError: for a source or target that is not a point of the mesh,
+            or a bad ``max_distance``.
+        """
+        max_distance = np.inf if max_distance is None else _real(max_distance, "max_distance")
+        targets = None if targets is None else _points(targets, "targets")
+        return Field(self._core.field(_points(sources, "sources"), max_distance, targets))
+
     def distance(self, sources, max_distance: float = np.inf, targets=None) -> np.ndarray:
         """Distance from the nearest of ``sources`` to every vertex, shape ``(n,)``;
         ``inf`` where unreached (another component, beyond ``max_distance``).
@@ -372,6 +411,95 @@ class MeshSolver:
             np.arange(n, dtype=np.int64), _real(max_distance, "max_distance")
         )
         return csr_matrix((data, (rows, cols)), shape=(n, n))
+
+
+class Field:
+    """One run of a :class:`MeshSolver` from a set of sources
+    (:meth:`MeshSolver.field`), which answers every question about it without running
+    the engine again. It keeps the solver's mesh and engine alive on its own (deleting
+    the :class:`MeshSolver` does not break it), and several threads may ask it at
+    once: the work runs in Rust with the GIL released.
+
+    Each method gives what the one-call method of the same name of
+    :class:`MeshSolver` gives for the same sources, without the sources.
+    """
+
+    __slots__ = ("_core",)
+
+    def __init__(self, core):
+        self._core = core
+
+    def __repr__(self) -> str:
+        stats = self.stats
+        return f"<geotracks.Field from {self.sources!r}, {stats['method']}, k = {stats['k']:g}>"
+
+    @property
+    def sources(self) -> list:
+        """The run's sources, as :attr:`Path.surface_points` writes points (``"V"``,
+        ``"e:E:t"``, ``"f:F:b0,b1,b2"``; accepted back as sources)."""
+        return self._core.sources
+
+    @property
+    def stats(self) -> dict:
+        """The run's counters: ``method`` (the engine that ran), ``k`` (mean Steiner
+        points per edge), ``settles`` (nodes taken from the queue), ``pushes`` (queue
+        insertions), ``distance_tests`` (metric evaluations), ``propagate_seconds``
+        and ``stopped_early`` (the run ended at its targets)."""
+        return self._core.stats
+
+    @property
+    def vertex_count(self) -> int:
+        """Number of vertices of the mesh."""
+        return self._core.vertex_count
+
+    def distance(self) -> np.ndarray:
+        """Distance from the nearest source to every vertex, shape ``(n,)``; ``inf``
+        where unreached (as :meth:`MeshSolver.distance`)."""
+        return self._core.distance()
+
+    def distance_at(self, points) -> np.ndarray:
+        """The distance at each of ``points`` (vertex ids or surface points, one or a
+        sequence), shape ``(p,)``: the engine's value anywhere on the surface, not an
+        interpolation of vertex values; ``inf`` where unreached.
+
+        :raises GeotracksError: for a point that is not a point of the mesh."""
+        return self._core.distance_at(_points(points, "points"))
+
+    def path(self, target) -> Path:
+        """The shortest path from the nearest source to ``target``, straightened, as a
+        :class:`Path` (points from the source to the target).
+
+        :raises GeotracksError: for a target off the mesh, or one no source reaches
+            (another component, beyond the run's ``max_distance`` or past its targets)."""
+        points, names, length = self._core.path(_points(target, "target")[0])
+        return Path(points[::-1].copy(), names[::-1], length)
+
+    def gradient(self, points) -> tuple:
+        """At ``points``: ``(distances (p,), gradients (p, 3), directions (p, 3))``, as
+        :meth:`MeshSolver.gradient`."""
+        return self._core.gradient(_points(points, "points"))
+
+    def isolines(self, levels, subdivisions: Optional[int] = None) -> list:
+        """The level sets at each of ``levels``, as a list of :class:`Isoline`, as
+        :meth:`MeshSolver.isolines` (a NaN or infinite level is refused)."""
+        levels = [_real(x, "levels") for x in np.atleast_1d(levels).tolist()]
+        if subdivisions is not None:
+            subdivisions = _integer(subdivisions, "subdivisions")
+        return [Isoline(level, points, closed) for level, points, closed in self._core.isolines(levels, subdivisions)]
+
+    def regions(self, faces=None, subdivisions: Optional[int] = None) -> list:
+        """The regions of each of ``faces`` (default: every face), as a list of
+        :class:`Region`, as :meth:`MeshSolver.regions`."""
+        if faces is not None:
+            faces = _array(np.atleast_1d(faces), "faces", ("n",), integer=True)
+        if subdivisions is not None:
+            subdivisions = _integer(subdivisions, "subdivisions")
+        return [Region(*r) for r in self._core.regions(faces, subdivisions)]
+
+    def voronoi(self) -> np.ndarray:
+        """Per vertex, the index (into :attr:`sources`) of its nearest source, int64,
+        ``-1`` where unreached: the labels of :meth:`MeshSolver.voronoi`."""
+        return self._core.voronoi()
 
 
 def read_mesh(path) -> tuple:

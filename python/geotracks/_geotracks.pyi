@@ -32,6 +32,14 @@ class MeshSolverCore:
     def face_count(self) -> int: ...
     @property
     def method(self) -> str: ...
+    @property
+    def runs(self) -> int: ...
+    def field(
+        self,
+        sources: list[_Point],
+        max_distance: float = ...,
+        targets: Optional[list[_Point]] = None,
+    ) -> FieldCore: ...
     def distance(
         self,
         sources: list[_Point],
@@ -76,6 +84,41 @@ class MeshSolverCore:
     def local_distance_rows(
         self, sources: npt.NDArray[np.int64], max_distance: float
     ) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64], npt.NDArray[np.float64]]: ...
+
+class FieldCore:
+    @property
+    def sources(self) -> list[str]: ...
+    @property
+    def stats(self) -> dict[str, Union[str, float, int, bool]]: ...
+    @property
+    def vertex_count(self) -> int: ...
+    def distance(self) -> npt.NDArray[np.float64]: ...
+    def distance_at(self, points: list[_Point]) -> npt.NDArray[np.float64]: ...
+    def path(self, target: _Point) -> tuple[npt.NDArray[np.float64], list[str], float]: ...
+    def gradient(
+        self, points: list[_Point]
+    ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
+    def isolines(
+        self, levels: list[float], subdivisions: Optional[int] = None
+    ) -> list[tuple[float, npt.NDArray[np.float64], bool]]: ...
+    def regions(
+        self,
+        faces: Optional[npt.NDArray[np.int64]] = None,
+        subdivisions: Optional[int] = None,
+    ) -> list[
+        tuple[
+            int,
+            tuple[str, int],
+            int,
+            npt.NDArray[np.float64],
+            float,
+            npt.NDArray[np.float64],
+            list[str],
+            list[npt.NDArray[np.float64]],
+            float,
+        ]
+    ]: ...
+    def voronoi(self) -> npt.NDArray[np.int64]: ...
 
 def read_mesh(
     path: Union[str, PathLike[str]],

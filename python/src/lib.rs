@@ -5,6 +5,13 @@
 //! library's types, runs them with the GIL released, and returns numpy arrays that own
 //! the library's buffers (no copy). Errors become `geotracks.GeotracksError` (a
 //! `ValueError`) with the library's message.
+//!
+//! A run is a `FieldCore`: it holds the library's [`Field`] (which holds its solver),
+//! so every question about one run is answered from it without running the engine
+//! again, and it outlives the `MeshSolverCore` that made it. The one-call methods of
+//! `MeshSolverCore` are one run each, answered by the same functions as a field's;
+//! `path` is the library's one-path search (stopped at its target, from both ends where
+//! that pays), which no field computed from the sources alone can be.
 
 use geotracks::mesh::io::read_mesh as read_mesh_file;
 use geotracks::mesh::TriMesh;
@@ -16,6 +23,8 @@ use geotracks::{
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyTuple};
+use std::sync::atomic::{AtomicU64, Ordering};
 
 pyo3::create_exception!(
     geotracks,
@@ -90,10 +99,217 @@ fn positions(vertices: &PyReadonlyArray2<'_, f64>) -> Vec<[f64; 3]> {
         .collect()
 }
 
+/// `points` as surface points, refusing any that is not one (before any work).
+fn surface_points(points: &[PointArg]) -> PyResult<Vec<SurfacePoint>> {
+    points.iter().map(PointArg::point).collect()
+}
+
+/// The face ids of a numpy vector (all faces of `mesh` if `None`), refusing negative
+/// or too large values; whether the face exists is the library's to check.
+fn face_ids(mesh: &TriMesh, faces: Option<PyReadonlyArray1<'_, i64>>) -> PyResult<Vec<u32>> {
+    match faces {
+        Some(ids) => ids
+            .as_array()
+            .iter()
+            .map(|&f| u32::try_from(f).map_err(|_| error(format!("face {f} is not a face id"))))
+            .collect(),
+        None => Ok((0..mesh.face_count() as u32).collect()),
+    }
+}
+
+/// The run's stop for `max_distance` and `targets`, checked as the command line checks
+/// it (the library checks it again against the sources' start values).
+fn stop_of(max_distance: f64, targets: Option<Vec<PointArg>>) -> PyResult<Stop> {
+    Stop::NONE
+        .with_max_distance(max_distance)
+        .check()
+        .map_err(|e| error(format!("max_distance = {max_distance}: {e}")))?;
+    let targets = surface_points(&targets.unwrap_or_default())?;
+    Ok(Stop::NONE
+        .with_max_distance(max_distance)
+        .with_targets(targets))
+}
+
+// What a field answers, as plain values: the work (done with the GIL released) is
+// apart from the conversion to Python objects, so that a `FieldCore` and the one-call
+// methods of `MeshSolverCore` give the same answers from the same code.
+
+/// The distance at each of `points`.
+fn distances_at(
+    field: &Field<BuiltinMetric>,
+    points: &[SurfacePoint],
+) -> Result<Vec<f64>, geotracks::Error> {
+    points.iter().map(|&p| field.distance_at(p)).collect()
+}
+
+/// Per vertex, the index of its nearest source, -1 where unreached.
+fn labels(field: &Field<BuiltinMetric>) -> Vec<i64> {
+    field
+        .vertex_labels()
+        .into_iter()
+        .map(|l| if l == u32::MAX { -1 } else { l as i64 })
+        .collect()
+}
+
+/// Per point: distance, gradient and geodesic direction (`inf` and NaN where
+/// unreached, NaN vectors where there is no gradient).
+type Gradients = (Vec<f64>, Array2<f64>, Array2<f64>);
+
+/// The distance, gradient and geodesic direction at each of `points`.
+fn gradients(
+    field: &Field<BuiltinMetric>,
+    points: &[SurfacePoint],
+) -> Result<Gradients, geotracks::Error> {
+    let n = points.len();
+    let (mut d, mut g, mut t) = (
+        vec![f64::INFINITY; n],
+        Array2::from_elem((n, 3), f64::NAN),
+        Array2::from_elem((n, 3), f64::NAN),
+    );
+    for (i, &p) in points.iter().enumerate() {
+        d[i] = field.distance_at(p)?;
+        if let Some(gradient) = field.gradient_at(p)? {
+            for c in 0..3 {
+                g[[i, c]] = gradient.vector[c];
+                t[[i, c]] = gradient.direction[c];
+            }
+        }
+    }
+    Ok((d, g, t))
+}
+
+/// The library's bound on the number of levels, checked before a one-call method runs
+/// (no level at all draws nothing, as the library does).
+fn check_levels(levels: &[f64]) -> PyResult<()> {
+    if !levels.is_empty() {
+        geotracks::trace::check_level_count(levels.len()).map_err(error)?;
+    }
+    Ok(())
+}
+
+/// The isolines at `levels`, drawn with `subdivisions` sub-triangles per face edge
+/// (the library's default if `None`).
+fn isolines(
+    field: &Field<BuiltinMetric>,
+    levels: &[f64],
+    subdivisions: Option<u32>,
+) -> Result<Vec<geotracks::trace::Isoline>, geotracks::Error> {
+    use geotracks::trace::IsolineOptions;
+    let mut options = IsolineOptions::DEFAULT;
+    if let Some(n) = subdivisions {
+        options = options.with_subdivisions(n);
+    }
+    field.isolines(levels, &options)
+}
+
+/// The regions of `faces`, `subdivisions` grid steps per face edge (the library's
+/// default if `None`), worked on all cores.
+fn regions(
+    field: &Field<BuiltinMetric>,
+    faces: &[u32],
+    subdivisions: Option<u32>,
+) -> Result<Vec<geotracks::trace::Region>, geotracks::Error> {
+    use geotracks::trace::DEFAULT_REGION_SUBDIVISIONS;
+    use rayon::prelude::*;
+    let n = subdivisions.unwrap_or(DEFAULT_REGION_SUBDIVISIONS);
+    let per_face: Result<Vec<_>, _> = faces.par_iter().map(|&f| field.regions(f, n)).collect();
+    Ok(per_face?.into_iter().flatten().collect())
+}
+
+// Conversions to what Python is given.
+
+/// A path as `(points (p, 3), surface points, length)`, from the target to the source.
+type PyPath<'py> = (Matrix<'py, f64>, Vec<String>, f64);
+
+/// A path as Python is given it.
+fn py_path<'py>(
+    py: Python<'py>,
+    mesh: &TriMesh,
+    path: &geotracks::trace::GeodesicPath,
+) -> PyPath<'py> {
+    let points = matrix3(&path.points, |p| p.position(mesh).to_array());
+    let names = path.points.iter().map(|p| p.to_string()).collect();
+    (points.into_pyarray(py), names, path.length)
+}
+
+/// `(distances, gradients, directions)` as numpy arrays.
+type PyGradients<'py> = (Vector<'py, f64>, Matrix<'py, f64>, Matrix<'py, f64>);
+
+/// Gradients as Python is given them.
+fn py_gradients(py: Python<'_>, (d, g, t): Gradients) -> PyGradients<'_> {
+    (d.into_pyarray(py), g.into_pyarray(py), t.into_pyarray(py))
+}
+
+/// Per line: its level, its points (p, 3) and whether it closes on itself.
+type PyIsolines<'py> = Vec<(f64, Matrix<'py, f64>, bool)>;
+
+/// Isolines as Python is given them.
+fn py_isolines<'py>(
+    py: Python<'py>,
+    mesh: &TriMesh,
+    lines: Vec<geotracks::trace::Isoline>,
+) -> PyIsolines<'py> {
+    lines
+        .into_iter()
+        .map(|line| {
+            let points = matrix3(&line.points, |p| p.position(mesh).to_array());
+            (line.level, points.into_pyarray(py), line.closed)
+        })
+        .collect()
+}
+
+/// Per region: its face, what gives the distance there (`(kind, id)`), the edge its
+/// lines cross (-1: none), its virtual source (3,), offset, polygon (p, 3) with its
+/// surface points, holes and area.
+fn py_regions<'py>(
+    py: Python<'py>,
+    mesh: &TriMesh,
+    regions: Vec<geotracks::trace::Region>,
+) -> PyResult<Vec<Bound<'py, PyTuple>>> {
+    use geotracks::trace::ValueSource;
+    let position = |p: &SurfacePoint| p.position(mesh).to_array();
+    regions
+        .into_iter()
+        .map(|r| {
+            let (kind, id) = match r.source {
+                ValueSource::Node(id) => ("node", id),
+                ValueSource::Source(id) => ("source", id),
+                ValueSource::Wave(id) => ("wave", id),
+                ValueSource::WaveBend(id) => ("wave_bend", id),
+                // The enum is non-exhaustive: a kind added later is refused by name
+                // rather than mislabelled.
+                other => return Err(error(format!("unknown region source {other:?}"))),
+            };
+            let polygon = matrix3(&r.polygon, position).into_pyarray(py);
+            let names: Vec<String> = r.polygon.iter().map(|p| p.to_string()).collect();
+            let holes: Vec<_> = r
+                .holes
+                .iter()
+                .map(|h| matrix3(h, position).into_pyarray(py))
+                .collect();
+            let across = r.across.map_or(-1, i64::from);
+            (
+                r.face,
+                (kind, id),
+                across,
+                r.virtual_source.to_array().to_vec().into_pyarray(py),
+                r.offset,
+                polygon,
+                names,
+                holes,
+                r.area,
+            )
+                .into_pyobject(py)
+        })
+        .collect()
+}
+
 /// The mesh and a solver on it, reused by every query (`geotracks.MeshSolver` wraps it).
 #[pyclass(module = "geotracks._geotracks", frozen)]
 struct MeshSolverCore {
     solver: Solver<BuiltinMetric>,
+    /// How many times this solver's engine was started (see `runs`).
+    runs: AtomicU64,
 }
 
 #[pymethods]
@@ -149,6 +365,7 @@ impl MeshSolverCore {
         let solver = py.detach(|| Solver::new(mesh, metric, &options));
         Ok(MeshSolverCore {
             solver: solver.map_err(error)?,
+            runs: AtomicU64::new(0),
         })
     }
 
@@ -170,6 +387,29 @@ impl MeshSolverCore {
         self.solver.method().to_string()
     }
 
+    /// How many times this solver's engine has been started: one per field and per
+    /// one-call method, one per row of a distance matrix or of local rows. Queries on
+    /// a field add nothing.
+    #[getter]
+    fn runs(&self) -> u64 {
+        self.runs.load(Ordering::Relaxed)
+    }
+
+    /// One run from `sources`, stopped at `max_distance` or once the values at
+    /// `targets` are final: the field that answers every question about it.
+    #[pyo3(signature = (sources, max_distance=f64::INFINITY, targets=None))]
+    fn field(
+        &self,
+        py: Python<'_>,
+        sources: Vec<PointArg>,
+        max_distance: f64,
+        targets: Option<Vec<PointArg>>,
+    ) -> PyResult<FieldCore> {
+        let stop = stop_of(max_distance, targets)?;
+        let field = self.run(py, &sources, stop)?;
+        Ok(FieldCore { field })
+    }
+
     /// Distance to every vertex from the nearest source; `inf` where unreached.
     #[pyo3(signature = (sources, max_distance=f64::INFINITY, targets=None))]
     fn distance<'py>(
@@ -179,12 +419,9 @@ impl MeshSolverCore {
         max_distance: f64,
         targets: Option<Vec<PointArg>>,
     ) -> PyResult<Vector<'py, f64>> {
-        Stop::NONE
-            .with_max_distance(max_distance)
-            .check()
-            .map_err(|e| error(format!("max_distance = {max_distance}: {e}")))?;
-        let (distances, _) = self.field(py, &sources, max_distance, targets, false)?;
-        Ok(distances.into_pyarray(py))
+        let stop = stop_of(max_distance, targets)?;
+        let field = self.run(py, &sources, stop)?;
+        Ok(FieldCore { field }.distance(py))
     }
 
     /// Distance to every vertex and, per vertex, the index of its nearest source (-1
@@ -194,98 +431,65 @@ impl MeshSolverCore {
         py: Python<'py>,
         sources: Vec<PointArg>,
     ) -> PyResult<(Vector<'py, f64>, Vector<'py, i64>)> {
-        let (distances, labels) = self.field(py, &sources, f64::INFINITY, None, true)?;
-        Ok((distances.into_pyarray(py), labels.into_pyarray(py)))
+        let field = FieldCore {
+            field: self.run(py, &sources, Stop::NONE)?,
+        };
+        Ok((field.distance(py), field.voronoi(py)))
     }
 
     /// The shortest path from `target` to the nearest of `sources`, straightened:
-    /// `(points (p, 3), surface points, length)`, from the target to the source. From
-    /// one source, with the Steiner-graph engines, it is searched from both ends at
-    /// once on two threads; the solver keeps its buffers for the next path.
+    /// `(points (p, 3), surface points, length)`, from the target to the source. One
+    /// run that stops once the target's value is final; from one source, with the
+    /// Steiner-graph engines, it is searched from both ends at once on two threads
+    /// (which no field from the sources alone can do); the solver keeps its buffers for
+    /// the next path.
     fn path<'py>(
         &self,
         py: Python<'py>,
         sources: Vec<PointArg>,
         target: PointArg,
-    ) -> PyResult<(Matrix<'py, f64>, Vec<String>, f64)> {
+    ) -> PyResult<PyPath<'py>> {
         let sources = sources_of(&sources)?;
         let target = target.point()?;
-        let (mesh, solver) = (self.solver.mesh(), &self.solver);
+        let solver = &self.solver;
+        self.runs.fetch_add(1, Ordering::Relaxed);
         let path = py
             .detach(|| solver.shortest_path(&sources, target))
             .map_err(error)?
             .0;
-        let points = matrix3(&path.points, |p| p.position(mesh).to_array());
-        let names = path.points.iter().map(|p| p.to_string()).collect();
-        Ok((points.into_pyarray(py), names, path.length))
+        Ok(py_path(py, solver.mesh(), &path))
     }
 
     /// The field from `sources` at surface points: per point its distance, the
     /// gradient of the distance and the direction the geodesic travels there (world
     /// vectors in the point's face plane; `inf` and NaN where unreached, NaN vectors
     /// where there is no gradient, as at a source).
-    #[allow(clippy::type_complexity)] // distances, gradients, directions
     fn gradient<'py>(
         &self,
         py: Python<'py>,
         sources: Vec<PointArg>,
         points: Vec<PointArg>,
-    ) -> PyResult<(Vector<'py, f64>, Matrix<'py, f64>, Matrix<'py, f64>)> {
-        let points = points
-            .iter()
-            .map(PointArg::point)
-            .collect::<PyResult<Vec<_>>>()?;
-        let n = points.len();
-        let (mut d, mut g, mut t) = (
-            vec![f64::INFINITY; n],
-            Array2::from_elem((n, 3), f64::NAN),
-            Array2::from_elem((n, 3), f64::NAN),
-        );
-        self.on_field(py, &sources, |query| {
-            for (i, &p) in points.iter().enumerate() {
-                d[i] = query.distance_at(p)?;
-                if let Some(gradient) = query.gradient_at(p)? {
-                    for c in 0..3 {
-                        g[[i, c]] = gradient.vector[c];
-                        t[[i, c]] = gradient.direction[c];
-                    }
-                }
-            }
-            Ok(())
-        })?;
-        Ok((d.into_pyarray(py), g.into_pyarray(py), t.into_pyarray(py)))
+    ) -> PyResult<PyGradients<'py>> {
+        let points = surface_points(&points)?;
+        let field = self.run(py, &sources, Stop::NONE)?;
+        let found = py.detach(|| gradients(&field, &points)).map_err(error)?;
+        Ok(py_gradients(py, found))
     }
 
     /// The isolines of the field from `sources` at `levels`: per line, its level,
     /// its points (p, 3) and whether it closes on itself.
     #[pyo3(signature = (sources, levels, subdivisions=None))]
-    #[allow(clippy::type_complexity)] // (level, points, closed) per line
     fn isolines<'py>(
         &self,
         py: Python<'py>,
         sources: Vec<PointArg>,
         levels: Vec<f64>,
         subdivisions: Option<u32>,
-    ) -> PyResult<Vec<(f64, Matrix<'py, f64>, bool)>> {
-        use geotracks::trace::IsolineOptions;
-        let mesh = self.solver.mesh();
-        // The library's bound on levels, before the field is computed (no level at
-        // all draws nothing, as the library does).
-        if !levels.is_empty() {
-            geotracks::trace::check_level_count(levels.len()).map_err(error)?;
-        }
-        let mut options = IsolineOptions::DEFAULT;
-        if let Some(n) = subdivisions {
-            options = options.with_subdivisions(n);
-        }
-        let lines = self.on_field(py, &sources, |query| query.isolines(&levels, &options))?;
-        Ok(lines
-            .into_iter()
-            .map(|line| {
-                let points = matrix3(&line.points, |p| p.position(mesh).to_array());
-                (line.level, points.into_pyarray(py), line.closed)
-            })
-            .collect())
+    ) -> PyResult<PyIsolines<'py>> {
+        // The library's bound on levels, before the field is computed.
+        check_levels(&levels)?;
+        let field = self.run(py, &sources, Stop::NONE)?;
+        FieldCore { field }.isolines(py, levels, subdivisions)
     }
 
     /// The regions of `faces` (all faces if `None`) in the field from `sources`: per
@@ -299,59 +503,13 @@ impl MeshSolverCore {
         sources: Vec<PointArg>,
         faces: Option<PyReadonlyArray1<'_, i64>>,
         subdivisions: Option<u32>,
-    ) -> PyResult<Vec<Bound<'py, pyo3::types::PyTuple>>> {
-        use geotracks::trace::{ValueSource, DEFAULT_REGION_SUBDIVISIONS};
-        use rayon::prelude::*;
-        let mesh = self.solver.mesh();
-        let faces: Vec<u32> = match faces {
-            Some(ids) => ids
-                .as_array()
-                .iter()
-                .map(|&f| u32::try_from(f).map_err(|_| error(format!("face {f} is not a face id"))))
-                .collect::<PyResult<_>>()?,
-            None => (0..mesh.face_count() as u32).collect(),
-        };
-        let n = subdivisions.unwrap_or(DEFAULT_REGION_SUBDIVISIONS);
-        let regions = self.on_field(py, &sources, |query| {
-            let per_face: Result<Vec<_>, _> =
-                faces.par_iter().map(|&f| query.regions(f, n)).collect();
-            Ok(per_face?.into_iter().flatten().collect::<Vec<_>>())
-        })?;
-        let position = |p: &SurfacePoint| p.position(mesh).to_array();
-        regions
-            .into_iter()
-            .map(|r| {
-                let (kind, id) = match r.source {
-                    ValueSource::Node(id) => ("node", id),
-                    ValueSource::Source(id) => ("source", id),
-                    ValueSource::Wave(id) => ("wave", id),
-                    ValueSource::WaveBend(id) => ("wave_bend", id),
-                    // The enum is non-exhaustive: a kind added later is refused by name
-                    // rather than mislabelled.
-                    other => return Err(error(format!("unknown region source {other:?}"))),
-                };
-                let polygon = matrix3(&r.polygon, position).into_pyarray(py);
-                let names: Vec<String> = r.polygon.iter().map(|p| p.to_string()).collect();
-                let holes: Vec<_> = r
-                    .holes
-                    .iter()
-                    .map(|h| matrix3(h, position).into_pyarray(py))
-                    .collect();
-                let across = r.across.map_or(-1, i64::from);
-                (
-                    r.face,
-                    (kind, id),
-                    across,
-                    r.virtual_source.to_array().to_vec().into_pyarray(py),
-                    r.offset,
-                    polygon,
-                    names,
-                    holes,
-                    r.area,
-                )
-                    .into_pyobject(py)
-            })
-            .collect()
+    ) -> PyResult<Vec<Bound<'py, PyTuple>>> {
+        let faces = face_ids(self.solver.mesh(), faces)?;
+        let field = self.run(py, &sources, Stop::NONE)?;
+        let found = py
+            .detach(|| regions(&field, &faces, subdivisions))
+            .map_err(error)?;
+        py_regions(py, field.mesh(), found)
     }
 
     /// One row per source vertex: its distance to every vertex, or to `targets`; rows
@@ -371,6 +529,7 @@ impl MeshSolverCore {
         solver
             .check_rows_fit(sources.len(), width, 16)
             .map_err(error)?;
+        self.runs.fetch_add(sources.len() as u64, Ordering::Relaxed);
         let rows = py
             .detach(|| solver.distance_rows(&sources, targets.as_deref()))
             .map_err(error)?;
@@ -394,6 +553,7 @@ impl MeshSolverCore {
             .map_err(|e| error(format!("max_distance = {max_distance}: {e}")))?;
         let sources = vertex_ids(&sources, "source")?;
         let solver = &self.solver;
+        self.runs.fetch_add(sources.len() as u64, Ordering::Relaxed);
         let rows = py.detach(|| solver.local_distance_rows(&sources, max_distance));
         let rows = rows.map_err(error)?;
         let total: usize = rows.iter().map(Vec::len).sum();
@@ -414,53 +574,141 @@ impl MeshSolverCore {
 }
 
 impl MeshSolverCore {
-    /// `work` on the query of a full run from `sources`, with the GIL released.
-    fn on_field<T: Send>(
+    /// One run from `sources` until `stop`, with the GIL released: the only place a
+    /// field is computed, so `runs` counts every one.
+    fn run(
         &self,
         py: Python<'_>,
         sources: &[PointArg],
-        work: impl FnOnce(&Field<BuiltinMetric>) -> Result<T, geotracks::Error> + Send,
-    ) -> PyResult<T> {
+        stop: Stop,
+    ) -> PyResult<Field<BuiltinMetric>> {
         let sources = sources_of(sources)?;
         let solver = &self.solver;
-        py.detach(|| work(&solver.field(sources)?)).map_err(error)
+        self.runs.fetch_add(1, Ordering::Relaxed);
+        py.detach(|| solver.field(Sources::from(sources).until(stop)))
+            .map_err(error)
+    }
+}
+
+/// One finished run (`geotracks.Field` wraps it): the library's field, which holds its
+/// solver (shared), so it answers every question about the run without running the
+/// engine again, from any thread, and outlives the `MeshSolverCore` that made it.
+#[pyclass(module = "geotracks._geotracks", frozen)]
+struct FieldCore {
+    field: Field<BuiltinMetric>,
+}
+
+#[pymethods]
+impl FieldCore {
+    /// Distance at every vertex; `inf` where unreached.
+    fn distance<'py>(&self, py: Python<'py>) -> Vector<'py, f64> {
+        let field = &self.field;
+        py.detach(|| field.vertex_distances().to_vec())
+            .into_pyarray(py)
     }
 
-    /// One run from `sources`: vertex distances and, if asked, labels.
-    fn field(
+    /// The distance at each of `points` (vertex ids or surface points); `inf` where
+    /// unreached.
+    fn distance_at<'py>(
         &self,
-        py: Python<'_>,
-        sources: &[PointArg],
-        max_distance: f64,
-        targets: Option<Vec<PointArg>>,
-        labels: bool,
-    ) -> PyResult<(Vec<f64>, Vec<i64>)> {
-        let sources = sources_of(sources)?;
-        let targets = targets
-            .unwrap_or_default()
+        py: Python<'py>,
+        points: Vec<PointArg>,
+    ) -> PyResult<Vector<'py, f64>> {
+        let points = surface_points(&points)?;
+        let field = &self.field;
+        let found = py.detach(|| distances_at(field, &points)).map_err(error)?;
+        Ok(found.into_pyarray(py))
+    }
+
+    /// The path from `target` to the nearest source, straightened: `(points (p, 3),
+    /// surface points, length)`, from the target to the source.
+    fn path<'py>(&self, py: Python<'py>, target: PointArg) -> PyResult<PyPath<'py>> {
+        let target = target.point()?;
+        let field = &self.field;
+        let path = py.detach(|| field.path(target)).map_err(error)?;
+        Ok(py_path(py, field.mesh(), &path))
+    }
+
+    /// At each of `points`: its distance, the gradient of the distance and the
+    /// direction the geodesic travels there (as `MeshSolverCore.gradient`).
+    fn gradient<'py>(&self, py: Python<'py>, points: Vec<PointArg>) -> PyResult<PyGradients<'py>> {
+        let points = surface_points(&points)?;
+        let field = &self.field;
+        let found = py.detach(|| gradients(field, &points)).map_err(error)?;
+        Ok(py_gradients(py, found))
+    }
+
+    /// The isolines at `levels`: per line, its level, its points (p, 3) and whether it
+    /// closes on itself.
+    #[pyo3(signature = (levels, subdivisions=None))]
+    fn isolines<'py>(
+        &self,
+        py: Python<'py>,
+        levels: Vec<f64>,
+        subdivisions: Option<u32>,
+    ) -> PyResult<PyIsolines<'py>> {
+        check_levels(&levels)?;
+        let field = &self.field;
+        let lines = py
+            .detach(|| isolines(field, &levels, subdivisions))
+            .map_err(error)?;
+        Ok(py_isolines(py, field.mesh(), lines))
+    }
+
+    /// The regions of `faces` (all faces if `None`), as `MeshSolverCore.regions`; faces
+    /// are worked on all cores.
+    #[pyo3(signature = (faces=None, subdivisions=None))]
+    fn regions<'py>(
+        &self,
+        py: Python<'py>,
+        faces: Option<PyReadonlyArray1<'_, i64>>,
+        subdivisions: Option<u32>,
+    ) -> PyResult<Vec<Bound<'py, PyTuple>>> {
+        let field = &self.field;
+        let faces = face_ids(field.mesh(), faces)?;
+        let found = py
+            .detach(|| regions(field, &faces, subdivisions))
+            .map_err(error)?;
+        py_regions(py, field.mesh(), found)
+    }
+
+    /// Per vertex, the index of its nearest source; -1 where unreached.
+    fn voronoi<'py>(&self, py: Python<'py>) -> Vector<'py, i64> {
+        let field = &self.field;
+        py.detach(|| labels(field)).into_pyarray(py)
+    }
+
+    /// The run's sources, in the command line's form (`"V"`, `"e:E:t"`,
+    /// `"f:F:b0,b1,b2"`), in the order given.
+    #[getter]
+    fn sources(&self) -> Vec<String> {
+        self.field
+            .sources()
             .iter()
-            .map(PointArg::point)
-            .collect::<PyResult<Vec<_>>>()?;
-        let stop = Stop::NONE
-            .with_max_distance(max_distance)
-            .with_targets(targets);
-        let solver = &self.solver;
-        py.detach(|| {
-            let field = solver.field(Sources::from(&sources).until(&stop))?;
-            let distances = field.vertex_distances().to_vec();
-            let labels = if labels {
-                let query = &field;
-                query
-                    .vertex_labels()
-                    .into_iter()
-                    .map(|l| if l == u32::MAX { -1 } else { l as i64 })
-                    .collect()
-            } else {
-                Vec::new()
-            };
-            Ok::<_, geotracks::Error>((distances, labels))
-        })
-        .map_err(error)
+            .map(|s| s.point.to_string())
+            .collect()
+    }
+
+    /// The run's counters: engine, mean Steiner points per edge, nodes settled, queue
+    /// insertions, distance tests, seconds propagating, and whether it stopped early.
+    #[getter]
+    fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let stats = self.field.stats();
+        let dict = PyDict::new(py);
+        dict.set_item("method", stats.method.to_string())?;
+        dict.set_item("k", stats.k)?;
+        dict.set_item("settles", stats.settles)?;
+        dict.set_item("pushes", stats.pushes)?;
+        dict.set_item("distance_tests", stats.distance_tests)?;
+        dict.set_item("propagate_seconds", stats.propagate_seconds)?;
+        dict.set_item("stopped_early", stats.stopped_early)?;
+        Ok(dict)
+    }
+
+    /// Number of vertices of the field's mesh.
+    #[getter]
+    fn vertex_count(&self) -> usize {
+        self.field.mesh().vertex_count()
     }
 }
 
@@ -586,6 +834,7 @@ fn skeleton<'py>(
 #[pymodule]
 fn _geotracks(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<MeshSolverCore>()?;
+    m.add_class::<FieldCore>()?;
     m.add_function(wrap_pyfunction!(read_mesh, m)?)?;
     m.add_function(wrap_pyfunction!(terrain_route, m)?)?;
     m.add_function(wrap_pyfunction!(skeleton, m)?)?;
