@@ -320,7 +320,7 @@ fn slope<M: Metric>(
 /// A point of a face's region grid: a grid point, a switch point on the side between
 /// two grid points (by index, lower first), or the centre of a sub-triangle where three
 /// labels meet.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 enum Key {
     Grid(usize),
     Side(usize, usize),
@@ -477,7 +477,11 @@ impl<'f, 'q, 'a, M: Metric> LabelGrid<'f, 'q, 'a, M> {
         labels
             .into_iter()
             .map(|(label, set)| {
-                let loops = chain(set.into_keys().collect())
+                // In a fixed order (the set's is a hash's, random per process): the
+                // same field gives the same polygons, starting at the same point.
+                let mut edges: Vec<(Key, Key)> = set.into_keys().collect();
+                edges.sort_unstable();
+                let loops = chain(edges)
                     .into_iter()
                     .map(|l| simplify(l.iter().map(|k| points[k]).collect()))
                     .filter(|l| l.len() >= 3)
