@@ -325,7 +325,7 @@ pub enum SizeLimit {
     },
     /// A run would make more distance tests than the work limit allows
     /// ([`Options::work_limit`](crate::Options::work_limit); an estimate, see the
-    /// README's Library section).
+    /// guide's Distances page, docs/src/distances.md).
     Work {
         /// The estimated distance tests of one full run.
         tests: f64,

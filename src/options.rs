@@ -123,7 +123,7 @@ pub struct Options {
     /// anything is allocated: a k that would need more is refused with
     /// [`Error::KTooLarge`] (naming the estimate and the limit) and the largest k that
     /// fits. The estimate grows with the square of the nodes on each face (the
-    /// README's Library section has the figures). Default:
+    /// guide's Distances page has the figures). Default:
     /// [`DEFAULT_WORK_LIMIT`](Options::DEFAULT_WORK_LIMIT) (a few minutes of one
     /// core); `None`: no limit.
     ///
@@ -243,8 +243,8 @@ pub struct Stop {
     /// cost. Nodes off the corridor stay unreached. Default: `true`; it has no effect
     /// without targets, for a metric that gives no bound, for targets spread over more
     /// than half the mesh (their box's diagonal against the mesh's: the estimate would
-    /// be zero nearly everywhere, and computing it cost time for nothing; the README's
-    /// Library section has the figures), and for the
+    /// be zero nearly everywhere, and computing it cost time for nothing; the guide's
+    /// Paths page has the figures), and for the
     /// wavefront engine ([`Method::Wave`]), whose values depend on the order waves
     /// arrive in: settled out of value order, a node can replace the wave through
     /// which it gave others their values, and their paths can no longer be traced back

@@ -739,7 +739,7 @@ fn written_ply_of_a_book_reads_back_non_manifold() {
 }
 
 // ---------------------------------------------------------------------------------------
-// Messages that say what is wrong (issue 12, item 6)
+// Messages that say what is wrong
 
 /// No message shows the inside of a Rust value: braces, quotes around lists, the names
 /// of library types, or several lines.
@@ -963,7 +963,7 @@ fn stl_messages_name_the_line_in_words() {
 }
 
 // ---------------------------------------------------------------------------------------
-// Triangle strips (issue 12, item 7)
+// Triangle strips
 
 /// The z component of face `f`'s normal (its orientation on a flat mesh in the xy plane).
 fn normal_z(mesh: &TriMesh, f: usize) -> f64 {
@@ -1028,7 +1028,7 @@ fn binary_big_endian_tristrips_as_in_igea() {
 }
 
 // ---------------------------------------------------------------------------------------
-// What `info` reports, and welding (issue 12, item 7)
+// What `info` reports, and welding
 
 /// A torus of `n × m` quads (two triangles each), consistently oriented.
 fn torus(n: u32, m: u32) -> TriMesh {

@@ -1,5 +1,5 @@
 //! A k that cannot fit is refused before anything big is allocated, with the limit it
-//! breaks and the largest k that fits (issue 12: one triangle with k = 1e9 used to take
+//! breaks and the largest k that fits (one triangle with k = 1e9 used to take
 //! 22 s and 11.7 GB before failing; k = 1e5 on a 12K-face mesh failed after 7 GB with
 //! the wrong reason).
 

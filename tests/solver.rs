@@ -204,7 +204,7 @@ fn tracks_work_grows_about_linearly_in_k_on_spot() {
     check_linear_work(&spot(), "spot");
 }
 
-/// The criterion is on the shared bunny, which a fresh clone does not have:
+/// The target is set on the shared bunny, which a fresh clone does not have:
 /// ignored by `cargo test` (which says so), run by `.ci/run` with `--ignored` where
 /// ../shared/data is beside the clone. Without the data it fails rather than pass
 /// having checked nothing.

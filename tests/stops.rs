@@ -156,7 +156,7 @@ proptest! {
     }
 }
 
-/// The case the hardening issue reported: with a maximum distance, a point of a face
+/// A case found while hardening the input checks: with a maximum distance, a point of a face
 /// that the maximum cuts, next to its vertex beyond the maximum, was given the value
 /// through a node within it: a value beyond the maximum.
 /// A negative maximum distance is refused (it used to leave every node unreached,

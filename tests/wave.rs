@@ -1,4 +1,4 @@
-//! The wavefront engine (`Method::Wave`, issue 13) against exact distances: planar
+//! The wavefront engine (`Method::Wave`) against exact distances: planar
 //! meshes of any triangulation (needles, fans, jittered grids, holes), developable
 //! strips (cylinder and cone sections, unrolled analytically), constant 3D tensors (the
 //! linearly mapped mesh), the Spot model against exact (MMP) references; property tests

@@ -33,7 +33,7 @@ pub struct TerrainArgs {
     cost: TerrainCost,
     /// Mean number of Steiner points per edge. 2 by default: the straightened route is
     /// exact on the analytic tests at k = 2, and on a hilly grid it costs 0.03–0.9 %
-    /// more than the same route at k = 6 (README, Terrain), where a finer graph finds a
+    /// more than the same route at k = 6 (the guide's Terrain page, docs/src/terrain.md), where a finer graph finds a
     /// better corridor; larger k costs time and memory in proportion.
     #[arg(long, default_value_t = 2.0)]
     k: f64,
@@ -46,7 +46,7 @@ pub struct TerrainArgs {
     /// planes, the best route at a given k; for none and incline:B, the others run
     /// tracks), or tracks (the track-pruned Steiner graph, which a route runs
     /// goal-directed, A*: it settles a corridor around the route rather than a disc;
-    /// on the README's 1000 × 1000 grid, none at k = 4 routes as well as wave at
+    /// on the guide's 1000 × 1000 grid (docs/src/terrain.md), none at k = 4 routes as well as wave at
     /// k = 2, in less time).
     #[arg(long, default_value = "wave")]
     method: Method,

@@ -525,7 +525,7 @@ fn a_nan_tensor_is_reported_as_not_finite() {
     );
 }
 
-/// Usage errors (clap) exit with 2, every other error with 1, as the README says.
+/// Usage errors (clap) exit with 2, every other error with 1, as the guide's Command line page says.
 #[test]
 fn usage_errors_exit_2_and_other_errors_1() {
     let dir = tempfile::tempdir().unwrap();

@@ -6,7 +6,7 @@
 //! others are the crossings that a linear interpolation of the exact vertex values puts
 //! on each edge. Neither set's points are vertices, so no exact value is known there: the
 //! distance of a point is estimated independently, by the straightened path from it of a
-//! separate run at k = 8 (README, Paths: within 0.002 % of exact on average). Up to
+//! separate run at k = 8 (the guide's Paths page: within 0.002 % of exact on average). Up to
 //! `SAMPLES` points per set, spread evenly over its points, each scored
 //! |estimate − level| / level.
 

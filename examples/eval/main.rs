@@ -26,7 +26,7 @@
 //! With `--isolines N` it measures isolines (N levels per source): how far their points
 //! lie from their level, ours against a linear interpolation of the exact vertex values,
 //! each point's distance estimated by a straightened path at k = 8 (see
-//! `isolines.rs`; the README's Isolines table):
+//! `isolines.rs`; the guide's Isolines table, docs/src/isolines.md):
 //!
 //! ```text
 //! cargo run --release --example eval -- ../shared/data --isolines 10 [--max-faces N]
@@ -35,7 +35,7 @@
 //! With `--skeletons [PRUNE_PERCENT]` it skeletonizes every `DATA_DIR/ma/*.ma`: cycles,
 //! components and tips at each pruning level against the axis's Betti numbers (exit 1 if
 //! they differ), the end-to-end time, and, where `DATA_DIR/skeleton/<name>.mcf.obj` has a
-//! mean-curvature-flow skeleton, the distances between the two (the README's Skeletons
+//! mean-curvature-flow skeleton, the distances between the two (the guide's Skeletons page
 //! table; `--radius` burns by the medial radius):
 //!
 //! ```text
@@ -43,7 +43,7 @@
 //! ```
 //!
 //! With `--engines` it measures each engine against every exact reference, with its time,
-//! work and memory (the wave engine's tables in the README's Accuracy section):
+//! work and memory (the wave engine's tables in the guide's Accuracy page):
 //!
 //! ```text
 //! cargo run --release --example eval -- ../shared/data --engines --plot bunny_loop1:doc/wave_error_vs_time.png

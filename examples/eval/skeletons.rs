@@ -1,7 +1,7 @@
 //! Skeletons of the shared medial axes (`--skeletons`): topology at every pruning level
 //! against the axis's Betti numbers, and, where `skeleton/<name>.mcf.obj` holds a
 //! mean-curvature-flow skeleton of the same shape, the distances between the two curves
-//! (the README's Skeletons table).
+//! (the guide's Skeletons page table).
 
 use geotracks::mesh::io::read_medial_axis;
 use geotracks::skeleton::{medial_axis_skeleton, Burn, Skeleton};

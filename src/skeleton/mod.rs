@@ -55,8 +55,8 @@ use crate::{Error, Euclidean, Field, Metric};
 
 /// The pruning threshold the command line uses by default, in % of the bounding-box
 /// diagonal of what is skeletonized: branches whose erosion thickness is less go. It is
-/// chosen on the shared medial axes against mean-curvature-flow skeletons (README,
-/// Skeletons).
+/// chosen on the shared medial axes against mean-curvature-flow skeletons (the guide's
+/// Skeletons page).
 pub const DEFAULT_PRUNE_PERCENT: f64 = 7.0;
 
 /// A pruning threshold as people write it: a length in the axis's units (`0.05`,
@@ -464,7 +464,7 @@ pub enum Burn {
     /// from where the shape is thin, and the curves left follow the ridges of the
     /// radius, through the largest balls. About four times faster (no propagation);
     /// farther from mean-curvature-flow skeletons at their worst point on the shared
-    /// axes (README, Skeletons).
+    /// axes (the guide's Skeletons page).
     Radius,
 }
 

@@ -31,7 +31,7 @@ use geotracks_metrics::{FacePoint, Metric, Reversed, SlidingCost};
 use glam::DVec3;
 
 /// Rounds of merge, unpin and Newton at most. A route whose Steiner-graph path lies some
-/// cells beside the geodesic (a coarse graph on a regular grid: README, Terrain) moves
+/// cells beside the geodesic (a coarse graph on a regular grid: the guide's Terrain page) moves
 /// a vertex sideways per round and per hop ([`HOPS`]), so this bounds both the work and
 /// how far it goes. 16 rounds with hops straighten the 1000 × 1000 terrain bench's
 /// routes further than 48 rounds without hops did (13 333.9 against 13 346.3 corner to

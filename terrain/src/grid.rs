@@ -598,7 +598,7 @@ impl ElevationGrid {
 /// Samples and cells are numbered tile by tile (`TILE` × `TILE` blocks, the blocks row
 /// by row, and row by row inside each), so that what a wavefront settles together lies
 /// close in memory (row by row, the sample below is a whole grid row away), with no
-/// sort (a Morton order along a curve needs one). README, Terrain, has the timings of
+/// sort (a Morton order along a curve needs one). The guide's Terrain page has the timings of
 /// the three orders that chose it.
 const TILE: usize = 32;
 

@@ -216,13 +216,13 @@ pub struct RouteWindow {
 
 /// How much dearer than the straight line between its ends (what it costs on the
 /// terrain) the first window lets a route be: the Steiner graph's values lie up to a
-/// few percent above the continuous cost at k = 2 (the README's Accuracy section). A
+/// few percent above the continuous cost at k = 2 (the guide's Accuracy page). A
 /// route that does not fit costs another run, on a window three times as slack above
 /// the least cost, or the whole grid.
 const FIRST_WINDOW_SLACK: f64 = 0.05;
 
 /// The same for the wavefront engine, whose values lie within 0.1 % of the continuous
-/// cost on the README's grids: a route never costs much more than the straight line's
+/// cost on the guide's grids (Terrain page): a route never costs much more than the straight line's
 /// cost but where the line climbs what the route goes round.
 const FIRST_WINDOW_SLACK_WAVE: f64 = 0.01;
 

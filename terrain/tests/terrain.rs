@@ -1,7 +1,7 @@
 //! Terrain: grid readers, meshing, costs, walls in every engine, and the analytic
 //! checks (flat grid, tilted plane, Snell's law at a density interface, a wall with a
 //! gap). Measured errors are printed (`cargo test --release --test terrain --
-//! --nocapture`); the README quotes them.
+//! --nocapture`); the guide's Terrain page quotes them.
 
 #[path = "../../tests/common/mod.rs"]
 mod common;

@@ -300,7 +300,7 @@ impl<M: Metric> Setup<M> {
         let positions = targets.iter().map(|&t| self.layout.position(&self.mesh, t));
         let [lo, hi] = bounding_box(positions.map(|p| p.to_array())).map(glam::DVec3::from);
         // Targets spread over much of the mesh leave the estimate zero nearly
-        // everywhere: it would cost without saving (README, Library: `goal_bench`).
+        // everywhere: it would cost without saving (the guide's Paths page: `goal_bench`).
         if (hi - lo).length() > 0.5 * self.extent {
             return None;
         }
