@@ -22,6 +22,20 @@
 //!
 //! Point-to-point routes, which run an engine from both ends at once, live above the
 //! engines ([`Solver::shortest_path`], in `route`); `meet` is the engines' side of it.
+//!
+//! **Scalars.** Every coordinate, length and distance is `f64`, and nothing is generic
+//! over the scalar (no `num-traits`), because the engines' error budgets are set in
+//! `f64` units: the wavefront engine is exact to 1e-9 on planar meshes, faces glue to
+//! 1e-9 of an edge plus 1e-12 of their size, ties are 1e-12 relative (`flat`). An
+//! `f32` rounds at 6e-8 relative: a distance, a virtual source or σ stored in it would
+//! spend the whole budget in one rounding. Where `f32` pays, it is a concrete choice
+//! with its slack argued: the wavefront engine stores window ends as `f32` fractions of
+//! the edge, rounded inwards (`flat::WINDOW_SLACK` covers them), and the tracks engine
+//! its track values, rounded up. A scalar parameter (`S: num_traits::Float`) comes with
+//! the bounded window engine, whose per-edge windows are worth storing in `f32` on
+//! meshes of millions of faces while σ and settled values stay `f64`, run at `f64`
+//! against the exact engine as its oracle; until there is that second instantiation a
+//! type parameter would have one type and hide the budget instead of stating it.
 
 mod budget;
 mod frontier;
