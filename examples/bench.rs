@@ -28,6 +28,10 @@
 //! fractions): propagation seconds, distance tests, and a check that every value they
 //! keep is the full run's.
 
+// The function-length rule (clippy.toml) is for the crates' code; an example's report
+// loops are allowed to run long.
+#![allow(clippy::too_many_lines)]
+
 use geotracks::Sources;
 use geotracks::{
     mesh::io::read_mesh, Euclidean, Method, Options, Solver, Source, Stop, SurfacePoint,

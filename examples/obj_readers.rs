@@ -26,6 +26,10 @@
 //! hostile and tricky inputs (the cases of `tests/io.rs`, the fuzz seeds of
 //! `fuzz/seeds/obj/`): each reader's answer, and whether tobj panicked.
 
+// The function-length rule (clippy.toml) is for the crates' code; an example's report
+// loops are allowed to run long.
+#![allow(clippy::too_many_lines)]
+
 use geotracks::mesh::io::read_mesh_bytes;
 use geotracks::mesh::TriMesh;
 use std::panic::{catch_unwind, AssertUnwindSafe};

@@ -1,5 +1,8 @@
 //! Surface-point sources, early stops, distances at any point and geodesic paths.
 
+// Tests aside from the function-length rule (clippy.toml): a scenario reads best whole.
+#![allow(clippy::too_many_lines)]
+
 mod common;
 
 use common::{book, grid, random_book, random_face_point, random_mesh, sphere, Rng, GRAPH, TRACKS};

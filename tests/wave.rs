@@ -11,6 +11,9 @@
 //! reflex boundary vertices (the visibility graph, Dijkstra over the sources and the
 //! reflex vertices).
 
+// Tests aside from the function-length rule (clippy.toml): a scenario reads best whole.
+#![allow(clippy::too_many_lines)]
+
 mod common;
 
 use common::{

@@ -3,7 +3,7 @@
 use crate::isolines;
 use crate::output::Outputs;
 use crate::{ui, CliResult, Value};
-use geotracks::trace::IsolineOptions;
+use geotracks::trace::{Isoline, IsolineOptions};
 use geotracks::Sources;
 use geotracks::{Error, Method, Options, Solver, Source, Stop};
 use geotracks_terrain::{self as terrain, map, Route, TerrainCost, TerrainError};
@@ -93,30 +93,7 @@ enum OutputFormat {
 }
 
 pub fn run(args: &TerrainArgs) -> CliResult {
-    // Check everything that can be checked before reading the grid.
-    let format = crate::text_output_format(
-        &args.output,
-        &[
-            ("geojson", OutputFormat::GeoJson),
-            ("json", OutputFormat::GeoJson),
-            ("csv", OutputFormat::Csv),
-        ],
-        OutputFormat::GeoJson,
-    )?;
-    if let Some(png) = &args.png {
-        crate::output_format(png, &[("png", ())])?;
-    }
-    if let Some(contours) = &args.contours {
-        crate::output_format(contours, &[("geojson", ()), ("json", ())])?;
-        isolines::check_levels(
-            args.contour_levels,
-            &args.contour_at,
-            ("--contour-levels", "--contour-at"),
-        )?;
-    }
-    if !(args.k.is_finite() && args.k > 0.0) {
-        return Err(Error::InvalidK { k: args.k }.into());
-    }
+    let format = check_args(args)?;
     let mut outputs = Outputs::new([args.dem.as_path()]);
     outputs.declare(&args.output)?;
     outputs.declare_some(args.png.as_ref())?;
@@ -147,22 +124,7 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     // own over the whole grid.
     let field_start = std::time::Instant::now();
     let whole = if args.png.is_some() || args.contours.is_some() {
-        let terrain = grid.to_mesh_named(Some(&args.dem))?;
-        let locate = |[x, y]: [f64; 2]| routing_error(terrain.locate(x, y), args);
-        let from = locate(args.from)?;
-        let metric = args.cost.metric_on_grid(&grid, &terrain)?;
-        let solver = Solver::new(&terrain.mesh, metric, &options)?;
-        let field = solver.field(Sources::from(&[Source::new(from)]).until(&Stop::NONE))?;
-        let contours = match &args.contours {
-            Some(_) => {
-                let levels = isolines::levels_of(&field, args.contour_levels, &args.contour_at);
-                Some(field.isolines(&levels, &IsolineOptions::DEFAULT)?)
-            }
-            None => None,
-        };
-        let costs = field.vertex_distances().to_vec();
-        drop(solver);
-        Some((terrain, costs, contours))
+        Some(whole_grid_field(args, &grid, &options)?)
     } else {
         None
     };
@@ -185,7 +147,6 @@ pub fn run(args: &TerrainArgs) -> CliResult {
         .and_then(|(terrain, _, lines)| Some((terrain, lines.as_ref()?)));
 
     drop(spinner);
-    let (cost, length, length_2d) = (route.cost(), route.length(), route.length_2d());
     let map_coordinates = MapCoordinates::of(&grid);
     match format {
         OutputFormat::GeoJson => write_geojson(&mut outputs, args, &route, &map_coordinates)?,
@@ -203,6 +164,75 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     }
     outputs.commit()?;
 
+    say_route(args, &route, contours.map(|(_, lines)| lines.len()));
+    let timings = Timings {
+        read_seconds,
+        field_seconds,
+        whole_field: whole.is_some(),
+    };
+    report_run(args, &grid, &route, &window, picture.as_ref(), &timings);
+    Ok(())
+}
+
+/// Checks everything that can be checked before reading the grid: the output files'
+/// formats, the contour levels, k. Returns the route's format.
+fn check_args(args: &TerrainArgs) -> CliResult<OutputFormat> {
+    let format = crate::text_output_format(
+        &args.output,
+        &[
+            ("geojson", OutputFormat::GeoJson),
+            ("json", OutputFormat::GeoJson),
+            ("csv", OutputFormat::Csv),
+        ],
+        OutputFormat::GeoJson,
+    )?;
+    if let Some(png) = &args.png {
+        crate::output_format(png, &[("png", ())])?;
+    }
+    if let Some(contours) = &args.contours {
+        crate::output_format(contours, &[("geojson", ()), ("json", ())])?;
+        isolines::check_levels(
+            args.contour_levels,
+            &args.contour_at,
+            ("--contour-levels", "--contour-at"),
+        )?;
+    }
+    if !(args.k.is_finite() && args.k > 0.0) {
+        return Err(Error::InvalidK { k: args.k }.into());
+    }
+    Ok(format)
+}
+
+/// The cost from the start over the whole grid (for a map or contours): the grid's
+/// mesh, the cost at each of its vertices, and the contours if asked.
+fn whole_grid_field(
+    args: &TerrainArgs,
+    grid: &terrain::ElevationGrid,
+    options: &Options,
+) -> CliResult<(terrain::TerrainMesh, Vec<f64>, Option<Vec<Isoline>>)> {
+    let terrain = grid.to_mesh_named(Some(&args.dem))?;
+    let locate = |[x, y]: [f64; 2]| routing_error(terrain.locate(x, y), args);
+    let from = locate(args.from)?;
+    let metric = args.cost.metric_on_grid(grid, &terrain)?;
+    let solver = Solver::new(&terrain.mesh, metric, options)?;
+    let field = solver.field(Sources::from(&[Source::new(from)]).until(&Stop::NONE))?;
+    let contours = match &args.contours {
+        Some(_) => {
+            let levels = isolines::levels_of(&field, args.contour_levels, &args.contour_at);
+            Some(field.isolines(&levels, &IsolineOptions::DEFAULT)?)
+        }
+        None => None,
+    };
+    let costs = field.vertex_distances().to_vec();
+    drop(solver);
+    Ok((terrain, costs, contours))
+}
+
+/// Says what the route is: its ends, cost model, points, lengths and traced cost, how
+/// many contours were written (`contour_lines`), then its cost (on standard output,
+/// alone on the last line, unless the route itself goes there).
+fn say_route(args: &TerrainArgs, route: &Route, contour_lines: Option<usize>) {
+    let (cost, length, length_2d) = (route.cost(), route.length(), route.length_2d());
     let elevation = |p: Option<&geotracks::glam::DVec3>| p.map_or(f64::NAN, |p| p.z);
     let (first, last) = (route.points.first(), route.points.last());
     let [x0, y0] = args.from;
@@ -218,12 +248,8 @@ pub fn run(args: &TerrainArgs) -> CliResult {
             Value(route.traced_cost)
         ),
     ];
-    if let (Some(path), Some((_, lines))) = (&args.contours, &contours) {
-        summary.push(format!(
-            "contours: {} lines, in {}",
-            lines.len(),
-            path.display()
-        ));
+    if let (Some(path), Some(lines)) = (&args.contours, contour_lines) {
+        summary.push(format!("contours: {lines} lines, in {}", path.display()));
     }
     if args.output.as_os_str() == "-" {
         // Standard output holds the route: the summary and the cost go to stderr.
@@ -238,6 +264,26 @@ pub fn run(args: &TerrainArgs) -> CliResult {
         // The result, alone on the last line (also with --quiet).
         println!("{}", Value(cost));
     }
+}
+
+/// Where a run's time went, for the report.
+struct Timings {
+    read_seconds: f64,
+    /// The whole grid's cost field, for a map or contours (if `whole_field`).
+    field_seconds: f64,
+    whole_field: bool,
+}
+
+/// The run's report: the grid, the window, the engine's numbers and the files written;
+/// with `-v`, where the time went.
+fn report_run(
+    args: &TerrainArgs,
+    grid: &terrain::ElevationGrid,
+    route: &Route,
+    window: &terrain::RouteWindow,
+    picture: Option<&map::MapImage>,
+    timings: &Timings,
+) {
     let s = &route.stats;
     let g = grid.geometry();
     ui::info!(
@@ -254,7 +300,7 @@ pub fn run(args: &TerrainArgs) -> CliResult {
         ),
         crate::run_summary(s),
         crate::shown(&args.output),
-        match (&args.png, &picture) {
+        match (&args.png, picture) {
             (Some(p), Some(m)) => format!(
                 " and {} ({} × {} px{})",
                 p.display(),
@@ -271,18 +317,24 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     if ui::verbose() {
         // Where the rest of the time went: the route's window, its path, and the
         // whole grid's field for a map or contours.
-        let field = if whole.is_some() {
-            format!("; whole grid's cost field (map, contours) {field_seconds:.4} s")
+        let field = if timings.whole_field {
+            format!(
+                "; whole grid's cost field (map, contours) {:.4} s",
+                timings.field_seconds
+            )
         } else {
             String::new()
         };
         eprintln!(
-            "  grid read {read_seconds:.4} s; window cut and meshed {:.4} s, metric {:.4} s, \
+            "  grid read {:.4} s; window cut and meshed {:.4} s, metric {:.4} s, \
              solver {:.4} s; path traced and straightened {:.4} s{field}",
-            window.mesh_seconds, window.metric_seconds, window.solver_seconds, route.path_seconds
+            timings.read_seconds,
+            window.mesh_seconds,
+            window.metric_seconds,
+            window.solver_seconds,
+            route.path_seconds
         );
     }
-    Ok(())
 }
 
 /// A routing error in the command line's words: which end lies off the grid or on

@@ -1,6 +1,9 @@
 //! The command-line tool end to end: outputs, and bad input that must fail with one
 //! clear line, a non-zero exit, and no output file.
 
+// Tests aside from the function-length rule (clippy.toml): a scenario reads best whole.
+#![allow(clippy::too_many_lines)]
+
 mod support;
 
 use std::path::{Path, PathBuf};

@@ -1,6 +1,9 @@
 //! `geotracks terrain` end to end: GeoJSON, CSV and PNG outputs, costs, walls, GeoTIFF
 //! input, and bad input that fails with one line and no file.
 
+// Tests aside from the function-length rule (clippy.toml): a scenario reads best whole.
+#![allow(clippy::too_many_lines)]
+
 #[path = "../../tests/common/relief.rs"]
 mod relief;
 mod support;

@@ -136,14 +136,32 @@ struct Header {
     nodata: Option<f64>,
 }
 
+/// The file's lines, numbered from 0, with a look at the next one (where the header
+/// ends is known only from the first data line).
+type AscLines<'a> = std::iter::Peekable<std::iter::Enumerate<std::str::Lines<'a>>>;
+
 fn parse_asc(path: &Path, text: &str) -> Result<ElevationGrid, TerrainError> {
-    let parse_error = |line: usize, message: String| TerrainError::Parse {
+    let mut lines = text.lines().enumerate().peekable();
+    let header = read_header(path, &mut lines)?;
+    let (geometry, header_lines) = header.geometry(path)?;
+    let values = read_values(path, text, lines, &geometry, header.nodata, header_lines)?;
+    ElevationGrid::checked(geometry, values)
+}
+
+/// A [`TerrainError::Parse`] at line `line` (1-based; 0 for the file as a whole).
+fn parse_error(path: &Path, line: usize, message: String) -> TerrainError {
+    TerrainError::Parse {
         path: path.to_path_buf(),
         line,
         message,
-    };
+    }
+}
+
+/// Reads the header's `key value` lines, up to the first line that starts with a
+/// number (left in `lines`).
+fn read_header(path: &Path, lines: &mut AscLines<'_>) -> Result<Header, TerrainError> {
+    let parse_error = |line: usize, message: String| parse_error(path, line, message);
     let mut header = Header::default();
-    let mut lines = text.lines().enumerate().peekable();
     // Header lines start with a key (a letter); the data with a number.
     while let Some(&(i, line)) = lines.peek() {
         let mut tokens = line.split_whitespace();
@@ -204,50 +222,72 @@ fn parse_asc(path: &Path, text: &str) -> Result<ElevationGrid, TerrainError> {
             ));
         }
     }
-    let missing = |key| TerrainError::MissingKey {
-        path: path.to_path_buf(),
-        key,
-    };
-    let (ncols, ncols_line) = header.ncols.ok_or_else(|| missing("ncols"))?;
-    let (nrows, nrows_line) = header.nrows.ok_or_else(|| missing("nrows"))?;
-    let header_lines = [ncols_line, nrows_line];
-    let (x, x_corner) = header.x.ok_or_else(|| missing("xllcorner"))?;
-    let (y, y_corner) = header.y.ok_or_else(|| missing("yllcorner"))?;
-    let (dx, dy) = match (header.cellsize, header.dx, header.dy) {
-        (Some(c), _, _) => (c, c),
-        (None, Some(dx), Some(dy)) => (dx, dy),
-        (None, Some(_), None) => return Err(missing("dy")),
-        (None, _, _) => return Err(missing("cellsize")),
-    };
-    for value in [dx, dy] {
-        if !(value.is_finite() && value > 0.0) {
-            return Err(TerrainError::CellSize {
-                path: Some(path.to_path_buf()),
-                value,
-            });
-        }
-    }
-    if !(x.is_finite() && y.is_finite()) {
-        return Err(parse_error(
-            0,
-            format!("the origin ({x}, {y}) is not finite"),
-        ));
-    }
-    let geometry = GridGeometry {
-        ncols,
-        nrows,
-        lower_left: [
-            if x_corner { x + dx / 2.0 } else { x },
-            if y_corner { y + dy / 2.0 } else { y },
-        ],
-        spacing: [dx, dy],
-    };
+    Ok(header)
+}
 
+impl Header {
+    /// The grid's geometry, and the lines of `ncols` and `nrows` (for messages), or the
+    /// key that is missing or the value that is wrong.
+    fn geometry(&self, path: &Path) -> Result<(GridGeometry, [usize; 2]), TerrainError> {
+        let missing = |key| TerrainError::MissingKey {
+            path: path.to_path_buf(),
+            key,
+        };
+        let (ncols, ncols_line) = self.ncols.ok_or_else(|| missing("ncols"))?;
+        let (nrows, nrows_line) = self.nrows.ok_or_else(|| missing("nrows"))?;
+        let header_lines = [ncols_line, nrows_line];
+        let (x, x_corner) = self.x.ok_or_else(|| missing("xllcorner"))?;
+        let (y, y_corner) = self.y.ok_or_else(|| missing("yllcorner"))?;
+        let (dx, dy) = match (self.cellsize, self.dx, self.dy) {
+            (Some(c), _, _) => (c, c),
+            (None, Some(dx), Some(dy)) => (dx, dy),
+            (None, Some(_), None) => return Err(missing("dy")),
+            (None, _, _) => return Err(missing("cellsize")),
+        };
+        for value in [dx, dy] {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(TerrainError::CellSize {
+                    path: Some(path.to_path_buf()),
+                    value,
+                });
+            }
+        }
+        if !(x.is_finite() && y.is_finite()) {
+            return Err(parse_error(
+                path,
+                0,
+                format!("the origin ({x}, {y}) is not finite"),
+            ));
+        }
+        let geometry = GridGeometry {
+            ncols,
+            nrows,
+            lower_left: [
+                if x_corner { x + dx / 2.0 } else { x },
+                if y_corner { y + dy / 2.0 } else { y },
+            ],
+            spacing: [dx, dy],
+        };
+        Ok((geometry, header_lines))
+    }
+}
+
+/// Reads the samples (the rest of `lines`, of the file `text`), NODATA ones as NaN:
+/// exactly as many as `geometry` has.
+fn read_values(
+    path: &Path,
+    text: &str,
+    mut lines: AscLines<'_>,
+    geometry: &GridGeometry,
+    nodata: Option<f64>,
+    header_lines: [usize; 2],
+) -> Result<Vec<f64>, TerrainError> {
+    let parse_error = |line: usize, message: String| parse_error(path, line, message);
+    let (ncols, nrows) = (geometry.ncols, geometry.nrows);
     let expected = ncols
         .checked_mul(nrows)
         .filter(|&n| n <= 1 << 32)
         .ok_or_else(|| parse_error(0, format!("{ncols} × {nrows} samples are too many")))?;
-    let nodata = header.nodata;
     // Room for no more samples than the rest of the file can hold (a number and a
     // separator take at least 2 bytes): a header that lies about its size allocates
     // nothing beyond the file's own size, and is reported against its lines once the
@@ -305,7 +345,7 @@ fn parse_asc(path: &Path, text: &str) -> Result<ElevationGrid, TerrainError> {
             header_lines,
         });
     }
-    ElevationGrid::checked(geometry, values)
+    Ok(values)
 }
 
 /// Whether a token is a number (a header key never is; `nan` and `inf` are).

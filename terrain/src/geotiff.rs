@@ -74,24 +74,51 @@ fn read_geotiff_from<R: Read + Seek>(
     mut file: R,
     file_len: u64,
 ) -> Result<ElevationGrid, TerrainError> {
-    let tiff_error = |context: &str| {
-        let context = context.to_string();
-        move |source| TerrainError::Tiff {
-            path: path.to_path_buf(),
-            context,
-            source,
-        }
-    };
-    let tag_error = |tag: Tag| tiff_error(&tag_name(tag));
-    let unsupported = |message: String| TerrainError::Unsupported {
-        path: path.to_path_buf(),
-        message,
-    };
     // The decoder sizes buffers from the header's claims (tag value counts, the image's
     // size) within its limits. Tag values cannot be larger than the file, so the first
     // directory is checked against the file's size before the decoder reads it, and
     // the limits are the file's size until the image itself is decoded.
     check_first_directory(path, &mut file, file_len)?;
+    let (mut decoder, ncols, nrows) = open_image(path, file, file_len)?;
+    let (pixel_is_point, epsg) = geo_keys(path, &mut decoder)?;
+    let geometry = georeference(path, &mut decoder, ncols, nrows, pixel_is_point)?;
+    let values = read_samples(path, &mut decoder, ncols, nrows)?;
+    Ok(ElevationGrid::checked(geometry, values)?.with_epsg(epsg))
+}
+
+/// An error of the decoder's, naming what was being read (`context`).
+fn tiff_error<'a>(
+    path: &'a Path,
+    context: &str,
+) -> impl FnOnce(tiff::TiffError) -> TerrainError + 'a {
+    let context = context.to_string();
+    move |source| TerrainError::Tiff {
+        path: path.to_path_buf(),
+        context,
+        source,
+    }
+}
+
+/// An error of the decoder's while reading tag `tag`.
+fn tag_error(path: &Path, tag: Tag) -> impl FnOnce(tiff::TiffError) -> TerrainError + '_ {
+    tiff_error(path, &tag_name(tag))
+}
+
+/// What this reader refuses, in words.
+fn unsupported(path: &Path, message: String) -> TerrainError {
+    TerrainError::Unsupported {
+        path: path.to_path_buf(),
+        message,
+    }
+}
+
+/// The decoder on the first image, with its size (columns, rows): one band, and no
+/// more samples than the file can hold; its limits then let the image be decoded.
+fn open_image<R: Read + Seek>(
+    path: &Path,
+    file: R,
+    file_len: u64,
+) -> Result<(Decoder<R>, u32, u32), TerrainError> {
     let file_limit = usize::try_from(file_len).unwrap_or(usize::MAX).max(1024);
     let mut limits = Limits::default();
     limits.decoding_buffer_size = file_limit;
@@ -99,35 +126,41 @@ fn read_geotiff_from<R: Read + Seek>(
     limits.intermediate_buffer_size = file_limit;
     let mut decoder = Decoder::new(file)
         .map_err(tiff_error(
+            path,
             "reading the header and the first image directory",
         ))?
         .with_limits(limits.clone());
     let (ncols, nrows) = decoder.dimensions().map_err(tiff_error(
+        path,
         "reading the image size (tags ImageWidth 256, ImageLength 257)",
     ))?;
     let colour = decoder.colortype().map_err(tiff_error(
+        path,
         "reading the sample type (tags BitsPerSample 258, SampleFormat 339, \
          PhotometricInterpretation 262)",
     ))?;
     let bits = match colour {
         ColorType::Gray(bits) => bits,
         ColorType::Multiband { num_samples, .. } => {
-            return Err(unsupported(format!(
+            return Err(unsupported(path, format!(
                 "the image has {num_samples} bands; an elevation grid has one (extract it, e.g. gdal_translate -b 1)"
             )))
         }
         other => {
-            return Err(unsupported(format!(
-                "the image is {}, not a single band of elevations",
-                color_name(other)
-            )))
+            return Err(unsupported(
+                path,
+                format!(
+                    "the image is {}, not a single band of elevations",
+                    color_name(other)
+                ),
+            ))
         }
     };
     // Decoded samples cannot outnumber what the file holds, allowing for the best
     // compression any codec reaches (deflate at most 1032:1, LZW below 3641:1).
     let compressed = decoder
         .find_tag_unsigned::<u16>(Tag::Compression)
-        .map_err(tag_error(Tag::Compression))?
+        .map_err(tag_error(path, Tag::Compression))?
         .is_some_and(|c| c != 1);
     let sample_bytes = u64::from(bits).div_ceil(8).max(1);
     let declared = u64::from(ncols) * u64::from(nrows);
@@ -147,14 +180,21 @@ fn read_geotiff_from<R: Read + Seek>(
     limits.decoding_buffer_size = usize::try_from(declared * sample_bytes)
         .unwrap_or(usize::MAX)
         .max(file_limit);
-    let mut decoder = decoder.with_limits(limits);
+    Ok((decoder.with_limits(limits), ncols, nrows))
+}
 
+/// From the GeoKey directory: whether samples are points (PixelIsPoint) rather than
+/// areas, and the projected CRS's EPSG code; a grid in degrees is refused.
+fn geo_keys<R: Read + Seek>(
+    path: &Path,
+    decoder: &mut Decoder<R>,
+) -> Result<(bool, Option<u32>), TerrainError> {
     let geo_keys = decoder
         .find_tag(Tag::GeoKeyDirectoryTag)
-        .map_err(tag_error(Tag::GeoKeyDirectoryTag))?
+        .map_err(tag_error(path, Tag::GeoKeyDirectoryTag))?
         .map(|v| v.into_u16_vec())
         .transpose()
-        .map_err(tag_error(Tag::GeoKeyDirectoryTag))?
+        .map_err(tag_error(path, Tag::GeoKeyDirectoryTag))?
         .unwrap_or_default();
     let geo_key = |id: u16| -> Option<u16> {
         // Header of 4 shorts, then entries (key, location, count, value); location 0
@@ -167,6 +207,7 @@ fn read_geotiff_from<R: Read + Seek>(
     };
     if geo_key(MODEL_TYPE_KEY) == Some(MODEL_TYPE_GEOGRAPHIC) {
         return Err(unsupported(
+            path,
             "the grid is in geographic coordinates (degrees); distances and slopes need x, y in \
              the same unit as the elevations: reproject it first (e.g. gdalwarp -t_srs EPSG:<UTM zone>)"
                 .into(),
@@ -177,18 +218,29 @@ fn read_geotiff_from<R: Read + Seek>(
     let epsg = geo_key(PROJECTED_CS_TYPE_KEY)
         .filter(|&c| (1..32767).contains(&c))
         .map(u32::from);
+    Ok((pixel_is_point, epsg))
+}
 
+/// Where the samples are: the georeference tags (pixel scale and tie point, or a
+/// transformation without rotation) as the grid's geometry, north up.
+fn georeference<R: Read + Seek>(
+    path: &Path,
+    decoder: &mut Decoder<R>,
+    ncols: u32,
+    nrows: u32,
+    pixel_is_point: bool,
+) -> Result<GridGeometry, TerrainError> {
     let f64_tag = |decoder: &mut Decoder<_>, tag| -> Result<Option<Vec<f64>>, TerrainError> {
         decoder
             .find_tag(tag)
-            .map_err(tag_error(tag))?
+            .map_err(tag_error(path, tag))?
             .map(|v| v.into_f64_vec())
             .transpose()
-            .map_err(tag_error(tag))
+            .map_err(tag_error(path, tag))
     };
-    let scale = f64_tag(&mut decoder, Tag::ModelPixelScaleTag)?;
-    let tie = f64_tag(&mut decoder, Tag::ModelTiepointTag)?;
-    let transform = f64_tag(&mut decoder, Tag::ModelTransformationTag)?;
+    let scale = f64_tag(decoder, Tag::ModelPixelScaleTag)?;
+    let tie = f64_tag(decoder, Tag::ModelTiepointTag)?;
+    let transform = f64_tag(decoder, Tag::ModelTransformationTag)?;
     // Raster position (i, j) maps to (x0 + i·sx, y0 − j·sy).
     let (x0, y0, sx, sy) = match (scale, tie, transform) {
         (Some(s), Some(t), _) if s.len() >= 2 && t.len() >= 6 => {
@@ -197,6 +249,7 @@ fn read_geotiff_from<R: Read + Seek>(
         (_, _, Some(m)) if m.len() >= 16 => {
             if m[1] != 0.0 || m[4] != 0.0 {
                 return Err(unsupported(
+                    path,
                     "the raster is rotated or sheared (ModelTransformationTag); warp it to a \
                      north-up grid first (gdalwarp)"
                         .into(),
@@ -206,6 +259,7 @@ fn read_geotiff_from<R: Read + Seek>(
         }
         _ => {
             return Err(unsupported(
+                path,
                 "the TIFF has no georeference (ModelPixelScaleTag and ModelTiepointTag, or \
                  ModelTransformationTag): without it the sample spacing is unknown"
                     .into(),
@@ -214,6 +268,7 @@ fn read_geotiff_from<R: Read + Seek>(
     };
     if sy < 0.0 && sx > 0.0 {
         return Err(unsupported(
+            path,
             "the raster's rows run south to north (negative y scale); flip it to north-up first"
                 .into(),
         ));
@@ -236,12 +291,22 @@ fn read_geotiff_from<R: Read + Seek>(
         spacing: [sx, sy],
     };
     if !(geometry.lower_left[0].is_finite() && geometry.lower_left[1].is_finite()) {
-        return Err(unsupported("the georeference is not finite".into()));
+        return Err(unsupported(path, "the georeference is not finite".into()));
     }
+    Ok(geometry)
+}
 
+/// The NODATA value (tag GDAL_NODATA), then the image decoded: its samples as `f64`,
+/// NODATA ones as NaN.
+fn read_samples<R: Read + Seek>(
+    path: &Path,
+    decoder: &mut Decoder<R>,
+    ncols: u32,
+    nrows: u32,
+) -> Result<Vec<f64>, TerrainError> {
     let nodata = decoder
         .find_tag(Tag::GdalNodata)
-        .map_err(tag_error(Tag::GdalNodata))?
+        .map_err(tag_error(path, Tag::GdalNodata))?
         .and_then(|v| v.into_string().ok())
         .and_then(|s| {
             s.trim_matches(|c: char| c == '\0' || c.is_whitespace())
@@ -252,7 +317,7 @@ fn read_geotiff_from<R: Read + Seek>(
     let samples = match decoder.read_image() {
         Ok(samples) => samples,
         Err(source) => {
-            let context = failing_chunk(&mut decoder)
+            let context = failing_chunk(decoder)
                 .unwrap_or_else(|| format!("decoding the image ({ncols} × {nrows} samples)"));
             return Err(TerrainError::Tiff {
                 path: path.to_path_buf(),
@@ -275,7 +340,7 @@ fn read_geotiff_from<R: Read + Seek>(
         DecodingResult::F32(v) => v.into_iter().map(f64::from).collect(),
         DecodingResult::F64(v) => v,
     };
-    let values = values
+    Ok(values
         .into_iter()
         .map(|z| match nodata {
             // GDAL writes the NODATA value as decimal text, which may not round-trip
@@ -283,8 +348,7 @@ fn read_geotiff_from<R: Read + Seek>(
             Some(n) if z == n || (single && (z as f32) == (n as f32)) => f64::NAN,
             _ => z,
         })
-        .collect();
-    Ok(ElevationGrid::checked(geometry, values)?.with_epsg(epsg))
+        .collect())
 }
 
 /// A colour type in words, for messages.
@@ -376,30 +440,12 @@ fn check_first_directory<R: Read + Seek>(
         // Not a TIFF: the decoder says so in its own words.
         _ => return file.seek(SeekFrom::Start(0)).map(drop).map_err(io),
     };
-    let u16_at = |b: &[u8]| {
-        let a = [b[0], b[1]];
-        if big_endian {
-            u16::from_be_bytes(a)
-        } else {
-            u16::from_le_bytes(a)
-        }
-    };
-    let u32_at = |b: &[u8]| {
-        let a = [b[0], b[1], b[2], b[3]];
-        if big_endian {
-            u32::from_be_bytes(a)
-        } else {
-            u32::from_le_bytes(a)
-        }
-    };
-    let u64_at = |b: &[u8]| {
-        let a = [b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]];
-        if big_endian {
-            u64::from_be_bytes(a)
-        } else {
-            u64::from_le_bytes(a)
-        }
-    };
+    let order = ByteOrder { big_endian };
+    let (u16_at, u32_at, u64_at) = (
+        |b: &[u8]| order.u16(b),
+        |b: &[u8]| order.u32(b),
+        |b: &[u8]| order.u64(b),
+    );
     let bigtiff = n >= 4 && u16_at(&head[2..4]) == 43;
     let offset = match (bigtiff, n) {
         (false, 8..) => u64::from(u32_at(&head[4..8])),
@@ -452,4 +498,43 @@ fn check_first_directory<R: Read + Seek>(
         }
     }
     file.seek(SeekFrom::Start(0)).map(drop).map_err(io)
+}
+
+/// The byte order of a TIFF's numbers (`II`: little-endian, `MM`: big-endian), to read
+/// its header and directory entries before the decoder does.
+#[derive(Clone, Copy)]
+struct ByteOrder {
+    big_endian: bool,
+}
+
+impl ByteOrder {
+    /// The `u16` in the first 2 bytes of `b`.
+    fn u16(self, b: &[u8]) -> u16 {
+        let a = [b[0], b[1]];
+        if self.big_endian {
+            u16::from_be_bytes(a)
+        } else {
+            u16::from_le_bytes(a)
+        }
+    }
+
+    /// The `u32` in the first 4 bytes of `b`.
+    fn u32(self, b: &[u8]) -> u32 {
+        let a = [b[0], b[1], b[2], b[3]];
+        if self.big_endian {
+            u32::from_be_bytes(a)
+        } else {
+            u32::from_le_bytes(a)
+        }
+    }
+
+    /// The `u64` in the first 8 bytes of `b`.
+    fn u64(self, b: &[u8]) -> u64 {
+        let a = [b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]];
+        if self.big_endian {
+            u64::from_be_bytes(a)
+        } else {
+            u64::from_le_bytes(a)
+        }
+    }
 }

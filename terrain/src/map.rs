@@ -6,7 +6,7 @@
 //! so one pixel per sample is the natural scale, and a plotting library would add axes
 //! and a dependency tree for no gain). The `png` feature writes it as a PNG.
 
-use super::grid::{ElevationGrid, TerrainMesh};
+use super::grid::{ElevationGrid, GridGeometry, TerrainMesh};
 use glam::DVec2;
 
 /// An RGBA picture, row-major from the top (north), 4 bytes per pixel.
@@ -155,48 +155,10 @@ pub fn render(
             }
         }
     }
-    // A contour passes between two pixels whose levels differ.
     if interval.is_some() {
-        for py in 0..h {
-            for px in 0..w {
-                let l = level[py * w + px];
-                if l.is_nan() {
-                    continue;
-                }
-                let differs = |x: usize, y: usize| {
-                    let m = level[y * w + x];
-                    !m.is_nan() && m != l
-                };
-                if (px + 1 < w && differs(px + 1, py)) || (py + 1 < h && differs(px, py + 1)) {
-                    put(&mut rgba, w, px, py, CONTOUR, 0.75);
-                }
-            }
-        }
+        draw_contours(&mut rgba, &level, w, h);
     }
-    // The route, in pixel coordinates.
-    let [x_min, _, _, y_max] = g.bounds();
-    let to_pixel = |p: &[f64; 2]| {
-        DVec2::new(
-            ((p[0] - x_min) / g.spacing[0] + 0.5) * scale,
-            ((y_max - p[1]) / g.spacing[1] + 0.5) * scale,
-        )
-    };
-    let points: Vec<DVec2> = route.iter().map(to_pixel).collect();
-    let radius = (w.max(h) as f64 / 400.0).max(1.5);
-    for (colour, r) in [(HALO, radius + 1.5), (ROUTE, radius)] {
-        for pair in points.windows(2) {
-            stroke(&mut rgba, w, h, pair[0], pair[1], r, colour);
-        }
-        if points.len() == 1 {
-            stroke(&mut rgba, w, h, points[0], points[0], r, colour);
-        }
-    }
-    if let (Some(&a), Some(&b)) = (points.first(), points.last()) {
-        for (p, colour) in [(a, START), (b, END)] {
-            stroke(&mut rgba, w, h, p, p, 3.0 * radius + 1.5, [0.0; 3]);
-            stroke(&mut rgba, w, h, p, p, 3.0 * radius, colour);
-        }
-    }
+    draw_route(&mut rgba, w, h, &g, scale, route);
     let map_width = ncols as f64 * g.spacing[0];
     decorate(
         &mut rgba,
@@ -212,6 +174,62 @@ pub fn render(
         height,
         rgba,
         contour_interval: interval,
+    }
+}
+
+/// Marks the contours on `rgba` (`w` × `h` pixels): a contour passes between two pixels
+/// whose levels (`level`, the distance in contour intervals, NaN where none) differ.
+fn draw_contours(rgba: &mut [u8], level: &[f64], w: usize, h: usize) {
+    for py in 0..h {
+        for px in 0..w {
+            let l = level[py * w + px];
+            if l.is_nan() {
+                continue;
+            }
+            let differs = |x: usize, y: usize| {
+                let m = level[y * w + x];
+                !m.is_nan() && m != l
+            };
+            if (px + 1 < w && differs(px + 1, py)) || (py + 1 < h && differs(px, py + 1)) {
+                put(rgba, w, px, py, CONTOUR, 0.75);
+            }
+        }
+    }
+}
+
+/// Draws `route` (map positions, from start to end) on `rgba` (`w` × `h` pixels, `scale`
+/// pixels a cell of the grid `g`), thick with a halo, and a marker at each end.
+fn draw_route(
+    rgba: &mut [u8],
+    w: usize,
+    h: usize,
+    g: &GridGeometry,
+    scale: f64,
+    route: &[[f64; 2]],
+) {
+    // The route, in pixel coordinates.
+    let [x_min, _, _, y_max] = g.bounds();
+    let to_pixel = |p: &[f64; 2]| {
+        DVec2::new(
+            ((p[0] - x_min) / g.spacing[0] + 0.5) * scale,
+            ((y_max - p[1]) / g.spacing[1] + 0.5) * scale,
+        )
+    };
+    let points: Vec<DVec2> = route.iter().map(to_pixel).collect();
+    let radius = (w.max(h) as f64 / 400.0).max(1.5);
+    for (colour, r) in [(HALO, radius + 1.5), (ROUTE, radius)] {
+        for pair in points.windows(2) {
+            stroke(rgba, w, h, pair[0], pair[1], r, colour);
+        }
+        if points.len() == 1 {
+            stroke(rgba, w, h, points[0], points[0], r, colour);
+        }
+    }
+    if let (Some(&a), Some(&b)) = (points.first(), points.last()) {
+        for (p, colour) in [(a, START), (b, END)] {
+            stroke(rgba, w, h, p, p, 3.0 * radius + 1.5, [0.0; 3]);
+            stroke(rgba, w, h, p, p, 3.0 * radius, colour);
+        }
     }
 }
 

@@ -301,20 +301,7 @@ pub fn route_on_grid(
         surface_position(grid, to[0], to[1])?,
     );
     let straight = per_length * s.distance(t);
-    // The first window: for what the straight line costs, with the engine's slack;
-    // four times that above the least cost where the line is blocked. (The wavefront
-    // engine runs for the face-flat costs.)
-    let wave = options.method == Method::Wave
-        && matches!(cost, TerrainCost::None | TerrainCost::Incline { .. });
-    let slack = if wave {
-        FIRST_WINDOW_SLACK_WAVE
-    } else {
-        FIRST_WINDOW_SLACK
-    };
-    let mut bound = match straight_line_cost(grid, cost, from, to) {
-        Some(line) => line.max(straight) * (1.0 + slack),
-        None => straight * (1.0 + 4.0 * slack),
-    };
+    let mut bound = first_bound(grid, cost, &options, from, to, straight);
     // Whether `bound` is the cost of a route found (on a narrower window).
     let mut found = false;
     let mut runs = 0;
@@ -322,33 +309,7 @@ pub fn route_on_grid(
     loop {
         runs += 1;
         let setup = Instant::now();
-        // The cells a route within the bound may cross; all of them where the window
-        // would hold most of the grid anyway (or the bound cuts nothing): that run
-        // costs little more than the window's, and needs no other.
-        let cuts = bound.is_finite() && per_length > 0.0;
-        let (cols, rows) = if cuts {
-            ellipse_cells(&g, s, t, bound / per_length)
-        } else {
-            (0..g.ncols - 1, 0..g.nrows - 1)
-        };
-        let width = cols.len();
-        let mut window: Vec<bool> = rows
-            .clone()
-            .flat_map(|row| cols.clone().map(move |col| (col, row)))
-            .map(|(col, row)| per_length * ends_distance(grid, col, row, s, t) <= bound)
-            .collect();
-        let mut cells = window.iter().filter(|&&k| k).count();
-        let whole = !cuts || cells as f64 > WHOLE_GRID_ABOVE * grid_cells as f64;
-        let mesh = if whole {
-            cells = grid_cells;
-            window.clear();
-            grid.to_mesh()?
-        } else {
-            let (c0, r0) = (cols.start, rows.start);
-            grid.to_mesh_within(cols, rows, |col, row| {
-                window[(row - r0) * width + (col - c0)]
-            })?
-        };
+        let (mesh, cells, whole) = window_mesh(grid, s, t, bound, per_length)?;
         let (a, b) = (mesh.locate(from[0], from[1])?, mesh.locate(to[0], to[1])?);
         mesh_seconds += setup.elapsed().as_secs_f64();
         let metric_start = Instant::now();
@@ -396,6 +357,75 @@ pub fn route_on_grid(
             Err(e) => return Err(e.into()),
         }
     }
+}
+
+/// The bound of the first window: what the straight line from `from` to `to` costs
+/// (at least `straight`, the least cost per length times its length), with the engine's
+/// slack; four times that above `straight` where the line is blocked.
+fn first_bound(
+    grid: &ElevationGrid,
+    cost: &TerrainCost,
+    options: &Options,
+    from: [f64; 2],
+    to: [f64; 2],
+    straight: f64,
+) -> f64 {
+    // The first window: for what the straight line costs, with the engine's slack;
+    // four times that above the least cost where the line is blocked. (The wavefront
+    // engine runs for the face-flat costs.)
+    let wave = options.method == Method::Wave
+        && matches!(cost, TerrainCost::None | TerrainCost::Incline { .. });
+    let slack = if wave {
+        FIRST_WINDOW_SLACK_WAVE
+    } else {
+        FIRST_WINDOW_SLACK
+    };
+    match straight_line_cost(grid, cost, from, to) {
+        Some(line) => line.max(straight) * (1.0 + slack),
+        None => straight * (1.0 + 4.0 * slack),
+    }
+}
+
+/// The mesh of the window a route from `s` to `t` that costs at most `bound` may cross
+/// (`per_length`: the least cost per length), with its number of cells and whether it
+/// is the whole grid.
+fn window_mesh(
+    grid: &ElevationGrid,
+    s: DVec3,
+    t: DVec3,
+    bound: f64,
+    per_length: f64,
+) -> Result<(TerrainMesh, usize, bool), TerrainError> {
+    let g = *grid.geometry();
+    let grid_cells = g.ncols.saturating_sub(1) * g.nrows.saturating_sub(1);
+    // The cells a route within the bound may cross; all of them where the window
+    // would hold most of the grid anyway (or the bound cuts nothing): that run
+    // costs little more than the window's, and needs no other.
+    let cuts = bound.is_finite() && per_length > 0.0;
+    let (cols, rows) = if cuts {
+        ellipse_cells(&g, s, t, bound / per_length)
+    } else {
+        (0..g.ncols - 1, 0..g.nrows - 1)
+    };
+    let width = cols.len();
+    let mut window: Vec<bool> = rows
+        .clone()
+        .flat_map(|row| cols.clone().map(move |col| (col, row)))
+        .map(|(col, row)| per_length * ends_distance(grid, col, row, s, t) <= bound)
+        .collect();
+    let mut cells = window.iter().filter(|&&k| k).count();
+    let whole = !cuts || cells as f64 > WHOLE_GRID_ABOVE * grid_cells as f64;
+    let mesh = if whole {
+        cells = grid_cells;
+        window.clear();
+        grid.to_mesh()?
+    } else {
+        let (c0, r0) = (cols.start, rows.start);
+        grid.to_mesh_within(cols, rows, |col, row| {
+            window[(row - r0) * width + (col - c0)]
+        })?
+    };
+    Ok((mesh, cells, whole))
 }
 
 /// What the straight line (in the map) from `from` to `to` costs on the terrain, in

@@ -29,6 +29,54 @@ pub(super) fn read(
 ) -> Result<MedialAxis, MeshError> {
     sniff::expect_text(path, "a medial axis (.ma) file", bytes)?;
     let mut lines = Lines::new(path, bytes);
+    let counts = read_counts(path, bytes, &mut lines)?;
+    let mut records = read_records(path, &mut lines, &counts)?;
+    counts.check_found(path, &records)?;
+    if weld {
+        records.weld();
+    }
+    records.into_axis(path, allow_curves_only)
+}
+
+/// The counts line `nv ne nf`, and where it is.
+struct Counts {
+    line: usize,
+    vertices: usize,
+    edges: usize,
+    faces: usize,
+}
+
+impl Counts {
+    /// Refuses a file whose records are fewer than its header declares (more are
+    /// refused as they come).
+    fn check_found(&self, path: &Path, records: &Records) -> Result<(), MeshError> {
+        for (what, found, declared) in [
+            (
+                "vertices (`v` lines)",
+                records.positions.len(),
+                self.vertices,
+            ),
+            ("edges (`e` lines)", records.edges.len(), self.edges),
+            ("faces (`f` lines)", records.triangles.len(), self.faces),
+        ] {
+            if found != declared {
+                return Err(parse_error(
+                    path,
+                    self.line,
+                    format!(
+                        "the header declares {declared} {what} but the file has {found}: {} missing",
+                        declared - found
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Reads the counts line, the first one; a file whose first word is no count is not
+/// a medial axis.
+fn read_counts(path: &Path, bytes: &[u8], lines: &mut Lines<'_>) -> Result<Counts, MeshError> {
     let Some(first) = lines.next() else {
         return Err(MeshError::EmptyFile {
             path: path.to_path_buf(),
@@ -49,7 +97,31 @@ pub(super) fn read(
         })
     };
     let (nv, ne, nf) = (count("vertex")?, count("edge")?, count("face")?);
+    Ok(Counts {
+        line: header_line,
+        vertices: nv,
+        edges: ne,
+        faces: nf,
+    })
+}
 
+/// What the `v`, `e` and `f` lines hold, in file order.
+struct Records {
+    positions: Vec<[f64; 3]>,
+    radii: Vec<f64>,
+    edges: Vec<[u32; 2]>,
+    triangles: Vec<[u32; 3]>,
+}
+
+/// Reads the `v`, `e` and `f` lines after the counts line, no more of each than
+/// `counts` declares.
+fn read_records(path: &Path, lines: &mut Lines<'_>, counts: &Counts) -> Result<Records, MeshError> {
+    let Counts {
+        line: header_line,
+        vertices: nv,
+        edges: ne,
+        faces: nf,
+    } = *counts;
     // Room is reserved for no more than the file can hold (the shortest lines are
     // `v 0 0 0 0`, `e 0 1` and `f 0 1 2` with their newlines); a count that lies is
     // reported against the lines found once the file has been read.
@@ -62,18 +134,7 @@ pub(super) fn read(
     // Vertices may come after the edges and faces that use them, so indices are checked
     // against the header's count, which the end of the file then confirms.
     let index = |token: Option<&str>, line: usize, error: &dyn Fn(i64) -> MeshError| {
-        let token = token.ok_or_else(|| parse_error(path, line, "a vertex index is missing"))?;
-        let i: i64 = token.parse().map_err(|_| {
-            parse_error(
-                path,
-                line,
-                format!("expected a vertex index, found `{token}`"),
-            )
-        })?;
-        match u32::try_from(i) {
-            Ok(v) if (v as usize) < nv => Ok(v),
-            _ => Err(at_line(path, line, error(i))),
-        }
+        vertex_index(path, nv, token, line, error)
     };
     let too_many = |line: usize, what: &str, n: usize| {
         parse_error(
@@ -83,7 +144,7 @@ pub(super) fn read(
         )
     };
 
-    for item in &mut lines {
+    for item in lines {
         let (line, text) = item?;
         let mut tokens = text.split_whitespace();
         match tokens.next() {
@@ -92,23 +153,10 @@ pub(super) fn read(
                 if v == nv {
                     return Err(too_many(line, "vertices", nv));
                 }
-                let mut p = [0.0f64; 4];
-                for (k, c) in p.iter_mut().enumerate() {
-                    *c = next_number(&mut tokens, path, line, || {
-                        format!("{} of vertex {v}", ["x", "y", "z", "radius"][k])
-                    })?;
-                }
-                let r = p[3];
-                if !(r.is_finite() && r >= 0.0) {
-                    return Err(parse_error(
-                        path,
-                        line,
-                        format!("vertex {v} has radius {r}; a radius is finite and >= 0"),
-                    ));
-                }
+                let (p, r) = vertex_line(path, line, &mut tokens, v)?;
                 crate::mesh::try_grow(&mut positions, 1, "vertices")
                     .map_err(|e| e.in_file(path))?;
-                positions.push([p[0], p[1], p[2]]);
+                positions.push(p);
                 radii.push(r);
             }
             Some("e") => {
@@ -154,70 +202,118 @@ pub(super) fn read(
             None => {}
         }
     }
+    Ok(Records {
+        positions,
+        radii,
+        edges,
+        triangles,
+    })
+}
 
-    for (what, found, declared) in [
-        ("vertices (`v` lines)", positions.len(), nv),
-        ("edges (`e` lines)", edges.len(), ne),
-        ("faces (`f` lines)", triangles.len(), nf),
-    ] {
-        if found != declared {
-            return Err(parse_error(
-                path,
-                header_line,
-                format!(
-                    "the header declares {declared} {what} but the file has {found}: {} missing",
-                    declared - found
-                ),
-            ));
-        }
+/// The vertex index `token` (of a line `line`) names, checked against the `nv` vertices
+/// the header declares; `error` is the error for an index out of range.
+fn vertex_index(
+    path: &Path,
+    nv: usize,
+    token: Option<&str>,
+    line: usize,
+    error: &dyn Fn(i64) -> MeshError,
+) -> Result<u32, MeshError> {
+    let token = token.ok_or_else(|| parse_error(path, line, "a vertex index is missing"))?;
+    let i: i64 = token.parse().map_err(|_| {
+        parse_error(
+            path,
+            line,
+            format!("expected a vertex index, found `{token}`"),
+        )
+    })?;
+    match u32::try_from(i) {
+        Ok(v) if (v as usize) < nv => Ok(v),
+        _ => Err(at_line(path, line, error(i))),
     }
+}
 
-    if weld {
-        if let Some(map) = super::weld_positions(&mut positions) {
-            let mut kept = vec![false; positions.len()];
-            let mut welded_radii = vec![0.0; positions.len()];
+/// The position and radius of vertex `v`, from the rest of its `v` line.
+fn vertex_line(
+    path: &Path,
+    line: usize,
+    tokens: &mut std::str::SplitWhitespace<'_>,
+    v: usize,
+) -> Result<([f64; 3], f64), MeshError> {
+    let mut p = [0.0f64; 4];
+    for (k, c) in p.iter_mut().enumerate() {
+        *c = next_number(tokens, path, line, || {
+            format!("{} of vertex {v}", ["x", "y", "z", "radius"][k])
+        })?;
+    }
+    let r = p[3];
+    if !(r.is_finite() && r >= 0.0) {
+        return Err(parse_error(
+            path,
+            line,
+            format!("vertex {v} has radius {r}; a radius is finite and >= 0"),
+        ));
+    }
+    Ok(([p[0], p[1], p[2]], r))
+}
+
+impl Records {
+    /// Merges vertices at identical positions; the first one's radius is kept.
+    fn weld(&mut self) {
+        if let Some(map) = super::weld_positions(&mut self.positions) {
+            let mut kept = vec![false; self.positions.len()];
+            let mut welded_radii = vec![0.0; self.positions.len()];
             for (old, &new) in map.iter().enumerate() {
                 if !kept[new as usize] {
                     kept[new as usize] = true;
-                    welded_radii[new as usize] = radii[old];
+                    welded_radii[new as usize] = self.radii[old];
                 }
             }
-            radii = welded_radii;
-            for t in &mut triangles {
+            self.radii = welded_radii;
+            for t in &mut self.triangles {
                 *t = t.map(|v| map[v as usize]);
             }
-            for e in &mut edges {
+            for e in &mut self.edges {
                 *e = e.map(|v| map[v as usize]);
             }
         }
     }
 
-    // Which edges are free depends on which faces survive (degenerate ones are dropped),
-    // so they are attached once the faces are built.
-    let surface = match TriMesh::new(positions.clone(), triangles) {
-        Ok(mesh) => Some(mesh),
-        Err(MeshError::NoUsableFace { .. })
-            if allow_curves_only && edges.iter().any(|[a, b]| a != b) =>
-        {
-            None
-        }
-        Err(e) => return Err(e.in_file(path)),
-    };
-    let free_edges = free_edges(surface.as_ref(), &edges);
-    let surface = match surface {
-        Some(mut mesh) => {
-            mesh.set_line_elements(free_edges.clone())
-                .map_err(|e| e.in_file(path))?;
-            Some(mesh)
-        }
-        None => None,
-    };
-    Ok(MedialAxis {
-        surface,
-        positions,
-        free_edges,
-        radii,
-    })
+    /// The medial axis: its sheets (if any face is usable) with the free edges attached.
+    fn into_axis(self, path: &Path, allow_curves_only: bool) -> Result<MedialAxis, MeshError> {
+        let Records {
+            positions,
+            radii,
+            edges,
+            triangles,
+        } = self;
+        // Which edges are free depends on which faces survive (degenerate ones are dropped),
+        // so they are attached once the faces are built.
+        let surface = match TriMesh::new(positions.clone(), triangles) {
+            Ok(mesh) => Some(mesh),
+            Err(MeshError::NoUsableFace { .. })
+                if allow_curves_only && edges.iter().any(|[a, b]| a != b) =>
+            {
+                None
+            }
+            Err(e) => return Err(e.in_file(path)),
+        };
+        let free_edges = free_edges(surface.as_ref(), &edges);
+        let surface = match surface {
+            Some(mut mesh) => {
+                mesh.set_line_elements(free_edges.clone())
+                    .map_err(|e| e.in_file(path))?;
+                Some(mesh)
+            }
+            None => None,
+        };
+        Ok(MedialAxis {
+            surface,
+            positions,
+            free_edges,
+            radii,
+        })
+    }
 }
 
 /// [`read`] for a caller that needs a surface.

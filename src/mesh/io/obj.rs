@@ -50,6 +50,7 @@ use super::sniff;
 use super::text::{at_line, next_number, parse_error, Lines};
 use crate::mesh::{MeshError, TriMesh};
 use std::path::Path;
+use std::str::SplitWhitespace;
 
 /// A face that named a vertex beyond those read so far. OBJ allows forward references,
 /// so it is only an error if the vertex never comes; kept to report the first such face.
@@ -82,65 +83,14 @@ pub(super) fn read(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, Mes
         let mut tokens = text.split_whitespace();
         match tokens.next() {
             Some("v") => {
-                let v = positions.len();
-                let mut p = [0.0; 3];
-                for (axis, c) in p.iter_mut().enumerate() {
-                    *c = next_number(&mut tokens, path, line, || {
-                        format!("{} coordinate of vertex {}", ["x", "y", "z"][axis], v + 1)
-                    })?;
-                }
-                // A fourth value is a weight (rational curves only) or an RGB colour:
-                // neither moves the point of a polygonal mesh.
+                let p = vertex_line(path, line, &mut tokens, positions.len())?;
                 crate::mesh::try_grow(&mut positions, 1, "vertices")
                     .map_err(|e| e.in_file(path))?;
                 positions.push(p);
             }
             Some("f") | Some("fo") => {
-                polygon.clear();
-                let mut max_given: Option<i64> = None;
-                for token in tokens {
-                    let given = token.split('/').next().unwrap_or("");
-                    let index: i64 = given.parse().map_err(|_| {
-                        parse_error(
-                            path,
-                            line,
-                            format!("expected a vertex index, found `{token}`"),
-                        )
-                    })?;
-                    let out_of_range = || {
-                        at_line(
-                            path,
-                            line,
-                            MeshError::IndexOutOfRange {
-                                face: faces,
-                                vertex: index,
-                                vertex_count: positions.len(),
-                            },
-                        )
-                    };
-                    // 1-based; negative counts back from the last vertex read so far.
-                    let zero_based = match index {
-                        0 => {
-                            return Err(parse_error(
-                                path,
-                                line,
-                                format!(
-                                    "face {faces} gives vertex index 0, but OBJ indices start \
-                                     at 1 (and negative ones count back from the last vertex)"
-                                ),
-                            ))
-                        }
-                        i if i < 0 => positions.len() as i64 + i,
-                        i => i - 1,
-                    };
-                    let Ok(v) = u32::try_from(zero_based) else {
-                        return Err(out_of_range());
-                    };
-                    if zero_based >= positions.len() as i64 {
-                        max_given = Some(max_given.map_or(index, |m: i64| m.max(index)));
-                    }
-                    polygon.push(v);
-                }
+                let max_given =
+                    face_line(path, line, tokens, faces, positions.len(), &mut polygon)?;
                 if polygon.len() < 3 {
                     return Err(parse_error(
                         path,
@@ -170,6 +120,99 @@ pub(super) fn read(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, Mes
             _ => {}
         }
     }
+    check_read(path, bytes, any_statement, &positions, faces, &forward)?;
+    super::build(path, positions, triangles, weld)
+}
+
+/// The point of a `v` statement (vertex `v`, 0-based), from the values after `v`.
+#[inline]
+fn vertex_line(
+    path: &Path,
+    line: usize,
+    tokens: &mut SplitWhitespace<'_>,
+    v: usize,
+) -> Result<[f64; 3], MeshError> {
+    let mut p = [0.0; 3];
+    for (axis, c) in p.iter_mut().enumerate() {
+        *c = next_number(tokens, path, line, || {
+            format!("{} coordinate of vertex {}", ["x", "y", "z"][axis], v + 1)
+        })?;
+    }
+    // A fourth value is a weight (rational curves only) or an RGB colour:
+    // neither moves the point of a polygonal mesh.
+    Ok(p)
+}
+
+/// The vertices of an `f` statement (face number `faces`, read when `nv` vertices have
+/// been), 0-based, into `polygon`; the largest index given beyond the vertices read so
+/// far, if any (a forward reference, checked at the end of the file).
+#[inline]
+fn face_line(
+    path: &Path,
+    line: usize,
+    tokens: SplitWhitespace<'_>,
+    faces: usize,
+    nv: usize,
+    polygon: &mut Vec<u32>,
+) -> Result<Option<i64>, MeshError> {
+    polygon.clear();
+    let mut max_given: Option<i64> = None;
+    for token in tokens {
+        let given = token.split('/').next().unwrap_or("");
+        let index: i64 = given.parse().map_err(|_| {
+            parse_error(
+                path,
+                line,
+                format!("expected a vertex index, found `{token}`"),
+            )
+        })?;
+        let out_of_range = || {
+            at_line(
+                path,
+                line,
+                MeshError::IndexOutOfRange {
+                    face: faces,
+                    vertex: index,
+                    vertex_count: nv,
+                },
+            )
+        };
+        // 1-based; negative counts back from the last vertex read so far.
+        let zero_based = match index {
+            0 => {
+                return Err(parse_error(
+                    path,
+                    line,
+                    format!(
+                        "face {faces} gives vertex index 0, but OBJ indices start \
+                         at 1 (and negative ones count back from the last vertex)"
+                    ),
+                ))
+            }
+            i if i < 0 => nv as i64 + i,
+            i => i - 1,
+        };
+        let Ok(v) = u32::try_from(zero_based) else {
+            return Err(out_of_range());
+        };
+        if zero_based >= nv as i64 {
+            max_given = Some(max_given.map_or(index, |m: i64| m.max(index)));
+        }
+        polygon.push(v);
+    }
+    Ok(max_given)
+}
+
+/// Once every line is read: refuses a file with no statement, one with no vertex and
+/// no face, and a face that named a vertex that never came.
+fn check_read(
+    path: &Path,
+    bytes: &[u8],
+    any_statement: bool,
+    positions: &[[f64; 3]],
+    faces: usize,
+    forward: &[ForwardRef],
+) -> Result<(), MeshError> {
     if !any_statement {
         return Err(MeshError::EmptyFile {
             path: path.to_path_buf(),
@@ -190,5 +233,5 @@ pub(super) fn read(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, Mes
             },
         ));
     }
-    super::build(path, positions, triangles, weld)
+    Ok(())
 }

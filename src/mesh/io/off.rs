@@ -20,6 +20,23 @@ pub(super) fn check(path: &Path, head: &[u8], size: u64) -> Result<u64, MeshErro
 pub(super) fn read(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, MeshError> {
     sniff::expect_text(path, "an OFF file", bytes)?;
     let mut lines = Lines::new(path, bytes);
+    let (counts_line, nv, nf) = read_counts(path, bytes, &mut lines)?;
+    // Room is reserved for no more than the file can hold: a vertex line takes at least
+    // 6 bytes (`0 0 0` and its newline), a face line 8 (`3 0 1 2`).
+    let rest = lines.rest_len();
+    let positions = read_vertices(path, &mut lines, counts_line, nv, capacity(nv, rest, 6))?;
+    let room = capacity(nf, rest, 8);
+    let triangles = read_faces(path, &mut lines, counts_line, nv, nf, room)?;
+    super::build(path, positions, triangles, weld)
+}
+
+/// Reads the header keyword (if any) and the counts line: the line of the counts, the
+/// vertex count and the face count.
+fn read_counts(
+    path: &Path,
+    bytes: &[u8],
+    lines: &mut Lines<'_>,
+) -> Result<(usize, usize, usize), MeshError> {
     let Some(first) = lines.next() else {
         return Err(MeshError::EmptyFile {
             path: path.to_path_buf(),
@@ -57,14 +74,20 @@ pub(super) fn read(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, Mes
     let mut tokens = text.split_whitespace();
     let nv: usize = next_number(&mut tokens, path, line, || "vertex count".into())?;
     let nf: usize = next_number(&mut tokens, path, line, || "face count".into())?;
+    Ok((line, nv, nf))
+}
 
-    // Room is reserved for no more than the file can hold: a vertex line takes at least
-    // 6 bytes (`0 0 0` and its newline), a face line 8 (`3 0 1 2`).
-    let counts_line = line;
-    let rest = lines.rest_len();
-    let mut positions: Vec<[f64; 3]> = reserved(path, capacity(nv, rest, 6), "vertices")?;
+/// Reads the `nv` vertex lines (room for `room` reserved first).
+fn read_vertices(
+    path: &Path,
+    lines: &mut Lines<'_>,
+    counts_line: usize,
+    nv: usize,
+    room: usize,
+) -> Result<Vec<[f64; 3]>, MeshError> {
+    let mut positions: Vec<[f64; 3]> = reserved(path, room, "vertices")?;
     for v in 0..nv {
-        let (line, text) = expect_line(&mut lines, path, || {
+        let (line, text) = expect_line(lines, path, || {
             format!("vertex {v} of the {nv} that line {counts_line} declares")
         })?;
         let mut tokens = text.split_whitespace();
@@ -77,11 +100,23 @@ pub(super) fn read(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, Mes
         crate::mesh::try_grow(&mut positions, 1, "vertices").map_err(|e| e.in_file(path))?;
         positions.push(p);
     }
+    Ok(positions)
+}
 
-    let mut triangles: Vec<[u32; 3]> = reserved(path, capacity(nf, rest, 8), "triangles")?;
+/// Reads the `nf` face lines, fan-triangulated (room for `room` triangles reserved
+/// first); indices are checked against the `nv` vertices.
+fn read_faces(
+    path: &Path,
+    lines: &mut Lines<'_>,
+    counts_line: usize,
+    nv: usize,
+    nf: usize,
+    room: usize,
+) -> Result<Vec<[u32; 3]>, MeshError> {
+    let mut triangles: Vec<[u32; 3]> = reserved(path, room, "triangles")?;
     let mut polygon: Vec<u32> = Vec::new();
     for f in 0..nf {
-        let (line, text) = expect_line(&mut lines, path, || {
+        let (line, text) = expect_line(lines, path, || {
             format!("face {f} of the {nf} that line {counts_line} declares")
         })?;
         let mut tokens = text.split_whitespace();
@@ -121,7 +156,7 @@ pub(super) fn read(path: &Path, bytes: &[u8], weld: bool) -> Result<TriMesh, Mes
             triangles.push([polygon[0], polygon[k], polygon[k + 1]]);
         }
     }
-    super::build(path, positions, triangles, weld)
+    Ok(triangles)
 }
 
 /// The next data line, or a truncation error naming what was expected and where.
