@@ -9,7 +9,7 @@
 #![no_main]
 
 use geotracks::mesh::TriMesh;
-use geotracks::{distance_field, Density, Euclidean, Method, Metric, Options, Tensor};
+use geotracks::{Density, Euclidean, Method, Metric, Options, Solver, Tensor};
 use libfuzzer_sys::fuzz_target;
 
 /// Reads the input a byte at a time; zeros once it runs out.
@@ -29,13 +29,8 @@ impl Bytes<'_> {
 
 /// Runs both engines; compares them when `exact` (a norm metric).
 fn check<M: Metric>(mesh: &TriMesh, metric: &M, source: u32, options: Options, exact: bool) {
-    let tracks = distance_field(
-        mesh,
-        metric,
-        &[source],
-        &options.with_method(Method::Tracks),
-    );
-    let graph = distance_field(mesh, metric, &[source], &options.with_method(Method::Graph));
+    let run = |method| Solver::new(mesh, metric, &options.with_method(method))?.field(source);
+    let (tracks, graph) = (run(Method::Tracks), run(Method::Graph));
     let (Ok(tracks), Ok(graph)) = (tracks, graph) else {
         return;
     };
