@@ -140,7 +140,7 @@ proptest! {
             0 => Stop::NONE.with_max_distance(within(rng.next())),
             1 => Stop::NONE.with_targets((0..1 + rng.below(3)).map(|_| random_surface_point(&mesh, &mut rng)).collect()),
             2 => Stop::NONE
-                .with_max_distance((0.5 + rng.next()) * far)
+                .with_max_distance(((0.5 + rng.next()) * far).max(lowest))
                 .with_targets(vec![random_surface_point(&mesh, &mut rng)]),
             // Targets that may lie beyond the maximum: a goal-directed run leaves out
             // the nodes whose key (value plus estimate) is beyond it.
