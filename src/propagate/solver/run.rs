@@ -36,7 +36,6 @@ impl<M: Metric> Setup<M> {
         both: Option<(Option<Goal>, Side<'_>)>,
     ) -> Result<Stats, Error> {
         let start = Instant::now();
-        workspace.method = None;
         workspace.stats = None;
         if workspace.sources.is_empty() {
             return Err(Error::NoSource);
@@ -241,7 +240,6 @@ impl<M: Metric> Setup<M> {
             touched,
             distance,
             waves,
-            method,
             ..
         } = workspace;
         // Keep, per node, the seed that gave it its start value (the first of the
@@ -276,7 +274,6 @@ impl<M: Metric> Setup<M> {
                 }
             }
         }
-        *method = Some(self.method);
     }
 
     /// The estimate a run stopping at `targets` (nodes) orders nodes by: the metric's

@@ -10,7 +10,7 @@ use crate::propagate::budget;
 use crate::propagate::frontier::edge_steps;
 use crate::propagate::tracks::TrackTables;
 use crate::propagate::{Method, Options};
-use crate::steiner::SteinerLayout;
+use crate::steiner::{SteinerLayout, SteinerScheme};
 use crate::Error;
 use geotracks_metrics::{Metric, Reversed};
 use rayon::prelude::*;
@@ -71,8 +71,8 @@ impl<M: Metric> Setup<M> {
         };
         // The engine that runs picks its own k when none is asked for.
         let steiner = options.steiner_for(method);
-        let options = &options.with_method(method).with_scheme(steiner);
-        let planned = plan(&mesh, options, flat_frames.as_deref())?;
+        let options = &options.with_method(method);
+        let planned = plan(&mesh, options, steiner, flat_frames.as_deref())?;
         let layout = planned.layout;
         let (edge_steps, mut setup_tests) =
             match edge_steps(&mesh, &metric, &layout, flat_frames.is_some()) {
@@ -90,17 +90,19 @@ impl<M: Metric> Setup<M> {
         };
         let (wires, cost_total, per_length) = checked_costs(&mesh, &metric, &layout, &steps)?;
         setup_tests += wires.len() as u64 / 2;
+        // The per-face tables of the two engines that have them (the wavefront engine's
+        // with the vertices' rows).
+        let tables = || {
+            TrackTables::new(
+                &mesh,
+                &layout,
+                edge_steps.as_deref(),
+                flat_frames.as_deref(),
+            )
+        };
         let engine = match method {
             Method::Wave => Engine::Wave {
-                tables: Arc::new(
-                    TrackTables::new(
-                        &mesh,
-                        &layout,
-                        edge_steps.as_deref(),
-                        flat_frames.as_deref(),
-                    )?
-                    .with_vertex_rows(&mesh, &layout),
-                ),
+                tables: Arc::new(tables()?.with_vertex_rows(&mesh, &layout)),
                 isometric: planned
                     .flat
                     .as_ref()
@@ -109,12 +111,7 @@ impl<M: Metric> Setup<M> {
                 bucket_width: bucket_width(&steps),
             },
             Method::Tracks => Engine::Tracks {
-                tables: Arc::new(TrackTables::new(
-                    &mesh,
-                    &layout,
-                    edge_steps.as_deref(),
-                    flat_frames.as_deref(),
-                )?),
+                tables: Arc::new(tables()?),
                 bucket_width: bucket_width(&steps),
             },
             Method::Graph | Method::Dijkstra => Engine::Graph { edge_steps },
@@ -221,14 +218,14 @@ impl<M: Metric> Setup<M> {
     }
 }
 
-/// The Steiner layout for `options` (whose scheme and method are the ones that run),
+/// The Steiner layout with `steiner` for `options` (whose method is the one that runs),
 /// checked against the memory and work budgets before anything is allocated.
 fn plan(
     mesh: &TriMesh,
     options: &Options,
+    steiner: SteinerScheme,
     flat_frames: Option<&[FaceFrame]>,
 ) -> Result<Planned, Error> {
-    let steiner = options.steiner.expect("the solver chose a scheme");
     if options.method == Method::Dijkstra {
         return Ok(Planned {
             layout: SteinerLayout::vertices_only(mesh),

@@ -42,8 +42,6 @@ pub struct Workspace {
     pub(crate) targets: Vec<u32>,
     /// After a run, per node that a source reached directly, its source (from `seeds`).
     pub(crate) roots: Vec<Root>,
-    /// The engine of the last run.
-    pub(crate) method: Option<Method>,
     /// The last run's horizon (see [`FieldView::horizon`]).
     pub(crate) horizon: Horizon,
     /// The last run's counters.
@@ -113,7 +111,8 @@ impl Workspace {
             sources: &self.sources,
             roots: &self.roots,
             waves: &self.waves,
-            method: self.method.unwrap_or(Method::Wave),
+            // (The engine of the last run is in its stats.)
+            method: self.stats.as_ref().map_or(Method::Wave, |s| s.method),
             horizon: self.horizon,
         }
     }
