@@ -4,6 +4,7 @@
 //! (it reads and joins their parents).
 
 use crate::field::{Goal, Stats};
+use crate::mesh::Topology;
 use crate::mesh::NONE;
 use crate::options::{Method, Sources, Stop};
 use crate::propagate::meet::Meeting;
@@ -13,7 +14,7 @@ use crate::trace::{self, GeodesicPath};
 use crate::{Error, PointRole, Solver};
 use geotracks_metrics::Metric;
 
-impl<M: Metric> Solver<M> {
+impl<M: Metric, T: Topology> Solver<M, T> {
     /// The straightened path from `target` to the nearest of `sources`, with the run's
     /// counters, in one call: a run that stops once the target's value is final, then
     /// [`Field::path`](crate::Field::path).
@@ -113,10 +114,10 @@ impl Ends {
     /// searched from both ends at once on two threads (see `meet`): forward with
     /// `ahead`, backward with `back` (the same setup for a symmetric metric, else the
     /// reversed metric's, on the same Steiner points).
-    fn search<M: Metric, B: Metric>(
+    fn search<M: Metric, B: Metric, T: Topology>(
         &self,
-        ahead: &Setup<M>,
-        back: &Setup<B>,
+        ahead: &Setup<M, T>,
+        back: &Setup<B, T>,
         [forward, backward]: &mut [Workspace; 2],
     ) -> Result<(GeodesicPath, Stats), Error> {
         let mesh = &*ahead.mesh;
@@ -180,10 +181,10 @@ impl Ends {
     /// The path through where the two sides' values add up to least (see `meet`), or
     /// the straight segment between the ends where they share a face and it is
     /// shorter.
-    fn join<M: Metric, B: Metric>(
+    fn join<M: Metric, B: Metric, T: Topology>(
         &self,
-        ahead: &Setup<M>,
-        back: &Setup<B>,
+        ahead: &Setup<M, T>,
+        back: &Setup<B, T>,
         [forward, backward]: [&Workspace; 2],
         source: Source,
         target: SurfacePoint,
@@ -240,7 +241,7 @@ impl Ends {
     }
 }
 
-impl<M: Metric> Setup<M> {
+impl<M: Metric, T: Topology> Setup<M, T> {
     /// The points and faces from `node` back to its source along the parents of the
     /// run in `workspace`, and the source (`None` on a cycle).
     fn chain(
@@ -248,7 +249,7 @@ impl<M: Metric> Setup<M> {
         workspace: &Workspace,
         node: u32,
     ) -> Option<(Vec<SurfacePoint>, Vec<u32>, u32)> {
-        let query = trace::Query::new(&self.mesh, &self.metric, workspace.view(&self.layout));
+        let query = trace::Query::new(&*self.mesh, &self.metric, workspace.view(&self.layout));
         let mut points = vec![self.layout.surface_point(node)];
         let mut faces = Vec::new();
         let source = query.follow_parents(node, &mut points, &mut faces)?;

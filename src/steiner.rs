@@ -8,7 +8,8 @@
 //! Points are implicit: a node is an edge and an index, and its position in a face is
 //! computed when needed, never stored per face.
 
-use crate::mesh::{EdgeLine, TriMesh, NONE};
+use crate::mesh::Topology;
+use crate::mesh::{EdgeLine, NONE};
 use crate::surface::SurfacePoint;
 use crate::Error;
 use geotracks_metrics::FacePoint;
@@ -42,7 +43,7 @@ impl SteinerScheme {
 
     /// How many points each edge of `mesh` gets (saturating at `u32::MAX`), spaced by
     /// the edges' lengths.
-    pub fn counts(&self, mesh: &TriMesh) -> Vec<u32> {
+    pub fn counts<T: Topology>(&self, mesh: &T) -> Vec<u32> {
         let lengths: Vec<f64> = (0..mesh.edge_count() as u32)
             .map(|e| mesh.edge_length(e))
             .collect();
@@ -195,7 +196,7 @@ impl SteinerLayout {
     /// [`Error::InvalidK`] for a scheme with no points (see [`SteinerScheme::is_valid`]);
     /// [`Error::TooLarge`] when vertices and Steiner points together would not fit
     /// 32-bit node ids.
-    pub fn new(mesh: &TriMesh, scheme: SteinerScheme) -> Result<SteinerLayout, Error> {
+    pub fn new<T: Topology>(mesh: &T, scheme: SteinerScheme) -> Result<SteinerLayout, Error> {
         if !scheme.is_valid() {
             return Err(Error::InvalidK { k: scheme.k() });
         }
@@ -208,18 +209,18 @@ impl SteinerLayout {
     /// # Errors
     /// [`Error::TooLarge`] when vertices and Steiner points together would not fit
     /// 32-bit node ids.
-    pub(crate) fn with_counts(
-        mesh: &TriMesh,
+    pub(crate) fn with_counts<T: Topology>(
+        mesh: &T,
         scheme: SteinerScheme,
         counts: Vec<u32>,
     ) -> Result<SteinerLayout, Error> {
         // Blocks in a spatial order, so that a wavefront finds its nodes close in memory.
-        let order = mesh.spatial_edge_order();
+        let order = crate::mesh::spatial_edge_order(mesh);
         Self::from_counts(mesh.vertex_count(), &counts, order, scheme)
     }
 
     /// No Steiner points at all: the nodes are the vertices.
-    pub fn vertices_only(mesh: &TriMesh) -> SteinerLayout {
+    pub fn vertices_only<T: Topology>(mesh: &T) -> SteinerLayout {
         Self::from_counts(
             mesh.vertex_count(),
             &vec![0; mesh.edge_count()],
@@ -349,7 +350,7 @@ impl SteinerLayout {
 
     /// Position of `node` in the frame of face `f`; the node must lie on `f`'s closure.
     #[inline]
-    pub fn point_in_face(&self, mesh: &TriMesh, node: u32, f: u32) -> FacePoint {
+    pub fn point_in_face<T: Topology>(&self, mesh: &T, node: u32, f: u32) -> FacePoint {
         match self.kind(node) {
             NodeKind::Vertex(v) => {
                 let c = mesh
@@ -369,14 +370,20 @@ impl SteinerLayout {
     /// Position of point `index` (numbered from the edge's lower vertex) of the edge in
     /// slot `slot` of face `f`.
     #[inline]
-    pub fn point_on_slot(&self, mesh: &TriMesh, f: u32, slot: usize, index: u32) -> FacePoint {
+    pub fn point_on_slot<T: Topology>(
+        &self,
+        mesh: &T,
+        f: u32,
+        slot: usize,
+        index: u32,
+    ) -> FacePoint {
         let points = self.slot_points(mesh, f, slot);
         points.at(points.slot_index(index)).1
     }
 
     /// The points of the edge in slot `slot` of face `f`, as seen along the slot.
     #[inline]
-    pub(crate) fn slot_points(&self, mesh: &TriMesh, f: u32, slot: usize) -> SlotPoints {
+    pub(crate) fn slot_points<T: Topology>(&self, mesh: &T, f: u32, slot: usize) -> SlotPoints {
         let e = mesh.face_edges(f)[slot];
         SlotPoints::new(
             mesh.frame(f).edge_line(slot),
@@ -388,9 +395,9 @@ impl SteinerLayout {
 
     /// Every node on the boundary of face `f` with its point in the face's frame: the
     /// three corners, then each slot's Steiner points.
-    pub fn face_nodes<'s>(
+    pub fn face_nodes<'s, T: Topology>(
         &'s self,
-        mesh: &'s TriMesh,
+        mesh: &'s T,
         f: u32,
     ) -> impl Iterator<Item = (u32, FacePoint)> + 's {
         let frame = mesh.frame(f);
@@ -420,7 +427,7 @@ impl SteinerLayout {
     }
 
     /// World position of `node`.
-    pub fn position(&self, mesh: &TriMesh, node: u32) -> glam::DVec3 {
+    pub fn position<T: Topology>(&self, mesh: &T, node: u32) -> glam::DVec3 {
         match self.kind(node) {
             NodeKind::Vertex(v) => mesh.position(v),
             NodeKind::Steiner { edge, index } => {

@@ -19,7 +19,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use crate::mesh::TriMesh;
+use crate::mesh::Topology;
 use geotracks_metrics::FacePoint;
 use geotracks_metrics::Num;
 use glam::DVec3;
@@ -123,7 +123,7 @@ impl SurfacePoint {
     ///
     /// # Errors
     /// The [`PointError`] that says what is wrong.
-    pub fn validated(self, mesh: &TriMesh) -> Result<SurfacePoint, PointError> {
+    pub fn validated<T: Topology>(self, mesh: &T) -> Result<SurfacePoint, PointError> {
         match self {
             SurfacePoint::Vertex(vertex) => {
                 if vertex as usize >= mesh.vertex_count() {
@@ -177,7 +177,7 @@ impl SurfacePoint {
     }
 
     /// The canonical point with barycentrics `bary` (valid) in face `face`.
-    fn in_face_closure(mesh: &TriMesh, face: u32, bary: [f64; 3]) -> SurfacePoint {
+    fn in_face_closure<T: Topology>(mesh: &T, face: u32, bary: [f64; 3]) -> SurfacePoint {
         let corners = mesh.face_vertices(face);
         let zeros = bary.iter().filter(|&&b| b == 0.0).count();
         match zeros {
@@ -203,7 +203,7 @@ impl SurfacePoint {
     }
 
     /// World position of a valid point.
-    pub fn position(&self, mesh: &TriMesh) -> DVec3 {
+    pub fn position<T: Topology>(&self, mesh: &T) -> DVec3 {
         match *self {
             SurfacePoint::Vertex(v) => mesh.position(v),
             SurfacePoint::Edge { edge, t } => {
@@ -216,7 +216,7 @@ impl SurfacePoint {
 
     /// The faces whose closure holds a valid point: around the vertex, around the edge,
     /// or the face.
-    pub fn faces<'m>(&self, mesh: &'m TriMesh) -> Faces<'m> {
+    pub fn faces<'m, T: Topology>(&self, mesh: &'m T) -> Faces<T::Ids<'m>> {
         match *self {
             SurfacePoint::Vertex(v) => Faces::Many(mesh.vertex_faces(v)),
             SurfacePoint::Edge { edge, .. } => Faces::Many(mesh.edge_faces(edge)),
@@ -225,7 +225,7 @@ impl SurfacePoint {
     }
 
     /// Barycentric coordinates of a valid point in face `f`, if `f`'s closure holds it.
-    pub fn bary_in(&self, mesh: &TriMesh, f: u32) -> Option<[f64; 3]> {
+    pub fn bary_in<T: Topology>(&self, mesh: &T, f: u32) -> Option<[f64; 3]> {
         let mut bary = [0.0; 3];
         match *self {
             SurfacePoint::Vertex(v) => bary[mesh.corner_of(f, v)?] = 1.0,
@@ -252,7 +252,7 @@ impl SurfacePoint {
     }
 
     /// The point in face `f`'s frame, as a metric sees it, if `f`'s closure holds it.
-    pub fn in_face(&self, mesh: &TriMesh, f: u32) -> Option<FacePoint> {
+    pub fn in_face<T: Topology>(&self, mesh: &T, f: u32) -> Option<FacePoint> {
         if let SurfacePoint::Vertex(v) = *self {
             // Exactly the corner the engines use.
             return Some(mesh.frame(f).corner(mesh.corner_of(f, v)?));
@@ -265,14 +265,14 @@ impl SurfacePoint {
     ///
     /// Cost: a brute-force scan of every face, O(faces) per call;
     /// for many queries on a large mesh, a spatial index would be the thing to add.
-    pub fn nearest(mesh: &TriMesh, xyz: [f64; 3]) -> Option<SurfacePoint> {
+    pub fn nearest<T: Topology>(mesh: &T, xyz: [f64; 3]) -> Option<SurfacePoint> {
         Self::nearest_among(mesh, 0..mesh.face_count() as u32, DVec3::from(xyz)).map(|(on, _)| on)
     }
 
     /// The point of `faces` nearest to `p` (Euclidean, in space), in canonical form,
     /// and its position; `None` for no face.
-    pub(crate) fn nearest_among(
-        mesh: &TriMesh,
+    pub(crate) fn nearest_among<T: Topology>(
+        mesh: &T,
         faces: impl IntoIterator<Item = u32>,
         p: DVec3,
     ) -> Option<(SurfacePoint, DVec3)> {
@@ -292,14 +292,15 @@ impl SurfacePoint {
 
 /// The faces around a surface point ([`SurfacePoint::faces`]), as a slice.
 #[derive(Clone, Copy, Debug)]
-pub enum Faces<'m> {
-    /// Faces around a vertex or an edge, borrowed from the mesh.
-    Many(&'m [u32]),
+pub enum Faces<I> {
+    /// Faces around a vertex or an edge, as the surface lists them
+    /// ([`Topology::Ids`]: borrowed from a mesh's tables).
+    Many(I),
     /// The one face of a point inside it.
     One([u32; 1]),
 }
 
-impl std::ops::Deref for Faces<'_> {
+impl<I: std::ops::Deref<Target = [u32]>> std::ops::Deref for Faces<I> {
     type Target = [u32];
     fn deref(&self) -> &[u32] {
         match self {
@@ -472,6 +473,7 @@ impl From<SurfacePoint> for Source {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::TriMesh;
 
     fn square() -> TriMesh {
         TriMesh::new(

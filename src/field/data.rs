@@ -5,7 +5,8 @@
 //! The data knows nothing of the engine or of paths: the [`Field`](crate::Field) that
 //! holds it with its solver answers the queries that need the mesh and the metric.
 
-use crate::mesh::{TriMesh, NONE};
+use crate::mesh::Topology;
+use crate::mesh::NONE;
 use crate::options::Method;
 use crate::steiner::SteinerLayout;
 use crate::surface::Source;
@@ -121,7 +122,7 @@ impl Goal {
     /// The most the estimate reaches on face `f`: at a corner for the distance to a
     /// box (convex); for the average of two ends' (not convex), at most a corner's
     /// plus `per_length` times the face's longest edge (it is `per_length`-Lipschitz).
-    fn max_in_face(&self, mesh: &TriMesh, f: u32) -> f64 {
+    fn max_in_face<T: Topology>(&self, mesh: &T, f: u32) -> f64 {
         let corners = mesh.face_vertices(f).map(|v| mesh.position(v));
         let at = corners.map(|p| self.estimate(p));
         let most = at[0].max(at[1]).max(at[2]);
@@ -177,7 +178,7 @@ impl Horizon {
     /// The horizon of the nodes of face `f`: a key at least `level` (or beyond the
     /// maximum distance, which a goal-directed run cuts keys at) is a value at least
     /// that less the estimate's most on the face (see `Goal::max_in_face`).
-    pub fn in_face(&self, mesh: &TriMesh, f: u32) -> f64 {
+    pub fn in_face<T: Topology>(&self, mesh: &T, f: u32) -> f64 {
         let limit = self.max_distance.min(self.level);
         let estimate = match self.goal {
             Some(goal) if limit < f64::INFINITY => goal.max_in_face(mesh, f),

@@ -10,7 +10,7 @@ mod data;
 pub use data::{FieldData, Stats};
 pub(crate) use data::{FieldView, Goal, Horizon, Root, SolverId, Wave};
 
-use crate::mesh::TriMesh;
+use crate::mesh::{Topology, TriMesh};
 use crate::options::Method;
 use crate::propagate::Workspace;
 use crate::steiner::SteinerLayout;
@@ -43,12 +43,12 @@ use geotracks_metrics::Metric;
 /// assert!((path.length - d).abs() < 1e-12);
 /// # Ok::<(), geotracks::Error>(())
 /// ```
-pub struct Field<M, D = FieldData> {
-    solver: Solver<M>,
+pub struct Field<M, D = FieldData, T = TriMesh> {
+    solver: Solver<M, T>,
     data: D,
 }
 
-impl<M: Metric, D: FieldStorage> std::fmt::Debug for Field<M, D> {
+impl<M: Metric, D: FieldStorage, T: Topology> std::fmt::Debug for Field<M, D, T> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Field")
             .field("method", &self.method())
@@ -97,19 +97,19 @@ mod private {
     }
 }
 
-impl<M, D> Field<M, D> {
+impl<M, D, T: Topology> Field<M, D, T> {
     /// Pairs a run's state with the solver that computed it (the solver's runs only).
-    pub(crate) fn new(solver: Solver<M>, data: D) -> Self {
+    pub(crate) fn new(solver: Solver<M, T>, data: D) -> Self {
         Field { solver, data }
     }
 
     /// The solver that computed the field.
-    pub fn solver(&self) -> &Solver<M> {
+    pub fn solver(&self) -> &Solver<M, T> {
         &self.solver
     }
 
     /// The mesh the field was computed on.
-    pub fn mesh(&self) -> &TriMesh {
+    pub fn mesh(&self) -> &T {
         self.solver.mesh()
     }
 
@@ -124,7 +124,7 @@ impl<M, D> Field<M, D> {
     }
 }
 
-impl<M> Field<M> {
+impl<M, T> Field<M, FieldData, T> {
     /// The field's plain data, without its solver (to keep, send or store;
     /// [`Solver::attach`] gives it its queries back).
     pub fn into_data(self) -> FieldData {
@@ -137,18 +137,18 @@ impl<M> Field<M> {
     }
 }
 
-impl<M: Clone> Field<M, &Workspace> {
+impl<M: Clone, T: Topology> Field<M, &Workspace, T> {
     /// The field with its own copy of the workspace's buffers, which the next run may
     /// then reuse.
-    pub fn to_owned(&self) -> Field<M> {
+    pub fn to_owned(&self) -> Field<M, FieldData, T> {
         let data = self.data.to_data(&self.solver);
         Field::new(self.solver.clone(), data)
     }
 }
 
-impl<M: Metric, D: FieldStorage> Field<M, D> {
+impl<M: Metric, D: FieldStorage, T: Topology> Field<M, D, T> {
     /// The borrowed query the methods below delegate to.
-    pub(crate) fn query(&self) -> Query<'_, M> {
+    pub(crate) fn query(&self) -> Query<'_, M, T> {
         let layout = self.solver.layout();
         Query::new(
             self.solver.mesh(),

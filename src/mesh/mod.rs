@@ -9,6 +9,7 @@ pub mod io;
 mod order;
 mod report;
 mod sets;
+mod topology;
 mod trimesh;
 
 pub use csr::Csr;
@@ -17,10 +18,12 @@ pub use error::try_reserve;
 pub use error::MeshError;
 pub use homology::{graph_betti_numbers, Betti};
 pub(crate) use homology::{unique_edges, CycleSheets};
+pub(crate) use order::{spatial_edge_order, spatial_face_order};
 pub(crate) use report::bounding_box;
 pub use report::{MeshReport, SurfaceReport};
 pub(crate) use sets::DisjointSets;
-pub use trimesh::{DroppedFace, EdgeLine, FaceFrame, TriMesh, MAX_COORDINATE};
+pub use topology::{InlineIds, Topology};
+pub use trimesh::{face_axes, DroppedFace, EdgeLine, FaceFrame, TriMesh, MAX_COORDINATE};
 
 /// Ids are dense `u32`; this marks "none" (no parent, no face).
 pub const NONE: u32 = u32::MAX;

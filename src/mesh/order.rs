@@ -2,6 +2,7 @@
 //! elements that are close on the surface close in memory, which is what a wavefront
 //! sweeping the surface needs from its caches, whatever order the file had.
 
+use super::Topology;
 use glam::DVec3;
 use rayon::slice::ParallelSliceMut;
 
@@ -33,31 +34,29 @@ fn morton_order(points: &[DVec3]) -> Vec<u32> {
     keyed.into_iter().map(|k| k as u32).collect()
 }
 
-impl super::TriMesh {
-    /// The edges in a spatial order (see the module docs): as numbered where the
-    /// mesh's numbering is spatial already (a grid's tiles, see
-    /// [`TriMesh::is_spatially_ordered`](super::TriMesh::is_spatially_ordered)), else
-    /// along a Morton curve through their midpoints.
-    pub(crate) fn spatial_edge_order(&self) -> Vec<u32> {
-        self.spatial_order(self.edge_count(), |e| {
-            let [a, b] = self.edge_vertices(e);
-            (self.position(a) + self.position(b)) * 0.5
-        })
-    }
+/// The edges of `mesh` in a spatial order (see the module docs): as numbered where the
+/// numbering is spatial already (a grid's tiles, see
+/// [`Topology::is_spatially_ordered`]), else along a Morton curve through their
+/// midpoints.
+pub(crate) fn spatial_edge_order<T: Topology>(mesh: &T) -> Vec<u32> {
+    spatial_order(mesh, mesh.edge_count(), |e| {
+        let [a, b] = mesh.edge_vertices(e);
+        (mesh.position(a) + mesh.position(b)) * 0.5
+    })
+}
 
-    /// The faces in a spatial order, as [`TriMesh::spatial_edge_order`] orders edges
-    /// (through their centroids).
-    pub(crate) fn spatial_face_order(&self) -> Vec<u32> {
-        self.spatial_order(self.face_count(), |f| self.point(f, [1.0 / 3.0; 3]))
-    }
+/// The faces in a spatial order, as [`spatial_edge_order`] orders edges (through their
+/// centroids).
+pub(crate) fn spatial_face_order<T: Topology>(mesh: &T) -> Vec<u32> {
+    spatial_order(mesh, mesh.face_count(), |f| mesh.point(f, [1.0 / 3.0; 3]))
+}
 
-    fn spatial_order(&self, count: usize, point: impl Fn(u32) -> DVec3) -> Vec<u32> {
-        if self.is_spatially_ordered() {
-            (0..count as u32).collect()
-        } else {
-            let points: Vec<DVec3> = (0..count as u32).map(point).collect();
-            morton_order(&points)
-        }
+fn spatial_order<T: Topology>(mesh: &T, count: usize, point: impl Fn(u32) -> DVec3) -> Vec<u32> {
+    if mesh.is_spatially_ordered() {
+        (0..count as u32).collect()
+    } else {
+        let points: Vec<DVec3> = (0..count as u32).map(point).collect();
+        morton_order(&points)
     }
 }
 

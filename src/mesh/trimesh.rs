@@ -429,7 +429,7 @@ pub const MAX_COORDINATE: f64 = 1e300;
 /// The length of `v`, accurate at any scale: computed in units of its largest
 /// component, so that no square over- or underflows (`DVec3::length` is off by 100 %
 /// below 1e-154 and infinite above 1e154).
-fn length(v: DVec3) -> f64 {
+pub(super) fn length(v: DVec3) -> f64 {
     let scale = v.abs().max_element();
     if scale == 0.0 || !scale.is_finite() {
         return scale;
@@ -437,32 +437,39 @@ fn length(v: DVec3) -> f64 {
     (v / scale).length() * scale
 }
 
-/// The local frame of a triangle, or `None` if it has (numerically) zero area.
-///
-/// Computed in units of the face's largest coordinate difference, so that a face of
-/// size 1e-200 or 1e200 gets the same relative accuracy as one of size 1.
-fn frame_of([p0, p1, p2]: [DVec3; 3]) -> Option<FaceFrame> {
-    let (e01, e02) = (p1 - p0, p2 - p0);
-    let scale = e01.abs().max_element().max(e02.abs().max_element());
-    if !(scale > 0.0 && scale.is_finite()) {
-        return None;
+fn frame_of(corners: [DVec3; 3]) -> Option<FaceFrame> {
+    FaceFrame::of_triangle(corners)
+}
+
+impl FaceFrame {
+    /// The frame of the triangle with corners `p0, p1, p2`, or `None` if it has
+    /// (numerically) zero area.
+    ///
+    /// Computed in units of the face's largest coordinate difference, so that a face of
+    /// size 1e-200 or 1e200 gets the same relative accuracy as one of size 1.
+    pub fn of_triangle([p0, p1, p2]: [DVec3; 3]) -> Option<FaceFrame> {
+        let (e01, e02) = (p1 - p0, p2 - p0);
+        let scale = e01.abs().max_element().max(e02.abs().max_element());
+        if !(scale > 0.0 && scale.is_finite()) {
+            return None;
+        }
+        let (e01, e02, e12) = (e01 / scale, e02 / scale, (p2 - p1) / scale);
+        let l01 = e01.length();
+        let longest = l01.max(e02.length()).max(e12.length());
+        let twice_area = e01.cross(e02).length();
+        // Relative test: a sliver with aspect 1e6 is kept, an exactly flat one is not.
+        if !(longest > 0.0 && twice_area > 1e-12 * longest * longest) || l01 == 0.0 {
+            return None;
+        }
+        let u = e01 / l01;
+        let x2 = e02.dot(u);
+        let y2 = twice_area / l01;
+        Some(FaceFrame {
+            l01: l01 * scale,
+            x2: x2 * scale,
+            y2: y2 * scale,
+        })
     }
-    let (e01, e02, e12) = (e01 / scale, e02 / scale, (p2 - p1) / scale);
-    let l01 = e01.length();
-    let longest = l01.max(e02.length()).max(e12.length());
-    let twice_area = e01.cross(e02).length();
-    // Relative test: a sliver with aspect 1e6 is kept, an exactly flat one is not.
-    if !(longest > 0.0 && twice_area > 1e-12 * longest * longest) || l01 == 0.0 {
-        return None;
-    }
-    let u = e01 / l01;
-    let x2 = e02.dot(u);
-    let y2 = twice_area / l01;
-    Some(FaceFrame {
-        l01: l01 * scale,
-        x2: x2 * scale,
-        y2: y2 * scale,
-    })
 }
 
 /// Validated positions and the faces kept (degenerate ones dropped), with their
@@ -765,15 +772,22 @@ impl FaceGeometry for TriMesh {
         self.triangles[face as usize]
     }
     fn face_axes(&self, face: u32) -> [[f64; 3]; 2] {
-        let [p0, p1, p2] = self.triangles[face as usize].map(|v| self.position(v));
-        // In units of the face's size, so that normalising neither over- nor underflows.
-        let (e1, w) = (p1 - p0, p2 - p0);
-        let scale = e1.abs().max_element().max(w.abs().max_element());
-        let (e1, w) = (e1 / scale, w / scale);
-        let u = e1.normalize();
-        let v = (w - w.dot(u) * u).normalize();
-        [u.to_array(), v.to_array()]
+        face_axes(self.triangles[face as usize].map(|v| self.position(v)))
     }
+}
+
+/// World-space unit vectors of the u and v axes of the frame of the triangle with
+/// corners `p0, p1, p2` ([`FaceFrame::of_triangle`]): u along its first edge, v
+/// towards its third corner. For implementors of
+/// [`FaceGeometry::face_axes`](geotracks_metrics::FaceGeometry::face_axes).
+pub fn face_axes([p0, p1, p2]: [DVec3; 3]) -> [[f64; 3]; 2] {
+    // In units of the face's size, so that normalising neither over- nor underflows.
+    let (e1, w) = (p1 - p0, p2 - p0);
+    let scale = e1.abs().max_element().max(w.abs().max_element());
+    let (e1, w) = (e1 / scale, w / scale);
+    let u = e1.normalize();
+    let v = (w - w.dot(u) * u).normalize();
+    [u.to_array(), v.to_array()]
 }
 
 #[cfg(test)]

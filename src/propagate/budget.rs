@@ -17,7 +17,8 @@
 
 use super::Method;
 use crate::error::SizeLimit;
-use crate::mesh::{TriMesh, NONE};
+use crate::mesh::Topology;
+use crate::mesh::NONE;
 use crate::steiner::SteinerScheme;
 use crate::Error;
 
@@ -68,8 +69,8 @@ pub(super) struct Limits {
 }
 
 /// Checks `scheme` on `mesh` for `method` against the limits.
-pub(super) fn check(
-    mesh: &TriMesh,
+pub(super) fn check<T: Topology>(
+    mesh: &T,
     scheme: SteinerScheme,
     spacing: Spacing,
     method: Method,
@@ -106,8 +107,8 @@ pub(super) fn check(
 }
 
 /// The first limit `scheme` breaks, or the bytes it needs.
-fn breaks(
-    mesh: &TriMesh,
+fn breaks<T: Topology>(
+    mesh: &T,
     scheme: SteinerScheme,
     spacing: Spacing,
     method: Method,
@@ -152,7 +153,7 @@ fn breaks(
 
 /// About how many distance tests one full run makes (see the module's docs): per face,
 /// the engine's share of the pairs of its nodes.
-pub(super) fn distance_tests(mesh: &TriMesh, counts: &[u32], method: Method) -> f64 {
+pub(super) fn distance_tests<T: Topology>(mesh: &T, counts: &[u32], method: Method) -> f64 {
     let share = match method {
         Method::Graph => 0.6,
         Method::Wave => 0.25,
@@ -199,7 +200,7 @@ pub(super) fn second_run_fits(extra: u64, budgeted: u64, limit: Option<u64>) -> 
 /// distance, parent, parent face and queue flag, with about two queue entries; per
 /// Steiner point its block; for the tracks engine a record per face and edge and a
 /// track per (face, boundary node).
-fn bytes(mesh: &TriMesh, counts: &[u32], steiner: u64, nodes: u64, method: Method) -> u64 {
+fn bytes<T: Topology>(mesh: &T, counts: &[u32], steiner: u64, nodes: u64, method: Method) -> u64 {
     let layout = 4 * steiner + 12 * counts.len() as u64;
     let engine = match method {
         Method::Tracks => {

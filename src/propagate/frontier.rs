@@ -3,7 +3,8 @@
 
 use super::meet::Side;
 use crate::field::Goal;
-use crate::mesh::{Csr, TriMesh, NONE};
+use crate::mesh::Topology;
+use crate::mesh::{Csr, NONE};
 use crate::steiner::{NodeKind, SteinerLayout};
 use geotracks_metrics::{FacePoint, Metric};
 use rayon::prelude::*;
@@ -47,8 +48,8 @@ impl<Q: Queue> Queue for &mut Q {
 
 /// Per-node state (borrowed from a workspace) and counters of one run, generic over the
 /// metric and the queue.
-pub(super) struct Frontier<'a, M, Q> {
-    pub mesh: &'a TriMesh,
+pub(super) struct Frontier<'a, M, T, Q> {
+    pub mesh: &'a T,
     pub metric: &'a M,
     pub layout: &'a SteinerLayout,
     /// Cost between consecutive nodes of each edge, when the metric allows caching it.
@@ -149,7 +150,7 @@ pub(super) fn settle_all(engine: &mut impl Settle) {
     }
 }
 
-impl<'a, M: Metric> Frontier<'a, M, ()> {
+impl<'a, M: Metric, T: Topology> Frontier<'a, M, T, ()> {
     /// Attaches `queue`, gives the seeds their values, runs `engine`, and returns the
     /// counters. A run stopped by its targets then forgets every value that was not
     /// final yet, so that a finite value is always the exact one.
@@ -157,7 +158,7 @@ impl<'a, M: Metric> Frontier<'a, M, ()> {
         self,
         queue: Q,
         seeds: &[Seed],
-        engine: impl FnOnce(&mut Frontier<'a, M, Q>),
+        engine: impl FnOnce(&mut Frontier<'a, M, T, Q>),
     ) -> Outcome {
         let mut search = Frontier {
             mesh: self.mesh,
@@ -232,7 +233,7 @@ impl<'a, M: Metric> Frontier<'a, M, ()> {
     }
 }
 
-impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
+impl<M: Metric, T: Topology, Q: Queue> Frontier<'_, M, T, Q> {
     /// The key the queue orders `node` by: its value, plus its estimate in a
     /// goal-directed run (`inf` for an unreached node).
     #[inline(always)]
@@ -371,7 +372,7 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
         let (mesh, layout) = (self.mesh, self.layout);
         match kind {
             NodeKind::Vertex(v) => {
-                for &e in mesh.vertex_edges(v) {
+                for &e in mesh.vertex_edges(v).iter() {
                     let nodes = layout.edge_nodes(e);
                     let [lo, hi] = mesh.edge_vertices(e);
                     let next = match (nodes.is_empty(), v == lo) {
@@ -401,7 +402,7 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
             return;
         }
         let mut best = f64::INFINITY;
-        for &f in self.mesh.edge_faces(e) {
+        for &f in self.mesh.edge_faces(e).iter() {
             let a = self.layout.point_in_face(self.mesh, from, f);
             let b = self.layout.point_in_face(self.mesh, to, f);
             best = best.min(self.cost(f, &a, &b));
@@ -417,8 +418,8 @@ impl<M: Metric, Q: Queue> Frontier<'_, M, Q> {
 /// step; the evaluations are returned as the second value. `flat`: every face has a
 /// flattening ([`Metric::face_gram`]), which makes the metric a norm on each face
 /// whatever `is_face_norm` says (the wavefront engine needs these steps).
-pub(super) fn edge_steps<M: Metric>(
-    mesh: &TriMesh,
+pub(super) fn edge_steps<M: Metric, T: Topology>(
+    mesh: &T,
     metric: &M,
     layout: &SteinerLayout,
     flat: bool,

@@ -6,18 +6,19 @@
 //! node is settled. With no Steiner points this is Dijkstra on mesh edges.
 
 use super::frontier::{settle_all, Frontier, Queue, Settle};
+use crate::mesh::Topology;
 use crate::steiner::NodeKind;
 use geotracks_metrics::{FacePoint, Metric};
 
 /// Settles nodes until the run is over ([`settle_all`]).
-pub(super) fn propagate<M: Metric, Q: Queue>(search: &mut Frontier<'_, M, Q>) {
+pub(super) fn propagate<M: Metric, T: Topology, Q: Queue>(search: &mut Frontier<'_, M, T, Q>) {
     settle_all(&mut Graph(search));
 }
 
 /// The complete graph's settling: the same for vertices and Steiner points.
-struct Graph<'r, 'a, M, Q>(&'r mut Frontier<'a, M, Q>);
+struct Graph<'r, 'a, M, T, Q>(&'r mut Frontier<'a, M, T, Q>);
 
-impl<M: Metric, Q: Queue> Settle for Graph<'_, '_, M, Q> {
+impl<M: Metric, T: Topology, Q: Queue> Settle for Graph<'_, '_, M, T, Q> {
     #[inline(always)]
     fn next(&mut self) -> Option<(u32, f64)> {
         self.0.next()
@@ -40,8 +41,8 @@ impl<M: Metric, Q: Queue> Settle for Graph<'_, '_, M, Q> {
 }
 
 /// Relaxes every node of every face around `q` that is not on `q`'s own edges.
-fn settle_in_faces<M: Metric, Q: Queue>(
-    search: &mut Frontier<'_, M, Q>,
+fn settle_in_faces<M: Metric, T: Topology, Q: Queue>(
+    search: &mut Frontier<'_, M, T, Q>,
     q: u32,
     kind: NodeKind,
     d: f64,
@@ -49,7 +50,7 @@ fn settle_in_faces<M: Metric, Q: Queue>(
     let (mesh, layout) = (search.mesh, search.layout);
     match kind {
         NodeKind::Vertex(v) => {
-            for &f in mesh.vertex_faces(v) {
+            for &f in mesh.vertex_faces(v).iter() {
                 let corner = mesh
                     .corner_of(f, v)
                     .expect("vertex is a corner of its face");
@@ -58,7 +59,7 @@ fn settle_in_faces<M: Metric, Q: Queue>(
             }
         }
         NodeKind::Steiner { edge, index } => {
-            for &f in mesh.edge_faces(edge) {
+            for &f in mesh.edge_faces(edge).iter() {
                 let slot = mesh.edge_slot(f, edge).expect("edge lies on its face");
                 let pq = layout.point_on_slot(mesh, f, slot, index);
                 relax_slot(search, f, (slot + 1) % 3, q, &pq, d);
@@ -73,8 +74,8 @@ fn settle_in_faces<M: Metric, Q: Queue>(
 }
 
 /// Relaxes every interior point of the edge in `slot` of face `f` from `q` at `pq`.
-fn relax_slot<M: Metric, Q: Queue>(
-    search: &mut Frontier<'_, M, Q>,
+fn relax_slot<M: Metric, T: Topology, Q: Queue>(
+    search: &mut Frontier<'_, M, T, Q>,
     f: u32,
     slot: usize,
     q: u32,

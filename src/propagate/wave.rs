@@ -68,6 +68,7 @@ use crate::flat::{
     hinge, hinge_end, in_window, project, same_source, same_source_slack, uv, wave_value_on_edge,
     EdgeFrame, P, TIE, TOUCH,
 };
+use crate::mesh::Topology;
 use crate::mesh::NONE;
 use crate::surface::Source;
 use geotracks_metrics::Metric;
@@ -75,8 +76,8 @@ use geotracks_metrics::Metric;
 /// Settles nodes until the run is over ([`settle_all`]). `waves` holds one
 /// [`Wave`] per Steiner node (reset by the caller); `seeds` are the sources' offers,
 /// already given to their nodes; `sources` the run's (validated) sources.
-pub(super) fn propagate<M: Metric, Q: Queue>(
-    search: &mut Frontier<'_, M, Q>,
+pub(super) fn propagate<M: Metric, T: Topology, Q: Queue>(
+    search: &mut Frontier<'_, M, T, Q>,
     tables: &TrackTables,
     isometric: &[bool],
     waves: &mut [Wave],
@@ -95,7 +96,7 @@ pub(super) fn propagate<M: Metric, Q: Queue>(
     settle_all(&mut run);
 }
 
-impl<M: Metric, Q: Queue> Settle for Waves<'_, '_, M, Q> {
+impl<M: Metric, T: Topology, Q: Queue> Settle for Waves<'_, '_, M, T, Q> {
     #[inline(always)]
     fn next(&mut self) -> Option<(u32, f64)> {
         self.search.next()
@@ -114,8 +115,8 @@ impl<M: Metric, Q: Queue> Settle for Waves<'_, '_, M, Q> {
     }
 }
 
-struct Waves<'r, 'a, M, Q> {
-    search: &'r mut Frontier<'a, M, Q>,
+struct Waves<'r, 'a, M, T, Q> {
+    search: &'r mut Frontier<'a, M, T, Q>,
     tables: &'r TrackTables,
     /// Per edge block: whether every face around the edge gives it the same length.
     isometric: &'r [bool],
@@ -123,7 +124,7 @@ struct Waves<'r, 'a, M, Q> {
     vertex_count: u32,
 }
 
-impl<M: Metric, Q: Queue> Waves<'_, '_, M, Q> {
+impl<M: Metric, T: Topology, Q: Queue> Waves<'_, '_, M, T, Q> {
     #[inline(always)]
     fn wave(&self, node: u32) -> &Wave {
         &self.waves[(node - self.vertex_count) as usize]

@@ -11,6 +11,7 @@
 use super::Query;
 use crate::flat::{flat_frame, hinge_end, uv, wave_value_on_edge, EdgeFrame, P, WINDOW_SLACK};
 use crate::mesh::FaceFrame;
+use crate::mesh::Topology;
 use geotracks_metrics::{FacePoint, Metric};
 use glam::DVec3;
 
@@ -251,7 +252,7 @@ impl FaceField {
 
     /// Where candidate `c`'s paths come from, as a point of the face's plane (unfolded
     /// there from the faces the wave crossed), in world coordinates.
-    pub fn site_position(&self, mesh: &crate::mesh::TriMesh, c: &Candidate) -> DVec3 {
+    pub fn site_position<T: crate::mesh::Topology>(&self, mesh: &T, c: &Candidate) -> DVec3 {
         match (c.site, self.flat) {
             (Site::Flat(s) | Site::Windowed { at: s, .. }, Some(frame)) => {
                 let [a, b] = flat_to_bary(&frame, s);
@@ -274,7 +275,7 @@ pub(super) fn flat_to_bary(frame: &FaceFrame, s: P) -> [f64; 2] {
     [b1, b2]
 }
 
-impl<M: Metric> Query<'_, M> {
+impl<M: Metric, T: Topology> Query<'_, M, T> {
     /// Face `f`'s candidates: its own (the nodes on its boundary, the sources on its
     /// closure and, wavefront engine, the waves that cross into it), and, for the
     /// wavefront engine, those of the faces across its edges, unfolded onto it (their
@@ -316,7 +317,7 @@ impl<M: Metric> Query<'_, M> {
     /// Face `f`'s own candidates (see [`Field::face_field`](crate::Field::face_field)), unsorted.
     fn own_candidates(&self, f: u32) -> FaceField {
         let (mesh, metric, field) = (self.mesh, self.metric, &self.field);
-        let flat = flat_frame(metric, f, mesh.frame(f));
+        let flat = flat_frame(metric, f, &mesh.frame(f));
         let to_site = |p: &FacePoint| match flat {
             Some(frame) => Site::Flat(uv(&frame.point(p.bary))),
             None => Site::Metric(*p),
@@ -381,7 +382,7 @@ impl<M: Metric> Query<'_, M> {
             }
             let to = self.edge_frame(frame, f, slot);
             let behind = -1e-12 * to.len;
-            for &g in mesh.edge_faces(edge) {
+            for &g in mesh.edge_faces(edge).iter() {
                 if g == f {
                     continue;
                 }
@@ -473,8 +474,8 @@ impl<M: Metric> Query<'_, M> {
 
 /// Face `g`'s own candidates from `cache`, built if missing (the oldest dropped when
 /// full: a face's neighbours and theirs, with room to spare).
-fn own_cached<'c, M: Metric>(
-    query: &Query<'_, M>,
+fn own_cached<'c, M: Metric, T: Topology>(
+    query: &Query<'_, M, T>,
     g: u32,
     cache: &'c mut Vec<FaceField>,
 ) -> &'c FaceField {

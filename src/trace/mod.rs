@@ -15,7 +15,8 @@ mod regions;
 mod straighten;
 mod wave;
 
-use crate::mesh::{TriMesh, NONE};
+use crate::mesh::Topology;
+use crate::mesh::NONE;
 use crate::surface::SurfacePoint;
 use crate::Error;
 use geotracks_metrics::Metric;
@@ -53,13 +54,13 @@ pub struct GeodesicPath {
 
 impl GeodesicPath {
     /// World positions of the points.
-    pub fn positions(&self, mesh: &TriMesh) -> Vec<DVec3> {
+    pub fn positions<T: Topology>(&self, mesh: &T) -> Vec<DVec3> {
         self.points.iter().map(|p| p.position(mesh)).collect()
     }
 
     /// The metric cost of each segment, travelled from the source: segment `i` from
     /// `points[i + 1]` to `points[i]` (the direction matters for a directed metric).
-    pub fn segment_costs<M: Metric>(&self, mesh: &TriMesh, metric: &M) -> Vec<f64> {
+    pub fn segment_costs<M: Metric, T: Topology>(&self, mesh: &T, metric: &M) -> Vec<f64> {
         (0..self.faces.len())
             .map(|i| {
                 segment_cost(
@@ -74,7 +75,7 @@ impl GeodesicPath {
     }
 
     /// The metric length: the sum of [`GeodesicPath::segment_costs`].
-    pub fn metric_length<M: Metric>(&self, mesh: &TriMesh, metric: &M) -> f64 {
+    pub fn metric_length<M: Metric, T: Topology>(&self, mesh: &T, metric: &M) -> f64 {
         // Folded from +0: an empty sum would be −0.
         self.segment_costs(mesh, metric)
             .iter()
@@ -85,8 +86,8 @@ impl GeodesicPath {
 /// The cost of the straight segment `a`–`b` inside face `f`, whose closure holds both;
 /// for `f` = [`NONE`], of the wire between vertices `a` and `b` (`inf` if they are not
 /// two vertices: no such segment).
-pub(crate) fn segment_cost<M: Metric>(
-    mesh: &TriMesh,
+pub(crate) fn segment_cost<M: Metric, T: Topology>(
+    mesh: &T,
     metric: &M,
     f: u32,
     a: SurfacePoint,
@@ -103,7 +104,7 @@ pub(crate) fn segment_cost<M: Metric>(
     metric.cost(f, &pa, &pb)
 }
 
-impl<M: Metric> Query<'_, M> {
+impl<M: Metric, T: Topology> Query<'_, M, T> {
     /// The path from `point` to its nearest source, as the propagation found it: from
     /// the point to the best node of its faces (or straight to a source in one of
     /// them), then from parent to parent. Its length is the distance at `point`.
@@ -263,8 +264,8 @@ impl<M: Metric> Query<'_, M> {
     }
 }
 
-pub(crate) fn finish<M: Metric>(
-    mesh: &TriMesh,
+pub(crate) fn finish<M: Metric, T: Topology>(
+    mesh: &T,
     metric: &M,
     points: Vec<SurfacePoint>,
     faces: Vec<u32>,

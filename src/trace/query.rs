@@ -3,7 +3,8 @@
 use super::face_field::FaceField;
 use super::ValueSource;
 use crate::field::FieldView;
-use crate::mesh::{TriMesh, NONE};
+use crate::mesh::Topology;
+use crate::mesh::NONE;
 use crate::surface::SurfacePoint;
 use crate::{Error, PointRole};
 use geotracks_metrics::Metric;
@@ -12,21 +13,21 @@ use std::fmt;
 /// A finished run's state together with the mesh and metric it was computed with,
 /// borrowed: what the queries of a [`Field`](crate::Field) (and the joins of a route
 /// searched from both ends) run on. Cheap to make and copy.
-pub(crate) struct Query<'a, M> {
-    pub(super) mesh: &'a TriMesh,
+pub(crate) struct Query<'a, M, T> {
+    pub(super) mesh: &'a T,
     pub(super) metric: &'a M,
     pub(super) field: FieldView<'a>,
 }
 
-impl<M> Clone for Query<'_, M> {
+impl<M, T> Clone for Query<'_, M, T> {
     fn clone(&self) -> Self {
         *self
     }
 }
 
-impl<M> Copy for Query<'_, M> {}
+impl<M, T> Copy for Query<'_, M, T> {}
 
-impl<M> fmt::Debug for Query<'_, M> {
+impl<M, T> fmt::Debug for Query<'_, M, T> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("Query")
             .field("vertices", &self.field.layout.vertex_count())
@@ -50,7 +51,11 @@ impl FaceFields {
     const CAPACITY: usize = 48;
 
     /// Face `f`'s candidates, built if not cached (dropping the oldest when full).
-    pub(super) fn get<M: Metric>(&mut self, query: &Query<'_, M>, f: u32) -> &FaceField {
+    pub(super) fn get<M: Metric, T: Topology>(
+        &mut self,
+        query: &Query<'_, M, T>,
+        f: u32,
+    ) -> &FaceField {
         match self.fields.iter().position(|c| c.face == f) {
             Some(i) => &self.fields[i],
             None => {
@@ -99,10 +104,10 @@ impl Origin {
     }
 }
 
-impl<'a, M: Metric> Query<'a, M> {
+impl<'a, M: Metric, T: Topology> Query<'a, M, T> {
     /// A query on `field`, which was computed on `mesh` under `metric` (the solver
     /// checks that).
-    pub(crate) fn new(mesh: &'a TriMesh, metric: &'a M, field: FieldView<'a>) -> Self {
+    pub(crate) fn new(mesh: &'a T, metric: &'a M, field: FieldView<'a>) -> Self {
         Query {
             mesh,
             metric,
@@ -111,7 +116,7 @@ impl<'a, M: Metric> Query<'a, M> {
     }
 
     /// The mesh the field was computed on.
-    pub fn mesh(&self) -> &'a TriMesh {
+    pub fn mesh(&self) -> &'a T {
         self.mesh
     }
 

@@ -23,7 +23,7 @@
 use super::face_field::{flat_to_bary, Candidate, FaceField, Site, ValueSource};
 use super::Query;
 use crate::flat::same_source;
-use crate::mesh::TriMesh;
+use crate::mesh::Topology;
 use crate::surface::SurfacePoint;
 use crate::{Error, PointRole};
 use geotracks_metrics::{FacePoint, Metric};
@@ -107,7 +107,7 @@ const TIE: f64 = 1e-10;
 /// Bisection steps for a switch point along a sub-triangle's side.
 const BISECTIONS: u32 = 40;
 
-impl<M: Metric> Query<'_, M> {
+impl<M: Metric, T: Topology> Query<'_, M, T> {
     /// The gradient of the field at `point`, from the candidate that gives its
     /// distance: the derivative of `σ + |x − site|` there. `None` where the gradient is
     /// undefined: unreached points, and points whose value only they explain (a source,
@@ -263,8 +263,8 @@ impl<M: Metric> Query<'_, M> {
 
 /// The gradient vector and the unit direction of candidate `c`'s value at face point
 /// `x` (world coordinates).
-fn slope<M: Metric>(
-    mesh: &TriMesh,
+fn slope<M: Metric, T: Topology>(
+    mesh: &T,
     metric: &M,
     face: &FaceField,
     c: &Candidate,
@@ -328,8 +328,8 @@ enum Key {
 }
 
 /// A face's grid labelled with the candidate giving each point's value.
-struct LabelGrid<'f, 'q, 'a, M> {
-    query: &'q Query<'a, M>,
+struct LabelGrid<'f, 'q, 'a, M, T> {
+    query: &'q Query<'a, M, T>,
     field: &'f FaceField,
     n: usize,
     bary: Vec<[f64; 3]>,
@@ -342,8 +342,8 @@ struct LabelGrid<'f, 'q, 'a, M> {
     same: Vec<usize>,
 }
 
-impl<'f, 'q, 'a, M: Metric> LabelGrid<'f, 'q, 'a, M> {
-    fn new(query: &'q Query<'a, M>, field: &'f FaceField, n: u32) -> Self {
+impl<'f, 'q, 'a, M: Metric, T: Topology> LabelGrid<'f, 'q, 'a, M, T> {
+    fn new(query: &'q Query<'a, M, T>, field: &'f FaceField, n: u32) -> Self {
         let n = n as usize;
         let mut bary = Vec::with_capacity((n + 1) * (n + 2) / 2);
         for j in 0..=n {
@@ -584,7 +584,7 @@ fn simplify(mut l: Vec<[f64; 3]>) -> Vec<[f64; 3]> {
 
 /// A barycentric point of face `f` as a surface point: a vertex, an edge point or a
 /// face point.
-fn on_face(mesh: &TriMesh, f: u32, bary: [f64; 3]) -> SurfacePoint {
+fn on_face<T: Topology>(mesh: &T, f: u32, bary: [f64; 3]) -> SurfacePoint {
     let zero = bary.map(|b| b.abs() <= 1e-14);
     let corners = mesh.face_vertices(f);
     match zero {
@@ -610,7 +610,7 @@ fn on_face(mesh: &TriMesh, f: u32, bary: [f64; 3]) -> SurfacePoint {
 }
 
 /// A polygon's area in world units.
-fn polygon_area(mesh: &TriMesh, f: u32, polygon: &[[f64; 3]]) -> f64 {
+fn polygon_area<T: Topology>(mesh: &T, f: u32, polygon: &[[f64; 3]]) -> f64 {
     let frame = mesh.frame(f);
     let p: Vec<[f64; 2]> = polygon.iter().map(|&b| frame.point(b).uv).collect();
     let n = p.len();

@@ -10,6 +10,7 @@ use crate::field::Wave;
 use crate::flat::{
     flat_frame, hinge_end, in_window, same_source, same_source_slack, uv, EdgeFrame, P,
 };
+use crate::mesh::Topology;
 use crate::mesh::{FaceFrame, NONE};
 use crate::steiner::NodeKind;
 use crate::surface::SurfacePoint;
@@ -26,7 +27,7 @@ pub(super) enum Step {
     Source { source: u32, face: u32 },
 }
 
-impl<M: Metric> Query<'_, M> {
+impl<M: Metric, T: Topology> Query<'_, M, T> {
     /// Whether the field carries waves (it came from the wavefront engine).
     pub(super) fn has_waves(&self) -> bool {
         !self.field.waves.is_empty()
@@ -40,7 +41,7 @@ impl<M: Metric> Query<'_, M> {
 
     /// Face `f`'s frame in the metric's flattening.
     pub(super) fn flat(&self, f: u32) -> Option<FaceFrame> {
-        flat_frame(self.metric, f, self.mesh.frame(f))
+        flat_frame(self.metric, f, &self.mesh.frame(f))
     }
 
     /// Edge `slot` of face `f` seen from `f` (flattened), and the edge's id.
@@ -200,10 +201,10 @@ impl<M: Metric> Query<'_, M> {
         // replaced by a tie, so all are asked), or bending at its parent.
         let d = field.distance[n as usize];
         let vertex_faces = match layout.kind(n) {
-            NodeKind::Vertex(v) => self.mesh.vertex_faces(v),
-            NodeKind::Steiner { .. } => &[],
+            NodeKind::Vertex(v) => Some(self.mesh.vertex_faces(v)),
+            NodeKind::Steiner { .. } => None,
         };
-        for &f in vertex_faces {
+        for &f in vertex_faces.as_deref().unwrap_or(&[]) {
             let x = layout.point_in_face(self.mesh, n, f);
             if let Some((value, q)) = self.wave_value(f, &x) {
                 // (Not a wave that starts at the vertex itself.)

@@ -71,7 +71,7 @@ pub use cost::{
 pub use directed::{DirectedCost, DirectedModel};
 pub use error::TerrainError;
 pub use geotiff::{read_geotiff, read_geotiff_bytes};
-pub use grid::{ElevationGrid, GridGeometry, TerrainMesh};
+pub use grid::{ElevationGrid, GridGeometry, GridSurface, TerrainMesh};
 pub use route::{route, route_and_field, route_on_grid, GridRoute, Route, RouteWindow};
 
 use std::path::Path;

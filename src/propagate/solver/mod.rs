@@ -21,7 +21,7 @@ pub use workspace::Workspace;
 
 use super::budget;
 use crate::field::{Field, FieldData, SolverId};
-use crate::mesh::{Csr, TriMesh};
+use crate::mesh::{Csr, Topology, TriMesh};
 use crate::options::Sources;
 use crate::steiner::SteinerLayout;
 use crate::{Error, Method, Options};
@@ -62,11 +62,11 @@ use std::sync::{Arc, Mutex};
 /// }
 /// # Ok::<(), geotracks::Error>(())
 /// ```
-pub struct Solver<M> {
-    setup: Arc<Setup<M>>,
+pub struct Solver<M, T = TriMesh> {
+    setup: Arc<Setup<M, T>>,
 }
 
-impl<M> Clone for Solver<M> {
+impl<M, T> Clone for Solver<M, T> {
     fn clone(&self) -> Self {
         Solver {
             setup: Arc::clone(&self.setup),
@@ -74,7 +74,7 @@ impl<M> Clone for Solver<M> {
     }
 }
 
-impl<M> std::fmt::Debug for Solver<M> {
+impl<M, T: Topology> std::fmt::Debug for Solver<M, T> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Solver")
             .field("method", &self.setup.method)
@@ -86,10 +86,10 @@ impl<M> std::fmt::Debug for Solver<M> {
 }
 
 /// What a solver worked out once, shared by its clones and the fields it made.
-pub(crate) struct Setup<M> {
+pub(crate) struct Setup<M, T> {
     /// Who this solver is, recorded in the fields it computes.
     pub id: SolverId,
-    pub mesh: Arc<TriMesh>,
+    pub mesh: Arc<T>,
     pub metric: M,
     /// The engine that runs (see [`Solver::method`]).
     pub method: Method,
@@ -141,8 +141,25 @@ impl<M: Metric> Solver<M> {
     /// instances exceed 32-bit ids; [`Error::InvalidCost`] and the other cost checks
     /// when the metric gives an edge or a wire a cost that is not one.
     pub fn new(mesh: impl Into<Arc<TriMesh>>, metric: M, options: &Options) -> Result<Self, Error> {
+        Self::with_topology(mesh, metric, options)
+    }
+}
+
+impl<M: Metric, T: Topology> Solver<M, T> {
+    /// As [`Solver::new`], on any surface that implements [`Topology`]: a
+    /// [`TriMesh`], or one whose adjacency is computed rather than stored (a terrain
+    /// grid's cells). Runs on it are monomorphised: nothing is looked up through a
+    /// pointer in the engines' loops.
+    ///
+    /// # Errors
+    /// As [`Solver::new`].
+    pub fn with_topology(
+        surface: impl Into<Arc<T>>,
+        metric: M,
+        options: &Options,
+    ) -> Result<Self, Error> {
         Ok(Solver {
-            setup: Arc::new(Setup::new(mesh.into(), metric, options)?),
+            setup: Arc::new(Setup::new(surface.into(), metric, options)?),
         })
     }
 
@@ -183,7 +200,10 @@ impl<M: Metric> Solver<M> {
     /// negative cost.
     ///
     /// [`Stop::check_from`]: crate::Stop::check_from
-    pub fn field<'a>(&self, sources: impl Into<Sources<'a>>) -> Result<Field<M>, Error> {
+    pub fn field<'a>(
+        &self,
+        sources: impl Into<Sources<'a>>,
+    ) -> Result<Field<M, FieldData, T>, Error> {
         let mut workspace = self.workspace();
         self.run(&mut workspace, sources)?;
         Ok(Field::new(self.clone(), workspace.into_data(self)))
@@ -217,7 +237,7 @@ impl<M: Metric> Solver<M> {
         &self,
         workspace: &'w mut Workspace,
         sources: impl Into<Sources<'a>>,
-    ) -> Result<Field<M, &'w Workspace>, Error> {
+    ) -> Result<Field<M, &'w Workspace, T>, Error> {
         self.setup.run(workspace, &sources.into())?;
         Ok(Field::new(self.clone(), &*workspace))
     }
@@ -227,7 +247,7 @@ impl<M: Metric> Solver<M> {
     ///
     /// # Errors
     /// [`Error::ForeignField`] for data another solver computed.
-    pub fn attach(&self, data: FieldData) -> Result<Field<M>, Error> {
+    pub fn attach(&self, data: FieldData) -> Result<Field<M, FieldData, T>, Error> {
         if data.solver() != self.setup.id {
             return Err(Error::ForeignField);
         }
@@ -240,19 +260,19 @@ impl<M: Metric> Solver<M> {
     }
 }
 
-impl<M> Solver<M> {
+impl<M, T> Solver<M, T> {
     /// The Steiner layout runs use.
     pub fn layout(&self) -> &SteinerLayout {
         &self.setup.layout
     }
 
     /// The mesh.
-    pub fn mesh(&self) -> &TriMesh {
+    pub fn mesh(&self) -> &T {
         &self.setup.mesh
     }
 
     /// The mesh, shared.
-    pub fn shared_mesh(&self) -> &Arc<TriMesh> {
+    pub fn shared_mesh(&self) -> &Arc<T> {
         &self.setup.mesh
     }
 
@@ -274,7 +294,7 @@ impl<M> Solver<M> {
     }
 
     /// What the solver worked out, for the modules that run and query it.
-    pub(crate) fn setup(&self) -> &Setup<M> {
+    pub(crate) fn setup(&self) -> &Setup<M, T> {
         &self.setup
     }
 }

@@ -3,6 +3,7 @@
 
 use super::{budget, Solver, Workspace};
 use crate::field::Stats;
+use crate::mesh::Topology;
 use crate::options::{Sources, Stop};
 use crate::surface::SurfacePoint;
 use crate::Error;
@@ -19,7 +20,7 @@ pub struct DistanceRow {
     pub stats: Stats,
 }
 
-impl<M: Metric> Solver<M> {
+impl<M: Metric, T: Topology> Solver<M, T> {
     /// One row of distances per source, computed on all cores (rayon; workspaces are
     /// pooled, at most one per worker thread, and reused across sources): row `i` holds
     /// the distance from `sources[i]` to each of `targets`, or to every vertex when

@@ -4,6 +4,7 @@
 use super::setup::Engine;
 use super::{Setup, Workspace};
 use crate::field::{Goal, Horizon, Root, Stats, Wave};
+use crate::mesh::Topology;
 use crate::mesh::{bounding_box, NONE};
 use crate::options::Sources;
 use crate::propagate::frontier::{Frontier, Outcome, Seed};
@@ -14,7 +15,7 @@ use crate::{Error, PointRole, ValueRole};
 use geotracks_metrics::Metric;
 use std::time::Instant;
 
-impl<M: Metric> Setup<M> {
+impl<M: Metric, T: Topology> Setup<M, T> {
     /// Runs from `sources` into `workspace` (see [`Solver::run`](super::Solver::run)).
     pub(crate) fn run(
         &self,
@@ -127,7 +128,7 @@ impl<M: Metric> Setup<M> {
                     // final for its value to be the full run's.
                     for &f in point.faces(mesh).iter() {
                         for e in mesh.face_edges(f) {
-                            for &g in mesh.edge_faces(e) {
+                            for &g in mesh.edge_faces(e).iter() {
                                 targets.extend(layout.face_nodes(mesh, g).map(|(node, _)| node));
                             }
                         }
@@ -171,7 +172,7 @@ impl<M: Metric> Setup<M> {
             ..
         } = workspace;
         let search = Frontier {
-            mesh: &self.mesh,
+            mesh: &*self.mesh,
             metric: &self.metric,
             layout: &self.layout,
             edge_steps: match &self.engine {
@@ -294,7 +295,9 @@ impl<M: Metric> Setup<M> {
         if targets.is_empty() || !stop.goal_directed || self.per_length <= 0.0 || !graph_engine {
             return None;
         }
-        let positions = targets.iter().map(|&t| self.layout.position(&self.mesh, t));
+        let positions = targets
+            .iter()
+            .map(|&t| self.layout.position(&*self.mesh, t));
         let [lo, hi] = bounding_box(positions.map(|p| p.to_array())).map(glam::DVec3::from);
         // Targets spread over much of the mesh leave the estimate zero nearly
         // everywhere: it would cost without saving (the guide's Paths page: `goal_bench`).
@@ -309,7 +312,7 @@ impl<M: Metric> Setup<M> {
         for (i, source) in sources.iter_mut().enumerate() {
             source.point = source
                 .point
-                .validated(&self.mesh)
+                .validated(&*self.mesh)
                 .map_err(|error| match error {
                     PointError::NoSuchVertex { vertex, count } => Error::SourceOutOfRange {
                         vertex: vertex as u64,

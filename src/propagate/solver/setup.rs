@@ -5,7 +5,8 @@
 use super::{Setup, Workspace};
 use crate::field::SolverId;
 use crate::flat;
-use crate::mesh::{bounding_box, Csr, FaceFrame, TriMesh};
+use crate::mesh::Topology;
+use crate::mesh::{Csr, FaceFrame};
 use crate::propagate::budget;
 use crate::propagate::frontier::edge_steps;
 use crate::propagate::tracks::TrackTables;
@@ -55,15 +56,17 @@ struct Planned {
     budgeted: u64,
 }
 
-impl<M: Metric> Setup<M> {
+impl<M: Metric, T: Topology> Setup<M, T> {
     /// Prepares `mesh` for runs under `metric` with `options` (see
     /// [`Solver::new`](super::Solver::new)).
-    pub(super) fn new(mesh: Arc<TriMesh>, metric: M, options: &Options) -> Result<Self, Error> {
+    pub(super) fn new(mesh: Arc<T>, metric: M, options: &Options) -> Result<Self, Error> {
         let start = Instant::now();
+        let shared = mesh;
+        let mesh: &T = &shared;
         // The wavefront engine needs every face's flattening; other metrics run the
         // tracks engine.
         let flat_frames = (options.method == Method::Wave)
-            .then(|| flat_frames(&mesh, &metric))
+            .then(|| flat_frames(mesh, &metric))
             .flatten();
         let method = match (options.method, &flat_frames) {
             (Method::Wave, None) => Method::Tracks,
@@ -72,10 +75,10 @@ impl<M: Metric> Setup<M> {
         // The engine that runs picks its own k when none is asked for.
         let steiner = options.steiner_for(method);
         let options = &options.with_method(method);
-        let planned = plan(&mesh, options, steiner, flat_frames.as_deref())?;
+        let planned = plan(mesh, options, steiner, flat_frames.as_deref())?;
         let layout = planned.layout;
         let (edge_steps, mut setup_tests) =
-            match edge_steps(&mesh, &metric, &layout, flat_frames.is_some()) {
+            match edge_steps(mesh, &metric, &layout, flat_frames.is_some()) {
                 Some((steps, tests)) => (Some(steps), tests),
                 None => (None, 0),
             };
@@ -85,24 +88,18 @@ impl<M: Metric> Setup<M> {
             Some(steps) => std::borrow::Cow::Borrowed(steps.as_slice()),
             None => {
                 setup_tests += mesh.edge_count() as u64;
-                std::borrow::Cow::Owned(first_face_steps(&mesh, &metric, &layout))
+                std::borrow::Cow::Owned(first_face_steps(mesh, &metric, &layout))
             }
         };
-        let (wires, cost_total, per_length) = checked_costs(&mesh, &metric, &layout, &steps)?;
+        let (wires, cost_total, per_length) = checked_costs(mesh, &metric, &layout, &steps)?;
         setup_tests += wires.len() as u64 / 2;
         // The per-face tables of the two engines that have them (the wavefront engine's
         // with the vertices' rows).
-        let tables = || {
-            TrackTables::new(
-                &mesh,
-                &layout,
-                edge_steps.as_deref(),
-                flat_frames.as_deref(),
-            )
-        };
+        let tables =
+            || TrackTables::new(mesh, &layout, edge_steps.as_deref(), flat_frames.as_deref());
         let engine = match method {
             Method::Wave => Engine::Wave {
-                tables: Arc::new(tables()?.with_vertex_rows(&mesh, &layout)),
+                tables: Arc::new(tables()?.with_vertex_rows(mesh, &layout)),
                 isometric: planned
                     .flat
                     .as_ref()
@@ -117,12 +114,12 @@ impl<M: Metric> Setup<M> {
             Method::Graph | Method::Dijkstra => Engine::Graph { edge_steps },
         };
         let extent = {
-            let [lo, hi] = bounding_box(mesh.positions().iter().map(|p| p.to_array()));
+            let [lo, hi] = mesh.bounding_box().map(|p| p.to_array());
             glam::DVec3::from(hi).distance(glam::DVec3::from(lo))
         };
         Ok(Setup {
             id: SolverId::fresh(),
-            mesh,
+            mesh: shared,
             metric,
             method,
             k: match method {
@@ -149,9 +146,9 @@ impl<M: Metric> Setup<M> {
     /// along edges, the wires, the checks); the tables do not depend on it for a
     /// directed metric, which has no cached steps (nor runs the wavefront engine: it is
     /// not flat on each face).
-    pub(crate) fn reversed(&self) -> Result<Setup<Reversed<&M>>, Error> {
+    pub(crate) fn reversed(&self) -> Result<Setup<Reversed<&M>, T>, Error> {
         let start = Instant::now();
-        let (mesh, metric) = (&self.mesh, Reversed(&self.metric));
+        let (mesh, metric) = (&*self.mesh, Reversed(&self.metric));
         let steps = first_face_steps(mesh, &metric, &self.layout);
         let (wires, cost_total, per_length) = checked_costs(mesh, &metric, &self.layout, &steps)?;
         let engine = match &self.engine {
@@ -169,7 +166,7 @@ impl<M: Metric> Setup<M> {
         };
         Ok(Setup {
             id: SolverId::fresh(),
-            mesh: Arc::clone(mesh),
+            mesh: Arc::clone(&self.mesh),
             metric,
             method: self.method,
             k: self.k,
@@ -220,8 +217,8 @@ impl<M: Metric> Setup<M> {
 
 /// The Steiner layout with `steiner` for `options` (whose method is the one that runs),
 /// checked against the memory and work budgets before anything is allocated.
-fn plan(
-    mesh: &TriMesh,
+fn plan<T: Topology>(
+    mesh: &T,
     options: &Options,
     steiner: SteinerScheme,
     flat_frames: Option<&[FaceFrame]>,
@@ -281,8 +278,8 @@ type Wires = Csr<(u32, f64)>;
 /// The wires' costs, and the run-wide bounds checked against them and the steps
 /// along edges: the total cost (`check_cost_range`) and the least cost per unit of
 /// length (`check_per_length`).
-fn checked_costs<M: Metric>(
-    mesh: &TriMesh,
+fn checked_costs<M: Metric, T: Topology>(
+    mesh: &T,
     metric: &M,
     layout: &SteinerLayout,
     steps: &[f64],
@@ -295,15 +292,15 @@ fn checked_costs<M: Metric>(
 
 /// Every face's frame in the metric's flattening ([`flat::flat_frame`]), or `None`
 /// unless the metric gives every face's.
-fn flat_frames<M: Metric>(mesh: &TriMesh, metric: &M) -> Option<Vec<FaceFrame>> {
+fn flat_frames<M: Metric, T: Topology>(mesh: &T, metric: &M) -> Option<Vec<FaceFrame>> {
     (0..mesh.face_count() as u32)
-        .map(|f| flat::flat_frame(metric, f, mesh.frame(f)))
+        .map(|f| flat::flat_frame(metric, f, &mesh.frame(f)))
         .collect()
 }
 
 /// Each edge's length: in the flattened frames when given (the longest over the faces
 /// around it: the same for edges whose faces glue isometrically), else in space.
-fn edge_lengths(mesh: &TriMesh, flat_frames: Option<&[FaceFrame]>) -> Vec<f64> {
+fn edge_lengths<T: Topology>(mesh: &T, flat_frames: Option<&[FaceFrame]>) -> Vec<f64> {
     let Some(frames) = flat_frames else {
         return (0..mesh.edge_count() as u32)
             .into_par_iter()
@@ -337,7 +334,7 @@ struct FlatEdges {
 }
 
 impl FlatEdges {
-    fn new(mesh: &TriMesh, frames: &[FaceFrame], in_space: &[f64]) -> FlatEdges {
+    fn new<T: Topology>(mesh: &T, frames: &[FaceFrame], in_space: &[f64]) -> FlatEdges {
         // Per edge: its shortest and longest length over the faces around it, and the
         // longest edge of those faces (what the lengths' rounding is relative to).
         let mut range = vec![[f64::INFINITY, 0.0f64, 0.0f64]; mesh.edge_count()];
@@ -385,7 +382,11 @@ impl FlatEdges {
 /// The cost between consecutive nodes of each edge in its first face (for a directed
 /// metric, in the dearer direction: these bound what a path along edges costs), on all
 /// cores.
-fn first_face_steps<M: Metric>(mesh: &TriMesh, metric: &M, layout: &SteinerLayout) -> Vec<f64> {
+fn first_face_steps<M: Metric, T: Topology>(
+    mesh: &T,
+    metric: &M,
+    layout: &SteinerLayout,
+) -> Vec<f64> {
     let directed = !metric.is_symmetric();
     (0..mesh.edge_count() as u32)
         .into_par_iter()
@@ -449,8 +450,8 @@ fn check_cost_range<M: Metric>(
 ///
 /// # Errors
 /// [`Error::CostBelowBound`], [`Error::WireBelowBound`].
-fn check_per_length<M: Metric>(
-    mesh: &TriMesh,
+fn check_per_length<M: Metric, T: Topology>(
+    mesh: &T,
     metric: &M,
     layout: &SteinerLayout,
     steps: &[f64],
@@ -472,7 +473,7 @@ fn check_per_length<M: Metric>(
         if short(0.0)
             && short(rounding_allowance(
                 mesh,
-                mesh.edge_faces(e),
+                &mesh.edge_faces(e),
                 mesh.edge_vertices(e),
             ))
         {
@@ -523,10 +524,10 @@ fn check_per_length<M: Metric>(
 /// rounding alone where it is measured in the faces `faces`: 1e-13 of the largest
 /// coordinate or edge there (a few hundred units in the last place of the numbers the
 /// length is computed from; measured: 1.1e-10 on a face with a vertex 6e5 away).
-fn rounding_allowance(mesh: &TriMesh, faces: &[u32], ends: [u32; 2]) -> f64 {
+fn rounding_allowance<T: Topology>(mesh: &T, faces: &[u32], ends: [u32; 2]) -> f64 {
     let corners = faces
         .iter()
-        .flat_map(|&f| mesh.triangles()[f as usize])
+        .flat_map(|&f| mesh.face_vertices(f))
         .chain(ends);
     let mut scale = 0.0f64;
     let (lo, hi) = corners.fold(
@@ -547,7 +548,7 @@ fn rounding_allowance(mesh: &TriMesh, faces: &[u32], ends: [u32; 2]) -> f64 {
 ///
 /// # Errors
 /// [`Error::InvalidWireCost`] for a NaN or negative cost.
-fn wire_costs<M: Metric>(mesh: &TriMesh, metric: &M) -> Result<Csr<(u32, f64)>, Error> {
+fn wire_costs<M: Metric, T: Topology>(mesh: &T, metric: &M) -> Result<Csr<(u32, f64)>, Error> {
     let directed = !metric.is_symmetric();
     let mut costs = Vec::new();
     for [a, b] in mesh.wires() {

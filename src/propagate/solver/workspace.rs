@@ -118,7 +118,7 @@ impl Workspace {
     }
 
     /// The last run as plain data, the buffers moved out.
-    pub(crate) fn into_data<M>(self, solver: &Solver<M>) -> FieldData {
+    pub(crate) fn into_data<M, T>(self, solver: &Solver<M, T>) -> FieldData {
         let setup = solver.setup();
         FieldData::new(
             Arc::clone(&setup.layout),
@@ -135,7 +135,7 @@ impl Workspace {
     }
 
     /// A copy of the last run as plain data.
-    pub(crate) fn to_data<M>(&self, solver: &Solver<M>) -> FieldData {
+    pub(crate) fn to_data<M, T>(&self, solver: &Solver<M, T>) -> FieldData {
         let setup = solver.setup();
         FieldData::new(
             Arc::clone(&setup.layout),

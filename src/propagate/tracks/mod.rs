@@ -34,6 +34,7 @@
 mod tables;
 
 use super::frontier::{settle_all, Frontier, Queue, Seed, Settle};
+use crate::mesh::Topology;
 use crate::mesh::NONE;
 use crate::steiner::SlotPoints;
 use geotracks_metrics::{FacePoint, Metric};
@@ -235,8 +236,8 @@ impl Arc {
 /// Settles nodes until the run is over ([`settle_all`]). `tracks` holds one
 /// [`Track`] per instance, reset by the caller; `seeds` are the sources' offers, already
 /// given to their nodes.
-pub(super) fn propagate<M: Metric, Q: Queue>(
-    search: &mut Frontier<'_, M, Q>,
+pub(super) fn propagate<M: Metric, T: Topology, Q: Queue>(
+    search: &mut Frontier<'_, M, T, Q>,
     tables: &TrackTables,
     tracks: &mut [Track],
     seeds: &[Seed],
@@ -263,7 +264,7 @@ pub(super) fn propagate<M: Metric, Q: Queue>(
     settle_all(&mut run);
 }
 
-impl<M: Metric, Q: Queue> Settle for Tracks<'_, '_, M, Q> {
+impl<M: Metric, T: Topology, Q: Queue> Settle for Tracks<'_, '_, M, T, Q> {
     #[inline(always)]
     fn next(&mut self) -> Option<(u32, f64)> {
         self.search.next()
@@ -282,14 +283,14 @@ impl<M: Metric, Q: Queue> Settle for Tracks<'_, '_, M, Q> {
     }
 }
 
-struct Tracks<'r, 'a, M, Q> {
-    search: &'r mut Frontier<'a, M, Q>,
+struct Tracks<'r, 'a, M, T, Q> {
+    search: &'r mut Frontier<'a, M, T, Q>,
     tables: &'r TrackTables,
     /// Per instance: best value through the face and where it came from.
     tracks: &'r mut [Track],
 }
 
-impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
+impl<M: Metric, T: Topology, Q: Queue> Tracks<'_, '_, M, T, Q> {
     fn settle_vertex(&mut self, v: u32, d: f64) {
         let tables = self.tables;
         let (mesh, layout) = (self.search.mesh, self.search.layout);
@@ -297,7 +298,7 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
         let parent_face = self.search.parent_face[v as usize];
         // The neighbour the value came from along an edge, and the step charged.
         let mut along = None;
-        for &e in mesh.vertex_edges(v) {
+        for &e in mesh.vertex_edges(v).iter() {
             let edge = &tables.edges[layout.block_of_edge(e) as usize];
             let ends = mesh.edge_vertices(e);
             let nodes = layout.edge_nodes(e);
@@ -316,7 +317,7 @@ impl<M: Metric, Q: Queue> Tracks<'_, '_, M, Q> {
             self.search.relax(next, d + step, v, NONE);
         }
         self.search.relax_along_wires(v, d);
-        for &f in mesh.vertex_faces(v) {
+        for &f in mesh.vertex_faces(v).iter() {
             let prunes = self.search.metric.prunes_on(f);
             let r = &tables.faces[tables.record_of(f) as usize];
             let slack = self.slack(r);

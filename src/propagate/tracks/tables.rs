@@ -8,7 +8,8 @@
 //! is close together whatever order the input file had. Incidences name faces by their
 //! record index; the record holds the mesh's face id for the metric and the results.
 
-use crate::mesh::{Csr, FaceFrame, TriMesh, NONE};
+use crate::mesh::Topology;
+use crate::mesh::{Csr, FaceFrame, NONE};
 use crate::steiner::{SlotPoints, SteinerLayout};
 use crate::Error;
 use geotracks_metrics::FacePoint;
@@ -192,8 +193,8 @@ impl TrackTables {
     /// # Errors
     /// [`Error::TooLarge`] when instances or faces exceed what the records can index, or
     /// an edge carries more than 65535 points.
-    pub(in crate::propagate) fn new(
-        mesh: &TriMesh,
+    pub(in crate::propagate) fn new<T: Topology>(
+        mesh: &T,
         layout: &SteinerLayout,
         steps: Option<&[f64]>,
         flat_frames: Option<&[FaceFrame]>,
@@ -204,7 +205,7 @@ impl TrackTables {
                 count: mesh.face_count() as u64,
             });
         }
-        let face_order = mesh.spatial_face_order();
+        let face_order = crate::mesh::spatial_face_order(mesh);
         let mut record_of = vec![0u32; mesh.face_count()];
         for (r, &f) in face_order.iter().enumerate() {
             record_of[f as usize] = r as u32;
@@ -229,7 +230,7 @@ impl TrackTables {
                 }
             }
             FaceRecord {
-                frame: flat_frames.map_or(*mesh.frame(f), |frames| frames[f as usize]),
+                frame: flat_frames.map_or(mesh.frame(f), |frames| frames[f as usize]),
                 lo: edges.map(|e| layout.edge_nodes(e).start),
                 vertex: mesh.face_vertices(f),
                 base: 0,
@@ -262,7 +263,8 @@ impl TrackTables {
         let mut overflow = Vec::new();
         for e in 0..mesh.edge_count() as u32 {
             let step = steps.map_or(f64::NAN, |steps| steps[e as usize]);
-            let around = mesh.edge_faces(e).iter().map(|&f| {
+            let around_ids = mesh.edge_faces(e);
+            let around = around_ids.iter().map(|&f| {
                 let slot = mesh.edge_slot(f, e).expect("edge of its face");
                 Incidence::new(record_of[f as usize], slot)
             });
@@ -293,9 +295,9 @@ impl TrackTables {
     }
 
     /// Adds the per-vertex rows and per-block ends the wavefront engine reads.
-    pub(in crate::propagate) fn with_vertex_rows(
+    pub(in crate::propagate) fn with_vertex_rows<T: Topology>(
         mut self,
-        mesh: &TriMesh,
+        mesh: &T,
         layout: &SteinerLayout,
     ) -> TrackTables {
         let vertices = mesh.vertex_count();

@@ -3,7 +3,7 @@
 //! that split a segment whose middle is off the level.
 
 use super::{IsolineOptions, Key, Query, Segment};
-use crate::mesh::TriMesh;
+use crate::mesh::Topology;
 use crate::surface::SurfacePoint;
 use crate::trace::query::FaceFields;
 use geotracks_metrics::Metric;
@@ -14,8 +14,8 @@ const POINT_TOLERANCE: f64 = 1e-12;
 
 /// One face's grid: its points (keys, surface points, values), indexed `(i, j)` with
 /// `i + j ≤ n`, barycentric `((n − i − j), i, j) / n`.
-pub(super) struct FaceGrid<'q, 'a, M> {
-    query: &'q Query<'a, M>,
+pub(super) struct FaceGrid<'q, 'a, M, T> {
+    query: &'q Query<'a, M, T>,
     /// The candidates of the face and its neighbours (edge points are evaluated on
     /// every face around them).
     cache: &'q RefCell<FaceFields>,
@@ -29,9 +29,9 @@ pub(super) struct FaceGrid<'q, 'a, M> {
     scale: f64,
 }
 
-impl<'q, 'a, M: Metric> FaceGrid<'q, 'a, M> {
+impl<'q, 'a, M: Metric, T: Topology> FaceGrid<'q, 'a, M, T> {
     pub(super) fn new(
-        query: &'q Query<'a, M>,
+        query: &'q Query<'a, M, T>,
         face: u32,
         options: &'q IsolineOptions,
         scale: f64,
@@ -306,7 +306,11 @@ impl<'q, 'a, M: Metric> FaceGrid<'q, 'a, M> {
 
 /// The field's value at `point`, `inf` where unreached (points are built on the mesh,
 /// so they are valid).
-fn value<M: Metric>(query: &Query<'_, M>, cache: &RefCell<FaceFields>, point: SurfacePoint) -> f64 {
+fn value<M: Metric, T: Topology>(
+    query: &Query<'_, M, T>,
+    cache: &RefCell<FaceFields>,
+    point: SurfacePoint,
+) -> f64 {
     query
         .origin_cached(point, &mut cache.borrow_mut())
         .map_or(f64::INFINITY, |(d, _)| d)
@@ -368,7 +372,7 @@ fn solve_2x2(e1: glam::DVec3, e2: glam::DVec3, d: glam::DVec3) -> Option<(f64, f
 
 /// The grid point `(i, j)` of face `f`: its key and its surface point (a vertex, an
 /// edge point by the edge's own parameter, or a face point).
-fn grid_point(mesh: &TriMesh, f: u32, n: u32, i: u32, j: u32) -> (Key, SurfacePoint) {
+fn grid_point<T: Topology>(mesh: &T, f: u32, n: u32, i: u32, j: u32) -> (Key, SurfacePoint) {
     let corners = mesh.face_vertices(f);
     let k = n - i - j;
     if i == 0 && j == 0 {
@@ -421,7 +425,7 @@ fn grid_point(mesh: &TriMesh, f: u32, n: u32, i: u32, j: u32) -> (Key, SurfacePo
 
 /// The mesh edge that points `a` and `b` both lie on (vertices or points of it), with
 /// their parameters along it (from its lower vertex).
-fn shared_edge(mesh: &TriMesh, a: SurfacePoint, b: SurfacePoint) -> Option<(u32, f64, f64)> {
+fn shared_edge<T: Topology>(mesh: &T, a: SurfacePoint, b: SurfacePoint) -> Option<(u32, f64, f64)> {
     let at = |p: SurfacePoint, e: u32| -> Option<f64> {
         match p {
             SurfacePoint::Edge { edge, t } if edge == e => Some(t),
@@ -447,7 +451,13 @@ fn shared_edge(mesh: &TriMesh, a: SurfacePoint, b: SurfacePoint) -> Option<(u32,
 /// The point at fraction `s` from `a` to `b`, both on face `f`'s closure: on their
 /// shared edge when they have one (so that every face finds the same point), else a
 /// face point.
-fn lerp_point(mesh: &TriMesh, f: u32, a: SurfacePoint, b: SurfacePoint, s: f64) -> SurfacePoint {
+fn lerp_point<T: Topology>(
+    mesh: &T,
+    f: u32,
+    a: SurfacePoint,
+    b: SurfacePoint,
+    s: f64,
+) -> SurfacePoint {
     if let Some((edge, ta, tb)) = shared_edge(mesh, a, b) {
         return SurfacePoint::Edge {
             edge,

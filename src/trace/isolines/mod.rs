@@ -26,6 +26,7 @@
 mod faces;
 mod link;
 
+use crate::mesh::Topology;
 use faces::FaceGrid;
 use link::link;
 
@@ -148,7 +149,7 @@ struct Segment {
     inner: Vec<SurfacePoint>,
 }
 
-impl<M: Metric> Query<'_, M> {
+impl<M: Metric, T: Topology> Query<'_, M, T> {
     /// The isolines of the field at `levels` (any finite values; a level no point
     /// reaches gives none), each as polylines of surface points; see the module docs
     /// for how they are drawn and what they guarantee.
@@ -241,7 +242,7 @@ impl<M: Metric> Query<'_, M> {
             around.extend(mesh.edge_faces(e).iter().filter(|&&g| g != f));
         }
         let vertices = mesh.face_vertices(f).map(|v| field.distance[v as usize]);
-        let hi = match flat_frame(self.metric, f, mesh.frame(f)) {
+        let hi = match flat_frame(self.metric, f, &mesh.frame(f)) {
             Some(frame) if !field.horizon.is_bounded() => {
                 let nearest = vertices.iter().copied().fold(f64::INFINITY, f64::min);
                 let farthest = vertices.iter().copied().fold(f64::NEG_INFINITY, f64::max);
@@ -268,7 +269,7 @@ impl<M: Metric> Query<'_, M> {
                 lo = lo.min(field.distance[node as usize]);
             }
             if self.has_waves() {
-                let diameter = flat_frame(self.metric, g, mesh.frame(g))
+                let diameter = flat_frame(self.metric, g, &mesh.frame(g))
                     .map_or(f64::INFINITY, |frame| frame.diameter());
                 reach = reach.max(2.0 * diameter);
             }

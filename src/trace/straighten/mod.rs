@@ -29,7 +29,8 @@ mod moves;
 mod newton;
 
 use super::GeodesicPath;
-use crate::mesh::{TriMesh, NONE};
+use crate::mesh::Topology;
+use crate::mesh::NONE;
 use crate::surface::SurfacePoint;
 use brent::brent_min;
 use geotracks_metrics::{FacePoint, Metric, Reversed};
@@ -74,7 +75,7 @@ const SNAP: f64 = 1e-3;
 ///
 /// A path that runs along wires (segments with face [`NONE`]) is straightened piece by
 /// piece between them: a wire is a fixed curve, and its ends stay where they are.
-pub fn straighten<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
+pub fn straighten<M: Metric, T: Topology>(path: &mut GeodesicPath, mesh: &T, metric: &M) {
     if !path.faces.contains(&NONE) {
         straighten_in_faces(path, mesh, metric);
         return;
@@ -104,7 +105,7 @@ pub fn straighten<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M
 }
 
 /// [`straighten`] for a path whose segments all lie in faces.
-fn straighten_in_faces<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
+fn straighten_in_faces<M: Metric, T: Topology>(path: &mut GeodesicPath, mesh: &T, metric: &M) {
     let mut length = path.metric_length(mesh, metric);
     // The moves measure each segment from the point before it in the list to the one
     // after; the list runs from the query point back to the source, against travel, so
@@ -168,7 +169,7 @@ const HOP_WHEN: f64 = 1e-6;
 /// Newton's method runs again on the stretch of path around them only, so that a path
 /// far off its best corridor moves several vertices a round (a round's work is all the
 /// path's, a hop's only where it moves). A hop that ends longer is undone.
-fn hop<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
+fn hop<M: Metric, T: Topology>(path: &mut GeodesicPath, mesh: &T, metric: &M) {
     // The length before the hop: the one before measured it last.
     let mut length = None;
     for _ in 0..HOPS {
@@ -230,9 +231,9 @@ fn hop<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
 }
 
 /// [`newton`] on points `lo..=hi` of `path` alone (the two ends stay).
-fn newton_between<M: Metric>(
+fn newton_between<M: Metric, T: Topology>(
     path: &mut GeodesicPath,
-    mesh: &TriMesh,
+    mesh: &T,
     metric: &M,
     lo: usize,
     hi: usize,
@@ -257,7 +258,7 @@ fn stretch(path: &GeodesicPath, lo: usize, hi: usize) -> GeodesicPath {
 }
 
 /// Crossings pressed against an end of their edge (within [`SNAP`]) become that vertex.
-fn snap_to_vertices(path: &mut GeodesicPath, mesh: &TriMesh) {
+fn snap_to_vertices<T: Topology>(path: &mut GeodesicPath, mesh: &T) {
     let n = path.points.len();
     for p in path.points.iter_mut().take(n.saturating_sub(1)).skip(1) {
         if let Some(v) = pressed_vertex(mesh, p) {
@@ -267,7 +268,7 @@ fn snap_to_vertices(path: &mut GeodesicPath, mesh: &TriMesh) {
 }
 
 /// The vertex a crossing is pressed against (within [`SNAP`] of it along its edge).
-fn pressed_vertex(mesh: &TriMesh, p: &SurfacePoint) -> Option<u32> {
+fn pressed_vertex<T: Topology>(mesh: &T, p: &SurfacePoint) -> Option<u32> {
     let SurfacePoint::Edge { edge, t } = *p else {
         return None;
     };
@@ -282,14 +283,14 @@ fn pressed_vertex(mesh: &TriMesh, p: &SurfacePoint) -> Option<u32> {
 }
 
 /// Points at an edge's end become the vertex, so that repeated points are seen.
-fn canonicalise(path: &mut GeodesicPath, mesh: &TriMesh) {
+fn canonicalise<T: Topology>(path: &mut GeodesicPath, mesh: &T) {
     for p in &mut path.points {
         *p = p.validated(mesh).unwrap_or(*p);
     }
 }
 
 /// Sweeps of crossing moves until a sweep gains less than [`SWEEP_GAIN`] of `length`.
-fn slide<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M, length: f64) {
+fn slide<M: Metric, T: Topology>(path: &mut GeodesicPath, mesh: &T, metric: &M, length: f64) {
     let n = path.points.len();
     if n < 3 {
         return;
@@ -309,7 +310,12 @@ fn slide<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M, length:
 
 /// Moves crossing `i` along its edge to where its two segments cost least; returns the
 /// cost saved (0 when it stays).
-fn slide_one<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M, i: usize) -> f64 {
+fn slide_one<M: Metric, T: Topology>(
+    path: &mut GeodesicPath,
+    mesh: &T,
+    metric: &M,
+    i: usize,
+) -> f64 {
     let SurfacePoint::Edge { edge, t } = path.points[i] else {
         return 0.0;
     };
@@ -335,7 +341,7 @@ fn slide_one<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M, i: 
 
 /// The ends of `edge` (lower-id vertex first, as its parameter runs) in the frame of
 /// face `f`, one of its faces.
-fn edge_ends(mesh: &TriMesh, f: u32, edge: u32) -> (FacePoint, FacePoint) {
+fn edge_ends<T: Topology>(mesh: &T, f: u32, edge: u32) -> (FacePoint, FacePoint) {
     let corner = |v: u32| {
         mesh.frame(f)
             .corner(mesh.corner_of(f, v).expect("edge of its face"))

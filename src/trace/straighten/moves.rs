@@ -2,7 +2,7 @@
 //! unpinning a path from a vertex it turns round by less than π on one side.
 
 use super::canonicalise;
-use crate::mesh::TriMesh;
+use crate::mesh::Topology;
 use crate::surface::SurfacePoint;
 use crate::trace::{segment_cost, GeodesicPath};
 use geotracks_metrics::Metric;
@@ -10,7 +10,7 @@ use glam::DVec3;
 
 /// Drops a repeated point, and a point between two segments of the same face when the
 /// straight segment is no longer.
-pub(super) fn merge<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
+pub(super) fn merge<M: Metric, T: Topology>(path: &mut GeodesicPath, mesh: &T, metric: &M) {
     canonicalise(path, mesh);
     let mut i = 1;
     while i + 1 < path.points.len() {
@@ -50,7 +50,7 @@ pub(super) fn merge<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: 
 
 /// Gives every vertex the path may cut the corner at a crossing on each edge of the
 /// side it turns around, all placed at the vertex.
-pub(super) fn unpin<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
+pub(super) fn unpin<M: Metric, T: Topology>(path: &mut GeodesicPath, mesh: &T, metric: &M) {
     let mut i = 1;
     while i + 1 < path.points.len() {
         let SurfacePoint::Vertex(v) = path.points[i] else {
@@ -112,8 +112,8 @@ type FanStep = (u32, u32, f64);
 /// the route as `(edge crossed, face entered, angle swept up to the edge)`, the last
 /// face being `g`. `None` when no such way exists (the faces meet only at `v`). Faces
 /// the metric cannot be crossed in (infinite cost: walls) are no way around.
-fn fan_route<M: Metric>(
-    mesh: &TriMesh,
+fn fan_route<M: Metric, T: Topology>(
+    mesh: &T,
     metric: &M,
     v: u32,
     f: u32,
@@ -148,7 +148,7 @@ fn fan_route<M: Metric>(
     let mut states: Vec<(f64, u32, u32, usize)> = Vec::new(); // (angle, edge, face, previous)
     let mut done: Vec<bool> = Vec::new();
     for e in edges_at(f) {
-        for &h in mesh.edge_faces(e) {
+        for &h in mesh.edge_faces(e).iter() {
             if h != f && passable(h) {
                 states.push((angle(before, other_end(e)), e, h, usize::MAX));
                 done.push(false);
@@ -181,7 +181,7 @@ fn fan_route<M: Metric>(
                 continue;
             }
             let through = swept + angle(other_end(e), other_end(e2));
-            for &h2 in mesh.edge_faces(e2) {
+            for &h2 in mesh.edge_faces(e2).iter() {
                 let seen = states.iter().any(|&(_, se, sh, _)| se == e2 && sh == h2);
                 if h2 != h && !seen && passable(h2) {
                     states.push((through, e2, h2, s));

@@ -1,7 +1,7 @@
 //! Newton's method on all of a path's crossings at once.
 
 use super::{edge_ends, lerp, GAIN};
-use crate::mesh::TriMesh;
+use crate::mesh::Topology;
 use crate::surface::SurfacePoint;
 use crate::trace::GeodesicPath;
 use geotracks_metrics::{FacePoint, Metric, SlidingCost};
@@ -59,7 +59,7 @@ impl Place {
 }
 
 impl Chain {
-    fn new(path: &GeodesicPath, mesh: &TriMesh) -> Chain {
+    fn new<T: Topology>(path: &GeodesicPath, mesh: &T) -> Chain {
         let n = path.points.len();
         let mut chain = Chain {
             before: vec![Place::Unused; n],
@@ -157,7 +157,7 @@ impl Chain {
 /// Coordinate sweeps alone move information one crossing per sweep, like Gauss–Seidel
 /// on a chain, so a long path needs very many of them; Newton's method moves the whole
 /// chain at once.
-pub(super) fn newton<M: Metric>(path: &mut GeodesicPath, mesh: &TriMesh, metric: &M) {
+pub(super) fn newton<M: Metric, T: Topology>(path: &mut GeodesicPath, mesh: &T, metric: &M) {
     let n = path.points.len();
     if n < 3 {
         return;

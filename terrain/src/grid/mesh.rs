@@ -2,7 +2,7 @@
 //! tiled order, its edge table built without sorting, and the maps between samples,
 //! cells and the mesh.
 
-use super::{ElevationGrid, GridGeometry, INSIDE};
+use super::{ElevationGrid, GridGeometry};
 use crate::TerrainError;
 use geotracks::mesh::{TriMesh, NONE};
 use geotracks::surface::SurfacePoint;
@@ -357,47 +357,21 @@ impl TerrainMesh {
     /// The face that covers map point `(x, y)` and the point's barycentric coordinates
     /// in it (in the map plane, clamped to the face), as [`locate`](Self::locate).
     pub(crate) fn covering(&self, x: f64, y: f64) -> Result<(u32, [f64; 3]), TerrainError> {
-        let g = &self.geometry;
-        let (fc, fr) = g.inside(x, y)?;
-        let (last_c, last_r) = ((g.ncols - 1) as f64, (g.nrows - 1) as f64);
-        let c0 = (fc.clamp(0.0, last_c).floor() as usize).min(g.ncols - 2);
-        let r0 = (fr.clamp(0.0, last_r).floor() as usize).min(g.nrows - 2);
-        // The cell the point falls in first; its neighbours only for a point on a
-        // cell's border whose own cell lacks the covering triangle.
-        let neighbours = [
-            (0, 0),
-            (-1, 0),
-            (1, 0),
-            (0, -1),
-            (0, 1),
-            (-1, -1),
-            (1, -1),
-            (-1, 1),
-            (1, 1),
-        ];
-        for (dc, dr) in neighbours {
-            let (c, r) = (c0 as isize + dc, r0 as isize + dr);
-            if c < 0 || r < 0 || c as usize + 1 >= g.ncols || r as usize + 1 >= g.nrows {
-                continue;
-            }
-            for f in self.cell_faces(c as usize, r as usize) {
-                let bary = self.bary_2d(f, x, y);
-                if bary.iter().all(|&b| b >= -INSIDE) {
-                    let clamped = bary.map(|b| b.max(0.0));
-                    let sum: f64 = clamped.iter().sum();
-                    return Ok((f, clamped.map(|b| b / sum)));
-                }
-            }
-        }
-        Err(TerrainError::NoData { x, y })
+        super::covering(
+            &self.geometry,
+            x,
+            y,
+            |c, r| self.cell_faces(c, r),
+            |f| self.mesh.face_vertices(f).map(|v| self.mesh.position(v)),
+        )
     }
 
     /// Barycentric coordinates of map point `(x, y)` in face `f`, in the map plane.
     pub(crate) fn bary_2d(&self, f: u32, x: f64, y: f64) -> [f64; 3] {
-        let [a, b, c] = self.mesh.face_vertices(f).map(|v| self.mesh.position(v));
-        let det = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
-        let l1 = ((x - a.x) * (c.y - a.y) - (c.x - a.x) * (y - a.y)) / det;
-        let l2 = ((b.x - a.x) * (y - a.y) - (x - a.x) * (b.y - a.y)) / det;
-        [1.0 - l1 - l2, l1, l2]
+        super::bary_2d(
+            self.mesh.face_vertices(f).map(|v| self.mesh.position(v)),
+            x,
+            y,
+        )
     }
 }

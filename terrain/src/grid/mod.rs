@@ -2,6 +2,7 @@
 //! ([`TerrainMesh`]), which also finds the triangle under any map point in O(1).
 
 mod mesh;
+mod surface;
 
 use super::cost::{normal_up, tan2};
 use super::TerrainError;
@@ -9,6 +10,7 @@ use rayon::prelude::*;
 use std::ops::Range;
 
 pub use mesh::TerrainMesh;
+pub use surface::GridSurface;
 
 /// How far beyond the outermost sample centres, in cells, a map point still counts as on
 /// the grid (rounding in the caller's coordinates).
@@ -479,4 +481,57 @@ impl ElevationGrid {
         }
         steepest
     }
+}
+
+/// The face that covers map point `(x, y)` of a grid and the point's barycentric
+/// coordinates in it (in the map plane, clamped to the face), for a surface whose
+/// kept faces in cell `(col, row)` are `cell_faces(col, row)` and whose face corners
+/// are `corners(f)`: the cell the point falls in first, its neighbours for a point on
+/// a cell's border whose own cell lacks the covering triangle.
+fn covering<I: IntoIterator<Item = u32>>(
+    g: &GridGeometry,
+    x: f64,
+    y: f64,
+    cell_faces: impl Fn(usize, usize) -> I,
+    corners: impl Fn(u32) -> [glam::DVec3; 3],
+) -> Result<(u32, [f64; 3]), TerrainError> {
+    let (fc, fr) = g.inside(x, y)?;
+    let (last_c, last_r) = ((g.ncols - 1) as f64, (g.nrows - 1) as f64);
+    let c0 = (fc.clamp(0.0, last_c).floor() as usize).min(g.ncols - 2);
+    let r0 = (fr.clamp(0.0, last_r).floor() as usize).min(g.nrows - 2);
+    let neighbours = [
+        (0, 0),
+        (-1, 0),
+        (1, 0),
+        (0, -1),
+        (0, 1),
+        (-1, -1),
+        (1, -1),
+        (-1, 1),
+        (1, 1),
+    ];
+    for (dc, dr) in neighbours {
+        let (c, r) = (c0 as isize + dc, r0 as isize + dr);
+        if c < 0 || r < 0 || c as usize + 1 >= g.ncols || r as usize + 1 >= g.nrows {
+            continue;
+        }
+        for f in cell_faces(c as usize, r as usize) {
+            let bary = bary_2d(corners(f), x, y);
+            if bary.iter().all(|&b| b >= -INSIDE) {
+                let clamped = bary.map(|b| b.max(0.0));
+                let sum: f64 = clamped.iter().sum();
+                return Ok((f, clamped.map(|b| b / sum)));
+            }
+        }
+    }
+    Err(TerrainError::NoData { x, y })
+}
+
+/// Barycentric coordinates of map point `(x, y)` in the triangle `[a, b, c]`, in the
+/// map plane.
+fn bary_2d([a, b, c]: [glam::DVec3; 3], x: f64, y: f64) -> [f64; 3] {
+    let det = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+    let l1 = ((x - a.x) * (c.y - a.y) - (c.x - a.x) * (y - a.y)) / det;
+    let l2 = ((b.x - a.x) * (y - a.y) - (x - a.x) * (b.y - a.y)) / det;
+    [1.0 - l1 - l2, l1, l2]
 }
