@@ -119,7 +119,7 @@ pub fn run(args: &TerrainArgs) -> CliResult {
         args,
     )?;
     let (route, window) = (routed.route, routed.window);
-    drop(routed.mesh);
+    drop(routed.surface);
     // The map and the contours need the cost from the start everywhere: a run of its
     // own over the whole grid.
     let field_start = std::time::Instant::now();
@@ -326,10 +326,10 @@ fn report_run(
             String::new()
         };
         eprintln!(
-            "  grid read {:.4} s; window cut and meshed {:.4} s, metric {:.4} s, \
+            "  grid read {:.4} s; window cut {:.4} s, metric {:.4} s, \
              solver {:.4} s; path traced and straightened {:.4} s{field}",
             timings.read_seconds,
-            window.mesh_seconds,
+            window.window_seconds,
             window.metric_seconds,
             window.solver_seconds,
             route.path_seconds

@@ -119,8 +119,9 @@ pub trait Topology: FaceGeometry + Send + Sync {
     /// come in reverse order along the slot.
     #[inline]
     fn slot_is_reversed(&self, f: u32, s: usize) -> bool {
-        let e = self.face_edges(f)[s];
-        self.face_vertices(f)[s] != self.edge_vertices(e)[0]
+        // Edges list their lower vertex first: the slot runs from the higher one.
+        let t = self.face_vertices(f);
+        t[s] > t[(s + 1) % 3]
     }
 
     /// The world position of barycentric point `bary` of face `f`.

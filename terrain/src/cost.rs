@@ -5,8 +5,8 @@
 //! They work on any terrain-like mesh (z up), not only on grids.
 
 use super::TerrainError;
-use super::{DirectedCost, DirectedModel, ElevationGrid, TerrainMesh};
-use geotracks::mesh::TriMesh;
+use super::{DirectedCost, DirectedModel, ElevationGrid, GridSurface, TerrainMesh};
+use geotracks::mesh::Topology;
 use geotracks::metrics::{Density, FacePoint, Metric, Tensor};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -40,7 +40,7 @@ fn check_max_slope(degrees: f64) -> Result<(), TerrainError> {
 }
 
 /// The unnormalised normal of face `f` (twice its area long), turned to point up.
-pub(super) fn face_normal_up(mesh: &TriMesh, f: u32) -> DVec3 {
+pub(super) fn face_normal_up<T: Topology>(mesh: &T, f: u32) -> DVec3 {
     let [a, b, c] = mesh.face_vertices(f).map(|v| mesh.position(v));
     normal_up(a, b, c)
 }
@@ -73,7 +73,7 @@ pub(super) fn tan2(n: DVec3) -> f64 {
 }
 
 /// The slope of every face, in degrees from the horizontal.
-pub fn face_slopes(mesh: &TriMesh) -> Vec<f64> {
+pub fn face_slopes<T: Topology>(mesh: &T) -> Vec<f64> {
     (0..mesh.face_count() as u32)
         .map(|f| {
             let n = face_normal_up(mesh, f);
@@ -85,7 +85,7 @@ pub fn face_slopes(mesh: &TriMesh) -> Vec<f64> {
 /// `tan²(slope)` at every vertex, from its area-weighted normal: the sum of its faces'
 /// normals, each turned to point up and as long as twice the face's area. A vertex of
 /// no face gets 0.
-pub fn vertex_slope_tan2(mesh: &TriMesh) -> Vec<f64> {
+pub fn vertex_slope_tan2<T: Topology>(mesh: &T) -> Vec<f64> {
     let mut normals = vec![DVec3::ZERO; mesh.vertex_count()];
     for f in 0..mesh.face_count() as u32 {
         let n = face_normal_up(mesh, f);
@@ -100,12 +100,11 @@ pub fn vertex_slope_tan2(mesh: &TriMesh) -> Vec<f64> {
 /// of it ([`ElevationGrid::to_mesh_within`]), from all the grid's triangles around each
 /// vertex: a window's vertices on its border get the slope they have on the whole grid
 /// (to rounding), not that of the faces the window kept.
-fn grid_vertex_slope_tan2(grid: &ElevationGrid, terrain: &TerrainMesh) -> Vec<f64> {
+fn grid_vertex_slope_tan2(grid: &ElevationGrid, vertex_samples: Vec<usize>) -> Vec<f64> {
     let g = grid.geometry();
     let last = (g.ncols - 1, g.nrows - 1);
     // (On all cores: a vertex's slope reads only the grid; collected in vertex order.)
-    terrain
-        .vertex_samples()
+    vertex_samples
         .into_par_iter()
         .map(|s| {
             let (col, row) = (s % g.ncols, s / g.ncols);
@@ -143,12 +142,16 @@ fn grid_vertex_slope_tan2(grid: &ElevationGrid, terrain: &TerrainMesh) -> Vec<f6
 /// # Errors
 /// [`TerrainError::Parameter`] unless `a` is finite and ≥ 0; [`TerrainError::Vertical`]
 /// for a vertex whose normal is horizontal.
-pub fn slope_density(mesh: &TriMesh, a: f64) -> Result<Density, TerrainError> {
+pub fn slope_density<T: Topology>(mesh: &T, a: f64) -> Result<Density, TerrainError> {
     slope_density_from(mesh, a, vertex_slope_tan2(mesh))
 }
 
 /// [`slope_density`] from the vertices' `tan²(slope)`.
-fn slope_density_from(mesh: &TriMesh, a: f64, tan2: Vec<f64>) -> Result<Density, TerrainError> {
+fn slope_density_from<T: Topology>(
+    mesh: &T,
+    a: f64,
+    tan2: Vec<f64>,
+) -> Result<Density, TerrainError> {
     check_factor("the slope factor a", a)?;
     let rho = tan2
         .into_iter()
@@ -172,7 +175,7 @@ pub const SLOPE_PRUNING_TOLERANCE: f64 = 0.2;
 ///
 /// # Errors
 /// [`TerrainError::Parameter`] unless `max_degrees` is in (0, 90].
-pub fn steeper_than(mesh: &TriMesh, max_degrees: f64) -> Result<Vec<bool>, TerrainError> {
+pub fn steeper_than<T: Topology>(mesh: &T, max_degrees: f64) -> Result<Vec<bool>, TerrainError> {
     check_max_slope(max_degrees)?;
     Ok(face_slopes(mesh)
         .into_iter()
@@ -192,7 +195,7 @@ pub fn steeper_than(mesh: &TriMesh, max_degrees: f64) -> Result<Vec<bool>, Terra
 ///
 /// # Errors
 /// [`TerrainError::Parameter`] unless `b` is finite and ≥ 0.
-pub fn incline_tensor(mesh: &TriMesh, b: f64) -> Result<Tensor, TerrainError> {
+pub fn incline_tensor<T: Topology>(mesh: &T, b: f64) -> Result<Tensor, TerrainError> {
     check_factor("the incline factor b", b)?;
     let local = (0..mesh.face_count() as u32)
         .map(|f| {
@@ -263,8 +266,8 @@ impl<M: Metric> Impassable<M> {
     /// # Errors
     /// [`TerrainError::CountMismatch`] unless `blocked_vertices` has one entry per
     /// vertex.
-    pub fn from_vertices(
-        mesh: &TriMesh,
+    pub fn from_vertices<T: Topology>(
+        mesh: &T,
         inner: M,
         blocked_vertices: &[bool],
     ) -> Result<Self, TerrainError> {
@@ -581,7 +584,7 @@ impl TerrainCost {
     /// # Errors
     /// What building the metric returns ([`TerrainError::Parameter`] for a parameter
     /// out of range).
-    pub fn metric(&self, mesh: &TriMesh) -> Result<TerrainMetric, TerrainError> {
+    pub fn metric<T: Topology>(&self, mesh: &T) -> Result<TerrainMetric, TerrainError> {
         self.metric_with(mesh, vertex_slope_tan2)
     }
 
@@ -597,14 +600,31 @@ impl TerrainCost {
         grid: &ElevationGrid,
         terrain: &TerrainMesh,
     ) -> Result<TerrainMetric, TerrainError> {
-        self.metric_with(&terrain.mesh, |_| grid_vertex_slope_tan2(grid, terrain))
+        self.metric_with(&terrain.mesh, |_| {
+            grid_vertex_slope_tan2(grid, terrain.vertex_samples())
+        })
+    }
+
+    /// As [`metric_on_grid`](Self::metric_on_grid) on a [`GridSurface`] of `grid` (or
+    /// of a window of it): the costs read the grid's samples, and no mesh is built.
+    ///
+    /// # Errors
+    /// As [`metric`](Self::metric).
+    pub fn metric_on_surface(
+        &self,
+        grid: &ElevationGrid,
+        surface: &GridSurface,
+    ) -> Result<TerrainMetric, TerrainError> {
+        self.metric_with(surface, |_| {
+            grid_vertex_slope_tan2(grid, surface.vertex_grid_samples())
+        })
     }
 
     /// The metric, with the vertices' `tan²(slope)` from `slopes`.
-    fn metric_with(
+    fn metric_with<T: Topology>(
         &self,
-        mesh: &TriMesh,
-        slopes: impl FnOnce(&TriMesh) -> Vec<f64>,
+        mesh: &T,
+        slopes: impl FnOnce(&T) -> Vec<f64>,
     ) -> Result<TerrainMetric, TerrainError> {
         Ok(match *self {
             TerrainCost::None => TerrainMetric::Length(geotracks::metrics::Euclidean),

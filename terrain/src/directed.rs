@@ -31,8 +31,8 @@
 
 use super::cost::{face_normal_up, tan2};
 use super::TerrainError;
-use geotracks::mesh::TriMesh;
-use geotracks::metrics::{FaceGeometry, FacePoint, Metric, SlidingCost};
+use geotracks::mesh::Topology;
+use geotracks::metrics::{FacePoint, Metric, SlidingCost};
 
 /// How a [`DirectedCost`] charges a segment (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -357,7 +357,7 @@ impl DirectedCost {
     /// # Errors
     /// [`TerrainError::Parameter`] for a parameter out of range
     /// ([`DirectedModel::check`]).
-    pub fn new(mesh: &TriMesh, model: DirectedModel) -> Result<Self, TerrainError> {
+    pub fn new<T: Topology>(mesh: &T, model: DirectedModel) -> Result<Self, TerrainError> {
         model.check()?;
         let faces = mesh.face_count() as u32;
         let axes: Vec<[f64; 6]> = (0..faces)

@@ -1,8 +1,9 @@
 //! [`route`]: the cheapest route between two points of a terrain, start first, with its
 //! cumulative cost and lengths.
 
-use super::{ElevationGrid, TerrainCost, TerrainError, TerrainMesh};
+use super::{ElevationGrid, GridSurface, TerrainCost, TerrainError};
 use geotracks::field::{Field, Stats};
+use geotracks::mesh::Topology;
 use geotracks::metrics::Metric;
 use geotracks::options::{Method, Options, Sources, Stop};
 use geotracks::propagate::Solver;
@@ -90,8 +91,8 @@ impl Route {
 /// The engine's error alone (nothing of the grid is read here; `?` turns it into a
 /// [`TerrainError::Engine`]): [`Error::Unreachable`] when no route joins the two points
 /// (walls, NODATA, separate islands); as [`Solver::field`] otherwise.
-pub fn route<M: Metric>(
-    solver: &Solver<M>,
+pub fn route<M: Metric, T: Topology>(
+    solver: &Solver<M, T>,
     from: SurfacePoint,
     to: SurfacePoint,
     whole_field: bool,
@@ -104,8 +105,8 @@ pub fn route<M: Metric>(
 
 /// As [`route`] stopping at the end, going no farther than `max_cost` (`inf`: no
 /// limit): [`Error::Unreachable`] when the route would cost more.
-fn route_within<M: Metric>(
-    solver: &Solver<M>,
+fn route_within<M: Metric, T: Topology>(
+    solver: &Solver<M, T>,
     from: SurfacePoint,
     to: SurfacePoint,
     max_cost: f64,
@@ -129,11 +130,11 @@ fn route_within<M: Metric>(
 ///
 /// # Errors
 /// As [`route`].
-pub fn route_and_field<M: Metric>(
-    solver: &Solver<M>,
+pub fn route_and_field<M: Metric, T: Topology>(
+    solver: &Solver<M, T>,
     from: SurfacePoint,
     to: SurfacePoint,
-) -> Result<(Route, Field<M>), Error> {
+) -> Result<(Route, Field<M, geotracks::FieldData, T>), Error> {
     let mut route = route_within(solver, from, to, f64::INFINITY)?;
     let field = solver.field(from)?;
     route.vertex_costs = Some(field.vertex_distances().to_vec());
@@ -142,8 +143,8 @@ pub fn route_and_field<M: Metric>(
 
 /// `path` (from the end back to the start) as a route from the start, with the run's
 /// `stats` and the vertex costs; the path's seconds counted from `start`.
-fn path_route<M: Metric>(
-    solver: &Solver<M>,
+fn path_route<M: Metric, T: Topology>(
+    solver: &Solver<M, T>,
     path: geotracks::GeodesicPath,
     stats: Stats,
     vertex_costs: Option<Vec<f64>>,
@@ -177,11 +178,12 @@ fn path_route<M: Metric>(
 #[non_exhaustive]
 pub struct GridRoute {
     /// The route. Its [`surface_points`](Route::surface_points) lie on
-    /// [`mesh`](Self::mesh), the window's mesh (its points, costs and lengths are the
+    /// [`surface`](Self::surface), the window's (its points, costs and lengths are the
     /// grid's).
     pub route: Route,
-    /// The mesh of the window the route was found on.
-    pub mesh: TerrainMesh,
+    /// The window of the grid the route was found on, as a surface (shared with the
+    /// solver that found it).
+    pub surface: std::sync::Arc<GridSurface>,
     /// How the window was cut.
     pub window: RouteWindow,
 }
@@ -190,7 +192,7 @@ pub struct GridRoute {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct RouteWindow {
-    /// Cells meshed for the last run.
+    /// Cells the last run's window held.
     pub cells: usize,
     /// Cells of the whole grid.
     pub grid_cells: usize,
@@ -202,11 +204,12 @@ pub struct RouteWindow {
     /// The least cost per unit of 3D length it was cut with
     /// ([`TerrainCost::least_cost_per_length`]).
     pub per_length: f64,
-    /// Seconds spent meshing the windows and building the metrics and solvers (all
+    /// Seconds spent cutting the windows and building the metrics and solvers (all
     /// runs); the propagation's are in the route's [`stats`](Route::stats) (last run).
     pub setup_seconds: f64,
-    /// Of `setup_seconds`, those spent cutting and meshing the windows.
-    pub mesh_seconds: f64,
+    /// Of `setup_seconds`, those spent cutting the windows (and numbering their
+    /// cells' triangles: no mesh is built).
+    pub window_seconds: f64,
     /// Of `setup_seconds`, those spent building the metrics.
     pub metric_seconds: f64,
     /// Of `setup_seconds`, those spent building the solvers ([`Solver::new`]: Steiner
@@ -305,18 +308,21 @@ pub fn route_on_grid(
     // Whether `bound` is the cost of a route found (on a narrower window).
     let mut found = false;
     let mut runs = 0;
-    let [mut mesh_seconds, mut metric_seconds, mut solver_seconds] = [0.0; 3];
+    let [mut window_seconds, mut metric_seconds, mut solver_seconds] = [0.0; 3];
     loop {
         runs += 1;
         let setup = Instant::now();
-        let (mesh, cells, whole) = window_mesh(grid, s, t, bound, per_length)?;
-        let (a, b) = (mesh.locate(from[0], from[1])?, mesh.locate(to[0], to[1])?);
-        mesh_seconds += setup.elapsed().as_secs_f64();
+        let (surface, cells, whole) = window_surface(grid, s, t, bound, per_length)?;
+        let (a, b) = (
+            surface.locate(from[0], from[1])?,
+            surface.locate(to[0], to[1])?,
+        );
+        window_seconds += setup.elapsed().as_secs_f64();
         let metric_start = Instant::now();
-        let metric = cost.metric_on_grid(grid, &mesh)?;
+        let metric = cost.metric_on_surface(grid, &surface)?;
         metric_seconds += metric_start.elapsed().as_secs_f64();
         let solver_start = Instant::now();
-        let solver = Solver::new(&mesh.mesh, metric, &options)?;
+        let solver = Solver::with_topology(surface, metric, &options)?;
         solver_seconds += solver_start.elapsed().as_secs_f64();
         // A run within the bound: a goal-directed one that finds no route as cheap
         // stops as soon as it knows, having settled a corridor.
@@ -328,15 +334,15 @@ pub fn route_on_grid(
             Ok(route) if whole || found || route.traced_cost <= bound => {
                 return Ok(GridRoute {
                     route,
-                    mesh,
+                    surface: std::sync::Arc::clone(solver.shared_mesh()),
                     window: RouteWindow {
                         cells,
                         grid_cells,
                         runs,
                         bound,
                         per_length,
-                        setup_seconds: mesh_seconds + metric_seconds + solver_seconds,
-                        mesh_seconds,
+                        setup_seconds: window_seconds + metric_seconds + solver_seconds,
+                        window_seconds,
                         metric_seconds,
                         solver_seconds,
                     },
@@ -386,16 +392,16 @@ fn first_bound(
     }
 }
 
-/// The mesh of the window a route from `s` to `t` that costs at most `bound` may cross
+/// The window a route from `s` to `t` that costs at most `bound` may cross
 /// (`per_length`: the least cost per length), with its number of cells and whether it
 /// is the whole grid.
-fn window_mesh(
+fn window_surface(
     grid: &ElevationGrid,
     s: DVec3,
     t: DVec3,
     bound: f64,
     per_length: f64,
-) -> Result<(TerrainMesh, usize, bool), TerrainError> {
+) -> Result<(GridSurface, usize, bool), TerrainError> {
     let g = *grid.geometry();
     let grid_cells = g.ncols.saturating_sub(1) * g.nrows.saturating_sub(1);
     // The cells a route within the bound may cross; all of them where the window
@@ -415,17 +421,17 @@ fn window_mesh(
         .collect();
     let mut cells = window.iter().filter(|&&k| k).count();
     let whole = !cuts || cells as f64 > WHOLE_GRID_ABOVE * grid_cells as f64;
-    let mesh = if whole {
+    let surface = if whole {
         cells = grid_cells;
         window.clear();
-        grid.to_mesh()?
+        GridSurface::new(grid)?
     } else {
         let (c0, r0) = (cols.start, rows.start);
-        grid.to_mesh_within(cols, rows, |col, row| {
+        GridSurface::within(grid, cols, rows, |col, row| {
             window[(row - r0) * width + (col - c0)]
         })?
     };
-    Ok((mesh, cells, whole))
+    Ok((surface, cells, whole))
 }
 
 /// What the straight line (in the map) from `from` to `to` costs on the terrain, in
@@ -471,17 +477,17 @@ fn straight_line_cost(
         );
         let cols = cell_span(p.0.min(q.0), p.0.max(q.0), 3.0, g.ncols - 1);
         let rows = cell_span(p.1.min(q.1), p.1.max(q.1), 3.0, g.nrows - 1);
-        let terrain = grid.to_mesh_within(cols, rows, near).ok()?;
-        let metric = cost.metric_on_grid(grid, &terrain).ok()?;
+        let surface = GridSurface::within(grid, cols, rows, near).ok()?;
+        let metric = cost.metric_on_surface(grid, &surface).ok()?;
         for i in first..last {
             let (p, q) = (at(i), at(i + 1));
             // Each step in the face under its middle (a step that crosses an edge is
             // costed in one of its faces: a guess).
-            let (face, _) = terrain
+            let (face, _) = surface
                 .covering(0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1]))
                 .ok()?;
-            let frame = terrain.mesh.frame(face);
-            let point = |[x, y]: [f64; 2]| frame.point(terrain.bary_2d(face, x, y));
+            let frame = surface.frame(face);
+            let point = |[x, y]: [f64; 2]| frame.point(surface.bary_2d(face, x, y));
             total += metric.cost(face, &point(p), &point(q));
         }
     }
@@ -500,10 +506,9 @@ fn surface_position(grid: &ElevationGrid, x: f64, y: f64) -> Result<DVec3, Terra
         cell_span(fc, fc, 2.0, g.ncols - 1),
         cell_span(fr, fr, 2.0, g.nrows - 1),
     );
-    let mesh = grid
-        .to_mesh_within(cols, rows, |_, _| true)
+    let surface = GridSurface::within(grid, cols, rows, |_, _| true)
         .map_err(|_| TerrainError::NoData { x, y })?;
-    Ok(mesh.locate(x, y)?.position(&mesh.mesh))
+    Ok(surface.locate(x, y)?.position(&surface))
 }
 
 /// The columns and rows of the cells that meet the ellipse of the map points `x` with

@@ -365,13 +365,4 @@ impl TerrainMesh {
             |f| self.mesh.face_vertices(f).map(|v| self.mesh.position(v)),
         )
     }
-
-    /// Barycentric coordinates of map point `(x, y)` in face `f`, in the map plane.
-    pub(crate) fn bary_2d(&self, f: u32, x: f64, y: f64) -> [f64; 3] {
-        super::bary_2d(
-            self.mesh.face_vertices(f).map(|v| self.mesh.position(v)),
-            x,
-            y,
-        )
-    }
 }

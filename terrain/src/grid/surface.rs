@@ -7,6 +7,7 @@ use geotracks::mesh::{FaceFrame, InlineIds, Topology, NONE};
 use geotracks::metrics::FaceGeometry;
 use geotracks::surface::SurfacePoint;
 use glam::DVec3;
+use rayon::prelude::*;
 use std::ops::Range;
 
 /// Samples and cells are numbered tile by tile, as a grid's mesh numbers them (see
@@ -45,19 +46,25 @@ const TRIANGLES: [[[u8; 3]; 2]; 2] = [
 /// directly, with no [`TriMesh`](geotracks::mesh::TriMesh) and no edge table.
 ///
 /// - **Vertices** are the samples of the box, numbered tile by tile (32 × 32 blocks,
-///   the blocks row by row): a vertex's sample is computed from its id and back. A
-///   sample no kept face uses (NODATA, or outside the window) is a vertex of no face,
-///   which no run reaches; a NODATA sample sits at elevation 0.
+///   the blocks row by row: what a wavefront settles together lies close in memory,
+///   and ties between equal values break as on the grid's mesh, so routes are the
+///   mesh's to the bit). A vertex's id is computed from its sample, and its sample
+///   kept per vertex (4 bytes). A sample no kept face uses (NODATA, or outside the
+///   window) is a vertex of no face, which no run reaches; a NODATA sample sits at
+///   elevation 0.
 /// - **Faces** are the kept cells' triangles, in the cells' tiled order, two per cell
-///   at most (one where a corner is NODATA). What is stored per face is the cell it
-///   lies in (4 bytes), and per cell its first face and its split (5 bytes).
+///   at most (one where a corner is NODATA). What is stored per
+///   face is the cell it lies in and its frame (28 bytes: the engines and the path's
+///   straightening ask for frames often, and laying a face flat costs a few square
+///   roots), and per cell its first face and its split (5 bytes).
 /// - **Edges** are numbered by their first sample, with at most three per sample (east,
 ///   south, and the diagonal of the cell south-east of it): per sample its first edge
 ///   and which of the three it has (5 bytes), per edge its sample and kind (4 bytes).
 ///   The faces around an edge, and the faces and edges around a vertex, are computed
 ///   from the cells around them.
 ///
-/// A 1000 × 1000 grid takes about 40 MB this way, against about 240 MB for its mesh.
+/// A 1000 × 1000 grid takes about 90 MB this way, against about 240 MB for its mesh
+/// (and twice that while the mesh is built).
 ///
 /// ```
 /// use geotracks_terrain::{ElevationGrid, GridGeometry, GridSurface};
@@ -84,12 +91,16 @@ pub struct GridSurface {
     rows: usize,
     /// Per sample of the box (row-major), its elevation (NaN for NODATA).
     z: Vec<f64>,
+    /// Per vertex, its sample (row-major in the box).
+    vertex_sample: Vec<u32>,
     /// Per cell of the box (row-major, `cols − 1` wide), its code (see `FIRST`).
     cell_code: Vec<u8>,
     /// Per cell of the box (row-major), its first face.
     cell_face: Vec<u32>,
     /// Per face, its cell (row-major in the box) times two plus which triangle.
     face_cell: Vec<u32>,
+    /// Per face, its frame.
+    frames: Vec<FaceFrame>,
     /// Per sample of the box (row-major), its edges: bit `EAST`, `SOUTH`, `DIAGONAL`.
     sample_mask: Vec<u8>,
     /// Per sample of the box (row-major), its first edge.
@@ -163,9 +174,13 @@ impl GridSurface {
             cols: samples_wide,
             rows: samples_high,
             z,
+            vertex_sample: tiled(samples_wide, samples_high)
+                .map(|(c, r)| (r * samples_wide + c) as u32)
+                .collect(),
             cell_code: vec![0; cols.len() * rows.len()],
             cell_face: vec![NONE; cols.len() * rows.len()],
             face_cell: Vec::new(),
+            frames: Vec::new(),
             sample_mask: vec![0; samples_wide * samples_high],
             sample_edge: vec![NONE; samples_wide * samples_high],
             edge_key: Vec::new(),
@@ -175,6 +190,10 @@ impl GridSurface {
             return Err(too_small());
         }
         surface.number_edges();
+        surface.frames = (0..surface.face_cell.len() as u32)
+            .into_par_iter()
+            .map(|f| surface.computed_frame(f))
+            .collect();
         Ok(surface)
     }
 
@@ -299,8 +318,7 @@ impl GridSurface {
     /// The box sample (row-major) of vertex `v`.
     #[inline]
     fn sample_of(&self, v: u32) -> usize {
-        let (c, r) = tiled_position(v as usize, self.cols, self.rows);
-        r * self.cols + c
+        self.vertex_sample[v as usize] as usize
     }
 
     /// The faces of the box cell at column `c`, row `r` (box cell coordinates), if it
@@ -375,6 +393,15 @@ impl GridSurface {
             y,
             |c, r| self.cell_faces(c, r),
             |f| self.face_vertices(f).map(|v| Topology::position(self, v)),
+        )
+    }
+
+    /// Barycentric coordinates of map point `(x, y)` in face `f`, in the map plane.
+    pub(crate) fn bary_2d(&self, f: u32, x: f64, y: f64) -> [f64; 3] {
+        super::bary_2d(
+            self.face_vertices(f).map(|v| Topology::position(self, v)),
+            x,
+            y,
         )
     }
 
@@ -524,6 +551,17 @@ impl Topology for GridSurface {
 
     #[inline]
     fn frame(&self, f: u32) -> FaceFrame {
+        self.frames[f as usize]
+    }
+
+    fn is_spatially_ordered(&self) -> bool {
+        true
+    }
+}
+
+impl GridSurface {
+    /// Face `f` laid flat, from its corners' samples.
+    fn computed_frame(&self, f: u32) -> FaceFrame {
         let (corners, cell) = self.face_corners(f);
         let p = corners.map(|c| {
             let s = self.corner_sample(cell, c);
@@ -535,12 +573,6 @@ impl Topology for GridSurface {
         FaceFrame::of_triangle(p).expect("a grid's triangles have area")
     }
 
-    fn is_spatially_ordered(&self) -> bool {
-        true
-    }
-}
-
-impl GridSurface {
     /// The two samples (row-major in the box) of edge `e`, in no order.
     #[inline]
     fn edge_samples(&self, e: u32) -> [usize; 2] {
@@ -572,28 +604,14 @@ fn tiled(wide: usize, high: usize) -> impl Iterator<Item = (usize, usize)> {
     })
 }
 
-/// The place of `(c, r)` in [`tiled`] order over a `wide × high` box.
+/// The place of `(c, r)` in [`tiled`] order over a `wide × high` box (no division but
+/// by the tile's size).
 #[inline]
 fn tiled_index(c: usize, r: usize, wide: usize, high: usize) -> usize {
     let (tile_row, tile_col) = (r / TILE, c / TILE);
     let tile_high = TILE.min(high - tile_row * TILE);
     let tile_wide = TILE.min(wide - tile_col * TILE);
     tile_row * TILE * wide + tile_col * TILE * tile_high + (r % TILE) * tile_wide + c % TILE
-}
-
-/// The `(c, r)` at place `i` of [`tiled`] order over a `wide × high` box.
-#[inline]
-fn tiled_position(i: usize, wide: usize, high: usize) -> (usize, usize) {
-    let tile_row = i / (TILE * wide);
-    let tile_high = TILE.min(high - tile_row * TILE);
-    let rest = i - tile_row * TILE * wide;
-    let tile_col = rest / (TILE * tile_high);
-    let tile_wide = TILE.min(wide - tile_col * TILE);
-    let inside = rest - tile_col * TILE * tile_high;
-    (
-        tile_col * TILE + inside % tile_wide,
-        tile_row * TILE + inside / tile_wide,
-    )
 }
 
 #[cfg(test)]
