@@ -625,7 +625,7 @@ fn verbose_routes_say_where_the_time_went() {
     assert_eq!(seconds.len(), 5, "{line}");
     assert!(seconds.iter().all(|s| *s >= 0.0 && s.is_finite()), "{line}");
     for part in [
-        "window cut and meshed",
+        "window cut",
         "metric",
         "solver",
         "path traced and straightened",

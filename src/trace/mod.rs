@@ -41,7 +41,7 @@ pub struct GeodesicPath {
     pub points: Vec<SurfacePoint>,
     /// The face each segment lies in (one fewer than the points); [`NONE`] for a
     /// segment along a wire, between the wire's two vertices
-    /// ([`TriMesh::vertex_wires`]).
+    /// ([`Topology::vertex_wires`]).
     pub faces: Vec<u32>,
     /// The index of the source the path ends at, in the run's sources.
     pub source: u32,

@@ -129,3 +129,9 @@ pub fn read_terrain(path: impl AsRef<Path>) -> Result<(ElevationGrid, TerrainMes
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
+
+/// The guide's Terrain page (`docs/src/terrain.md`): its code blocks, compiled and run as
+/// doctests here, where the terrain crate is in reach.
+#[cfg(doctest)]
+#[doc = include_str!("../../docs/src/terrain.md")]
+struct GuideTerrainDoctests;

@@ -69,6 +69,7 @@ const TRIANGLES: [[[u8; 3]; 2]; 2] = [
 /// ```
 /// use geotracks_terrain::{ElevationGrid, GridGeometry, GridSurface};
 /// use geotracks::{mesh::Topology, Euclidean, Options, Solver};
+/// use geotracks::metrics::FaceGeometry; // face_count
 /// let geometry = GridGeometry { ncols: 11, nrows: 11, lower_left: [0.0, 0.0], spacing: [1.0, 1.0] };
 /// let grid = ElevationGrid::from_fn(geometry, |x, y| Some(0.1 * x + 0.2 * y))?;
 /// let surface = GridSurface::new(&grid)?;
@@ -215,7 +216,8 @@ impl GridSurface {
             } else {
                 0
             };
-            let code = split | (first.is_some() as u8) * FIRST | (second.is_some() as u8) * SECOND;
+            let code =
+                split | (u8::from(first.is_some()) * FIRST) | (u8::from(second.is_some()) * SECOND);
             let cell = r * cells_wide + c;
             self.cell_code[cell] = code;
             if code & (FIRST | SECOND) != 0 {
@@ -340,11 +342,11 @@ impl GridSurface {
     fn cell_faces_at(first: u32, code: u8, corners: u8, out: &mut InlineIds) {
         let split = (code & SPLIT_NE_SW != 0) as usize;
         let mut f = first;
-        for t in 0..2 {
+        for (t, triangle) in TRIANGLES[split].iter().enumerate() {
             if code & (1 << t) == 0 {
                 continue;
             }
-            let t_corners = TRIANGLES[split][t].iter().fold(0, |m, &c| m | c);
+            let t_corners = triangle.iter().fold(0, |m, &c| m | c);
             if t_corners & corners == corners {
                 out.push(f);
             }
