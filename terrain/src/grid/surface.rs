@@ -41,6 +41,38 @@ const TRIANGLES: [[[u8; 3]; 2]; 2] = [
     [[SW, SE, NE], [SW, NE, NW]],
 ];
 
+/// Per cell code and corner bits, how many of the cell's faces have those corners and
+/// their offsets from its first face: what [`GridSurface::cell_faces_at`] looks up
+/// rather than works out at every call.
+const FACES_AT: [[(u8, [u8; 2]); 16]; 8] = faces_at();
+
+const fn faces_at() -> [[(u8, [u8; 2]); 16]; 8] {
+    let mut table = [[(0u8, [0u8; 2]); 16]; 8];
+    let mut code = 0;
+    while code < 8 {
+        let split = (code & SPLIT_NE_SW as usize != 0) as usize;
+        let mut corners = 0;
+        while corners < 16 {
+            let (mut count, mut offset, mut t) = (0u8, 0u8, 0);
+            while t < 2 {
+                if code & (1 << t) != 0 {
+                    let [a, b, c] = TRIANGLES[split][t];
+                    if (a | b | c) & corners as u8 == corners as u8 {
+                        table[code][corners].1[count as usize] = offset;
+                        count += 1;
+                    }
+                    offset += 1;
+                }
+                t += 1;
+            }
+            table[code][corners].0 = count;
+            corners += 1;
+        }
+        code += 1;
+    }
+    table
+}
+
 /// A box of an [`ElevationGrid`]'s cells, split into triangles as
 /// [`ElevationGrid::to_mesh`] splits them, as a [`Topology`]: the engines run on it
 /// directly, with no [`TriMesh`](geotracks::mesh::TriMesh) and no edge table.
@@ -90,15 +122,18 @@ pub struct GridSurface {
     row0: usize,
     cols: usize,
     rows: usize,
-    /// Per sample of the box (row-major), its elevation (NaN for NODATA).
-    z: Vec<f64>,
-    /// Per vertex, its sample (row-major in the box).
+    /// Per vertex, its position (a NODATA sample at elevation 0).
+    positions: Vec<DVec3>,
+    /// Per vertex, its sample (row-major in the box), and per sample its vertex.
     vertex_sample: Vec<u32>,
-    /// Per cell of the box (row-major, `cols − 1` wide), its code (see `FIRST`).
+    sample_vertex: Vec<u32>,
+    /// Per cell, its code (see `FIRST`): cells are numbered by their north-west sample
+    /// (row-major in the box), so that no id is ever divided into a row and a column;
+    /// the last column and row of samples have no cell (code 0).
     cell_code: Vec<u8>,
-    /// Per cell of the box (row-major), its first face.
+    /// Per cell, its first face.
     cell_face: Vec<u32>,
-    /// Per face, its cell (row-major in the box) times two plus which triangle.
+    /// Per face, its cell times two plus which triangle.
     face_cell: Vec<u32>,
     /// Per face, its frame.
     frames: Vec<FaceFrame>,
@@ -163,23 +198,33 @@ impl GridSurface {
                 ),
             });
         }
-        let mut z = Vec::with_capacity(samples_wide * samples_high);
-        for row in rows.start..=rows.end {
-            let first = row * g.ncols + cols.start;
-            z.extend_from_slice(&grid.values()[first..first + samples_wide]);
+        let samples = samples_wide * samples_high;
+        let vertex_sample: Vec<u32> = tiled(samples_wide, samples_high)
+            .map(|(c, r)| (r * samples_wide + c) as u32)
+            .collect();
+        let mut sample_vertex = vec![0; samples];
+        for (v, &s) in vertex_sample.iter().enumerate() {
+            sample_vertex[s as usize] = v as u32;
         }
+        let positions = tiled(samples_wide, samples_high)
+            .map(|(c, r)| {
+                let (col, row) = (cols.start + c, rows.start + r);
+                let [x, y] = g.position(col, row);
+                let z = grid.values()[row * g.ncols + col];
+                DVec3::new(x, y, if z.is_nan() { 0.0 } else { z })
+            })
+            .collect();
         let mut surface = GridSurface {
             geometry: g,
             col0: cols.start,
             row0: rows.start,
             cols: samples_wide,
             rows: samples_high,
-            z,
-            vertex_sample: tiled(samples_wide, samples_high)
-                .map(|(c, r)| (r * samples_wide + c) as u32)
-                .collect(),
-            cell_code: vec![0; cols.len() * rows.len()],
-            cell_face: vec![NONE; cols.len() * rows.len()],
+            positions,
+            vertex_sample,
+            sample_vertex,
+            cell_code: vec![0; samples],
+            cell_face: vec![NONE; samples],
             face_cell: Vec::new(),
             frames: Vec::new(),
             sample_mask: vec![0; samples_wide * samples_high],
@@ -200,7 +245,6 @@ impl GridSurface {
 
     /// Codes the kept cells and numbers their triangles, tile by tile.
     fn number_faces(&mut self, grid: &ElevationGrid, keep: &impl Fn(usize, usize) -> bool) {
-        let cells_wide = self.cols - 1;
         let ncols = self.geometry.ncols;
         for (c, r) in tiled(self.cols - 1, self.rows - 1) {
             let (col, row) = (self.col0 + c, self.row0 + r);
@@ -218,7 +262,7 @@ impl GridSurface {
             };
             let code =
                 split | (u8::from(first.is_some()) * FIRST) | (u8::from(second.is_some()) * SECOND);
-            let cell = r * cells_wide + c;
+            let cell = r * self.cols + c;
             self.cell_code[cell] = code;
             if code & (FIRST | SECOND) != 0 {
                 self.cell_face[cell] = self.face_cell.len() as u32;
@@ -259,15 +303,14 @@ impl GridSurface {
 
     /// The number of cells of the box (kept or not).
     pub fn box_cells(&self) -> usize {
-        self.cell_code.len()
+        (self.cols - 1) * (self.rows - 1)
     }
 
-    /// The sample (row-major in the box) at corner `corner` of cell `cell` (row-major
-    /// in the box).
+    /// The sample (row-major in the box) at corner `corner` of cell `cell` (numbered by
+    /// its north-west sample).
     #[inline]
     fn corner_sample(&self, cell: usize, corner: u8) -> usize {
-        let (c, r) = (cell % (self.cols - 1), cell / (self.cols - 1));
-        let s = r * self.cols + c;
+        let s = cell;
         match corner {
             NW => s,
             NE => s + 1,
@@ -314,7 +357,7 @@ impl GridSurface {
     /// The vertex id of the box sample `s` (row-major).
     #[inline]
     fn vertex_of(&self, s: usize) -> u32 {
-        tiled_index(s % self.cols, s / self.cols, self.cols, self.rows) as u32
+        self.sample_vertex[s]
     }
 
     /// The box sample (row-major) of vertex `v`.
@@ -323,46 +366,57 @@ impl GridSurface {
         self.vertex_sample[v as usize] as usize
     }
 
-    /// The faces of the box cell at column `c`, row `r` (box cell coordinates), if it
-    /// lies in the box: its first face and its code.
+    /// The faces of cell `cell` (its north-west sample; a wrapped-around id, past the
+    /// box, is no cell), if it has any: its first face and its code. (A cell to the
+    /// west of the first column is a last-column sample, which has no cell: no
+    /// bounds check is needed on the columns.)
     #[inline]
-    fn cell(&self, c: isize, r: isize) -> Option<(u32, u8)> {
-        let (wide, high) = (self.cols as isize - 1, self.rows as isize - 1);
-        if c < 0 || r < 0 || c >= wide || r >= high {
-            return None;
-        }
-        let cell = (r * wide + c) as usize;
-        let code = self.cell_code[cell];
+    fn cell_at(&self, cell: usize) -> Option<(u32, u8)> {
+        let code = *self.cell_code.get(cell)?;
         (code & (FIRST | SECOND) != 0).then(|| (self.cell_face[cell], code))
     }
 
-    /// The faces of a cell (`first`, `code`) that have both corner bits of `corners`
-    /// (one bit: the faces at that corner).
+    /// The kept cell's diagonal, as corner bits.
+    #[inline]
+    fn diagonal(code: u8) -> u8 {
+        if code & SPLIT_NE_SW != 0 {
+            NE | SW
+        } else {
+            NW | SE
+        }
+    }
+
+    /// The cells around sample `s` (row-major in the box), and which of their corners
+    /// it is.
+    #[inline]
+    fn cells_around(&self, s: usize) -> [(usize, u8); 4] {
+        let cols = self.cols;
+        [
+            (s.wrapping_sub(cols + 1), SE),
+            (s.wrapping_sub(cols), SW),
+            (s.wrapping_sub(1), NE),
+            (s, NW),
+        ]
+    }
+
+    /// The faces of a cell (`first`, `code`) that have every corner bit of `corners`
+    /// (one bit: the faces at that corner; none: all), from [`FACES_AT`].
     #[inline]
     fn cell_faces_at(first: u32, code: u8, corners: u8, out: &mut InlineIds) {
-        let split = (code & SPLIT_NE_SW != 0) as usize;
-        let mut f = first;
-        for (t, triangle) in TRIANGLES[split].iter().enumerate() {
-            if code & (1 << t) == 0 {
-                continue;
-            }
-            let t_corners = triangle.iter().fold(0, |m, &c| m | c);
-            if t_corners & corners == corners {
-                out.push(f);
-            }
-            f += 1;
+        let (count, offsets) = FACES_AT[code as usize][corners as usize];
+        for &offset in &offsets[..count as usize] {
+            out.push(first + offset as u32);
         }
     }
 
     /// The faces of kept cell `(col, row)` of the grid: none, one or two.
     pub fn cell_faces(&self, col: usize, row: usize) -> InlineIds {
         let mut out = InlineIds::EMPTY;
-        let (c, r) = (
-            col as isize - self.col0 as isize,
-            row as isize - self.row0 as isize,
-        );
-        if let Some((first, code)) = self.cell(c, r) {
-            Self::cell_faces_at(first, code, 0, &mut out);
+        let (c, r) = (col.wrapping_sub(self.col0), row.wrapping_sub(self.row0));
+        if c + 1 < self.cols && r + 1 < self.rows {
+            if let Some((first, code)) = self.cell_at(r * self.cols + c) {
+                Self::cell_faces_at(first, code, 0, &mut out);
+            }
         }
         out
     }
@@ -420,7 +474,7 @@ impl GridSurface {
 
 impl FaceGeometry for GridSurface {
     fn vertex_count(&self) -> usize {
-        self.z.len()
+        self.positions.len()
     }
     fn face_count(&self) -> usize {
         self.face_cell.len()
@@ -461,27 +515,21 @@ impl Topology for GridSurface {
     fn edge_faces(&self, e: u32) -> InlineIds {
         let key = self.edge_key[e as usize];
         let s = (key / 4) as usize;
-        let (c, r) = ((s % self.cols) as isize, (s / self.cols) as isize);
         let mut out = InlineIds::EMPTY;
         // The cells on either side, and the corners of each the edge joins.
-        let sides: [(isize, isize, u8); 2] = match (key % 4) as u8 {
-            EAST => [(c, r - 1, SW | SE), (c, r, NW | NE)],
-            SOUTH => [(c - 1, r, NE | SE), (c, r, NW | SW)],
+        let sides: [(usize, u8); 2] = match (key % 4) as u8 {
+            EAST => [(s.wrapping_sub(self.cols), SW | SE), (s, NW | NE)],
+            SOUTH => [(s.wrapping_sub(1), NE | SE), (s, NW | SW)],
             _ => {
                 // Both triangles of the cell share its diagonal.
-                if let Some((first, code)) = self.cell(c, r) {
-                    let diagonal = if code & SPLIT_NE_SW != 0 {
-                        NE | SW
-                    } else {
-                        NW | SE
-                    };
-                    Self::cell_faces_at(first, code, diagonal, &mut out);
+                if let Some((first, code)) = self.cell_at(s) {
+                    Self::cell_faces_at(first, code, Self::diagonal(code), &mut out);
                 }
                 return out;
             }
         };
-        for (c, r, corners) in sides {
-            if let Some((first, code)) = self.cell(c, r) {
+        for (cell, corners) in sides {
+            if let Some((first, code)) = self.cell_at(cell) {
                 Self::cell_faces_at(first, code, corners, &mut out);
             }
         }
@@ -489,12 +537,9 @@ impl Topology for GridSurface {
     }
 
     fn vertex_faces(&self, v: u32) -> InlineIds {
-        let s = self.sample_of(v);
-        let (c, r) = ((s % self.cols) as isize, (s / self.cols) as isize);
         let mut out = InlineIds::EMPTY;
-        // The four cells around the sample, and which of their corners it is.
-        for (dc, dr, corner) in [(-1, -1, SE), (0, -1, SW), (-1, 0, NE), (0, 0, NW)] {
-            if let Some((first, code)) = self.cell(c + dc, r + dr) {
+        for (cell, corner) in self.cells_around(self.sample_of(v)) {
+            if let Some((first, code)) = self.cell_at(cell) {
                 Self::cell_faces_at(first, code, corner, &mut out);
             }
         }
@@ -502,35 +547,30 @@ impl Topology for GridSurface {
     }
 
     fn vertex_edges(&self, v: u32) -> InlineIds {
-        let s = self.sample_of(v) as isize;
-        let (c, r) = (s % self.cols as isize, s / self.cols as isize);
-        let (wide, high) = (self.cols as isize, self.rows as isize);
+        let s = self.sample_of(v);
         let mut out = InlineIds::EMPTY;
-        let mut add = |dc: isize, dr: isize, kind: u8| {
-            let (c, r) = (c + dc, r + dr);
-            if c >= 0 && r >= 0 && c < wide && r < high {
-                let t = (r * wide + c) as usize;
-                if self.sample_mask[t] & (1 << kind) != 0 {
-                    out.push(self.edge_id(t, kind));
-                }
+        // (A wrapped-around sample is past the box; the west neighbour of the first
+        // column is a last-column sample, which has no east edge.)
+        let mut add = |t: usize, kind: u8| {
+            if self
+                .sample_mask
+                .get(t)
+                .is_some_and(|m| m & (1 << kind) != 0)
+            {
+                out.push(self.edge_id(t, kind));
             }
         };
         // Its own east and south edges, its west and north neighbours' (the edges
         // that end here).
-        add(0, 0, EAST);
-        add(0, 0, SOUTH);
-        add(-1, 0, EAST);
-        add(0, -1, SOUTH);
+        add(s, EAST);
+        add(s, SOUTH);
+        add(s.wrapping_sub(1), EAST);
+        add(s.wrapping_sub(self.cols), SOUTH);
         // The diagonals of the four cells around it that touch it.
-        for (dc, dr, corner) in [(-1, -1, SE), (0, -1, SW), (-1, 0, NE), (0, 0, NW)] {
-            if let Some((_, code)) = self.cell(c + dc, r + dr) {
-                let diagonal = if code & SPLIT_NE_SW != 0 {
-                    NE | SW
-                } else {
-                    NW | SE
-                };
-                if diagonal & corner != 0 {
-                    add(dc, dr, DIAGONAL);
+        for (cell, corner) in self.cells_around(s) {
+            if let Some((_, code)) = self.cell_at(cell) {
+                if Self::diagonal(code) & corner != 0 {
+                    add(cell, DIAGONAL);
                 }
             }
         }
@@ -543,12 +583,7 @@ impl Topology for GridSurface {
 
     #[inline]
     fn position(&self, v: u32) -> DVec3 {
-        let s = self.sample_of(v);
-        let [x, y] = self
-            .geometry
-            .position(self.col0 + s % self.cols, self.row0 + s / self.cols);
-        let z = self.z[s];
-        DVec3::new(x, y, if z.is_nan() { 0.0 } else { z })
+        self.positions[v as usize]
     }
 
     #[inline]
@@ -565,13 +600,8 @@ impl GridSurface {
     /// Face `f` laid flat, from its corners' samples.
     fn computed_frame(&self, f: u32) -> FaceFrame {
         let (corners, cell) = self.face_corners(f);
-        let p = corners.map(|c| {
-            let s = self.corner_sample(cell, c);
-            let [x, y] = self
-                .geometry
-                .position(self.col0 + s % self.cols, self.row0 + s / self.cols);
-            DVec3::new(x, y, self.z[s])
-        });
+        let p =
+            corners.map(|c| self.positions[self.vertex_of(self.corner_sample(cell, c)) as usize]);
         FaceFrame::of_triangle(p).expect("a grid's triangles have area")
     }
 
@@ -584,8 +614,7 @@ impl GridSurface {
             EAST => [s, s + 1],
             SOUTH => [s, s + self.cols],
             _ => {
-                let cell = (s / self.cols) * (self.cols - 1) + s % self.cols;
-                if self.cell_code[cell] & SPLIT_NE_SW != 0 {
+                if self.cell_code[s] & SPLIT_NE_SW != 0 {
                     [s + 1, s + self.cols]
                 } else {
                     [s, s + self.cols + 1]
@@ -604,16 +633,6 @@ fn tiled(wide: usize, high: usize) -> impl Iterator<Item = (usize, usize)> {
             rows.flat_map(move |r| cols.clone().map(move |c| (c, r)))
         })
     })
-}
-
-/// The place of `(c, r)` in [`tiled`] order over a `wide × high` box (no division but
-/// by the tile's size).
-#[inline]
-fn tiled_index(c: usize, r: usize, wide: usize, high: usize) -> usize {
-    let (tile_row, tile_col) = (r / TILE, c / TILE);
-    let tile_high = TILE.min(high - tile_row * TILE);
-    let tile_wide = TILE.min(wide - tile_col * TILE);
-    tile_row * TILE * wide + tile_col * TILE * tile_high + (r % TILE) * tile_wide + c % TILE
 }
 
 #[cfg(test)]
