@@ -10,10 +10,12 @@
 //! sources — without running the engine again.
 //!
 //! ## Map of the crate
-//! - [`mesh`]: [`TriMesh`](mesh::TriMesh) (an edge may have any number of faces; its
-//!   connectivity is its own methods: faces of an edge, edges of a face, …; line
-//!   elements that are no face edge are wires, which distances travel too), readers
-//!   and writers ([`mesh::io`]).
+//! - [`mesh`]: the [`Topology`](mesh::Topology) trait the engines and queries are
+//!   written against (faces of an edge, edges of a face, …, on any surface that can
+//!   answer them; [`Solver::with_topology`]), and [`TriMesh`](mesh::TriMesh), its
+//!   implementor with tables (an edge may have any number of faces; line elements
+//!   that are no face edge are wires, which distances travel too); readers and
+//!   writers ([`mesh::io`]).
 //! - [`metrics`] (re-exported crate `geotracks-metrics`): the [`Metric`] trait and the
 //!   built-ins [`Euclidean`], [`Density`], [`Tensor`], [`TensorField`].
 //! - [`steiner`]: where Steiner points go on each edge and how nodes are numbered.
@@ -40,7 +42,8 @@
 //!
 //! ## Sibling crates
 //! Built on this one, which knows nothing of them:
-//! - `geotracks-terrain`: elevation grids (ESRI ASCII, GeoTIFF) as meshes, terrain
+//! - `geotracks-terrain`: elevation grids (ESRI ASCII, GeoTIFF) as meshes or as
+//!   surfaces computed from rows and columns (a second `Topology`), terrain
 //!   costs (slope density, impassable faces, uphill and walking-time costs), routes
 //!   and maps;
 //! - `geotracks-render`: pictures of fields (the mesh coloured by distance, isolines,

@@ -524,7 +524,8 @@ def terrain_route(
 ) -> Route:
     """The least-cost route across an elevation grid (ESRI ASCII ``.asc`` or GeoTIFF)
     between two map points ``(x, y)``, straightened. Only the window of the grid that
-    a route as cheap could cross is meshed (``geotracks::terrain::route_on_grid``):
+    a route as cheap could cross is searched, and no mesh is built
+    (``geotracks::terrain::route_on_grid``):
     the same route as on the whole grid, in a fraction of the time and memory.
 
     :param cost: ``"none"`` (3D length), ``"slope:A"`` (length times ``1 + A·tan²``),

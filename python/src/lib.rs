@@ -457,7 +457,7 @@ fn terrain_route<'py>(
         .detach(|| {
             let grid = read_grid(&dem).map_err(|e| e.to_string())?;
             let options = Options::DEFAULT.with_k(k).with_method(method);
-            // Only the window of the grid the route needs is meshed.
+            // Only the window of the grid the route needs is routed on (no mesh is built).
             route_on_grid(&grid, &cost, &options, start, end)
                 .map(|r| r.route)
                 .map_err(|e| match e {

@@ -5,7 +5,7 @@
 //!
 //! ## How it layers
 //! An application of the core crate, beside its skeletons: it builds
-//! [`TriMesh`](geotracks::mesh::TriMesh)es and [`Metric`](geotracks::Metric)s, and
+//! [`TriMesh`](geotracks::mesh::TriMesh)es, grid surfaces and [`Metric`](geotracks::Metric)s, and
 //! routes with the core's [`Solver`](geotracks::Solver) as any caller would; the core
 //! knows nothing of it. Its error is [`TerrainError`], which wraps the engine's
 //! ([`TerrainError::Engine`]).
@@ -22,6 +22,9 @@
 //!   [`ElevationGrid`] of sample centres in the grid's own units, NODATA kept as holes.
 //! - [`ElevationGrid::to_mesh`]: a [`TerrainMesh`], two triangles per cell, which also
 //!   finds the surface point under a map point ([`TerrainMesh::locate`]).
+//! - [`GridSurface`]: the same triangles as a [`Topology`](geotracks::mesh::Topology)
+//!   computed from rows and columns, which the engines run on with no mesh built
+//!   ([`Solver::with_topology`](geotracks::Solver::with_topology)); routes use it.
 //! - Costs ([`cost`]): [`slope_density`] (`ρ = 1 + a·tan²(slope)`), [`Impassable`]
 //!   (walls: faces no route crosses), [`incline_tensor`] (crossing the slope costs more
 //!   than following a contour, either way), and the directed costs of [`DirectedCost`]

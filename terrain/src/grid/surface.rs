@@ -73,6 +73,40 @@ const fn faces_at() -> [[(u8, [u8; 2]); 16]; 8] {
     table
 }
 
+/// Per split and triangle, its edges as (columns east, rows south) of their first
+/// sample from the cell's north-west one, and kind: edge `i` from corner `i` to
+/// `i + 1` (a diagonal belongs to the cell's north-west sample).
+const EDGE_KEYS: [[[(usize, usize, u8); 3]; 2]; 2] = edge_keys();
+
+const fn edge_keys() -> [[[(usize, usize, u8); 3]; 2]; 2] {
+    let mut table = [[[(0, 0, 0); 3]; 2]; 2];
+    let mut split = 0;
+    while split < 2 {
+        let mut t = 0;
+        while t < 2 {
+            let mut i = 0;
+            while i < 3 {
+                let pair = TRIANGLES[split][t][i] | TRIANGLES[split][t][(i + 1) % 3];
+                table[split][t][i] = if pair == NW | NE {
+                    (0, 0, EAST)
+                } else if pair == SW | SE {
+                    (0, 1, EAST)
+                } else if pair == NW | SW {
+                    (0, 0, SOUTH)
+                } else if pair == NE | SE {
+                    (1, 0, SOUTH)
+                } else {
+                    (0, 0, DIAGONAL)
+                };
+                i += 1;
+            }
+            t += 1;
+        }
+        split += 1;
+    }
+    table
+}
+
 /// A box of an [`ElevationGrid`]'s cells, split into triangles as
 /// [`ElevationGrid::to_mesh`] splits them, as a [`Topology`]: the engines run on it
 /// directly, with no [`TriMesh`](geotracks::mesh::TriMesh) and no edge table.
@@ -331,20 +365,10 @@ impl GridSurface {
     /// The edges of face `f` as (sample, kind), edge `i` from corner `i` to `i + 1`.
     #[inline]
     fn face_edge_keys(&self, f: u32) -> [(usize, u8); 3] {
-        let (corners, cell) = self.face_corners(f);
-        std::array::from_fn(|i| {
-            let (a, b) = (corners[i], corners[(i + 1) % 3]);
-            let pair = a | b;
-            let (corner, kind) = match pair {
-                p if p == NW | NE => (NW, EAST),
-                p if p == SW | SE => (SW, EAST),
-                p if p == NW | SW => (NW, SOUTH),
-                p if p == NE | SE => (NE, SOUTH),
-                // Both diagonals belong to the cell's north-west sample.
-                _ => (NW, DIAGONAL),
-            };
-            (self.corner_sample(cell, corner), kind)
-        })
+        let key = self.face_cell[f as usize] as usize;
+        let cell = key / 2;
+        let split = (self.cell_code[cell] & SPLIT_NE_SW != 0) as usize;
+        EDGE_KEYS[split][key % 2].map(|(dx, dy, kind)| (cell + dx + dy * self.cols, kind))
     }
 
     /// The edge id of (sample, kind), which the surface has.
@@ -503,6 +527,14 @@ impl Topology for GridSurface {
     fn face_edges(&self, f: u32) -> [u32; 3] {
         self.face_edge_keys(f)
             .map(|(s, kind)| self.edge_id(s, kind))
+    }
+
+    #[inline]
+    fn edge_slot(&self, f: u32, e: u32) -> Option<usize> {
+        // Compared by sample and kind: no edge id worked out.
+        let key = self.edge_key[e as usize];
+        let wanted = ((key / 4) as usize, (key % 4) as u8);
+        self.face_edge_keys(f).iter().position(|&k| k == wanted)
     }
 
     #[inline]
