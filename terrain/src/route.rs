@@ -434,6 +434,33 @@ fn window_surface(
     Ok((surface, cells, whole))
 }
 
+/// What a polyline in the map (`points`, map x and y: a route from another tool, say)
+/// costs on the terrain under `cost`, as the first window's guess costs a straight
+/// line: each piece in steps of a quarter cell, each step in the face under its
+/// middle. An estimate for comparing routes under one cost model (exact where each
+/// step stays in one face, as on a flat grid); `None` where the polyline leaves the
+/// grid or crosses NODATA or walls.
+///
+/// ```
+/// use geotracks_terrain::{map_path_cost, ElevationGrid, GridGeometry, TerrainCost};
+/// let geometry = GridGeometry { ncols: 11, nrows: 11, lower_left: [0.0, 0.0], spacing: [1.0, 1.0] };
+/// let grid = ElevationGrid::from_fn(geometry, |_, _| Some(0.0))?;
+/// let cost = map_path_cost(&grid, &TerrainCost::None, &[[1.0, 1.0], [4.0, 5.0], [4.0, 9.0]]);
+/// assert!((cost.unwrap() - 9.0).abs() < 1e-9); // 5 + 4 on a flat grid
+/// assert_eq!(map_path_cost(&grid, &TerrainCost::None, &[[1.0, 1.0], [20.0, 1.0]]), None);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn map_path_cost(grid: &ElevationGrid, cost: &TerrainCost, points: &[[f64; 2]]) -> Option<f64> {
+    let g = grid.geometry();
+    if points.iter().any(|p| g.inside(p[0], p[1]).is_err()) {
+        return None;
+    }
+    points
+        .windows(2)
+        .map(|w| straight_line_cost(grid, cost, w[0], w[1]))
+        .sum()
+}
+
 /// What the straight line (in the map) from `from` to `to` costs on the terrain, in
 /// steps of a quarter cell: a guess at what a route costs, which sizes the first
 /// window (the window is cut by a bound, whatever the guess). `None` where the line
