@@ -143,7 +143,11 @@ pub fn check_levels(count: usize, at: &[f64], flags: (&str, &str)) -> CliResult 
 }
 
 /// The levels `at`, or else `count` levels spread over the field's range.
-pub fn levels_of<M: geotracks::Metric>(query: &Field<M>, count: usize, at: &[f64]) -> Vec<f64> {
+pub fn levels_of<M: geotracks::Metric, T: geotracks::mesh::Topology>(
+    query: &Field<M, geotracks::FieldData, T>,
+    count: usize,
+    at: &[f64],
+) -> Vec<f64> {
     if at.is_empty() {
         spread_levels(query.max_reached_distance(), count)
     } else {

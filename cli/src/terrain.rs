@@ -8,6 +8,7 @@ use geotracks::Sources;
 use geotracks::{Error, Method, Options, Solver, Source, Stop};
 use geotracks_terrain::{self as terrain, map, Route, TerrainCost, TerrainError};
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 /// Arguments of `geotracks terrain`.
 #[derive(clap::Args)]
@@ -134,7 +135,7 @@ pub fn run(args: &TerrainArgs) -> CliResult {
             let xy: Vec<[f64; 2]> = route.points.iter().map(|p| [p.x, p.y]).collect();
             Some(map::render(
                 &grid,
-                terrain,
+                terrain.as_ref(),
                 Some(costs),
                 &xy,
                 &map::MapOptions::DEFAULT.with_cost_unit(args.cost.unit()),
@@ -156,7 +157,7 @@ pub fn run(args: &TerrainArgs) -> CliResult {
         outputs.write(path, |w| picture.write_png_to(w))?;
     }
     if let (Some(path), Some((terrain, lines))) = (&args.contours, &contours) {
-        let (mesh, crs) = (&terrain.mesh, map_coordinates.crs());
+        let (mesh, crs) = (terrain.as_ref(), map_coordinates.crs());
         outputs.write(path, |w| {
             let position = |p: &geotracks::SurfacePoint| map_coordinates.point(p.position(mesh));
             isolines::write_geojson(w, lines, &position, crs.as_ref())
@@ -203,18 +204,24 @@ fn check_args(args: &TerrainArgs) -> CliResult<OutputFormat> {
     Ok(format)
 }
 
-/// The cost from the start over the whole grid (for a map or contours): the grid's
-/// mesh, the cost at each of its vertices, and the contours if asked.
+/// The grid as a surface, the cost from the start at each of its vertices, and the
+/// contours if asked ([`whole_grid_field`]).
+type WholeGridField = (Arc<terrain::GridSurface>, Vec<f64>, Option<Vec<Isoline>>);
+
+/// The cost from the start over the whole grid (for a map or contours): the grid as a
+/// surface (no mesh is built), the cost at each of its vertices, and the contours if
+/// asked.
 fn whole_grid_field(
     args: &TerrainArgs,
     grid: &terrain::ElevationGrid,
     options: &Options,
-) -> CliResult<(terrain::TerrainMesh, Vec<f64>, Option<Vec<Isoline>>)> {
-    let terrain = grid.to_mesh_named(Some(&args.dem))?;
-    let locate = |[x, y]: [f64; 2]| routing_error(terrain.locate(x, y), args);
+) -> CliResult<WholeGridField> {
+    let surface = Arc::new(terrain::GridSurface::new(grid)?);
+    let locate = |[x, y]: [f64; 2]| routing_error(surface.locate(x, y), args);
     let from = locate(args.from)?;
-    let metric = args.cost.metric_on_grid(grid, &terrain)?;
-    let solver = Solver::new(&terrain.mesh, metric, options)?;
+    let metric = args.cost.metric_on_surface(grid, &surface)?;
+    let solver: Solver<_, terrain::GridSurface> =
+        Solver::with_topology(Arc::clone(&surface), metric, options)?;
     let field = solver.field(Sources::from(&[Source::new(from)]).until(&Stop::NONE))?;
     let contours = match &args.contours {
         Some(_) => {
@@ -224,8 +231,8 @@ fn whole_grid_field(
         None => None,
     };
     let costs = field.vertex_distances().to_vec();
-    drop(solver);
-    Ok((terrain, costs, contours))
+    drop((field, solver));
+    Ok((surface, costs, contours))
 }
 
 /// Says what the route is: its ends, cost model, points, lengths and traced cost, how

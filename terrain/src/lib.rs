@@ -74,7 +74,7 @@ pub use cost::{
 pub use directed::{DirectedCost, DirectedModel};
 pub use error::TerrainError;
 pub use geotiff::{read_geotiff, read_geotiff_bytes};
-pub use grid::{ElevationGrid, GridGeometry, GridSurface, TerrainMesh};
+pub use grid::{ElevationGrid, GridGeometry, GridSurface, SampleVertices, TerrainMesh};
 pub use route::{
     map_path_cost, route, route_and_field, route_on_grid, GridRoute, Route, RouteWindow,
 };

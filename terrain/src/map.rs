@@ -6,7 +6,7 @@
 //! so one pixel per sample is the natural scale, and a plotting library would add axes
 //! and a dependency tree for no gain). The `png` feature writes it as a PNG.
 
-use super::grid::{ElevationGrid, GridGeometry, TerrainMesh};
+use super::grid::{ElevationGrid, GridGeometry, SampleVertices};
 use glam::DVec2;
 
 /// An RGBA picture, row-major from the top (north), 4 bytes per pixel.
@@ -87,14 +87,14 @@ const HALO: [f64; 3] = [255.0, 255.0, 255.0];
 const START: [f64; 3] = [30.0, 150.0, 60.0];
 const END: [f64; 3] = [40.0, 80.0, 210.0];
 
-/// Draws the map of `grid` (meshed as `terrain`): hillshade (sun at
-/// `options.azimuth`/`altitude`) over an elevation ramp, NODATA transparent;
-/// contours of `vertex_distance` (one value per vertex of `terrain.mesh`, `inf` where
-/// unreached) if given; and `route` (map positions, from start to end) drawn thick with
+/// Draws the map of `grid` (triangulated as `terrain`: its mesh, or a surface of it):
+/// hillshade (sun at `options.azimuth`/`altitude`) over an elevation ramp, NODATA
+/// transparent; contours of `vertex_distance` (one value per vertex of `terrain`, `inf`
+/// where unreached) if given; and `route` (map positions, from start to end) drawn thick with
 /// a marker at each end.
 pub fn render(
     grid: &ElevationGrid,
-    terrain: &TerrainMesh,
+    terrain: &impl SampleVertices,
     vertex_distance: Option<&[f64]>,
     route: &[[f64; 2]],
     options: &MapOptions,

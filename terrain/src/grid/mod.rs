@@ -12,6 +12,26 @@ use std::ops::Range;
 pub use mesh::TerrainMesh;
 pub use surface::GridSurface;
 
+/// A triangulation of a grid's samples that says which vertex a sample is: a
+/// [`TerrainMesh`] or a [`GridSurface`]. What a map needs to read per-vertex values
+/// per sample ([`map::render`](crate::map::render)).
+pub trait SampleVertices {
+    /// The vertex of sample `(col, row)`, if it is one.
+    fn sample_vertex(&self, col: usize, row: usize) -> Option<u32>;
+}
+
+impl SampleVertices for TerrainMesh {
+    fn sample_vertex(&self, col: usize, row: usize) -> Option<u32> {
+        TerrainMesh::sample_vertex(self, col, row)
+    }
+}
+
+impl SampleVertices for GridSurface {
+    fn sample_vertex(&self, col: usize, row: usize) -> Option<u32> {
+        GridSurface::sample_vertex(self, col, row)
+    }
+}
+
 /// How far beyond the outermost sample centres, in cells, a map point still counts as on
 /// the grid (rounding in the caller's coordinates).
 const INSIDE: f64 = 1e-9;

@@ -433,6 +433,17 @@ impl GridSurface {
         }
     }
 
+    /// The vertex of sample `(col, row)` of the grid, if the sample lies in the box and a
+    /// kept face uses it.
+    pub fn sample_vertex(&self, col: usize, row: usize) -> Option<u32> {
+        let (c, r) = (col.wrapping_sub(self.col0), row.wrapping_sub(self.row0));
+        if c >= self.cols || r >= self.rows {
+            return None;
+        }
+        let v = self.sample_vertex[r * self.cols + c];
+        (!self.vertex_faces(v).is_empty()).then_some(v)
+    }
+
     /// The faces of kept cell `(col, row)` of the grid: none, one or two.
     pub fn cell_faces(&self, col: usize, row: usize) -> InlineIds {
         let mut out = InlineIds::EMPTY;
