@@ -114,8 +114,8 @@ const fn edge_keys() -> [[[(usize, usize, u8); 3]; 2]; 2] {
 /// - **Vertices** are the samples of the box, numbered tile by tile (32 × 32 blocks,
 ///   the blocks row by row: what a wavefront settles together lies close in memory,
 ///   and ties between equal values break as on the grid's mesh, so routes are the
-///   mesh's to the bit). A vertex's id is computed from its sample, and its sample
-///   kept per vertex (4 bytes). A sample no kept face uses (NODATA, or outside the
+///   mesh's to the bit). Per vertex its position and its sample, and per sample its
+///   vertex (32 bytes in all). A sample no kept face uses (NODATA, or outside the
 ///   window) is a vertex of no face, which no run reaches; a NODATA sample sits at
 ///   elevation 0.
 /// - **Faces** are the kept cells' triangles, in the cells' tiled order, two per cell
@@ -129,8 +129,10 @@ const fn edge_keys() -> [[[(usize, usize, u8); 3]; 2]; 2] {
 ///   The faces around an edge, and the faces and edges around a vertex, are computed
 ///   from the cells around them.
 ///
-/// A 1000 × 1000 grid takes about 90 MB this way, against about 240 MB for its mesh
-/// (and twice that while the mesh is built).
+/// That is about 110 bytes per cell (two faces, three edges, one sample), counted from
+/// the fields; a [`TriMesh`](geotracks::mesh::TriMesh) of the same cells stores about
+/// 250 (its triangles, frames, edge table and the lists of faces and edges around
+/// every edge and vertex), and its build holds more while it sorts them out.
 ///
 /// ```
 /// use geotracks_terrain::{ElevationGrid, GridGeometry, GridSurface};
@@ -270,10 +272,26 @@ impl GridSurface {
             return Err(too_small());
         }
         surface.number_edges();
-        surface.frames = (0..surface.face_cell.len() as u32)
+        // A triangle the grid's mesh would drop as flat (elevations so far apart that
+        // rounding leaves it no area) is refused here, naming its cell, rather than
+        // renumbering the faces around it.
+        let frames: Vec<Option<FaceFrame>> = (0..surface.face_cell.len() as u32)
             .into_par_iter()
             .map(|f| surface.computed_frame(f))
             .collect();
+        if let Some(f) = frames.iter().position(Option::is_none) {
+            let cell = (surface.face_cell[f] / 2) as usize;
+            let (col, row) = (
+                cols.start + cell % samples_wide,
+                rows.start + cell / samples_wide,
+            );
+            return Err(TerrainError::InvalidGrid {
+                message: format!(
+                    "the cell at column {col}, row {row} has a triangle too steep to lay flat"
+                ),
+            });
+        }
+        surface.frames = frames.into_iter().flatten().collect();
         Ok(surface)
     }
 
@@ -335,21 +353,15 @@ impl GridSurface {
         &self.geometry
     }
 
-    /// The number of cells of the box (kept or not).
-    pub fn box_cells(&self) -> usize {
-        (self.cols - 1) * (self.rows - 1)
-    }
-
     /// The sample (row-major in the box) at corner `corner` of cell `cell` (numbered by
     /// its north-west sample).
     #[inline]
     fn corner_sample(&self, cell: usize, corner: u8) -> usize {
-        let s = cell;
         match corner {
-            NW => s,
-            NE => s + 1,
-            SW => s + self.cols,
-            _ => s + self.cols + 1,
+            NW => cell,
+            NE => cell + 1,
+            SW => cell + self.cols,
+            _ => cell + self.cols + 1,
         }
     }
 
@@ -464,13 +476,7 @@ impl GridSurface {
     /// [`TerrainError::Outside`] beyond the outermost sample centres,
     /// [`TerrainError::NoData`] where no kept triangle covers the point.
     pub fn locate(&self, x: f64, y: f64) -> Result<SurfacePoint, TerrainError> {
-        let (face, bary) = super::covering(
-            &self.geometry,
-            x,
-            y,
-            |c, r| self.cell_faces(c, r),
-            |f| self.face_vertices(f).map(|v| Topology::position(self, v)),
-        )?;
+        let (face, bary) = self.covering(x, y)?;
         let point = SurfacePoint::Face { face, bary };
         Ok(point.validated(self).unwrap_or(point))
     }
@@ -640,12 +646,10 @@ impl Topology for GridSurface {
 }
 
 impl GridSurface {
-    /// Face `f` laid flat, from its corners' samples.
-    fn computed_frame(&self, f: u32) -> FaceFrame {
-        let (corners, cell) = self.face_corners(f);
-        let p =
-            corners.map(|c| self.positions[self.vertex_of(self.corner_sample(cell, c)) as usize]);
-        FaceFrame::of_triangle(p).expect("a grid's triangles have area")
+    /// Face `f` laid flat, from its corners' positions; `None` where rounding leaves it
+    /// no area.
+    fn computed_frame(&self, f: u32) -> Option<FaceFrame> {
+        FaceFrame::of_triangle(self.face_vertices(f).map(|v| self.positions[v as usize]))
     }
 
     /// The two samples (row-major in the box) of edge `e`, in no order.

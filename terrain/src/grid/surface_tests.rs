@@ -191,3 +191,25 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn a_triangle_too_steep_to_lay_flat_is_refused_by_its_cell() {
+    // One sample 1e14 above its neighbours, a unit apart: rounding leaves the triangles
+    // around it no area (the grid's mesh drops them).
+    let geometry = GridGeometry {
+        ncols: 4,
+        nrows: 4,
+        lower_left: [0.0, 0.0],
+        spacing: [1.0, 1.0],
+    };
+    let grid = ElevationGrid::from_fn(geometry, |x, y| {
+        Some(if x == 1.0 && y == 2.0 { 1e14 } else { 0.0 })
+    })
+    .unwrap();
+    match GridSurface::new(&grid) {
+        Err(TerrainError::InvalidGrid { message }) => {
+            assert!(message.contains("too steep to lay flat"), "{message}")
+        }
+        other => panic!("{:?}", other.map(|_| ())),
+    }
+}
