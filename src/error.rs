@@ -295,6 +295,30 @@ pub enum Error {
         /// Bytes available: `Options::memory_limit`, or what the system reports.
         available: u64,
     },
+    /// The exact engine ([`Method::Exact`](crate::Method::Exact)) cannot give exact
+    /// distances under this metric: it is not a constant norm on some face, or two
+    /// faces give a shared edge different lengths (per-face tensors that disagree:
+    /// shortest paths refract there, and no finite set of windows holds them). Run
+    /// the wavefront engine (`Method::Wave`), which handles both approximately.
+    #[error("the exact engine cannot run under metric '{metric}': {reason}; the wavefront engine (method wave) handles it approximately")]
+    NotExact {
+        /// The metric's name.
+        metric: String,
+        /// Which face or edge, and why.
+        reason: String,
+    },
+    /// The exact engine's windows outgrew the memory (or the work limit) during a
+    /// run: window counts can grow faster than the faces on meshes with many saddle
+    /// vertices. Raise [`Options::memory_limit`](crate::Options::memory_limit) (or
+    /// the work limit), stop the run earlier (a maximum distance, targets), or use an
+    /// approximate engine.
+    #[error("the exact engine's windows outgrew the limit: {windows} windows ({:.3} GB) made so far; raise the memory or work limit, stop the run earlier, or use an approximate method", *bytes as f64 / 1e9)]
+    ExactTooLarge {
+        /// Windows made when the limit was reached.
+        windows: u64,
+        /// The bytes they took.
+        bytes: u64,
+    },
     /// The mesh needs more state than 32-bit ids can address.
     #[error("the mesh is too large: {count} {what} exceed the 32-bit id range; lower k")]
     TooLarge {

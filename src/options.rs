@@ -27,6 +27,13 @@ pub enum Method {
     Graph,
     /// Dijkstra on mesh edges (no Steiner points).
     Dijkstra,
+    /// Exact geodesics: windows of straight lines carried face to face, as many per
+    /// edge as the geodesics need (no Steiner points). Exact to rounding for a metric
+    /// that is a constant norm on each face and whose faces glue (every edge has one
+    /// length in all its faces: `Euclidean`, a constant `Tensor`); any other metric
+    /// is refused with [`Error::NotExact`](crate::Error::NotExact), never run
+    /// approximately in its place.
+    Exact,
 }
 
 impl Method {
@@ -37,13 +44,14 @@ impl Method {
             Method::Tracks => "tracks",
             Method::Graph => "graph",
             Method::Dijkstra => "dijkstra",
+            Method::Exact => "exact",
         }
     }
 
     /// The mean number of Steiner points per edge this engine runs with when none is
     /// asked for ([`Options::steiner`] `None`): 2 for the wavefront engine, 5 for the
     /// Steiner-graph engines (`Tracks`, `Graph`), which need more points for the same
-    /// accuracy; Dijkstra uses none (2 is given). The solver asks the engine that
+    /// accuracy; Dijkstra and the exact engine use none (2 is given). The solver asks the engine that
     /// actually runs: the tracks engine's 5 for a metric that is not flat on each face,
     /// where the wavefront engine gives way to it.
     ///
@@ -64,7 +72,7 @@ impl Method {
     pub fn default_k(self) -> f64 {
         match self {
             Method::Tracks | Method::Graph => 5.0,
-            Method::Wave | Method::Dijkstra => 2.0,
+            Method::Wave | Method::Dijkstra | Method::Exact => 2.0,
         }
     }
 }
@@ -83,8 +91,9 @@ impl FromStr for Method {
             "tracks" => Ok(Method::Tracks),
             "graph" => Ok(Method::Graph),
             "dijkstra" => Ok(Method::Dijkstra),
+            "exact" => Ok(Method::Exact),
             other => Err(format!(
-                "unknown method '{other}' (expected wave, tracks, graph or dijkstra)"
+                "unknown method '{other}' (expected wave, tracks, graph, dijkstra or exact)"
             )),
         }
     }

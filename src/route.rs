@@ -64,7 +64,7 @@ impl<M: Metric, T: Topology> Solver<M, T> {
         let both_ends = stop.both_ends
             && stop.goal_directed
             && sources.len() == 1
-            && setup.method != Method::Wave
+            && !matches!(setup.method, Method::Wave | Method::Exact)
             && rayon::current_num_threads() >= 2
             && setup.second_run_fits();
         if both_ends {

@@ -184,6 +184,8 @@ fn write_stats(outputs: &mut Outputs, path: &Path, field: &geotracks::FieldData)
         "settles": s.settles,
         "distance_tests": s.distance_tests,
         "setup_distance_tests": s.setup_distance_tests,
+        "windows_created": s.windows_created,
+        "windows_kept": s.windows_kept,
         "unreachable_vertices": field.unreachable_vertices(),
     });
     outputs.write(path, |w| {

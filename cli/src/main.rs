@@ -251,6 +251,12 @@ pub(crate) fn report_stats(s: &geotracks::Stats) {
             s.distance_tests,
             s.setup_distance_tests
         );
+        if s.method == geotracks::Method::Exact {
+            eprintln!(
+                "  {} windows made, {} carried across faces",
+                s.windows_created, s.windows_kept
+            );
+        }
     }
 }
 

@@ -19,8 +19,10 @@ pub struct MetricArgs {
     pub k: Option<f64>,
     /// Propagation method: wave (Steiner points that carry their wavefront: exact on
     /// planes, the most accurate; with --density it runs tracks), tracks (the
-    /// track-pruned Steiner graph), graph (the complete Steiner graph, naive) or
-    /// dijkstra (mesh edges only).
+    /// track-pruned Steiner graph), graph (the complete Steiner graph, naive),
+    /// dijkstra (mesh edges only) or exact (exact geodesics: windows carried face to
+    /// face; Euclidean or a constant --tensor, refused for a metric whose faces do not
+    /// glue).
     #[arg(long, default_value = "wave")]
     pub method: Method,
     /// Per-vertex density file: one positive number per vertex.

@@ -242,8 +242,10 @@ class MeshSolver:
         engine, 5 where the Steiner graph runs: a density, or ``method="tracks"``).
     :param method: ``"wave"`` (the default: exact on planar and developable meshes from
         one source; with a density it runs ``"tracks"``), ``"tracks"`` (the
-        track-pruned Steiner graph), ``"graph"`` (the complete Steiner graph) or
-        ``"dijkstra"`` (mesh edges only).
+        track-pruned Steiner graph), ``"graph"`` (the complete Steiner graph),
+        ``"dijkstra"`` (mesh edges only) or ``"exact"`` (exact geodesics, for the
+        Euclidean metric or a constant :class:`Tensor`; a metric whose faces do not glue
+        is refused).
     :param metric: ``None`` (Euclidean), a :class:`Density`, a :class:`Tensor` or a
         :class:`TensorField`.
     :param work_limit: the most distance tests one run may be estimated to make

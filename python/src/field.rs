@@ -107,7 +107,8 @@ impl FieldCore {
     }
 
     /// The run's counters: engine, mean Steiner points per edge, nodes settled, queue
-    /// insertions, distance tests, seconds propagating, and whether it stopped early.
+    /// insertions, distance tests, seconds propagating, whether it stopped early, and
+    /// the exact engine's windows (made, and carried across faces; 0 otherwise).
     #[getter]
     pub(crate) fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let stats = self.field.stats();
@@ -119,6 +120,8 @@ impl FieldCore {
         dict.set_item("distance_tests", stats.distance_tests)?;
         dict.set_item("propagate_seconds", stats.propagate_seconds)?;
         dict.set_item("stopped_early", stats.stopped_early)?;
+        dict.set_item("windows_created", stats.windows_created)?;
+        dict.set_item("windows_kept", stats.windows_kept)?;
         Ok(dict)
     }
 

@@ -5,6 +5,7 @@
 //! The data knows nothing of the engine or of paths: the [`Field`](crate::Field) that
 //! holds it with its solver answers the queries that need the mesh and the metric.
 
+use super::WindowField;
 use crate::mesh::Topology;
 use crate::mesh::NONE;
 use crate::options::Method;
@@ -49,6 +50,11 @@ pub struct Stats {
     pub setup_distance_tests: u64,
     /// The run ended at its targets, before the queue ran out (see [`crate::Stop`]).
     pub stopped_early: bool,
+    /// Windows the exact engine made (0 for the other engines).
+    pub windows_created: u64,
+    /// Windows the exact engine carried across faces, which the field keeps (0 for
+    /// the other engines).
+    pub windows_kept: u64,
     /// The run was a path's search from both ends ([`crate::Stop::both_ends`]): the
     /// counters are the two sides' sums, `propagate_seconds` the longer side's (waits
     /// for the other included), `setup_seconds` the forward side's (and the reversed
@@ -230,6 +236,8 @@ pub struct FieldData {
     roots: Vec<Root>,
     /// Per Steiner node, the wave it carries (wavefront engine; empty otherwise).
     waves: Vec<Wave>,
+    /// The exact engine's windows and vertex origins (empty otherwise).
+    windows: WindowField,
     /// See [`FieldView::horizon`].
     horizon: Horizon,
     stats: Stats,
@@ -248,6 +256,8 @@ pub struct FieldView<'a> {
     pub(crate) roots: &'a [Root],
     /// Per Steiner node, the wave it carries (empty unless the wavefront engine ran).
     pub(crate) waves: &'a [Wave],
+    /// The exact engine's windows (empty unless it ran).
+    pub(crate) windows: &'a WindowField,
     /// The engine that ran.
     pub(crate) method: Method,
     /// Where an early stop left the field: below it every value is the full run's,
@@ -275,6 +285,7 @@ impl FieldData {
         sources: Vec<Source>,
         roots: Vec<Root>,
         waves: Vec<Wave>,
+        windows: WindowField,
         horizon: Horizon,
         stats: Stats,
     ) -> FieldData {
@@ -288,6 +299,7 @@ impl FieldData {
             sources,
             roots,
             waves,
+            windows,
             horizon,
             stats,
         }
@@ -308,6 +320,7 @@ impl FieldData {
             sources: &self.sources,
             roots: &self.roots,
             waves: &self.waves,
+            windows: &self.windows,
             method: self.stats.method,
             horizon: self.horizon,
         }

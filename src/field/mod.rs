@@ -6,9 +6,11 @@
 //! was computed with, and none of them is passed again.
 
 mod data;
+mod windows;
 
 pub use data::{FieldData, Stats};
 pub(crate) use data::{FieldView, Goal, Horizon, Root, SolverId, Wave};
+pub(crate) use windows::{Origin, Window, WindowField};
 
 use crate::mesh::{Topology, TriMesh};
 use crate::options::Method;

@@ -158,8 +158,9 @@ pub(super) fn distance_tests<T: Topology>(mesh: &T, counts: &[u32], method: Meth
         Method::Graph => 0.6,
         Method::Wave => 0.25,
         Method::Tracks => 0.03,
-        // Edges only: a few tests per edge, never a concern.
-        Method::Dijkstra => return 2.0 * counts.len() as f64,
+        // Edges only: a few tests per edge, never a concern. (The exact engine's
+        // windows are bounded while it runs, not estimated.)
+        Method::Dijkstra | Method::Exact => return 2.0 * counts.len() as f64,
     };
     let pairs: f64 = (0..mesh.face_count() as u32)
         .map(|f| {
@@ -213,7 +214,7 @@ fn bytes<T: Topology>(mesh: &T, counts: &[u32], steiner: u64, nodes: u64, method
         // A wave per Steiner point, and the face and edge records.
         Method::Wave => 40 * steiner + 64 * mesh.face_count() as u64 + 17 * counts.len() as u64,
         // The heap holds about two entries of 16 bytes per node.
-        Method::Graph | Method::Dijkstra => 2 * 16 * nodes,
+        Method::Graph | Method::Dijkstra | Method::Exact => 2 * 16 * nodes,
     };
     RUN_BYTES_PER_NODE * nodes + layout + engine
 }

@@ -45,6 +45,7 @@ mod queue;
 pub(crate) mod solver;
 mod tracks;
 mod wave;
+pub(crate) mod windows;
 
 pub use solver::{DistanceRow, Solver, Workspace};
 

@@ -33,6 +33,10 @@ pub enum ValueSource {
     /// from its source would miss the window): the path to the window's end plus the
     /// segment from there.
     WaveBend(u32),
+    /// Straight from the virtual source of this window of the exact engine (an id of
+    /// the run's): its `σ` plus the straight line from its source, which crosses the
+    /// window's part of its edge.
+    Window(u32),
 }
 
 /// Where a candidate's paths come from.
@@ -351,6 +355,9 @@ impl<M: Metric, T: Topology> Query<'_, M, T> {
         }
         if let (true, Some(frame)) = (self.has_waves(), flat) {
             self.push_waves(f, &frame, &mut candidates);
+        }
+        if let (true, Some(frame)) = (self.has_windows(), flat) {
+            self.push_windows(f, &frame, &mut candidates);
         }
         FaceField {
             face: f,

@@ -14,6 +14,7 @@ mod query;
 mod regions;
 mod straighten;
 mod wave;
+mod windows;
 
 use crate::mesh::Topology;
 use crate::mesh::NONE;
@@ -138,6 +139,12 @@ impl<M: Metric, T: Topology> Query<'_, M, T> {
                     faces.push(f);
                     return Ok(finish(mesh, metric, points, faces, s));
                 }
+                Origin::WindowInFace(id, f) => {
+                    let source = self
+                        .trace_window(f, id, &mut points, &mut faces)
+                        .ok_or(Error::ParentCycle { point })?;
+                    return Ok(finish(mesh, metric, points, faces, source));
+                }
                 Origin::WaveInFace(q, f) => {
                     let x = points
                         .last()
@@ -162,6 +169,13 @@ impl<M: Metric, T: Topology> Query<'_, M, T> {
                 }
             }
         };
+        if self.has_windows() {
+            // Along the windows' straight lines, back to where they started.
+            let source = self
+                .trace_from_vertex(node, &mut points, &mut faces)
+                .ok_or(Error::ParentCycle { point })?;
+            return Ok(finish(mesh, metric, points, faces, source));
+        }
         if self.has_waves() {
             // Along the waves' straight lines, not from node to node.
             let source = self
@@ -229,7 +243,10 @@ impl<M: Metric, T: Topology> Query<'_, M, T> {
     /// As [`Field::trace`](crate::Field::trace).
     pub fn path(&self, point: SurfacePoint) -> Result<GeodesicPath, Error> {
         let mut path = self.trace(point)?;
-        straighten(&mut path, self.mesh, self.metric);
+        if !self.has_windows() {
+            // (An exact field's paths are straight already: geodesics.)
+            straighten(&mut path, self.mesh, self.metric);
+        }
         Ok(path)
     }
 

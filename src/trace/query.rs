@@ -82,6 +82,8 @@ pub(super) enum Origin {
     SourceInFace(u32, u32),
     /// A straight line in `face` from this node's wave (wavefront engine).
     WaveInFace(u32, u32),
+    /// A straight line in `face` from this window's source (exact engine).
+    WindowInFace(u32, u32),
     /// A straight line in `face` to the point `t` of `edge`, and on from there as
     /// `source` gives it in face `then` across the edge.
     Across {
@@ -100,6 +102,7 @@ impl Origin {
             ValueSource::Node(n) => Origin::NodeInFace(n, f),
             ValueSource::Source(s) => Origin::SourceInFace(s, f),
             ValueSource::Wave(q) | ValueSource::WaveBend(q) => Origin::WaveInFace(q, f),
+            ValueSource::Window(id) => Origin::WindowInFace(id, f),
         }
     }
 }
@@ -238,6 +241,10 @@ impl<'a, M: Metric, T: Topology> Query<'a, M, T> {
 
     /// Labels of nodes `0..count` (and of the nodes their chains pass through).
     fn labels(&self, count: u32) -> Vec<u32> {
+        if self.has_windows() {
+            // (Vertices only: the exact engine has no Steiner points.)
+            return self.window_labels();
+        }
         let field = &self.field;
         let n = field.distance.len();
         let mut label = vec![NONE; n];

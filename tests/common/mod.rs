@@ -1,6 +1,8 @@
 //! Mesh generators shared by the integration tests.
 #![allow(dead_code)]
 
+pub mod plane;
+
 use geotracks::mesh::TriMesh;
 use geotracks::metrics::FaceGeometry;
 use geotracks::Sources;

@@ -118,6 +118,8 @@ pub(crate) struct Setup<M, T> {
     /// [`Options::memory_limit`], and what the solver and one run were budgeted: a
     /// path searched from both ends needs a second run's buffers.
     pub memory_limit: Option<u64>,
+    /// [`Options::work_limit`]: for the exact engine, the most windows a run makes.
+    pub work_limit: Option<u64>,
     pub budgeted: u64,
 }
 

@@ -9,7 +9,8 @@ use crate::mesh::{bounding_box, NONE};
 use crate::options::Sources;
 use crate::propagate::frontier::{Frontier, Outcome, Seed};
 use crate::propagate::meet::Side;
-use crate::propagate::{graph, tracks, wave, Method, Stop};
+use crate::propagate::windows::{Bounds, Counts, ExactRun, ExactTables, BYTES_PER_WINDOW};
+use crate::propagate::{budget, graph, tracks, wave, Method, Stop};
 use crate::surface::{PointError, Source, SurfacePoint};
 use crate::{Error, PointRole, ValueRole};
 use geotracks_metrics::Metric;
@@ -61,23 +62,34 @@ impl<M: Metric, T: Topology> Setup<M, T> {
             // Tracks are the tracks engine's alone, waves the wavefront engine's.
             Engine::Tracks { tables, .. } => (tables.instances, 0),
             Engine::Wave { .. } => (0, self.layout.steiner_count()),
-            Engine::Graph { .. } => (0, 0),
+            Engine::Graph { .. } | Engine::Exact { .. } => (0, 0),
         };
+        let exact = matches!(self.engine, Engine::Exact { .. });
         workspace.reset(
             self.mesh.vertex_count(),
             self.layout.node_count(),
             instances,
             waves,
+            exact,
         );
         // Only a run that may stop early can reach little (see `Frontier::records`).
         // (A side of a search from both ends stops early too, and the touched nodes
         // are where the two sides' values are compared.)
         workspace.recorded =
             stop.max_distance < f64::INFINITY || !workspace.targets.is_empty() || meet.is_some();
-        let seed_tests = self.seed(workspace)?;
+        let seed_tests = if exact {
+            // (The exact engine starts its windows from the sources themselves.)
+            workspace.seeds.clear();
+            0
+        } else {
+            self.seed(workspace)?
+        };
         let reset_seconds = start.elapsed().as_secs_f64();
         let propagate_start = Instant::now();
-        let outcome = self.propagate(workspace, stop, goal, meet, seed_tests);
+        let outcome = match &self.engine {
+            Engine::Exact { tables } => self.propagate_exact(workspace, stop, tables)?,
+            _ => self.propagate(workspace, stop, goal, meet, seed_tests),
+        };
         if let Some((face, value)) = outcome.bad_cost {
             return Err(Error::InvalidCost {
                 metric: self.metric.name().to_string(),
@@ -99,6 +111,8 @@ impl<M: Metric, T: Topology> Setup<M, T> {
             distance_tests: outcome.tests,
             setup_distance_tests: self.setup_tests,
             stopped_early: outcome.stopped_early,
+            windows_created: outcome.windows.created,
+            windows_kept: outcome.windows.carried,
             both_ends: false,
         };
         workspace.stats = Some(stats.clone());
@@ -122,6 +136,7 @@ impl<M: Metric, T: Topology> Setup<M, T> {
                 (SurfacePoint::Vertex(v), Method::Tracks | Method::Graph | Method::Dijkstra) => {
                     targets.push(v)
                 }
+                (SurfacePoint::Vertex(v), Method::Exact) => targets.push(v),
                 (_, Method::Wave) => {
                     // A query on a wave field reads the point's faces and those across
                     // their edges (see `trace::face_field`): all their nodes must be
@@ -228,7 +243,72 @@ impl<M: Metric, T: Topology> Setup<M, T> {
                 heap.reset();
                 search.run(heap, seeds, graph::propagate)
             }
+            Engine::Exact { .. } => unreachable!("the exact engine runs in propagate_exact"),
         }
+    }
+
+    /// The exact engine's run over the workspace's (reset) buffers.
+    fn propagate_exact(
+        &self,
+        workspace: &mut Workspace,
+        stop: &Stop,
+        tables: &ExactTables,
+    ) -> Result<Outcome, Error> {
+        let point_targets = stop
+            .targets
+            .iter()
+            .any(|t| !matches!(t, SurfacePoint::Vertex(_)));
+        let Workspace {
+            distance,
+            touched,
+            recorded,
+            targets,
+            sources,
+            exact,
+            exact_buffers,
+            ..
+        } = workspace;
+        let mut run = ExactRun {
+            mesh: &*self.mesh,
+            tables,
+            wires: &self.wires,
+            distance,
+            field: exact,
+            buffers: exact_buffers,
+            touched,
+            records: *recorded,
+            bounds: Bounds {
+                max_distance: stop.max_distance,
+                targets,
+                point_targets,
+                max_windows: self.window_budget(),
+            },
+            counts: Counts::default(),
+        };
+        let counts = run.run(sources)?;
+        Ok(Outcome {
+            pushes: counts.created,
+            settles: counts.carried,
+            tests: counts.crossings,
+            bad_cost: None,
+            stopped_early: counts.stopped_early,
+            level: counts.level,
+            windows: counts,
+        })
+    }
+
+    /// The most windows one exact run may make: what the memory limit (or, without
+    /// one, the memory available now) leaves beside the solver, and the work limit.
+    fn window_budget(&self) -> usize {
+        let memory = self
+            .memory_limit
+            .map(|limit| limit.saturating_sub(self.budgeted))
+            .or_else(budget::available_memory)
+            .unwrap_or(u64::MAX);
+        let by_memory = memory / BYTES_PER_WINDOW as u64;
+        let by_work = self.work_limit.unwrap_or(u64::MAX);
+        // Ids keep their top bit free (the heap marks vertex events with it).
+        by_memory.min(by_work).min((1 << 31) - 1) as usize
     }
 
     /// After the settle loop: the roots (per node a source reached directly, the seed

@@ -10,6 +10,7 @@ use crate::mesh::{Csr, FaceFrame};
 use crate::propagate::budget;
 use crate::propagate::frontier::edge_steps;
 use crate::propagate::tracks::TrackTables;
+use crate::propagate::windows::ExactTables;
 use crate::propagate::{Method, Options};
 use crate::steiner::{SteinerLayout, SteinerScheme};
 use crate::Error;
@@ -45,6 +46,11 @@ pub(in crate::propagate) enum Engine {
         /// face (else asked of the metric as nodes settle).
         edge_steps: Option<Vec<f64>>,
     },
+    /// Windows carried face to face ([`Method::Exact`]).
+    Exact {
+        /// The flattened faces and the vertices where paths bend.
+        tables: Arc<ExactTables>,
+    },
 }
 
 /// What the Steiner layout was made from: the layout, the wavefront engine's flattened
@@ -68,6 +74,12 @@ impl<M: Metric, T: Topology> Setup<M, T> {
         let flat_frames = (options.method == Method::Wave)
             .then(|| flat_frames(mesh, &metric))
             .flatten();
+        // The exact engine refuses a metric it cannot be exact under (before the
+        // layout: it has no Steiner points).
+        let exact = match options.method {
+            Method::Exact => Some(Arc::new(ExactTables::new(mesh, &metric)?)),
+            _ => None,
+        };
         let method = match (options.method, &flat_frames) {
             (Method::Wave, None) => Method::Tracks,
             (method, _) => method,
@@ -112,6 +124,9 @@ impl<M: Metric, T: Topology> Setup<M, T> {
                 bucket_width: bucket_width(&steps),
             },
             Method::Graph | Method::Dijkstra => Engine::Graph { edge_steps },
+            Method::Exact => Engine::Exact {
+                tables: exact.expect("made for the exact engine"),
+            },
         };
         let extent = {
             let [lo, hi] = mesh.bounding_box().map(|p| p.to_array());
@@ -123,7 +138,7 @@ impl<M: Metric, T: Topology> Setup<M, T> {
             metric,
             method,
             k: match method {
-                Method::Dijkstra => 0.0,
+                Method::Dijkstra | Method::Exact => 0.0,
                 _ => steiner.k(),
             },
             layout: Arc::new(layout),
@@ -136,6 +151,7 @@ impl<M: Metric, T: Topology> Setup<M, T> {
             setup_seconds: start.elapsed().as_secs_f64(),
             path_workspaces: Mutex::default(),
             memory_limit: options.memory_limit,
+            work_limit: options.work_limit,
             budgeted: planned.budgeted,
         })
     }
@@ -158,6 +174,7 @@ impl<M: Metric, T: Topology> Setup<M, T> {
             },
             Engine::Graph { edge_steps: None } => Engine::Graph { edge_steps: None },
             Engine::Wave { .. }
+            | Engine::Exact { .. }
             | Engine::Graph {
                 edge_steps: Some(_),
             } => {
@@ -180,6 +197,7 @@ impl<M: Metric, T: Topology> Setup<M, T> {
             setup_seconds: start.elapsed().as_secs_f64(),
             path_workspaces: Mutex::default(),
             memory_limit: self.memory_limit,
+            work_limit: self.work_limit,
             budgeted: self.budgeted,
         })
     }
@@ -223,7 +241,7 @@ fn plan<T: Topology>(
     steiner: SteinerScheme,
     flat_frames: Option<&[FaceFrame]>,
 ) -> Result<Planned, Error> {
-    if options.method == Method::Dijkstra {
+    if matches!(options.method, Method::Dijkstra | Method::Exact) {
         return Ok(Planned {
             layout: SteinerLayout::vertices_only(mesh),
             flat: None,

@@ -2,12 +2,13 @@
 
 use super::Solver;
 use crate::field::Wave;
-use crate::field::{FieldData, FieldView, Horizon, Root, Stats};
+use crate::field::{FieldData, FieldView, Horizon, Origin, Root, Stats, WindowField};
 use crate::mesh::NONE;
 use crate::options::Method;
 use crate::propagate::frontier::Seed;
 use crate::propagate::queue::{BucketQueue, HeapQueue};
 use crate::propagate::tracks::Track;
+use crate::propagate::windows::ExactBuffers;
 use crate::steiner::SteinerLayout;
 use crate::surface::Source;
 use std::sync::Arc;
@@ -46,6 +47,10 @@ pub struct Workspace {
     pub(crate) horizon: Horizon,
     /// The last run's counters.
     pub(crate) stats: Option<Stats>,
+    /// The exact engine's windows and vertex origins (see [`WindowField`]).
+    pub(crate) exact: WindowField,
+    /// The exact engine's heap and per-vertex flags.
+    pub(in crate::propagate) exact_buffers: ExactBuffers,
 }
 
 impl Workspace {
@@ -111,6 +116,7 @@ impl Workspace {
             sources: &self.sources,
             roots: &self.roots,
             waves: &self.waves,
+            windows: &self.exact,
             // (The engine of the last run is in its stats.)
             method: self.stats.as_ref().map_or(Method::Wave, |s| s.method),
             horizon: self.horizon,
@@ -129,6 +135,7 @@ impl Workspace {
             self.sources,
             self.roots,
             self.waves,
+            self.exact,
             self.horizon,
             self.stats.expect("a finished run"),
         )
@@ -146,13 +153,15 @@ impl Workspace {
             self.sources.clone(),
             self.roots.clone(),
             self.waves.clone(),
+            self.exact.clone(),
             self.horizon,
             self.stats.clone().expect("a finished run"),
         )
     }
 
     /// Sizes and clears the buffers for a run over `nodes` nodes, `instances` tracks
-    /// and `waves` waves; allocates only when they must grow.
+    /// and `waves` waves (and, with `exact`, the exact engine's per-vertex state);
+    /// allocates only when they must grow.
     ///
     /// Only the nodes the last run touched hold anything but reset values, so when
     /// the sizes match and those are few (a run stopped at a maximum distance, as
@@ -165,6 +174,7 @@ impl Workspace {
         nodes: usize,
         instances: usize,
         waves: usize,
+        exact: bool,
     ) {
         let partial = self.recorded
             && self.touched.len() < nodes / 4
@@ -192,6 +202,21 @@ impl Workspace {
         } else {
             fill(&mut self.waves, waves, Wave::NONE);
         }
+        let exact_len = if exact { vertex_count } else { 0 };
+        if partial && exact && self.exact.origin.len() == exact_len {
+            for &node in &self.touched {
+                if (node as usize) < vertex_count {
+                    self.exact.origin[node as usize] = Origin::None;
+                    self.exact.label[node as usize] = NONE;
+                    self.exact_buffers.started[node as usize] = false;
+                }
+            }
+        } else {
+            fill(&mut self.exact.origin, exact_len, Origin::None);
+            fill(&mut self.exact.label, exact_len, NONE);
+            fill(&mut self.exact_buffers.started, exact_len, false);
+        }
+        self.exact.clear();
         debug_assert!(
             !partial
                 || (self.distance.iter().all(|d| *d == f64::INFINITY)

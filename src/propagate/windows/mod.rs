@@ -1,0 +1,710 @@
+//! The exact engine: edges that hold as many *windows* as the geodesics need.
+//!
+//! # Idea
+//! Under a metric that is a constant norm on each face (`Metric::face_gram`) and
+//! whose faces glue isometrically (every edge has one length in all its faces), a
+//! shortest path is a straight line in the unfolding of the faces it crosses, bending
+//! only at vertices where the surface is not flat around them (saddles, boundary and
+//! non-manifold vertices) or along wires (Mitchell, Mount and Papadimitriou 1987). A
+//! *window* stands for a bundle of such lines: a virtual source `S` (the start of the
+//! straight piece, unfolded behind an edge), `σ` (the path length up to `S`), and the
+//! part `[b0, b1]` of the edge the lines cross. Carried across a face, a window's
+//! lines reach one or both of the face's other edges: its *children*, with the same
+//! `S` and `σ`, seen from the new edges. A vertex where paths may bend, once its
+//! value is final, starts windows of its own on the far edge of every face around
+//! it; so does every source.
+//!
+//! # Order and pruning
+//! Windows are carried in the order of their least value (a binary heap; vertices'
+//! events in the same heap): a vertex's value is final when the heap's least key
+//! reaches it, since no window yet to come is shorter than the one that made it.
+//! What keeps the count of windows small is the *vertex check* of Xin and Wang
+//! (2009) and Qin et al. (2016), made exact: along its edge, a window's value less the
+//! way from an end of the edge only falls away from that end, so the part of a window
+//! longer than the path through an end (the end's value plus the way along the edge)
+//! is cut off in closed form ([`Lines::trim`]). Every window is trimmed when made and
+//! again when taken from the heap (values only fall meanwhile); one whose least value
+//! grew by trimming goes back into the heap at its new key, where later values may
+//! drop it entirely. Trimming only removes lines that another path matches or beats,
+//! so what is left still holds a shortest path to every point: the engine is exact
+//! up to rounding (`TOLERANCE`).
+//!
+//! # Topology
+//! A window entering an edge from one face continues into every other face around it
+//! (non-manifold edges), ends at the boundary, and vertices on the boundary or on
+//! non-manifold edges start windows as saddles do. Wires carry values between their
+//! vertices, which then start windows. Each window remembers the window it came from,
+//! so a geodesic is traced back along straight lines, with no search.
+//!
+//! # Cost
+//! A window is 56 bytes and a heap entry 16; the field keeps every window made (a
+//! path or a query at a point reads them). The run refuses to grow past the memory
+//! limit ([`Error::ExactTooLarge`]) instead of exhausting the machine: window counts
+//! grow faster than the faces on meshes with many saddles, up to `O(n √n)`.
+
+mod geometry;
+
+pub(crate) use geometry::Lines;
+use geometry::{norm, project, trim_pair, Child};
+
+use crate::field::{Origin, Window, WindowField};
+use crate::flat::{flat_frame, P};
+use crate::mesh::{Csr, FaceFrame, Topology, NONE};
+use crate::surface::{Source, SurfacePoint};
+use crate::Error;
+use geotracks_metrics::Metric;
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+/// How much longer than another path a window may be and keep its lines, relative to
+/// the values compared: a few units in the last place, so that rounding does not cut
+/// the lines of two equal windows (the same lines reached twice), and no wider: a
+/// wider tie keeps slivers of lines along every ray that grazes a vertex (on a ray
+/// from the source through a boundary vertex, the vertex's own windows tie the
+/// source's), and slivers carried on from vertex to vertex grow quadratically in
+/// number on long strips.
+const TOLERANCE: f64 = 1e-13;
+
+/// Lines narrower than this, seen from their source (the window's width over its
+/// distance from the source, in radians), are dropped: the rays of such a window are
+/// rounding apart, and a point they alone would reach is reached by the lines on
+/// either side bending at a window's end, longer by about `D · angle² / 8`: 1e-20 of
+/// the distance `D`.
+const NARROWEST: f64 = 1e-10;
+
+/// Two windows are the same wave when their sources and `σ` agree to this, relative
+/// to the edge: rounding through different chains of faces stays far below it, and
+/// joining two that differ by it changes values by as little.
+const SAME_WAVE: f64 = 1e-11;
+
+/// Whether `a` and `b` are lines of one wave (see [`SAME_WAVE`]) on an edge `len` long.
+fn same_wave(a: &Lines, b: &Lines, len: f64) -> bool {
+    let slack = SAME_WAVE * (len + a.sigma.abs());
+    (a.sx - b.sx).abs() <= slack
+        && (a.sy - b.sy).abs() <= slack
+        && (a.sigma - b.sigma).abs() <= slack
+}
+
+/// A vertex event in the heap: the vertex's id with this bit set.
+const VERTEX_EVENT: u32 = 1 << 31;
+
+/// What the exact engine works out once per solver.
+pub(in crate::propagate) struct ExactTables {
+    /// Every face's frame in the metric's flattening.
+    pub frames: Vec<FaceFrame>,
+    /// Per vertex, whether shortest paths may bend there (so it starts windows when
+    /// reached): a saddle (angles adding to more than 2π; lines through a flat
+    /// vertex go on in the windows on either side of it), a vertex on
+    /// the boundary or on a non-manifold edge, one with wires, one with no face.
+    pub bends: Vec<bool>,
+    /// The longest edge (flattened): no point of a face is farther from its corners.
+    pub reach: f64,
+}
+
+impl ExactTables {
+    /// The flattened frames and the vertices where paths bend, checking that the
+    /// metric flattens every face and that faces glue along every edge.
+    ///
+    /// # Errors
+    /// [`Error::NotExact`] naming the first face the metric does not flatten, or the
+    /// first edge whose faces give it different lengths.
+    pub fn new<M: Metric, T: Topology>(mesh: &T, metric: &M) -> Result<ExactTables, Error> {
+        let not_exact = |reason: String| Error::NotExact {
+            metric: metric.name().to_string(),
+            reason,
+        };
+        let mut frames = Vec::with_capacity(mesh.face_count());
+        for f in 0..mesh.face_count() as u32 {
+            let frame = flat_frame(metric, f, &mesh.frame(f)).ok_or_else(|| {
+                not_exact(format!(
+                    "it is not a constant norm on face {f} (it gives no flattening there)"
+                ))
+            })?;
+            frames.push(frame);
+        }
+        let mut lengths = vec![f64::NAN; mesh.edge_count()];
+        let mut reach = 0.0f64;
+        let mut angles = vec![0.0f64; mesh.vertex_count()];
+        for (f, frame) in frames.iter().enumerate() {
+            let f = f as u32;
+            let c = frame.corners().map(|[x, y]| P(x, y));
+            let vertices = mesh.face_vertices(f);
+            for (s, e) in mesh.face_edges(f).into_iter().enumerate() {
+                let d = c[(s + 1) % 3].sub(c[s]);
+                let l = norm(d.0, d.1);
+                reach = reach.max(l);
+                let known = &mut lengths[e as usize];
+                if known.is_nan() {
+                    *known = l;
+                } else if (l - *known).abs() > 1e-9 * l.max(*known) {
+                    return Err(not_exact(format!(
+                        "its faces do not glue: edge {e} is {known:e} long in one face and {l:e} in face {f}"
+                    )));
+                }
+                // The angle at corner s, between its two edges.
+                let (to_next, to_prev) = (d, c[(s + 2) % 3].sub(c[s]));
+                let angle = to_next.cross(to_prev).abs().atan2(to_next.dot(to_prev));
+                angles[vertices[s] as usize] += angle;
+            }
+        }
+        let full_turn = 2.0 * std::f64::consts::PI;
+        let bends = (0..mesh.vertex_count() as u32)
+            .map(|v| {
+                let faces = mesh.vertex_faces(v);
+                faces.is_empty()
+                    || !mesh.vertex_wires(v).is_empty()
+                    || angles[v as usize] > full_turn * (1.0 + 1e-12)
+                    || mesh
+                        .vertex_edges(v)
+                        .iter()
+                        .any(|&e| mesh.edge_faces(e).len() != 2)
+            })
+            .collect();
+        Ok(ExactTables {
+            frames,
+            bends,
+            reach,
+        })
+    }
+}
+
+/// An entry of the heap: a window's least value (or a vertex's value) and its id.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Entry {
+    key: f64,
+    id: u32,
+}
+
+impl PartialEq for Entry {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+impl Eq for Entry {}
+impl PartialOrd for Entry {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for Entry {
+    /// Reversed, for a min-heap: the least key is the greatest entry.
+    fn cmp(&self, other: &Self) -> Ordering {
+        other.key.total_cmp(&self.key).then(other.id.cmp(&self.id))
+    }
+}
+
+/// The per-run buffers of the exact engine, kept in a workspace.
+#[derive(Default)]
+pub(crate) struct ExactBuffers {
+    pub heap: BinaryHeap<Entry>,
+    /// Per vertex, whether it started its windows.
+    pub started: Vec<bool>,
+    /// Per edge, the last window made on it ([`NONE`]: none), and per window the one
+    /// made on its edge before it: the windows each new one is compared with.
+    pub edge_last: Vec<u32>,
+    pub before_on_edge: Vec<u32>,
+    /// Per window, whether it was carried across its faces.
+    pub carried: Vec<bool>,
+}
+
+/// How a run may end early, and what it may spend.
+pub(in crate::propagate) struct Bounds<'a> {
+    pub max_distance: f64,
+    /// Vertices whose values must be final (`point_targets`: plus the engine's reach,
+    /// for points inside their faces) before the run may stop.
+    pub targets: &'a [u32],
+    pub point_targets: bool,
+    /// The most windows the run may make.
+    pub max_windows: usize,
+}
+
+/// What a run did.
+#[derive(Clone, Copy, Debug, Default)]
+pub(in crate::propagate) struct Counts {
+    /// Windows made (and heap entries).
+    pub created: u64,
+    /// Windows carried across faces.
+    pub carried: u64,
+    /// Face crossings.
+    pub crossings: u64,
+    pub stopped_early: bool,
+    /// The heap's key when the run stopped at its targets (`inf` otherwise).
+    pub level: f64,
+}
+
+/// One run of the exact engine over borrowed state.
+pub(in crate::propagate) struct ExactRun<'a, T> {
+    pub mesh: &'a T,
+    pub tables: &'a ExactTables,
+    pub wires: &'a Csr<(u32, f64)>,
+    pub distance: &'a mut [f64],
+    pub field: &'a mut WindowField,
+    pub buffers: &'a mut ExactBuffers,
+    pub touched: &'a mut Vec<u32>,
+    /// Whether to record first-reached vertices in `touched`.
+    pub records: bool,
+    pub bounds: Bounds<'a>,
+    pub counts: Counts,
+}
+
+impl<T: Topology> ExactRun<'_, T> {
+    /// Starts windows from `sources` (validated) and carries them until the heap runs
+    /// out or the bounds stop the run.
+    ///
+    /// # Errors
+    /// [`Error::ExactTooLarge`] when the windows would outgrow `bounds.max_windows`.
+    pub fn run(&mut self, sources: &[Source]) -> Result<Counts, Error> {
+        self.buffers.heap.clear();
+        self.buffers.before_on_edge.clear();
+        self.buffers.carried.clear();
+        if self.buffers.edge_last.len() != self.mesh.edge_count() {
+            self.buffers.edge_last.clear();
+            self.buffers.edge_last.resize(self.mesh.edge_count(), NONE);
+        }
+        self.counts = Counts {
+            level: f64::INFINITY,
+            ..Counts::default()
+        };
+        for (index, source) in sources.iter().enumerate() {
+            self.seed(index as u32, source)?;
+        }
+        let mut threshold = f64::NEG_INFINITY;
+        while let Some(Entry { key, id }) = self.buffers.heap.pop() {
+            if key > self.bounds.max_distance {
+                break;
+            }
+            if !self.bounds.targets.is_empty() && key >= threshold {
+                threshold = self.targets_final_at();
+                if key >= threshold {
+                    self.counts.stopped_early = true;
+                    self.counts.level = key;
+                    break;
+                }
+            }
+            if id & VERTEX_EVENT != 0 {
+                let v = id & !VERTEX_EVENT;
+                if !self.buffers.started[v as usize] && key <= self.distance[v as usize] {
+                    self.buffers.started[v as usize] = true;
+                    self.start_at_vertex(v)?;
+                }
+            } else {
+                self.carry(id, key)?;
+            }
+        }
+        self.finish();
+        Ok(self.counts)
+    }
+
+    /// The heap key from which every target's value is final: the most of their
+    /// vertices' values (plus the reach, for points inside faces).
+    fn targets_final_at(&self) -> f64 {
+        let most = self
+            .bounds
+            .targets
+            .iter()
+            .map(|&v| self.distance[v as usize])
+            .fold(f64::NEG_INFINITY, f64::max);
+        if self.bounds.point_targets {
+            most + self.tables.reach
+        } else {
+            most
+        }
+    }
+
+    /// Source `index`'s first windows and values.
+    fn seed(&mut self, index: u32, source: &Source) -> Result<(), Error> {
+        let mesh = self.mesh;
+        let sigma = source.start;
+        match source.point {
+            SurfacePoint::Vertex(v) => self.offer(v, sigma, Origin::Start(index)),
+            SurfacePoint::Edge { edge, t } => {
+                let [lo, hi] = mesh.edge_vertices(edge);
+                for &f in mesh.edge_faces(edge).iter() {
+                    let s = mesh.edge_slot(f, edge).expect("an edge of its face");
+                    let c = self.tables.frames[f as usize]
+                        .corners()
+                        .map(|[x, y]| P(x, y));
+                    let (a, b) = if mesh.slot_is_reversed(f, s) {
+                        (c[(s + 1) % 3], c[s])
+                    } else {
+                        (c[s], c[(s + 1) % 3])
+                    };
+                    let at = a.add(b.sub(a).scale(t));
+                    let len = norm(b.sub(a).0, b.sub(a).1);
+                    let face = NONE;
+                    self.offer(lo, sigma + t * len, Origin::Source { index, face });
+                    self.offer(hi, sigma + (1.0 - t) * len, Origin::Source { index, face });
+                    for other in [(s + 1) % 3, (s + 2) % 3] {
+                        self.start_on(f, other, at, sigma, index)?;
+                    }
+                }
+            }
+            SurfacePoint::Face { face, bary } => {
+                let at = self.tables.frames[face as usize].point(bary).uv;
+                for slot in 0..3 {
+                    self.start_on(face, slot, P(at[0], at[1]), sigma, index)?;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Vertex `v`'s windows (its value final): one on the far edge of every face
+    /// around it, and its wires' values.
+    fn start_at_vertex(&mut self, v: u32) -> Result<(), Error> {
+        let mesh = self.mesh;
+        let sigma = self.distance[v as usize];
+        for &f in mesh.vertex_faces(v).iter() {
+            let corner = mesh.corner_of(f, v).expect("a corner of its face");
+            let c = self.tables.frames[f as usize].corners();
+            let at = P(c[corner][0], c[corner][1]);
+            let label = self.field.label[v as usize];
+            self.start_on(f, (corner + 1) % 3, at, sigma, label | Window::AT_VERTEX)?;
+        }
+        let wires = self.wires;
+        for &(u, cost) in wires.row(v) {
+            self.offer(u, sigma + cost, Origin::Wire { from: v });
+        }
+        Ok(())
+    }
+
+    /// A window with its source at `at` (a point of face `f`'s plane, `σ = sigma`)
+    /// over the whole edge in slot `slot` of `f`, into the faces beyond it.
+    /// `source` as [`Window::source`] (the vertex, with `AT_VERTEX`, is `f`'s corner
+    /// opposite the edge).
+    fn start_on(
+        &mut self,
+        f: u32,
+        slot: usize,
+        at: P,
+        sigma: f64,
+        source: u32,
+    ) -> Result<(), Error> {
+        let mesh = self.mesh;
+        let frame = &self.tables.frames[f as usize];
+        let edge = crate::flat::EdgeFrame::new(frame, slot, mesh.slot_is_reversed(f, slot));
+        let (sx, y) = edge.edge_coords(at);
+        if y.partial_cmp(&0.0) != Some(Ordering::Greater) {
+            // A source on the edge's own line: its lines only graze the edge.
+            return Ok(());
+        }
+        let child = Child {
+            lines: Lines {
+                sx,
+                sy: y,
+                sigma,
+                b0: 0.0,
+                b1: edge.len,
+            },
+            len: edge.len,
+        };
+        let origin = if source & Window::AT_VERTEX != 0 {
+            Origin::Vertex {
+                from: mesh.face_vertices(f)[(slot + 2) % 3],
+                face: f,
+            }
+        } else {
+            Origin::Source {
+                index: source,
+                face: f,
+            }
+        };
+        let e = mesh.face_edges(f)[slot];
+        self.make(child, e, f, (NONE, source), origin)
+    }
+
+    /// Takes window `id` from the heap (at `key`): trims it against its ends' values,
+    /// puts it back if that made it longer, else carries it into every face around
+    /// its edge but the one it came from.
+    fn carry(&mut self, id: u32, key: f64) -> Result<(), Error> {
+        let mesh = self.mesh;
+        let window = self.field.windows[id as usize];
+        let edge = window.edge;
+        let [lo, hi] = mesh.edge_vertices(edge);
+        let mut lines = window.lines;
+        if lines.b0 > lines.b1 || self.buffers.carried[id as usize] {
+            // Cut away by a shorter window on its edge, or carried already (queued
+            // again after it grew).
+            return Ok(());
+        }
+        let len = self.edge_len(window.from, edge);
+        let (d_lo, d_hi) = (self.distance[lo as usize], self.distance[hi as usize]);
+        if !lines.trim(len, d_lo, d_hi, TOLERANCE * key.abs().max(len)) {
+            return Ok(());
+        }
+        self.field.windows[id as usize].lines = lines;
+        let least = lines.least();
+        // (Values may be negative: a source's start value can be.)
+        if least > key + 1e-12 * key.abs().max(len) {
+            self.buffers.heap.push(Entry { key: least, id });
+            return Ok(());
+        }
+        self.counts.carried += 1;
+        self.buffers.carried[id as usize] = true;
+        self.field.kept.push(id);
+        for &f in mesh.edge_faces(edge).iter() {
+            if f != window.from {
+                self.cross(id, &lines, edge, f)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// The length of `edge` in face `f`'s plane (`f` may be [`NONE`]: then its first
+    /// face's).
+    fn edge_len(&self, f: u32, edge: u32) -> f64 {
+        let mesh = self.mesh;
+        let f = if f == NONE {
+            mesh.edge_faces(edge)[0]
+        } else {
+            f
+        };
+        let s = mesh.edge_slot(f, edge).expect("an edge of its face");
+        let c = self.tables.frames[f as usize]
+            .corners()
+            .map(|[x, y]| P(x, y));
+        let d = c[(s + 1) % 3].sub(c[s]);
+        norm(d.0, d.1)
+    }
+
+    /// Carries window `id` (its lines `lines`, on `edge`) across face `f`: the value
+    /// of the face's third corner where the lines reach it, and the children on the
+    /// face's two other edges.
+    fn cross(&mut self, id: u32, lines: &Lines, edge: u32, f: u32) -> Result<(), Error> {
+        self.counts.crossings += 1;
+        let mesh = self.mesh;
+        let s = mesh.edge_slot(f, edge).expect("an edge of its face");
+        let c = self.tables.frames[f as usize]
+            .corners()
+            .map(|[x, y]| P(x, y));
+        let (ia, ib) = if mesh.slot_is_reversed(f, s) {
+            ((s + 1) % 3, s)
+        } else {
+            (s, (s + 1) % 3)
+        };
+        let ic = (s + 2) % 3;
+        let ab = c[ib].sub(c[ia]);
+        let len = norm(ab.0, ab.1);
+        let u = ab.scale(1.0 / len);
+        let n = P(-u.1, u.0);
+        let to_c = c[ic].sub(c[ia]);
+        let mut apex = P(to_c.dot(u), to_c.dot(n));
+        if apex.1 < 0.0 {
+            apex.1 = -apex.1;
+        }
+        let vertices = mesh.face_vertices(f);
+        let edges = mesh.face_edges(f);
+        // The slot of the edge between corners i and j.
+        let slot_of = |i: usize, j: usize| if (i + 1) % 3 == j { i } else { j };
+        let sides = [(ia, ic), (ic, ib)];
+        let lower_first = sides.map(|(i, j)| vertices[i] < vertices[j]);
+        let (children, sees_apex) = project(lines, len, apex, lower_first);
+        let origin = Origin::Window { id, face: f };
+        if sees_apex {
+            let value = lines.sigma + norm(apex.0 - lines.sx, apex.1 + lines.sy);
+            self.offer(vertices[ic], value, origin);
+        }
+        for (child, (i, j)) in children.into_iter().zip(sides) {
+            if let Some(child) = child {
+                let label = self.field.windows[id as usize].label();
+                self.make(child, edges[slot_of(i, j)], f, (id, label), origin)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// A new window on `edge` (seen from face `from`, whose plane the child's frame
+    /// is in): its ends' values offered (with `origin`), then trimmed and queued
+    /// unless nothing is left or no face lies beyond.
+    fn make(
+        &mut self,
+        child: Child,
+        edge: u32,
+        from: u32,
+        (parent, source): (u32, u32),
+        origin: Origin,
+    ) -> Result<(), Error> {
+        let mesh = self.mesh;
+        let [lo, hi] = mesh.edge_vertices(edge);
+        let Child { mut lines, len } = child;
+        let covers = 1e-9 * len;
+        if lines.b0 <= covers {
+            self.offer(lo, lines.value_at(0.0), origin);
+        }
+        if lines.b1 >= len - covers {
+            self.offer(hi, lines.value_at(len), origin);
+        }
+        if mesh.edge_faces(edge).iter().all(|&g| g == from) {
+            return Ok(());
+        }
+        let (d_lo, d_hi) = (self.distance[lo as usize], self.distance[hi as usize]);
+        let scale = lines.sigma.abs().max(len);
+        if !lines.trim(len, d_lo, d_hi, TOLERANCE * scale) {
+            return Ok(());
+        }
+        if !self.compare_on_edge(&mut lines, (edge, from, len), TOLERANCE * scale) {
+            return Ok(());
+        }
+        let key = lines.least();
+        if lines.b1 - lines.b0 < NARROWEST * (key - lines.sigma) {
+            return Ok(());
+        }
+        if key > self.bounds.max_distance {
+            return Ok(());
+        }
+        let id = self.field.windows.len();
+        if id >= self.bounds.max_windows {
+            return Err(Error::ExactTooLarge {
+                windows: id as u64,
+                bytes: (id * BYTES_PER_WINDOW) as u64,
+            });
+        }
+        self.field.windows.push(Window {
+            lines,
+            edge,
+            from,
+            parent,
+            source,
+        });
+        self.counts.created += 1;
+        self.buffers.carried.push(false);
+        self.buffers.heap.push(Entry { key, id: id as u32 });
+        let last = &mut self.buffers.edge_last[edge as usize];
+        self.buffers.before_on_edge.push(*last);
+        *last = id as u32;
+        Ok(())
+    }
+
+    /// Compares new lines on `edge` with the windows already there, cutting each back
+    /// where the other is shorter ([`trim_pair`]), and forgets those left empty;
+    /// returns whether anything of the new lines is left.
+    ///
+    /// Lines of the same wave (the same source and `σ`, from the same face) that
+    /// reach the edge through two faces, split by a flat vertex, are joined instead:
+    /// into the older window if it has not been carried yet (then the new lines are
+    /// absorbed: `false`), else the new lines lose the part the older carried. On
+    /// planar and developable meshes this keeps one window per edge and source, where
+    /// every vertex the wave passes would otherwise split it for good (a strip's
+    /// windows grow quadratically).
+    fn compare_on_edge(
+        &mut self,
+        lines: &mut Lines,
+        (edge, from, len): (u32, u32, f64),
+        tolerance: f64,
+    ) -> bool {
+        let (windows, before) = (&mut self.field.windows, &mut self.buffers.before_on_edge);
+        let mut newer = NONE;
+        let mut id = self.buffers.edge_last[edge as usize];
+        while id != NONE {
+            let older = before[id as usize];
+            let window = &mut windows[id as usize];
+            let other = &mut window.lines;
+            if other.b0 <= other.b1 {
+                if window.from == from && same_wave(lines, other, len) {
+                    let touch = SAME_WAVE * len;
+                    if lines.b0 <= other.b1 + touch && other.b0 <= lines.b1 + touch {
+                        if !self.buffers.carried[id as usize] {
+                            other.b0 = other.b0.min(lines.b0);
+                            other.b1 = other.b1.max(lines.b1);
+                            // Queued again at its new least value (the older entry is
+                            // skipped once it has been carried).
+                            let key = other.least();
+                            self.buffers.heap.push(Entry { key, id });
+                            return false;
+                        }
+                        if lines.b0 >= other.b0 - touch && lines.b1 <= other.b1 + touch {
+                            return false;
+                        }
+                        if lines.b0 >= other.b0 - touch {
+                            lines.b0 = other.b1;
+                        } else if lines.b1 <= other.b1 + touch {
+                            lines.b1 = other.b0;
+                        }
+                    }
+                } else {
+                    trim_pair(lines, other, tolerance);
+                }
+            }
+            if other.b0 > other.b1 {
+                // Unlinked: no later window is compared with it.
+                if newer == NONE {
+                    self.buffers.edge_last[edge as usize] = older;
+                } else {
+                    before[newer as usize] = older;
+                }
+            } else {
+                newer = id;
+            }
+            if lines.b0 > lines.b1 {
+                return false;
+            }
+            id = older;
+        }
+        true
+    }
+
+    /// Offers vertex `v` the value `value`, reached by `origin`; a vertex where paths
+    /// bend (or reached otherwise than along a window's lines) is queued to start its
+    /// own windows once final.
+    #[inline]
+    fn offer(&mut self, v: u32, value: f64, origin: Origin) {
+        let d = &mut self.distance[v as usize];
+        if value.partial_cmp(d) != Some(Ordering::Less) {
+            return;
+        }
+        if *d == f64::INFINITY && self.records {
+            self.touched.push(v);
+        }
+        *d = value;
+        self.field.origin[v as usize] = origin;
+        self.field.label[v as usize] = match origin {
+            Origin::Start(index) | Origin::Source { index, .. } => index,
+            Origin::Window { id, .. } => self.field.windows[id as usize].label(),
+            Origin::Vertex { from, .. } | Origin::Wire { from } => self.field.label[from as usize],
+            Origin::None => NONE,
+        };
+        let starts = self.tables.bends[v as usize]
+            || matches!(origin, Origin::Start(_) | Origin::Wire { .. });
+        if starts && value <= self.bounds.max_distance {
+            self.buffers.heap.push(Entry {
+                key: value,
+                id: v | VERTEX_EVENT,
+            });
+        }
+    }
+
+    /// After the run: values beyond the maximum distance forgotten, the kept windows
+    /// indexed by edge.
+    fn finish(&mut self) {
+        let max = self.bounds.max_distance;
+        if max < f64::INFINITY {
+            let (distance, origin, label) = (
+                &mut *self.distance,
+                &mut self.field.origin,
+                &mut self.field.label,
+            );
+            let vertices = distance.len();
+            let mut forget = |v: usize| {
+                if distance[v] > max {
+                    distance[v] = f64::INFINITY;
+                    origin[v] = Origin::None;
+                    label[v] = NONE;
+                }
+            };
+            if self.records {
+                self.touched.iter().for_each(|&v| forget(v as usize));
+            } else {
+                (0..vertices).for_each(forget);
+            }
+        }
+        self.field.index(self.mesh.edge_count());
+        for w in &self.field.windows {
+            self.buffers.edge_last[w.edge as usize] = NONE;
+        }
+    }
+}
+
+/// What one window costs while a run makes it: the window, its heap entry, its place
+/// in the kept list and the edge index.
+pub(in crate::propagate) const BYTES_PER_WINDOW: usize =
+    std::mem::size_of::<Window>() + std::mem::size_of::<Entry>() + 8;
