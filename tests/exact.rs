@@ -292,7 +292,8 @@ fn gram(a: &[[f64; 3]; 3]) -> [f64; 6] {
     [m(0, 0), m(0, 1), m(0, 2), m(1, 1), m(1, 2), m(2, 2)]
 }
 
-/// Every exact reference of the shared data (MMP, and the constant-tensor ones):
+/// Every exact reference of the shared data (MMP, and the constant-tensor ones) on
+/// meshes up to 500 000 faces:
 /// every vertex within 1e-9 relative; where a value lies below its reference by more,
 /// the path traced from it is a real path that short (the reference overestimates
 /// there: horse's MMP reference has such vertices, where VTP agrees with us).
@@ -313,6 +314,11 @@ fn exact_references_of_the_shared_meshes() {
         let json: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(path.with_extension("json")).unwrap())
                 .unwrap();
+        if json["F"].as_u64().unwrap() > 500_000 {
+            // bunny_loop2: 96 M windows, 6.8 GB and six minutes here, too much for CI;
+            // `scripts/exact-compare` checks it against VTP (Performance page).
+            continue;
+        }
         let mesh = read_mesh(data.join(json["mesh_file"].as_str().unwrap())).unwrap();
         let source = json["source"].as_u64().unwrap() as u32;
         let field = exact_field(&mesh, Euclidean, &[Source::new(source)]);

@@ -212,7 +212,8 @@ class Region(NamedTuple):
     face: int
     #: What gives the distance: ``("node", id)`` (a vertex or Steiner node), ``("source",
     #: i)`` (the i-th source), ``("wave", id)`` (a Steiner node's wave, from its virtual
-    #: source) or ``("wave_bend", id)`` (that wave bending round an end of its window).
+    #: source), ``("wave_bend", id)`` (that wave bending round an end of its window) or
+    #: ``("window", id)`` (a window of the exact engine, from its virtual source).
     source: tuple
     #: For a candidate of the neighbouring face, the edge its lines cross; ``-1``: none.
     across: int

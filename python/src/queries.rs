@@ -152,6 +152,7 @@ pub(crate) fn py_regions<'py>(
                 ValueSource::Source(id) => ("source", id),
                 ValueSource::Wave(id) => ("wave", id),
                 ValueSource::WaveBend(id) => ("wave_bend", id),
+                ValueSource::Window(id) => ("window", id),
                 // The enum is non-exhaustive: a kind added later is refused by name
                 // rather than mislabelled.
                 other => return Err(error(format!("unknown region source {other:?}"))),

@@ -57,7 +57,7 @@ def same_isolines(a, b):
         assert np.array_equal(x.points, y.points)
 
 
-@pytest.mark.parametrize("method", ["wave", "tracks"])
+@pytest.mark.parametrize("method", ["wave", "tracks", "exact"])
 def test_a_field_answers_as_the_one_call_methods(method):
     V, F = geotracks.read_mesh(DATA / "spot.obj")
     solver = geotracks.MeshSolver(V, F, method=method)
@@ -91,6 +91,27 @@ def test_a_field_answers_as_the_one_call_methods(method):
     again = field.path(1500)
     assert again.surface_points == path.surface_points and np.array_equal(again.points, path.points)
     assert path.length <= field.distance()[1500] + 1e-12
+
+
+def test_the_exact_engine_on_a_plane_is_the_straight_distance():
+    # Exact geodesics on a flat grid: the straight distance at every vertex, paths as
+    # long as the value, and its windows counted in the stats.
+    V, F = grid(8)
+    solver = geotracks.MeshSolver(V, F, method="exact")
+    assert solver.method == "exact"
+    field = solver.field([0, "f:10:0.2,0.3,0.5"])
+    inside = point_of(V, F, 10, [0.2, 0.3, 0.5])
+    straight = np.minimum(np.linalg.norm(V - V[0], axis=1), np.linalg.norm(V - inside, axis=1))
+    np.testing.assert_allclose(field.distance(), straight, rtol=1e-12, atol=1e-12)
+    path = field.path(40)
+    assert abs(path.length - field.distance()[40]) <= 1e-12
+    assert field.stats["windows_created"] > 0 and field.stats["method"] == "exact"
+    with pytest.raises(geotracks.GeotracksError, match="exact engine cannot run"):
+        geotracks.MeshSolver(V, F, method="exact", metric=geotracks.Density(np.full(len(V), 2.0)))
+
+
+def point_of(V, F, face, bary):
+    return sum(b * V[v] for b, v in zip(bary, F[face]))
 
 
 def test_a_field_path_from_one_source_is_the_one_call_path():
@@ -189,7 +210,10 @@ def test_stats_and_sources():
     solver = geotracks.MeshSolver(V, F, method="tracks", k=3)
     field = solver.field([0, "e:5:0.25"])
     stats = field.stats
-    assert set(stats) == {"method", "k", "settles", "pushes", "distance_tests", "propagate_seconds", "stopped_early"}
+    assert set(stats) == {
+        "method", "k", "settles", "pushes", "distance_tests", "propagate_seconds", "stopped_early",
+        "windows_created", "windows_kept",
+    }
     assert stats["method"] == "tracks" and stats["k"] == 3.0
     assert stats["settles"] > 0 and stats["pushes"] >= stats["settles"] and stats["distance_tests"] > 0
     assert stats["propagate_seconds"] >= 0.0 and stats["stopped_early"] is False

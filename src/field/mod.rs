@@ -198,7 +198,9 @@ impl<M: Metric, D: FieldStorage, T: Topology> Field<M, D, T> {
 
     /// The node and face through which `node` got its distance; `None` for a source or
     /// an unreached node. The face is [`NONE`](crate::mesh::NONE) when the parent lies
-    /// on the same edge.
+    /// on the same edge. An exact field ([`Method::Exact`]) has no parent nodes (its
+    /// vertices are reached along windows' lines, which [`Field::path`] follows):
+    /// `None` for every node.
     pub fn parent(&self, node: u32) -> Option<(u32, u32)> {
         let view = self.data.view(self.solver.layout());
         let p = *view.parent.get(node as usize)?;

@@ -115,6 +115,25 @@ pub(crate) fn trim_pair(a: &mut Lines, b: &mut Lines, tolerance: f64) {
     if lo.partial_cmp(&hi) != Some(Ordering::Less) {
         return;
     }
+    // Most pairs are settled by their ranges over the overlap (a value along the edge
+    // is convex: least at the point nearest its source, greatest at an end).
+    let range = |w: &Lines| {
+        let (at_lo, at_hi) = (w.value_at(lo), w.value_at(hi));
+        let least = if w.sx > lo && w.sx < hi {
+            w.sigma + w.sy
+        } else {
+            at_lo.min(at_hi)
+        };
+        (least, at_lo.max(at_hi))
+    };
+    let ((a_least, a_most), (b_least, b_most)) = (range(a), range(b));
+    if a_least > b_most + tolerance || b_least > a_most + tolerance {
+        let pieces = [lo, hi];
+        let better = [if a_least > b_most + tolerance { 1 } else { -1 }];
+        cut_back(a, &pieces, &better, 1);
+        cut_back(b, &pieces, &better, -1);
+        return;
+    }
     let mut cuts = [lo, hi, hi, hi];
     let mut n = 1;
     for root in crossings(a, b) {

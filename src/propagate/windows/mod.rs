@@ -99,6 +99,8 @@ pub(in crate::propagate) struct ExactTables {
     pub bends: Vec<bool>,
     /// The longest edge (flattened): no point of a face is farther from its corners.
     pub reach: f64,
+    /// Per edge, its length (in its first face's plane; the others agree to 1e-9).
+    pub lengths: Vec<f64>,
 }
 
 impl ExactTables {
@@ -164,6 +166,7 @@ impl ExactTables {
             frames,
             bends,
             reach,
+            lengths,
         })
     }
 }
@@ -176,18 +179,21 @@ pub(crate) struct Entry {
 }
 
 impl PartialEq for Entry {
+    #[inline(always)]
     fn eq(&self, other: &Self) -> bool {
         self.cmp(other) == Ordering::Equal
     }
 }
 impl Eq for Entry {}
 impl PartialOrd for Entry {
+    #[inline(always)]
     fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
         Some(self.cmp(other))
     }
 }
 impl Ord for Entry {
     /// Reversed, for a min-heap: the least key is the greatest entry.
+    #[inline(always)]
     fn cmp(&self, other: &Self) -> Ordering {
         other.key.total_cmp(&self.key).then(other.id.cmp(&self.id))
     }
@@ -427,7 +433,7 @@ impl<T: Topology> ExactRun<'_, T> {
             // again after it grew).
             return Ok(());
         }
-        let len = self.edge_len(window.from, edge);
+        let len = self.tables.lengths[edge as usize];
         let (d_lo, d_hi) = (self.distance[lo as usize], self.distance[hi as usize]);
         if !lines.trim(len, d_lo, d_hi, TOLERANCE * key.abs().max(len)) {
             return Ok(());
@@ -448,23 +454,6 @@ impl<T: Topology> ExactRun<'_, T> {
             }
         }
         Ok(())
-    }
-
-    /// The length of `edge` in face `f`'s plane (`f` may be [`NONE`]: then its first
-    /// face's).
-    fn edge_len(&self, f: u32, edge: u32) -> f64 {
-        let mesh = self.mesh;
-        let f = if f == NONE {
-            mesh.edge_faces(edge)[0]
-        } else {
-            f
-        };
-        let s = mesh.edge_slot(f, edge).expect("an edge of its face");
-        let c = self.tables.frames[f as usize]
-            .corners()
-            .map(|[x, y]| P(x, y));
-        let d = c[(s + 1) % 3].sub(c[s]);
-        norm(d.0, d.1)
     }
 
     /// Carries window `id` (its lines `lines`, on `edge`) across face `f`: the value
