@@ -82,7 +82,7 @@ fn the_mesh_knows_its_wires_and_one_component() {
 /// a vertex of B is as far as A's corner, the wire, then straight across B. The
 /// wavefront engine gives that exactly (straight lines on a plane); the Steiner graph
 /// and the track-pruned engine agree with each other to 1e-9; Dijkstra on edges is
-/// longer, never shorter.
+/// longer, never shorter; the exact engine gives the exact values too.
 #[test]
 fn every_engine_crosses_the_wire() {
     let (mesh, side) = two_squares_and_a_wire(6);
@@ -134,7 +134,35 @@ fn every_engine_crosses_the_wire() {
             "{g} vs {t}"
         );
     }
-    for field in [&wave, &graph, &tracks, &dijkstra] {
+    // The exact engine: the same exact values, and a path from B as long as its value,
+    // along the wire.
+    let exact_field = Solver::new(
+        &mesh,
+        &Euclidean,
+        &Options::DEFAULT.with_method(Method::Exact),
+    )
+    .and_then(|solver| solver.field(&[source]))
+    .unwrap();
+    for v in 0..mesh.vertex_count() as u32 {
+        let e = exact(v);
+        assert!(
+            abs_diff_eq!(exact_field.distance(v), e, epsilon = 1e-9),
+            "exact at {v}: {} vs {e}",
+            exact_field.distance(v)
+        );
+    }
+    let far_corner = (2 * side * side - 1) as u32;
+    let path = exact_field.path(far_corner).unwrap();
+    assert_abs_diff_eq!(
+        path.length,
+        exact_field.distance(far_corner),
+        epsilon = 1e-9
+    );
+    assert!(
+        path.faces.contains(&geotracks::mesh::NONE),
+        "along the wire"
+    );
+    for field in [&wave, &graph, &tracks, &dijkstra, &exact_field] {
         assert_eq!(field.unreachable_vertices(), 0);
     }
     // From B's far corner, A is reached the other way.

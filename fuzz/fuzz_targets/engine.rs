@@ -1,6 +1,7 @@
 //! The engine on small random meshes: no panic, and for the norm metrics (Euclidean,
 //! Tensor) the track-pruned engine returns the Steiner graph's distances at every vertex
-//! to a relative 1e-9 whenever both finish.
+//! to a relative 1e-9 whenever both finish; the exact engine, where it runs (a metric
+//! whose faces glue), reaches the same vertices and is never above the graph.
 //!
 //! Bytes → mesh: 3–10 vertices with small integer coordinates (so faces are often
 //! degenerate, coplanar, folded or non-manifold), 1–16 faces with indices mod n, a
@@ -31,9 +32,19 @@ impl Bytes<'_> {
 fn check<M: Metric>(mesh: &TriMesh, metric: &M, source: u32, options: Options, exact: bool) {
     let run = |method| Solver::new(mesh, metric, &options.with_method(method))?.field(source);
     let (tracks, graph) = (run(Method::Tracks), run(Method::Graph));
+    let exact_run = run(Method::Exact);
     let (Ok(tracks), Ok(graph)) = (tracks, graph) else {
         return;
     };
+    if let Ok(exact_field) = exact_run {
+        for v in 0..mesh.positions().len() as u32 {
+            let (e, g) = (exact_field.distance(v), graph.distance(v));
+            assert_eq!(e.is_finite(), g.is_finite(), "vertex {v}: exact {e}, graph {g}");
+            if g.is_finite() {
+                assert!(e <= g + 1e-9 * g.max(1e-12), "vertex {v}: exact {e} above the graph's {g}");
+            }
+        }
+    }
     if !exact {
         return;
     }

@@ -72,6 +72,19 @@ impl<M: Metric, T: Topology> Query<'_, M, T> {
         points: &mut Vec<SurfacePoint>,
         faces: &mut Vec<u32>,
     ) -> Option<u32> {
+        self.trace_window_from(f, id, points, faces, 0)
+    }
+
+    /// As [`Query::trace_window`], after `restarts` restarts (at most
+    /// `MAX_RESTARTS`: more is a loop).
+    fn trace_window_from(
+        &self,
+        f: u32,
+        id: u32,
+        points: &mut Vec<SurfacePoint>,
+        faces: &mut Vec<u32>,
+        restarts: u32,
+    ) -> Option<u32> {
         let windows = &self.field.windows.windows;
         let (mut f, mut id) = (f, id);
         // The wave's source in f's plane and its σ, once known.
@@ -79,9 +92,13 @@ impl<M: Metric, T: Topology> Query<'_, M, T> {
         for _ in 0..=windows.len() {
             let frame = self.flat(f)?;
             let at = self.flat_point(&frame, f, *points.last()?)?;
-            let (w, t) = match self.crossing(&frame, f, id, at, wave) {
-                Some(found) => found,
-                None => self.window_crossed(&frame, f, at, wave?)?,
+            let found = self
+                .crossing(&frame, f, id, at, wave)
+                .or_else(|| self.window_crossed(&frame, f, at, wave?));
+            let Some((w, t)) = found else {
+                // The parent was cut back after it was carried (a shorter window took
+                // that part of its edge): go on from here as that one gives it.
+                return self.restart_in_face(f, points, faces, restarts + 1);
             };
             let w = &windows[w as usize];
             let crossing = edge_point(self.mesh, w.edge, t);
@@ -114,6 +131,40 @@ impl<M: Metric, T: Topology> Query<'_, M, T> {
             };
         }
         None
+    }
+
+    /// Appends the path from the last of `points` (on face `f`'s closure) as the best of
+    /// `f`'s own candidates there gives it (windows entering `f`, its corners, sources on
+    /// it); returns the source.
+    fn restart_in_face(
+        &self,
+        f: u32,
+        points: &mut Vec<SurfacePoint>,
+        faces: &mut Vec<u32>,
+        restarts: u32,
+    ) -> Option<u32> {
+        if restarts > MAX_RESTARTS {
+            return None;
+        }
+        let x = points.last()?.in_face(self.mesh, f)?;
+        let field = self.face_field(f);
+        let (_, best) = field.best(self.metric, &x, |c| c.across.is_some())?;
+        match field.candidates[best].source {
+            ValueSource::Window(id) => self.trace_window_from(f, id, points, faces, restarts),
+            ValueSource::Node(v) => {
+                if *points.last()? != SurfacePoint::Vertex(v) {
+                    points.push(SurfacePoint::Vertex(v));
+                    faces.push(f);
+                }
+                self.trace_from_vertex(v, points, faces)
+            }
+            ValueSource::Source(s) => {
+                points.push(self.field.sources.get(s as usize)?.point);
+                faces.push(f);
+                Some(s)
+            }
+            _ => None,
+        }
     }
 
     /// Where the line from window `id`'s source (it enters face `f`, flattened
@@ -212,6 +263,10 @@ impl<M: Metric, T: Topology> Query<'_, M, T> {
         Some(P(q[0], q[1]))
     }
 }
+
+/// The most restarts one path may make (see `Query::restart_in_face`): each is a
+/// parent cut back after it was carried, a handful on a long path.
+const MAX_RESTARTS: u32 = 1000;
 
 /// The point at fraction `t` of `edge` from its lower vertex (a vertex at either end).
 fn edge_point<T: Topology>(mesh: &T, edge: u32, t: f64) -> SurfacePoint {

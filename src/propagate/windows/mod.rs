@@ -15,8 +15,8 @@
 //! it; so does every source.
 //!
 //! # Order and pruning
-//! Windows are carried in the order of their least value (a binary heap; vertices'
-//! events in the same heap): a vertex's value is final when the heap's least key
+//! Windows are carried in the order of their least value (a radix heap, `radix`;
+//! vertices' events in the same heap): a vertex's value is final when the heap's least key
 //! reaches it, since no window yet to come is shorter than the one that made it.
 //! What keeps the count of windows small is the *vertex check* of Xin and Wang
 //! (2009) and Qin et al. (2016), made exact: along its edge, a window's value less the
@@ -34,18 +34,24 @@
 //! (non-manifold edges), ends at the boundary, and vertices on the boundary or on
 //! non-manifold edges start windows as saddles do. Wires carry values between their
 //! vertices, which then start windows. Each window remembers the window it came from,
-//! so a geodesic is traced back along straight lines, with no search.
+//! so a geodesic is traced back along straight lines, with no search (where a parent
+//! was cut back after it was carried, the path goes on from there as the face's best
+//! window gives it).
 //!
 //! # Cost
-//! A window is 56 bytes and a heap entry 16; the field keeps every window made (a
-//! path or a query at a point reads them). The run refuses to grow past the memory
+//! A window is 56 bytes and a queue entry 16; the field keeps every window made (a
+//! path or a query at a point reads them), 14 to 58 per edge on the shared meshes:
+//! about 7 GB on a mesh of a million faces (the Performance page measures it beside
+//! VTP, which keeps only the wavefront). The run refuses to grow past the memory
 //! limit ([`Error::ExactTooLarge`]) instead of exhausting the machine: window counts
 //! grow faster than the faces on meshes with many saddles, up to `O(n √n)`.
 
 mod geometry;
+mod radix;
 
 pub(crate) use geometry::Lines;
 use geometry::{norm, project, trim_pair, Child};
+use radix::RadixHeap;
 
 use crate::field::{Origin, Window, WindowField};
 use crate::flat::{flat_frame, P};
@@ -54,7 +60,6 @@ use crate::surface::{Source, SurfacePoint};
 use crate::Error;
 use geotracks_metrics::Metric;
 use std::cmp::Ordering;
-use std::collections::BinaryHeap;
 
 /// How much longer than another path a window may be and keep its lines, relative to
 /// the values compared: a few units in the last place, so that rounding does not cut
@@ -171,38 +176,10 @@ impl ExactTables {
     }
 }
 
-/// An entry of the heap: a window's least value (or a vertex's value) and its id.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Entry {
-    key: f64,
-    id: u32,
-}
-
-impl PartialEq for Entry {
-    #[inline(always)]
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
-    }
-}
-impl Eq for Entry {}
-impl PartialOrd for Entry {
-    #[inline(always)]
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for Entry {
-    /// Reversed, for a min-heap: the least key is the greatest entry.
-    #[inline(always)]
-    fn cmp(&self, other: &Self) -> Ordering {
-        other.key.total_cmp(&self.key).then(other.id.cmp(&self.id))
-    }
-}
-
 /// The per-run buffers of the exact engine, kept in a workspace.
 #[derive(Default)]
 pub(crate) struct ExactBuffers {
-    pub heap: BinaryHeap<Entry>,
+    pub heap: RadixHeap,
     /// Per vertex, whether it started its windows.
     pub started: Vec<bool>,
     /// Per edge, the last window made on it ([`NONE`]: none), and per window the one
@@ -275,7 +252,7 @@ impl<T: Topology> ExactRun<'_, T> {
             self.seed(index as u32, source)?;
         }
         let mut threshold = f64::NEG_INFINITY;
-        while let Some(Entry { key, id }) = self.buffers.heap.pop() {
+        while let Some((key, id)) = self.buffers.heap.pop() {
             if key > self.bounds.max_distance {
                 break;
             }
@@ -289,7 +266,10 @@ impl<T: Topology> ExactRun<'_, T> {
             }
             if id & VERTEX_EVENT != 0 {
                 let v = id & !VERTEX_EVENT;
-                if !self.buffers.started[v as usize] && key <= self.distance[v as usize] {
+                // The first event of a vertex is its final value's: a later value
+                // is a lower key, taken first. (Its key may sit a rounding above the
+                // value: the queue keeps nothing below what it took last.)
+                if !self.buffers.started[v as usize] {
                     self.buffers.started[v as usize] = true;
                     self.start_at_vertex(v)?;
                 }
@@ -442,7 +422,7 @@ impl<T: Topology> ExactRun<'_, T> {
         let least = lines.least();
         // (Values may be negative: a source's start value can be.)
         if least > key + 1e-12 * key.abs().max(len) {
-            self.buffers.heap.push(Entry { key: least, id });
+            self.buffers.heap.push(least, id);
             return Ok(());
         }
         self.counts.carried += 1;
@@ -557,7 +537,7 @@ impl<T: Topology> ExactRun<'_, T> {
         });
         self.counts.created += 1;
         self.buffers.carried.push(false);
-        self.buffers.heap.push(Entry { key, id: id as u32 });
+        self.buffers.heap.push(key, id as u32);
         let last = &mut self.buffers.edge_last[edge as usize];
         self.buffers.before_on_edge.push(*last);
         *last = id as u32;
@@ -598,7 +578,7 @@ impl<T: Topology> ExactRun<'_, T> {
                             // Queued again at its new least value (the older entry is
                             // skipped once it has been carried).
                             let key = other.least();
-                            self.buffers.heap.push(Entry { key, id });
+                            self.buffers.heap.push(key, id);
                             return false;
                         }
                         if lines.b0 >= other.b0 - touch && lines.b1 <= other.b1 + touch {
@@ -655,10 +635,7 @@ impl<T: Topology> ExactRun<'_, T> {
         let starts = self.tables.bends[v as usize]
             || matches!(origin, Origin::Start(_) | Origin::Wire { .. });
         if starts && value <= self.bounds.max_distance {
-            self.buffers.heap.push(Entry {
-                key: value,
-                id: v | VERTEX_EVENT,
-            });
+            self.buffers.heap.push(value, v | VERTEX_EVENT);
         }
     }
 
@@ -695,5 +672,4 @@ impl<T: Topology> ExactRun<'_, T> {
 
 /// What one window costs while a run makes it: the window, its heap entry, its place
 /// in the kept list and the edge index.
-pub(in crate::propagate) const BYTES_PER_WINDOW: usize =
-    std::mem::size_of::<Window>() + std::mem::size_of::<Entry>() + 8;
+pub(in crate::propagate) const BYTES_PER_WINDOW: usize = std::mem::size_of::<Window>() + 16 + 8;
