@@ -409,9 +409,26 @@ fn what_cannot_be_exact_is_refused() {
     let solver = Solver::new(&bunny, Euclidean, &EXACT.with_memory_limit(100_000)).unwrap();
     let refused = solver.field(0).unwrap_err();
     assert!(matches!(refused, Error::ExactTooLarge { .. }), "{refused}");
-    // The same under the work limit, counted in windows.
+    // The same under the work limit, counted in windows; a workspace that saw the
+    // refusal runs the next source as a fresh one would.
     let solver = Solver::new(&bunny, Euclidean, &EXACT.with_work_limit(Some(50))).unwrap();
-    assert!(matches!(solver.field(0), Err(Error::ExactTooLarge { .. })));
+    let mut workspace = solver.workspace();
+    assert!(matches!(
+        solver.run(&mut workspace, 0),
+        Err(Error::ExactTooLarge { .. })
+    ));
+    let roomy = Solver::new(&bunny, Euclidean, &EXACT).unwrap();
+    let fresh = roomy.field(5).unwrap();
+    let again = roomy.run(&mut workspace, 5).unwrap();
+    let differ = (0..bunny.vertex_count() as u32)
+        .filter(|&v| again.distance(v) != fresh.distance(v))
+        .count();
+    assert_eq!(
+        differ, 0,
+        "vertices that differ from a fresh workspace's run"
+    );
+    let path = again.path(40).unwrap();
+    assert!((path.length - again.distance(40)).abs() <= 1e-9 * again.distance(40));
 }
 
 /// Early stops: within a maximum distance the values are the full run's and beyond it

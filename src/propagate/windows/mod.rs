@@ -237,6 +237,17 @@ impl<T: Topology> ExactRun<'_, T> {
     /// # Errors
     /// [`Error::ExactTooLarge`] when the windows would outgrow `bounds.max_windows`.
     pub fn run(&mut self, sources: &[Source]) -> Result<Counts, Error> {
+        let ran = self.carry_all(sources);
+        // The per-edge lists point into this run's windows: forgotten whatever the
+        // outcome (a run that stops at a limit leaves them too).
+        for w in &self.field.windows {
+            self.buffers.edge_last[w.edge as usize] = NONE;
+        }
+        ran
+    }
+
+    /// [`ExactRun::run`]'s work.
+    fn carry_all(&mut self, sources: &[Source]) -> Result<Counts, Error> {
         self.buffers.heap.clear();
         self.buffers.before_on_edge.clear();
         self.buffers.carried.clear();
@@ -664,9 +675,6 @@ impl<T: Topology> ExactRun<'_, T> {
             }
         }
         self.field.index(self.mesh.edge_count());
-        for w in &self.field.windows {
-            self.buffers.edge_last[w.edge as usize] = NONE;
-        }
     }
 }
 
