@@ -51,8 +51,8 @@ pub(crate) enum Origin {
     None,
     /// A source is this vertex (the index into the run's sources).
     Start(u32),
-    /// Straight to a source (an index) inside `face` (or along an edge holding both:
-    /// `face` is [`NONE`](crate::mesh::NONE)).
+    /// Straight to a source (an index) inside `face`, or along an edge of `face` (a
+    /// source on the edge).
     Source { index: u32, face: u32 },
     /// Straight to the virtual source of window `id`, across `face` (a face the
     /// window enters; the vertex is one of its corners).
@@ -69,9 +69,8 @@ pub(crate) enum Origin {
 pub(crate) struct WindowField {
     /// Every window the run made (ids are indices).
     pub windows: Vec<Window>,
-    /// The ids of the windows the run carried across a face, as trimmed then.
-    pub kept: Vec<u32>,
-    /// `kept`, by edge (built when the run ends).
+    /// The ids of the windows the run carried across a face, by edge (built when the
+    /// run ends).
     pub by_edge: Csr<u32>,
     /// Per vertex, how it got its value.
     pub origin: Vec<Origin>,
@@ -80,28 +79,26 @@ pub(crate) struct WindowField {
 }
 
 impl WindowField {
-    /// The kept windows on edge `e` (none unless the exact engine ran).
+    /// The carried windows on edge `e` (none unless the exact engine ran).
     pub fn on_edge(&self, e: u32) -> &[u32] {
-        if self.kept.is_empty() {
+        if self.by_edge.is_empty() {
             return &[];
         }
         self.by_edge.row(e)
     }
 
-    /// Indexes the kept windows by edge, once a run over `edges` edges ends.
-    pub fn index(&mut self, edges: usize) {
+    /// Indexes the windows flagged in `carried` by edge, once a run over `edges`
+    /// edges ends.
+    pub fn index(&mut self, edges: usize, carried: &[bool]) {
         let windows = &self.windows;
-        self.by_edge = Csr::from_pairs(
-            edges,
-            self.kept.iter().map(|&id| (windows[id as usize].edge, id)),
-        );
+        let ids = (0..windows.len() as u32).filter(|&id| carried[id as usize]);
+        self.by_edge = Csr::from_pairs(edges, ids.map(|id| (windows[id as usize].edge, id)));
     }
 
     /// Forgets the windows of the last run (capacity is kept; the origins are
     /// reset with the values, by the workspace).
     pub fn clear(&mut self) {
         self.windows.clear();
-        self.kept.clear();
         self.by_edge = Csr::default();
     }
 }

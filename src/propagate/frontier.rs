@@ -122,8 +122,6 @@ pub(super) struct Outcome {
     /// After a stop at the targets, the least key anything left could still get (see
     /// [`Horizon`](crate::field::Horizon)); `inf` otherwise.
     pub level: f64,
-    /// The exact engine's counts (zero for the others).
-    pub windows: super::windows::Counts,
 }
 
 /// How an engine settles the node its frontier hands it; the loop around it,
@@ -231,7 +229,6 @@ impl<'a, M: Metric, T: Topology> Frontier<'a, M, T, ()> {
             bad_cost: search.bad_cost,
             stopped_early,
             level,
-            windows: Default::default(),
         }
     }
 }

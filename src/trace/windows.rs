@@ -7,7 +7,7 @@
 use super::face_field::{Candidate, Site, ValueSource, Window as Through};
 use super::Query;
 use crate::field::{Origin, Window};
-use crate::flat::P;
+use crate::flat::{uv, P};
 use crate::mesh::{FaceFrame, Topology, NONE};
 use crate::options::Method;
 use crate::surface::SurfacePoint;
@@ -231,11 +231,6 @@ impl<M: Metric, T: Topology> Query<'_, M, T> {
                 Origin::Start(s) => return Some(s),
                 Origin::Source { index, face } => {
                     let point = self.field.sources.get(index as usize)?.point;
-                    let face = if face == NONE {
-                        self.cheapest_face(SurfacePoint::Vertex(v), point)
-                    } else {
-                        face
-                    };
                     points.push(point);
                     faces.push(face);
                     return Some(index);
@@ -258,9 +253,7 @@ impl<M: Metric, T: Topology> Query<'_, M, T> {
 
     /// Surface point `p` (on face `f`'s closure) in `f`'s flattened plane.
     fn flat_point(&self, frame: &FaceFrame, f: u32, p: SurfacePoint) -> Option<P> {
-        let x = p.in_face(self.mesh, f)?;
-        let q = frame.point(x.bary).uv;
-        Some(P(q[0], q[1]))
+        Some(uv(&frame.point(p.in_face(self.mesh, f)?.bary)))
     }
 }
 

@@ -111,8 +111,10 @@ impl<M: Metric, T: Topology> Setup<M, T> {
             distance_tests: outcome.tests,
             setup_distance_tests: self.setup_tests,
             stopped_early: outcome.stopped_early,
-            windows_created: outcome.windows.created,
-            windows_kept: outcome.windows.carried,
+            // (The exact engine's pushes are the windows it made, its settles those
+            // it carried.)
+            windows_created: if exact { outcome.pushes } else { 0 },
+            windows_kept: if exact { outcome.settles } else { 0 },
             both_ends: false,
         };
         workspace.stats = Some(stats.clone());
@@ -133,10 +135,10 @@ impl<M: Metric, T: Topology> Setup<M, T> {
                     error,
                 })?;
             match (point, self.method) {
-                (SurfacePoint::Vertex(v), Method::Tracks | Method::Graph | Method::Dijkstra) => {
-                    targets.push(v)
-                }
-                (SurfacePoint::Vertex(v), Method::Exact) => targets.push(v),
+                (
+                    SurfacePoint::Vertex(v),
+                    Method::Tracks | Method::Graph | Method::Dijkstra | Method::Exact,
+                ) => targets.push(v),
                 (_, Method::Wave) => {
                     // A query on a wave field reads the point's faces and those across
                     // their edges (see `trace::face_field`): all their nodes must be
@@ -293,7 +295,6 @@ impl<M: Metric, T: Topology> Setup<M, T> {
             bad_cost: None,
             stopped_early: counts.stopped_early,
             level: counts.level,
-            windows: counts,
         })
     }
 
