@@ -312,11 +312,14 @@ pub enum Error {
     /// vertices. Raise [`Options::memory_limit`](crate::Options::memory_limit) (or
     /// the work limit), stop the run earlier (a maximum distance, targets), or use an
     /// approximate engine.
-    #[error("the exact engine's windows outgrew the limit: {windows} windows ({:.3} GB) made so far; raise the memory or work limit, stop the run earlier, or use an approximate method", *bytes as f64 / 1e9)]
+    #[error("the exact engine's windows outgrew the limit: {windows} windows ({:.3} GB); raise the memory or work limit, stop the run earlier, or use an approximate method", *bytes as f64 / 1e9)]
     ExactTooLarge {
-        /// Windows made when the limit was reached.
+        /// Windows when the limit was reached: those made, for the work limit and for
+        /// a field (which keeps them all); those held at once, for the memory limit
+        /// of a run that wants only values at vertices
+        /// ([`Solver::vertex_values`](crate::Solver::vertex_values)).
         windows: u64,
-        /// The bytes they took.
+        /// The bytes they took (held) or would take (made).
         bytes: u64,
     },
     /// The mesh needs more state than 32-bit ids can address.

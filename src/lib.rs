@@ -98,7 +98,7 @@ pub use geotracks_metrics::{
     TensorField,
 };
 pub use options::{Method, Options, Sources, Stop};
-pub use propagate::{DistanceRow, Solver, Workspace};
+pub use propagate::{DistanceRow, Solver, VertexValues, Workspace};
 pub use steiner::{SteinerLayout, SteinerScheme};
 pub use surface::{PointError, Source, SurfacePoint};
 pub use trace::GeodesicPath;

@@ -51,6 +51,18 @@ fn check_region(name: &str, mesh: &TriMesh, region: &Region, sets: &[Vec<Source>
             "{name}, sources {sources:?}: {dev:?} (relative to the exact distance)"
         );
         check_paths(name, &field, 7);
+        // The values alone (the run forgets each window once carried) are the
+        // field's, to the bit, and so are the labels.
+        let values = field
+            .solver()
+            .vertex_values(Sources::from(sources.as_slice()))
+            .unwrap();
+        assert_eq!(
+            values.distances,
+            field.vertex_distances(),
+            "{name}: values alone"
+        );
+        assert_eq!(values.labels, field.vertex_labels(), "{name}: labels alone");
         all = all.merge(dev);
     }
     println!(
@@ -418,6 +430,12 @@ fn what_cannot_be_exact_is_refused() {
         solver.run(&mut workspace, 0),
         Err(Error::ExactTooLarge { .. })
     ));
+    // The work limit counts windows made, also where only values are wanted (and the
+    // run holds few at once).
+    assert!(matches!(
+        solver.vertex_values(0),
+        Err(Error::ExactTooLarge { .. })
+    ));
     let roomy = Solver::new(&bunny, Euclidean, &EXACT).unwrap();
     let fresh = roomy.field(5).unwrap();
     let again = roomy.run(&mut workspace, 5).unwrap();
@@ -459,6 +477,21 @@ fn early_stops_keep_the_full_runs_values() {
     for t in targets {
         let (a, b) = (at.distance_at(t).unwrap(), full.distance_at(t).unwrap());
         assert!((a - b).abs() <= 1e-12 * b, "{t:?}: {a} against {b}");
+    }
+    // Rows stopped at vertex targets (values only, in workspaces reused from row to
+    // row after each early stop) against full fields.
+    let sources = [0, 5, 0, 17, 5];
+    // The vertices nearest source 0: its rows stop early.
+    let mut columns: Vec<u32> = (1..mesh.vertex_count() as u32).collect();
+    columns.sort_by(|&a, &b| full.distance(a).total_cmp(&full.distance(b)));
+    columns.truncate(3);
+    let rows = solver.distance_rows(&sources, Some(&columns)).unwrap();
+    assert!(rows.iter().any(|row| row.stats.stopped_early));
+    for (row, &source) in rows.iter().zip(&sources) {
+        let full = solver.field(source).unwrap();
+        for (&d, &v) in row.distances.iter().zip(&columns) {
+            assert_eq!(d, full.distance(v), "from {source} to {v}");
+        }
     }
 }
 

@@ -7,7 +7,9 @@ use crate::picture::{self, PictureArgs};
 use crate::{points, ui, CliResult, Short, Value};
 use geotracks::mesh::{io, TriMesh, NONE};
 use geotracks::Sources;
-use geotracks::{Euclidean, Field, Metric, Options, Solver, Source, Stop, SurfacePoint};
+use geotracks::{
+    Euclidean, Field, Metric, Options, Solver, Source, Stop, SurfacePoint, VertexValues,
+};
 use geotracks_render::PictureOptions;
 use std::path::{Path, PathBuf};
 
@@ -93,26 +95,43 @@ pub fn run(args: &DistanceArgs) -> CliResult {
     let metric = args.metric.metric(&mesh)?;
     let options = args.metric.options();
     let solver = Solver::new(&mesh, metric, &options)?;
-    let field = compute(&solver, &sources, &stop)?;
-    let labels = args.voronoi.as_ref().map(|_| field.vertex_labels());
+    // A picture reads the whole field; the values alone cost less (the exact engine
+    // then keeps only its wavefront's windows).
+    let (values, field) = if args.picture.png.is_some() {
+        let field = compute(&solver, &sources, &stop)?;
+        let values = field.vertex_values();
+        (values, Some(field))
+    } else {
+        let values = solver.vertex_values(Sources::from(&sources).until(&stop))?;
+        report_unreached(&values.distances, &stop);
+        (values, None)
+    };
     drop(spinner);
-    write_field(&mut outputs, &args.output, format, &mesh, field.data())?;
-    if let (Some(voronoi), Some(labels)) = (&args.voronoi, labels) {
-        write_labels(&mut outputs, voronoi, labels)?;
+    write_field(&mut outputs, &args.output, format, &mesh, &values.distances)?;
+    if let Some(voronoi) = &args.voronoi {
+        write_labels(&mut outputs, voronoi, &values.labels)?;
     }
     if let Some(stats) = &args.stats {
-        write_stats(&mut outputs, stats, field.data())?;
+        write_stats(&mut outputs, stats, &values)?;
     }
-    args.picture.draw(&mut outputs, &field, &sources, None)?;
+    if let Some(field) = &field {
+        args.picture.draw(&mut outputs, field, &sources, None)?;
+    }
     outputs.commit()?;
-    crate::report_run(&args.mesh, field.stats(), &args.output);
+    crate::report_run(&args.mesh, &values.stats, &args.output);
     Ok(())
 }
 
 /// The field from `sources`, with a line on stderr about the vertices it does not reach.
 fn compute<M: Metric>(solver: &Solver<M>, sources: &[Source], stop: &Stop) -> CliResult<Field<M>> {
     let field = solver.field(Sources::from(sources).until(stop))?;
-    let unreachable = field.unreachable_vertices();
+    report_unreached(field.vertex_distances(), stop);
+    Ok(field)
+}
+
+/// A line on stderr about the vertices a run did not reach (`inf` in `distances`).
+fn report_unreached(distances: &[f64], stop: &Stop) {
+    let unreachable = distances.iter().filter(|d| d.is_infinite()).count();
     if unreachable > 0 {
         if stop.max_distance.is_finite() {
             ui::info!(
@@ -125,13 +144,12 @@ fn compute<M: Metric>(solver: &Solver<M>, sources: &[Source], stop: &Stop) -> Cl
             );
         }
     }
-    Ok(field)
 }
 
 /// Writes the index of each vertex's nearest source, `-1` where unreached.
-fn write_labels(outputs: &mut Outputs, path: &Path, labels: Vec<u32>) -> CliResult {
+fn write_labels(outputs: &mut Outputs, path: &Path, labels: &[u32]) -> CliResult {
     outputs.write(path, |w| {
-        for label in labels {
+        for &label in labels {
             if label == NONE {
                 writeln!(w, "-1")?;
             } else {
@@ -148,9 +166,8 @@ fn write_field(
     path: &Path,
     format: OutputFormat,
     mesh: &TriMesh,
-    field: &geotracks::FieldData,
+    d: &[f64],
 ) -> CliResult {
-    let d = field.vertex_distances();
     match format {
         OutputFormat::Ply => outputs.write(path, |w| io::write_ply_with_distance_to(w, mesh, d))?,
         OutputFormat::Txt => outputs.write(path, |w| {
@@ -170,8 +187,8 @@ fn write_field(
     Ok(())
 }
 
-fn write_stats(outputs: &mut Outputs, path: &Path, field: &geotracks::FieldData) -> CliResult {
-    let s = field.stats();
+fn write_stats(outputs: &mut Outputs, path: &Path, values: &VertexValues) -> CliResult {
+    let s = &values.stats;
     let json = serde_json::json!({
         "vertices": s.vertices,
         "faces": s.faces,
@@ -186,7 +203,7 @@ fn write_stats(outputs: &mut Outputs, path: &Path, field: &geotracks::FieldData)
         "setup_distance_tests": s.setup_distance_tests,
         "windows_created": s.windows_created,
         "windows_kept": s.windows_kept,
-        "unreachable_vertices": field.unreachable_vertices(),
+        "unreachable_vertices": values.distances.iter().filter(|d| d.is_infinite()).count(),
     });
     outputs.write(path, |w| {
         serde_json::to_writer_pretty(&mut *w, &json)?;
@@ -219,7 +236,13 @@ pub fn demo(output: &Path) -> CliResult {
     let options = Options::DEFAULT;
     let solver = Solver::new(&mesh, Euclidean, &options)?;
     let field = compute(&solver, &[Source::new(source)], &Stop::NONE)?;
-    write_field(&mut outputs, output, format, &mesh, field.data())?;
+    write_field(
+        &mut outputs,
+        output,
+        format,
+        &mesh,
+        field.vertex_distances(),
+    )?;
     if let Some(png) = &png {
         let options = PictureOptions::DEFAULT;
         picture::draw(

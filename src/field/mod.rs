@@ -366,6 +366,16 @@ impl<M: Metric, D: FieldStorage, T: Topology> Field<M, D, T> {
         self.query().vertex_labels()
     }
 
+    /// The field's values and labels at the vertices, with its counters: what
+    /// [`Solver::vertex_values`] gives, copied out of a field.
+    pub fn vertex_values(&self) -> crate::VertexValues {
+        crate::VertexValues {
+            distances: self.vertex_distances().to_vec(),
+            labels: self.vertex_labels(),
+            stats: self.stats().clone(),
+        }
+    }
+
     /// As [`Field::vertex_labels`], for every node (vertices, then Steiner points in
     /// [`SteinerLayout`] order).
     pub fn node_labels(&self) -> Vec<u32> {

@@ -31,11 +31,6 @@ impl Window {
     /// Marks a window started at a vertex (see [`Window::source`]).
     pub const AT_VERTEX: u32 = 1 << 31;
 
-    /// The run's source the lines descend from.
-    pub fn label(&self) -> u32 {
-        self.source & !Window::AT_VERTEX
-    }
-
     /// Whether nothing is left of the window (a shorter one took its edge).
     pub fn is_empty(&self) -> bool {
         self.lines.b0.partial_cmp(&self.lines.b1) == Some(std::cmp::Ordering::Greater)

@@ -47,7 +47,7 @@ mod tracks;
 mod wave;
 pub(crate) mod windows;
 
-pub use solver::{DistanceRow, Solver, Workspace};
+pub use solver::{DistanceRow, Solver, VertexValues, Workspace};
 
 // The run options live in their own module (a field records its method, and must not
 // import the engine); the engine's files keep naming them through this one.

@@ -15,7 +15,7 @@ mod run;
 mod setup;
 mod workspace;
 
-pub use rows::DistanceRow;
+pub use rows::{DistanceRow, VertexValues};
 pub(in crate::propagate) use setup::Engine;
 pub use workspace::Workspace;
 

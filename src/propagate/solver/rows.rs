@@ -20,7 +20,56 @@ pub struct DistanceRow {
     pub stats: Stats,
 }
 
+/// The values at the vertices of one run, without the field around them
+/// ([`Solver::vertex_values`]).
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub struct VertexValues {
+    /// Per vertex, the distance from the nearest source (`inf` where unreached).
+    pub distances: Vec<f64>,
+    /// Per vertex, the index of its nearest source among the run's sources
+    /// ([`NONE`](crate::mesh::NONE) where unreached), as [`Field::vertex_labels`].
+    ///
+    /// [`Field::vertex_labels`]: crate::Field::vertex_labels
+    pub labels: Vec<u32>,
+    /// The run's counters.
+    pub stats: Stats,
+}
+
 impl<M: Metric, T: Topology> Solver<M, T> {
+    /// The distance from `sources` at every vertex, and each vertex's nearest source:
+    /// what [`Solver::field`] gives at the vertices, for a caller who needs nothing
+    /// else. The engines give the same values either way; the exact engine
+    /// ([`Method::Exact`](crate::Method::Exact)) then forgets each window once it is
+    /// carried on, so the run holds only the wavefront's windows, where a field keeps
+    /// every window to answer queries at points and trace paths (on a mesh of a
+    /// million faces, a few hundred megabytes instead of several gigabytes).
+    ///
+    /// ```
+    /// use geotracks::{mesh::TriMesh, Euclidean, Method, Options, Solver};
+    /// let mesh = TriMesh::new(
+    ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+    ///     vec![[0, 1, 2], [0, 2, 3]],
+    /// )?;
+    /// let solver = Solver::new(mesh, Euclidean, &Options::DEFAULT.with_method(Method::Exact))?;
+    /// let values = solver.vertex_values(0)?;
+    /// assert_eq!(values.distances[..2], [0.0, 1.0]);
+    /// assert!((values.distances[2] - 2f64.sqrt()).abs() < 1e-15);
+    /// assert_eq!(values.labels, [0; 4]);
+    /// # Ok::<(), geotracks::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`Solver::field`].
+    pub fn vertex_values<'a>(
+        &self,
+        sources: impl Into<Sources<'a>>,
+    ) -> Result<VertexValues, Error> {
+        let mut workspace = Workspace::values_only();
+        self.setup().run(&mut workspace, &sources.into())?;
+        Ok(crate::Field::new(self.clone(), &workspace).vertex_values())
+    }
+
     /// One row of distances per source, computed on all cores (rayon; workspaces are
     /// pooled, at most one per worker thread, and reused across sources): row `i` holds
     /// the distance from `sources[i]` to each of `targets`, or to every vertex when
@@ -89,6 +138,7 @@ impl<M: Metric, T: Topology> Solver<M, T> {
             .par_iter()
             .map(|&source| {
                 let mut ws = take();
+                ws.values_only = true;
                 let row = setup
                     .run(&mut ws, &Sources::from(source).until(&stop))
                     .map(|stats| {
@@ -173,7 +223,7 @@ impl<M: Metric, T: Topology> Solver<M, T> {
         let setup = self.setup();
         sources
             .par_iter()
-            .map_init(Workspace::default, |workspace, &v| {
+            .map_init(Workspace::values_only, |workspace, &v| {
                 setup.run(workspace, &Sources::from(v).until(&stop))?;
                 // What the run reached, not a scan of the mesh: with a small radius
                 // that is most of the saving.

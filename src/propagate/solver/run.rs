@@ -268,6 +268,7 @@ impl<M: Metric, T: Topology> Setup<M, T> {
             sources,
             exact,
             exact_buffers,
+            values_only,
             ..
         } = workspace;
         let mut run = ExactRun {
@@ -279,11 +280,13 @@ impl<M: Metric, T: Topology> Setup<M, T> {
             buffers: exact_buffers,
             touched,
             records: *recorded,
+            keeps_windows: !*values_only,
             bounds: Bounds {
                 max_distance: stop.max_distance,
                 targets,
                 point_targets,
                 max_windows: self.window_budget(),
+                max_made: self.work_limit.unwrap_or(u64::MAX),
             },
             counts: Counts::default(),
         };
@@ -298,8 +301,8 @@ impl<M: Metric, T: Topology> Setup<M, T> {
         })
     }
 
-    /// The most windows one exact run may make: what the memory limit (or, without
-    /// one, the memory available now) leaves beside the solver, and the work limit.
+    /// The most windows one exact run may hold: what the memory limit (or, without
+    /// one, the memory available now) leaves beside the solver.
     fn window_budget(&self) -> usize {
         let memory = self
             .memory_limit
@@ -307,9 +310,8 @@ impl<M: Metric, T: Topology> Setup<M, T> {
             .or_else(budget::available_memory)
             .unwrap_or(u64::MAX);
         let by_memory = memory / BYTES_PER_WINDOW as u64;
-        let by_work = self.work_limit.unwrap_or(u64::MAX);
         // Ids keep their top bit free (the heap marks vertex events with it).
-        by_memory.min(by_work).min((1 << 31) - 1) as usize
+        by_memory.min((1 << 31) - 1) as usize
     }
 
     /// After the settle loop: the roots (per node a source reached directly, the seed

@@ -51,9 +51,23 @@ pub struct Workspace {
     pub(crate) exact: WindowField,
     /// The exact engine's heap and per-vertex flags.
     pub(in crate::propagate) exact_buffers: ExactBuffers,
+    /// Whether the runs in this workspace need only the values at vertices (as
+    /// [`Solver::vertex_values`] and the many-source rows do): the exact engine then
+    /// forgets each window once carried, and holds only the wavefront's, where a field
+    /// keeps every window for its queries. Never set for a workspace a field is read
+    /// from.
+    pub(crate) values_only: bool,
 }
 
 impl Workspace {
+    /// A workspace for runs that need only the values at vertices.
+    pub(crate) fn values_only() -> Workspace {
+        Workspace {
+            values_only: true,
+            ..Workspace::default()
+        }
+    }
+
     /// Distance at every vertex after the last run (`inf` where unreached).
     pub fn vertex_distances(&self) -> &[f64] {
         &self.distance[..self.vertex_count.min(self.distance.len())]
