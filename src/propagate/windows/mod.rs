@@ -45,11 +45,13 @@
 //! never cut once carried, so its children's lines all cross it.
 //!
 //! # Cost
-//! A window is 56 bytes and a queue entry 16; the field keeps every window made (a
-//! path or a query at a point reads them), 14 to 58 per edge on the shared meshes:
-//! about 7 GB on a mesh of a million faces (the Performance page measures it beside
-//! VTP, which keeps only the wavefront). The run refuses to grow past the memory
-//! limit ([`Error::ExactTooLarge`]) instead of exhausting the machine: window counts
+//! A window waiting on its edge is 56 bytes in its edge's list; a field keeps every
+//! window carried (56 bytes each: a path or a query at a point reads them), 14 to 58
+//! per edge on the shared meshes, several gigabytes on a mesh of a million faces. A run
+//! that wants values at vertices only (`keeps_windows` off) forgets each once carried
+//! and holds only the wavefront's, as VTP does (the Performance page measures both
+//! beside it). The run refuses to grow past the memory limit ([`Error::ExactTooLarge`])
+//! instead of exhausting the machine: window counts
 //! grow faster than the faces (about as `n √n` on the shared bunnies: 14.6, 29.4 and
 //! 57.9 per edge at 69 K, 278 K and 1.1 M faces; `O(n²)` at worst, as for MMP).
 
