@@ -336,6 +336,11 @@ class MeshSolver:
             (a negative one or NaN is refused, as on the command line).
         :param targets: stop once the values at these points are final (the values
             returned there are exact; others may be ``inf``).
+
+        Only the values at vertices are kept, no field: under ``method="exact"`` the
+        run then holds only its wavefront's windows, not every window a field keeps
+        (on a million faces, a few hundred megabytes instead of gigabytes). Use
+        :meth:`field` for values at points, paths or isolines from one run.
         """
         targets = None if targets is None else _points(targets, "targets")
         return self._core.distance(_points(sources, "sources"), _real(max_distance, "max_distance"), targets)

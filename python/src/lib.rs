@@ -18,7 +18,7 @@ use geotracks::mesh::TriMesh;
 use geotracks::Sources;
 use geotracks::{
     BuiltinMetric, Density, Euclidean, Field, Method, Options, Solver, Source, Stop, SurfacePoint,
-    Tensor, TensorField,
+    Tensor, TensorField, VertexValues,
 };
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
@@ -252,8 +252,8 @@ impl MeshSolverCore {
         targets: Option<Vec<PointArg>>,
     ) -> PyResult<Vector<'py, f64>> {
         let stop = stop_of(max_distance, targets)?;
-        let field = self.run(py, &sources, stop)?;
-        Ok(FieldCore { field }.distance(py))
+        let values = self.vertex_values(py, &sources, stop)?;
+        Ok(values.distances.into_pyarray(py))
     }
 
     /// Distance to every vertex and, per vertex, the index of its nearest source (-1
@@ -263,10 +263,9 @@ impl MeshSolverCore {
         py: Python<'py>,
         sources: Vec<PointArg>,
     ) -> PyResult<(Vector<'py, f64>, Vector<'py, i64>)> {
-        let field = FieldCore {
-            field: self.run(py, &sources, Stop::NONE)?,
-        };
-        Ok((field.distance(py), field.voronoi(py)))
+        let values = self.vertex_values(py, &sources, Stop::NONE)?;
+        let labels = queries::label_ids(values.labels);
+        Ok((values.distances.into_pyarray(py), labels.into_pyarray(py)))
     }
 
     /// The shortest path from `target` to the nearest of `sources`, straightened:
@@ -418,6 +417,21 @@ impl MeshSolverCore {
         let solver = &self.solver;
         self.runs.fetch_add(1, Ordering::Relaxed);
         py.detach(|| solver.field(Sources::from(sources).until(stop)))
+            .map_err(error)
+    }
+
+    /// The values and labels at vertices of one run: no field is kept (the exact
+    /// engine then holds only its wavefront's windows).
+    fn vertex_values(
+        &self,
+        py: Python<'_>,
+        sources: &[PointArg],
+        stop: Stop,
+    ) -> PyResult<VertexValues> {
+        let sources = sources_of(sources)?;
+        let solver = &self.solver;
+        self.runs.fetch_add(1, Ordering::Relaxed);
+        py.detach(|| solver.vertex_values(Sources::from(sources).until(stop)))
             .map_err(error)
     }
 }

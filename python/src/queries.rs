@@ -20,8 +20,12 @@ pub(crate) fn distances_at(
 
 /// Per vertex, the index of its nearest source, -1 where unreached.
 pub(crate) fn labels(field: &Field<BuiltinMetric>) -> Vec<i64> {
-    field
-        .vertex_labels()
+    label_ids(field.vertex_labels())
+}
+
+/// Labels as Python sees them: `-1` where unreached.
+pub(crate) fn label_ids(labels: Vec<u32>) -> Vec<i64> {
+    labels
         .into_iter()
         .map(|l| if l == u32::MAX { -1 } else { l as i64 })
         .collect()
