@@ -96,8 +96,11 @@ impl<M: Metric, T: Topology> Query<'_, M, T> {
                 .crossing(&frame, f, id, at, wave)
                 .or_else(|| self.window_crossed(&frame, f, at, wave?));
             let Some((w, t)) = found else {
-                // The parent was cut back after it was carried (a shorter window took
-                // that part of its edge): go on from here as that one gives it.
+                // A window is never cut once carried, so the line crosses its parent
+                // but at a seam where two windows of one wave were joined and the
+                // rounding there leaves it outside both (not seen in the tests nor on
+                // the shared meshes' paths): go on from here as the face's best
+                // window gives it.
                 return self.restart_in_face(f, points, faces, restarts + 1);
             };
             let w = &windows[w as usize];
