@@ -57,17 +57,18 @@
 
 mod geometry;
 mod radix;
+mod tables;
 
 pub(crate) use geometry::Lines;
 use geometry::{norm, project, trim_pair, Child};
 use radix::RadixHeap;
+pub(in crate::propagate) use tables::ExactTables;
 
 use crate::field::{Origin, Window, WindowField};
-use crate::flat::{flat_frame, P};
-use crate::mesh::{Csr, FaceFrame, Topology, NONE};
+use crate::flat::P;
+use crate::mesh::{Csr, Topology, NONE};
 use crate::surface::{Source, SurfacePoint};
 use crate::Error;
-use geotracks_metrics::Metric;
 use std::cmp::Ordering;
 
 /// How much longer than another path a window may be and keep its lines, relative to
@@ -103,89 +104,6 @@ fn same_wave(a: &Lines, b: &Lines, len: f64) -> bool {
 
 /// A vertex event in the heap: the vertex's id with this bit set.
 const VERTEX_EVENT: u32 = 1 << 31;
-
-/// What the exact engine works out once per solver.
-pub(in crate::propagate) struct ExactTables {
-    /// Every face's frame in the metric's flattening.
-    pub frames: Vec<FaceFrame>,
-    /// Per vertex, whether shortest paths may bend there (so it starts windows when
-    /// reached): a saddle (angles adding to more than 2π; lines through a flat
-    /// vertex go on in the windows on either side of it), a vertex on
-    /// the boundary or on a non-manifold edge, one with wires, one with no face.
-    pub bends: Vec<bool>,
-    /// The longest edge (flattened): no point of a face is farther from its corners.
-    pub reach: f64,
-    /// Per edge, its length (in its first face's plane; the others agree to 1e-9).
-    pub lengths: Vec<f64>,
-}
-
-impl ExactTables {
-    /// The flattened frames and the vertices where paths bend, checking that the
-    /// metric flattens every face and that faces glue along every edge.
-    ///
-    /// # Errors
-    /// [`Error::NotExact`] naming the first face the metric does not flatten, or the
-    /// first edge whose faces give it different lengths.
-    pub fn new<M: Metric, T: Topology>(mesh: &T, metric: &M) -> Result<ExactTables, Error> {
-        let not_exact = |reason: String| Error::NotExact {
-            metric: metric.name().to_string(),
-            reason,
-        };
-        let mut frames = Vec::with_capacity(mesh.face_count());
-        for f in 0..mesh.face_count() as u32 {
-            let frame = flat_frame(metric, f, &mesh.frame(f)).ok_or_else(|| {
-                not_exact(format!(
-                    "it is not a constant norm on face {f} (it gives no flattening there)"
-                ))
-            })?;
-            frames.push(frame);
-        }
-        let mut lengths = vec![f64::NAN; mesh.edge_count()];
-        let mut reach = 0.0f64;
-        let mut angles = vec![0.0f64; mesh.vertex_count()];
-        for (f, frame) in frames.iter().enumerate() {
-            let f = f as u32;
-            let c = frame.corners().map(|[x, y]| P(x, y));
-            let vertices = mesh.face_vertices(f);
-            for (s, e) in mesh.face_edges(f).into_iter().enumerate() {
-                let d = c[(s + 1) % 3].sub(c[s]);
-                let l = norm(d.0, d.1);
-                reach = reach.max(l);
-                let known = &mut lengths[e as usize];
-                if known.is_nan() {
-                    *known = l;
-                } else if (l - *known).abs() > 1e-9 * l.max(*known) {
-                    return Err(not_exact(format!(
-                        "its faces do not glue: edge {e} is {known:e} long in one face and {l:e} in face {f}"
-                    )));
-                }
-                // The angle at corner s, between its two edges.
-                let (to_next, to_prev) = (d, c[(s + 2) % 3].sub(c[s]));
-                let angle = to_next.cross(to_prev).abs().atan2(to_next.dot(to_prev));
-                angles[vertices[s] as usize] += angle;
-            }
-        }
-        let full_turn = 2.0 * std::f64::consts::PI;
-        let bends = (0..mesh.vertex_count() as u32)
-            .map(|v| {
-                let faces = mesh.vertex_faces(v);
-                faces.is_empty()
-                    || !mesh.vertex_wires(v).is_empty()
-                    || angles[v as usize] > full_turn * (1.0 + 1e-12)
-                    || mesh
-                        .vertex_edges(v)
-                        .iter()
-                        .any(|&e| mesh.edge_faces(e).len() != 2)
-            })
-            .collect();
-        Ok(ExactTables {
-            frames,
-            bends,
-            reach,
-            lengths,
-        })
-    }
-}
 
 /// The per-run buffers of the exact engine, kept in a workspace.
 #[derive(Default)]
