@@ -247,23 +247,72 @@ pub(crate) struct Child {
     pub len: f64,
 }
 
+/// One of the two other edges of a face crossed from an edge `A B` (entry frame, see
+/// the module), from its first corner `p` to its second `q`: its frame, worked out
+/// once for every window that crosses the face.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Side {
+    p: P,
+    pq: P,
+    len: f64,
+    /// Whether `p` is the side's lower vertex (its frame's origin).
+    p_is_lower: bool,
+    origin: P,
+    /// Along the side from its origin, and across it towards the face's third corner.
+    u: P,
+    n: P,
+}
+
+impl Side {
+    fn new((p, q, third): (P, P, P), p_is_lower: bool) -> Side {
+        let pq = q.sub(p);
+        let len = norm(pq.0, pq.1);
+        let (origin, u) = if p_is_lower {
+            (p, pq.scale(1.0 / len))
+        } else {
+            (q, pq.scale(-1.0 / len))
+        };
+        let mut n = P(-u.1, u.0);
+        if third.sub(origin).dot(n) < 0.0 {
+            n = n.scale(-1.0);
+        }
+        Side {
+            p,
+            pq,
+            len,
+            p_is_lower,
+            origin,
+            u,
+            n,
+        }
+    }
+}
+
+/// The sides `A C` and `C B` of the face with third corner `apex` crossed from an edge
+/// `len` long; `lower_first[i]` says, for side `i`, whether its lower vertex is its
+/// first corner as named (`A` of `A C`, `C` of `C B`).
+pub(crate) fn sides(len: f64, apex: P, lower_first: [bool; 2]) -> [Side; 2] {
+    let (a, b) = (P(0.0, 0.0), P(len, 0.0));
+    [
+        Side::new((a, apex, b), lower_first[0]),
+        Side::new((apex, b, a), lower_first[1]),
+    ]
+}
+
 /// Where `lines` reach across the face with third corner `apex` (entry frame, see the
-/// module): its children on the edges `A C` and `C B`, and whether the line from the
-/// source to `C` crosses the window (then `C` gets `σ + |S C|`). `lower_first[i]`
-/// says, for side `i` (`A C`, then `C B`), whether the side's lower vertex is its first
-/// corner as named (`A` of `A C`, `C` of `C B`).
+/// module), whose other edges are `sides` (see [`sides`]): its children on the edges
+/// `A C` and `C B`, and whether the line from the source to `C` crosses the window
+/// (then `C` gets `σ + |S C|`).
 pub(crate) fn project(
     lines: &Lines,
     len: f64,
     apex: P,
-    lower_first: [bool; 2],
+    sides: &[Side; 2],
 ) -> ([Option<Child>; 2], bool) {
     let (sx, sy) = (lines.sx, lines.sy);
     // Where the line from the source through the apex crosses the axis.
     let through_apex = sx + (apex.0 - sx) * sy / (apex.1 + sy);
     let sees_apex = lines.b0 <= through_apex && through_apex <= lines.b1;
-    let a = P(0.0, 0.0);
-    let b = P(len, 0.0);
     let source = P(sx, -sy);
     // Lines through [b0, min(b1, x_C)] leave by A C, those through [max(b0, x_C), b1]
     // by C B. An end at the apex, or at A or B, is put there exactly.
@@ -278,7 +327,7 @@ pub(crate) fn project(
         } else {
             Hit::Line(lines.b0)
         };
-        child(lines, source, (a, apex, b), (lo, hi), lower_first[0])
+        child(lines, source, &sides[0], (lo, hi))
     });
     let right = (through_apex < lines.b1).then(|| {
         let lo = if lines.b0 > through_apex {
@@ -291,7 +340,7 @@ pub(crate) fn project(
         } else {
             Hit::Line(lines.b1)
         };
-        child(lines, source, (apex, b, a), (lo, hi), lower_first[1])
+        child(lines, source, &sides[1], (lo, hi))
     });
     ([left.flatten(), right.flatten()], sees_apex)
 }
@@ -304,18 +353,18 @@ enum Hit {
     Corner(f64),
 }
 
-/// The child of `lines` on the side from `p` to `q` (`third` the face's other corner),
-/// reached by the lines through `hits`; `None` when it is empty or the source lies on
-/// the side's line (the lines only graze it).
-fn child(
-    lines: &Lines,
-    source: P,
-    (p, q, third): (P, P, P),
-    hits: (Hit, Hit),
-    p_is_lower: bool,
-) -> Option<Child> {
-    let pq = q.sub(p);
-    let len = norm(pq.0, pq.1);
+/// The child of `lines` on `side`, reached by the lines through `hits`; `None` when it
+/// is empty or the source lies on the side's line (the lines only graze it).
+fn child(lines: &Lines, source: P, side: &Side, hits: (Hit, Hit)) -> Option<Child> {
+    let Side {
+        p,
+        pq,
+        len,
+        p_is_lower,
+        origin,
+        u,
+        n,
+    } = *side;
     // The fraction along p → q where the line from the source through (x, 0) meets it.
     let fraction = |hit: Hit| match hit {
         Hit::Corner(t) => t,
@@ -332,15 +381,11 @@ fn child(
     if t0.partial_cmp(&t1).is_none_or(Ordering::is_gt) {
         return None;
     }
-    let (origin, u, b0, b1) = if p_is_lower {
-        (p, pq.scale(1.0 / len), t0 * len, t1 * len)
+    let (b0, b1) = if p_is_lower {
+        (t0 * len, t1 * len)
     } else {
-        (q, pq.scale(-1.0 / len), (1.0 - t1) * len, (1.0 - t0) * len)
+        ((1.0 - t1) * len, (1.0 - t0) * len)
     };
-    let mut n = P(-u.1, u.0);
-    if third.sub(origin).dot(n) < 0.0 {
-        n = n.scale(-1.0);
-    }
     let s = source.sub(origin);
     let sy = s.dot(n);
     if sy.partial_cmp(&(1e-14 * len)) != Some(Ordering::Greater) {
@@ -426,7 +471,7 @@ mod tests {
             b1: 1.0,
         };
         let apex = P(0.5, 0.5);
-        let ([left, right], sees) = project(&w, 1.0, apex, [true, true]);
+        let ([left, right], sees) = project(&w, 1.0, apex, &sides(1.0, apex, [true, true]));
         assert!(sees);
         let (left, right) = (left.unwrap(), right.unwrap());
         let side = 0.5f64.hypot(0.5);
@@ -439,12 +484,12 @@ mod tests {
         assert!(close(s.value_at(0.0), 0.5f64.hypot(0.5)));
         assert!(close(s.value_at(side), 1.0));
         // Seen from C B with its lower end at B (reversed).
-        let ([_, r], _) = project(&w, 1.0, apex, [true, false]);
+        let ([_, r], _) = project(&w, 1.0, apex, &sides(1.0, apex, [true, false]));
         let r = r.unwrap().lines;
         assert!(close(r.value_at(0.0), 0.5f64.hypot(0.5)) && close(r.value_at(side), 1.0));
         // A window left of the apex's line only reaches A C, and not the apex.
         let narrow = Lines { b1: 0.25, ..w };
-        let ([l, r], sees) = project(&narrow, 1.0, apex, [true, true]);
+        let ([l, r], sees) = project(&narrow, 1.0, apex, &sides(1.0, apex, [true, true]));
         assert!(!sees && l.is_some() && r.is_none());
         let l = l.unwrap().lines;
         // The line from (0.5, −0.5) through (0.25, 0) meets A C (y = x) at (1/6, 1/6).

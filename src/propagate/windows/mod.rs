@@ -60,7 +60,7 @@ mod radix;
 mod tables;
 
 pub(crate) use geometry::Lines;
-use geometry::{norm, project, trim_pair, Child};
+use geometry::{norm, project, sides, trim_pair, Child, Side};
 use radix::RadixHeap;
 pub(in crate::propagate) use tables::ExactTables;
 
@@ -145,8 +145,8 @@ struct Crossing {
     apex: P,
     apex_vertex: u32,
     /// Per side (the edge from the first end to the apex, then from the apex to the
-    /// second end), whether its lower vertex comes first, and the edge.
-    lower_first: [bool; 2],
+    /// second end), its frame and the edge.
+    frames: [Side; 2],
     sides: [u32; 2],
 }
 
@@ -481,14 +481,14 @@ impl<T: Topology> ExactRun<'_, T> {
         let edges = mesh.face_edges(f);
         // The slot of the edge between corners i and j.
         let slot_of = |i: usize, j: usize| if (i + 1) % 3 == j { i } else { j };
-        let sides = [(ia, ic), (ic, ib)];
+        let corners = [(ia, ic), (ic, ib)];
         Crossing {
             face: f,
             len,
             apex,
             apex_vertex: vertices[ic],
-            lower_first: sides.map(|(i, j)| vertices[i] < vertices[j]),
-            sides: sides.map(|(i, j)| edges[slot_of(i, j)]),
+            frames: sides(len, apex, corners.map(|(i, j)| vertices[i] < vertices[j])),
+            sides: corners.map(|(i, j)| edges[slot_of(i, j)]),
         }
     }
 
@@ -503,8 +503,7 @@ impl<T: Topology> ExactRun<'_, T> {
         label: u32,
     ) -> Result<(), Error> {
         self.counts.crossings += 1;
-        let (children, sees_apex) =
-            project(lines, crossing.len, crossing.apex, crossing.lower_first);
+        let (children, sees_apex) = project(lines, crossing.len, crossing.apex, &crossing.frames);
         let origin = Origin::Window {
             id,
             face: crossing.face,
