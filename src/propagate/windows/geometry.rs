@@ -146,8 +146,15 @@ pub(crate) fn trim_pair(a: &mut Lines, b: &mut Lines, tolerance: f64) {
     let cuts = &mut cuts[..=n];
     cuts.sort_unstable_by(f64::total_cmp);
     // Per piece: +1 where b is shorter (a's lines not needed), −1 where a is, 0 tie
-    // or unsure: the piece is judged at its quarter points, which must agree (a root
-    // lost to rounding then leaves a piece whole instead of cutting a shortest line).
+    // or unsure. A piece is judged at its middle. Between its roots the difference
+    // keeps its sign; a root lost to rounding lies where the two values touch, and
+    // the lines it would have spared are shorter by no more than rounding, so a
+    // middle beyond the tolerance decides the whole piece. A tie at the middle is
+    // checked at the quarter points: a whole piece of tie is one source's lines
+    // grazing the other's (decided by σ, below), a tie at the middle alone is left
+    // whole. (Judging every piece at three points as well gave the same values on
+    // the shared meshes, to the bit but for 8 of bunny_loop2's 556 051 vertices,
+    // 5e-16 apart, for 4 % more instructions.)
     let mut better = [0i8; 3];
     for i in 0..n {
         let judge = |t: f64| {
@@ -162,7 +169,8 @@ pub(crate) fn trim_pair(a: &mut Lines, b: &mut Lines, tolerance: f64) {
             }
         };
         let mid = judge(0.5);
-        better[i] = match (judge(0.25) == mid && judge(0.75) == mid, mid) {
+        let agree = mid != 0 || (judge(0.25) == 0 && judge(0.75) == 0);
+        better[i] = match (agree, mid) {
             (false, _) => 0,
             // A tie along a whole piece: two distance functions agree on an interval
             // only where one source's lines graze the other's (a vertex on a ray of
