@@ -314,10 +314,11 @@ pub enum Error {
     /// approximate engine.
     #[error("the exact engine's windows outgrew the limit: {windows} windows ({:.3} GB); raise the memory or work limit, stop the run earlier, or use an approximate method", *bytes as f64 / 1e9)]
     ExactTooLarge {
-        /// Windows when the limit was reached: those made, for the work limit and for
-        /// a field (which keeps them all); those held at once, for the memory limit
-        /// of a run that wants only values at vertices
-        /// ([`Solver::vertex_values`](crate::Solver::vertex_values)).
+        /// Windows when the limit was reached: those made, for the work limit; those
+        /// held at once, for the memory limit (waiting on their edges, and carried
+        /// into a field; a run that wants only values at vertices,
+        /// [`Solver::vertex_values`](crate::Solver::vertex_values), keeps none once
+        /// carried).
         windows: u64,
         /// The bytes they took (held) or would take (made).
         bytes: u64,

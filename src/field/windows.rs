@@ -5,8 +5,8 @@
 use crate::mesh::Csr;
 use crate::propagate::windows::Lines;
 
-/// One window of the exact engine: straight lines from a virtual source across part of
-/// an edge, into every face around the edge but the one they came through.
+/// One window the exact engine carried: straight lines from a virtual source across
+/// part of an edge, into every face around the edge but the one they came through.
 ///
 /// Coordinates are in the edge's frame seen from a face the window enters: `x` along
 /// the edge from its lower vertex, the source at `(sx, −sy)`, behind the edge. 56
@@ -30,12 +30,6 @@ pub(crate) struct Window {
 impl Window {
     /// Marks a window started at a vertex (see [`Window::source`]).
     pub const AT_VERTEX: u32 = 1 << 31;
-
-    /// Whether nothing is left of the window (a shorter one took its edge).
-    pub fn is_empty(&self) -> bool {
-        self.lines.b0.partial_cmp(&self.lines.b1) == Some(std::cmp::Ordering::Greater)
-            || self.lines.b0.is_nan()
-    }
 }
 
 /// How a vertex got its value in the exact engine: where its geodesic goes first.
@@ -62,10 +56,10 @@ pub(crate) enum Origin {
 /// The exact engine's part of a field.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct WindowField {
-    /// Every window the run made (ids are indices).
+    /// Every window the run carried across a face, as carried (ids are indices; a
+    /// window is never cut once carried).
     pub windows: Vec<Window>,
-    /// The ids of the windows the run carried across a face, by edge (built when the
-    /// run ends).
+    /// The windows' ids by edge (built when the run ends).
     pub by_edge: Csr<u32>,
     /// Per vertex, how it got its value.
     pub origin: Vec<Origin>,
@@ -74,7 +68,7 @@ pub(crate) struct WindowField {
 }
 
 impl WindowField {
-    /// The carried windows on edge `e` (none unless the exact engine ran).
+    /// The windows on edge `e` (none unless the exact engine ran).
     pub fn on_edge(&self, e: u32) -> &[u32] {
         if self.by_edge.is_empty() {
             return &[];
@@ -82,12 +76,10 @@ impl WindowField {
         self.by_edge.row(e)
     }
 
-    /// Indexes the windows flagged in `carried` by edge, once a run over `edges`
-    /// edges ends.
-    pub fn index(&mut self, edges: usize, carried: &[bool]) {
-        let windows = &self.windows;
-        let ids = (0..windows.len() as u32).filter(|&id| carried[id as usize]);
-        self.by_edge = Csr::from_pairs(edges, ids.map(|id| (windows[id as usize].edge, id)));
+    /// Indexes the windows by edge, once a run over `edges` edges ends.
+    pub fn index(&mut self, edges: usize) {
+        let ids = self.windows.iter().enumerate();
+        self.by_edge = Csr::from_pairs(edges, ids.map(|(id, w)| (w.edge, id as u32)));
     }
 
     /// Forgets the windows of the last run (capacity is kept; the origins are

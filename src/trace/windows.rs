@@ -27,7 +27,7 @@ impl<M: Metric, T: Topology> Query<'_, M, T> {
             let ef = self.edge_frame(frame, f, slot);
             for &id in field.on_edge(edge) {
                 let w = &field.windows[id as usize];
-                if w.from == f || w.is_empty() {
+                if w.from == f {
                     continue;
                 }
                 let l = &w.lines;

@@ -114,26 +114,24 @@ pub(crate) struct ExactBuffers {
     /// Per edge, its windows not carried yet, compared with each other when they are.
     /// Side by side in memory, so that the comparison reads them in one sweep (they
     /// are many on a large mesh, and a walk from window to window through the run's
-    /// arena misses the cache at every step); the lines here are the window's until
-    /// it is carried, when they are written back to the field.
+    /// arena misses the cache at every step). A window enters the field, and gets
+    /// its id, when it is carried.
     pub pending: Vec<Vec<Pending>>,
     /// Per edge, the least key its pending windows are queued at (`inf`: none).
     pub queued: Vec<f64>,
     /// How many windows wait in all the lists.
     pub waiting: usize,
-    /// Per window, whether it was carried across its faces.
-    pub carried: Vec<bool>,
 }
 
 /// A window waiting on its edge to be carried (see [`ExactBuffers::pending`]).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Pending {
     lines: Lines,
-    id: u32,
     /// The face its lines came through.
     from: u32,
-    /// Its run's source (as [`Window::source`], without `AT_VERTEX`).
-    label: u32,
+    /// As [`Window::parent`] and [`Window::source`].
+    parent: u32,
+    source: u32,
 }
 
 /// A face that windows of one of its edges cross, in that edge's frame.
@@ -218,7 +216,6 @@ impl<T: Topology> ExactRun<'_, T> {
     /// [`ExactRun::run`]'s work.
     fn carry_all(&mut self, sources: &[Source]) -> Result<Counts, Error> {
         self.buffers.heap.clear();
-        self.buffers.carried.clear();
         if self.buffers.pending.len() != self.mesh.edge_count() {
             self.buffers.pending.clear();
             self.buffers
@@ -429,16 +426,29 @@ impl<T: Topology> ExactRun<'_, T> {
             compare_on_edge(&mut list, len, tolerance);
         }
         self.counts.carried += list.len() as u64;
+        // The field's windows are those carried: their ids follow on from `first`.
+        let first = self.field.windows.len() as u32;
         if self.keeps_windows {
-            for waiting in &list {
-                self.field.windows[waiting.id as usize].lines = waiting.lines;
-                self.buffers.carried[waiting.id as usize] = true;
-            }
+            self.field.windows.extend(list.iter().map(|w| Window {
+                lines: w.lines,
+                edge,
+                from: w.from,
+                parent: w.parent,
+                source: w.source,
+            }));
         }
         for &f in mesh.edge_faces(edge).iter() {
             let crossing = self.crossing(edge, f);
-            for waiting in list.iter().filter(|w| w.from != f) {
-                self.cross(waiting.id, &waiting.lines, &crossing, waiting.label)?;
+            for (i, waiting) in list.iter().enumerate() {
+                if waiting.from != f {
+                    let id = if self.keeps_windows {
+                        first + i as u32
+                    } else {
+                        NONE
+                    };
+                    let label = waiting.source & !Window::AT_VERTEX;
+                    self.cross(id, &waiting.lines, &crossing, label)?;
+                }
             }
         }
         // Children land on the faces' other edges, never on this one. The list's
@@ -562,13 +572,8 @@ impl<T: Topology> ExactRun<'_, T> {
         if key > self.bounds.max_distance {
             return Ok(());
         }
-        // What the run holds: every window made when the field keeps them, else
-        // those waiting.
-        let held = if self.keeps_windows {
-            self.field.windows.len()
-        } else {
-            self.buffers.waiting
-        };
+        // What the run holds: the windows waiting, and those the field keeps.
+        let held = self.buffers.waiting + self.field.windows.len();
         let made = self.counts.created;
         if held >= self.bounds.max_windows || made >= self.bounds.max_made {
             let windows = if held >= self.bounds.max_windows {
@@ -581,19 +586,6 @@ impl<T: Topology> ExactRun<'_, T> {
                 bytes: windows.saturating_mul(BYTES_PER_WINDOW as u64),
             });
         }
-        let id = if self.keeps_windows {
-            self.field.windows.push(Window {
-                lines,
-                edge,
-                from,
-                parent,
-                source,
-            });
-            self.buffers.carried.push(false);
-            held as u32
-        } else {
-            NONE
-        };
         self.counts.created += 1;
         self.buffers.waiting += 1;
         let list = &mut self.buffers.pending[edge as usize];
@@ -604,9 +596,9 @@ impl<T: Topology> ExactRun<'_, T> {
         }
         list.push(Pending {
             lines,
-            id,
             from,
-            label,
+            parent,
+            source,
         });
         self.queue_edge(edge, key);
         Ok(())
@@ -658,10 +650,7 @@ impl<T: Topology> ExactRun<'_, T> {
                 (0..vertices).for_each(forget);
             }
         }
-        if self.keeps_windows {
-            self.field
-                .index(self.mesh.edge_count(), &self.buffers.carried);
-        }
+        self.field.index(self.mesh.edge_count());
     }
 }
 
@@ -715,7 +704,8 @@ fn compare_on_edge(list: &mut Vec<Pending>, len: f64, tolerance: f64) {
     });
 }
 
-/// What one window costs while a run makes it: the window, its queue entry, its flag,
-/// its link in its edge's list and its place in the edge index.
+/// What one window a run holds costs, at most: its place in its edge's list and its
+/// copy in the field (both, as while its list is carried), a queue entry and its
+/// place in the field's edge index.
 pub(in crate::propagate) const BYTES_PER_WINDOW: usize =
-    std::mem::size_of::<Window>() + 16 + 1 + std::mem::size_of::<Pending>() + 4;
+    std::mem::size_of::<Pending>() + std::mem::size_of::<Window>() + 16 + 4;
