@@ -296,27 +296,38 @@ impl Side {
     }
 }
 
-/// The sides `A C` and `C B` of the face with third corner `apex` crossed from an edge
-/// `len` long; `lower_first[i]` says, for side `i`, whether its lower vertex is its
-/// first corner as named (`A` of `A C`, `C` of `C B`).
-pub(crate) fn sides(len: f64, apex: P, lower_first: [bool; 2]) -> [Side; 2] {
-    let (a, b) = (P(0.0, 0.0), P(len, 0.0));
-    [
-        Side::new((a, apex, b), lower_first[0]),
-        Side::new((apex, b, a), lower_first[1]),
-    ]
+/// A face crossed from an edge `A B` (entry frame, see the module), worked out once
+/// for every window that crosses it: the edge's length, the third corner `C` and the
+/// sides `A C` and `C B`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Across {
+    pub len: f64,
+    /// `C`, on the side `y > 0`.
+    pub apex: P,
+    sides: [Side; 2],
 }
 
-/// Where `lines` reach across the face with third corner `apex` (entry frame, see the
-/// module), whose other edges are `sides` (see [`sides`]): its children on the edges
-/// `A C` and `C B`, and whether the line from the source to `C` crosses the window
-/// (then `C` gets `σ + |S C|`).
-pub(crate) fn project(
-    lines: &Lines,
-    len: f64,
-    apex: P,
-    sides: &[Side; 2],
-) -> ([Option<Child>; 2], bool) {
+impl Across {
+    /// `lower_first[i]` says, for side `i`, whether its lower vertex is its first
+    /// corner as named (`A` of `A C`, `C` of `C B`).
+    pub fn new(len: f64, apex: P, lower_first: [bool; 2]) -> Across {
+        let (a, b) = (P(0.0, 0.0), P(len, 0.0));
+        Across {
+            len,
+            apex,
+            sides: [
+                Side::new((a, apex, b), lower_first[0]),
+                Side::new((apex, b, a), lower_first[1]),
+            ],
+        }
+    }
+}
+
+/// Where `lines` reach across the face `across`: its children on the edges `A C` and
+/// `C B`, and whether the line from the source to `C` crosses the window (then `C`
+/// gets `σ + |S C|`).
+pub(crate) fn project(lines: &Lines, across: &Across) -> ([Option<Child>; 2], bool) {
+    let Across { len, apex, sides } = *across;
     let (sx, sy) = (lines.sx, lines.sy);
     // Where the line from the source through the apex crosses the axis.
     let through_apex = sx + (apex.0 - sx) * sy / (apex.1 + sy);
@@ -479,7 +490,7 @@ mod tests {
             b1: 1.0,
         };
         let apex = P(0.5, 0.5);
-        let ([left, right], sees) = project(&w, 1.0, apex, &sides(1.0, apex, [true, true]));
+        let ([left, right], sees) = project(&w, &Across::new(1.0, apex, [true, true]));
         assert!(sees);
         let (left, right) = (left.unwrap(), right.unwrap());
         let side = 0.5f64.hypot(0.5);
@@ -492,12 +503,12 @@ mod tests {
         assert!(close(s.value_at(0.0), 0.5f64.hypot(0.5)));
         assert!(close(s.value_at(side), 1.0));
         // Seen from C B with its lower end at B (reversed).
-        let ([_, r], _) = project(&w, 1.0, apex, &sides(1.0, apex, [true, false]));
+        let ([_, r], _) = project(&w, &Across::new(1.0, apex, [true, false]));
         let r = r.unwrap().lines;
         assert!(close(r.value_at(0.0), 0.5f64.hypot(0.5)) && close(r.value_at(side), 1.0));
         // A window left of the apex's line only reaches A C, and not the apex.
         let narrow = Lines { b1: 0.25, ..w };
-        let ([l, r], sees) = project(&narrow, 1.0, apex, &sides(1.0, apex, [true, true]));
+        let ([l, r], sees) = project(&narrow, &Across::new(1.0, apex, [true, true]));
         assert!(!sees && l.is_some() && r.is_none());
         let l = l.unwrap().lines;
         // The line from (0.5, −0.5) through (0.25, 0) meets A C (y = x) at (1/6, 1/6).

@@ -60,7 +60,7 @@ mod radix;
 mod tables;
 
 pub(crate) use geometry::Lines;
-use geometry::{norm, project, sides, trim_pair, Child, Side};
+use geometry::{norm, project, trim_pair, Across, Child};
 use radix::RadixHeap;
 pub(in crate::propagate) use tables::ExactTables;
 
@@ -137,14 +137,11 @@ pub(crate) struct Pending {
 /// A face that windows of one of its edges cross, in that edge's frame.
 struct Crossing {
     face: u32,
-    /// The edge's length.
-    len: f64,
-    /// The face's third corner, on the side `y > 0`.
-    apex: P,
+    across: Across,
+    /// The face's third corner.
     apex_vertex: u32,
-    /// Per side (the edge from the first end to the apex, then from the apex to the
-    /// second end), its frame and the edge.
-    frames: [Side; 2],
+    /// The edges of the two sides (from the first end to the apex, then from the apex
+    /// to the second end).
     sides: [u32; 2],
 }
 
@@ -498,10 +495,8 @@ impl<T: Topology> ExactRun<'_, T> {
         let corners = [(ia, ic), (ic, ib)];
         Crossing {
             face: f,
-            len,
-            apex,
+            across: Across::new(len, apex, corners.map(|(i, j)| vertices[i] < vertices[j])),
             apex_vertex: vertices[ic],
-            frames: sides(len, apex, corners.map(|(i, j)| vertices[i] < vertices[j])),
             sides: corners.map(|(i, j)| edges[slot_of(i, j)]),
         }
     }
@@ -517,13 +512,13 @@ impl<T: Topology> ExactRun<'_, T> {
         label: u32,
     ) -> Result<(), Error> {
         self.counts.crossings += 1;
-        let (children, sees_apex) = project(lines, crossing.len, crossing.apex, &crossing.frames);
+        let (children, sees_apex) = project(lines, &crossing.across);
         let origin = Origin::Window {
             id,
             face: crossing.face,
         };
         if sees_apex {
-            let apex = crossing.apex;
+            let apex = crossing.across.apex;
             let value = lines.sigma + norm(apex.0 - lines.sx, apex.1 + lines.sy);
             self.offer(crossing.apex_vertex, value, origin, label);
         }
