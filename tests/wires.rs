@@ -112,13 +112,24 @@ fn every_engine_crosses_the_wire() {
     let dijkstra = Solver::new(&mesh, &Euclidean, &DIJKSTRA)
         .and_then(|solver| solver.field(&[source]))
         .unwrap();
+    // The exact engine: the same exact values (and, below, a path from B as long as
+    // its value, along the wire).
+    let exact_field = Solver::new(
+        &mesh,
+        &Euclidean,
+        &Options::DEFAULT.with_method(Method::Exact),
+    )
+    .and_then(|solver| solver.field(&[source]))
+    .unwrap();
     for v in 0..mesh.vertex_count() as u32 {
         let e = exact(v);
-        assert!(
-            abs_diff_eq!(wave.distance(v), e, epsilon = 1e-9),
-            "wave at {v}: {} vs {e}",
-            wave.distance(v)
-        );
+        for (name, field) in [("wave", &wave), ("exact", &exact_field)] {
+            assert!(
+                abs_diff_eq!(field.distance(v), e, epsilon = 1e-9),
+                "{name} at {v}: {} vs {e}",
+                field.distance(v)
+            );
+        }
         let g = graph.distance(v);
         assert!(g >= e - 1e-9 && g <= e * 1.02, "graph at {v}: {g} vs {e}");
         assert!(
@@ -132,23 +143,6 @@ fn every_engine_crosses_the_wire() {
         assert!(
             abs_diff_eq!(*g, *t, epsilon = 1e-9 * g.max(1.0)),
             "{g} vs {t}"
-        );
-    }
-    // The exact engine: the same exact values, and a path from B as long as its value,
-    // along the wire.
-    let exact_field = Solver::new(
-        &mesh,
-        &Euclidean,
-        &Options::DEFAULT.with_method(Method::Exact),
-    )
-    .and_then(|solver| solver.field(&[source]))
-    .unwrap();
-    for v in 0..mesh.vertex_count() as u32 {
-        let e = exact(v);
-        assert!(
-            abs_diff_eq!(exact_field.distance(v), e, epsilon = 1e-9),
-            "exact at {v}: {} vs {e}",
-            exact_field.distance(v)
         );
     }
     let far_corner = (2 * side * side - 1) as u32;

@@ -103,7 +103,7 @@ pub fn run(args: &DistanceArgs) -> CliResult {
         (values, Some(field))
     } else {
         let values = solver.vertex_values(Sources::from(&sources).until(&stop))?;
-        report_unreached(&values.distances, &stop);
+        report_unreached(values.unreachable_vertices(), &stop);
         (values, None)
     };
     drop(spinner);
@@ -125,13 +125,12 @@ pub fn run(args: &DistanceArgs) -> CliResult {
 /// The field from `sources`, with a line on stderr about the vertices it does not reach.
 fn compute<M: Metric>(solver: &Solver<M>, sources: &[Source], stop: &Stop) -> CliResult<Field<M>> {
     let field = solver.field(Sources::from(sources).until(stop))?;
-    report_unreached(field.vertex_distances(), stop);
+    report_unreached(field.unreachable_vertices(), stop);
     Ok(field)
 }
 
-/// A line on stderr about the vertices a run did not reach (`inf` in `distances`).
-fn report_unreached(distances: &[f64], stop: &Stop) {
-    let unreachable = distances.iter().filter(|d| d.is_infinite()).count();
+/// A line on stderr about the `unreachable` vertices a run did not reach.
+fn report_unreached(unreachable: usize, stop: &Stop) {
     if unreachable > 0 {
         if stop.max_distance.is_finite() {
             ui::info!(
@@ -203,7 +202,7 @@ fn write_stats(outputs: &mut Outputs, path: &Path, values: &VertexValues) -> Cli
         "setup_distance_tests": s.setup_distance_tests,
         "windows_created": s.windows_created,
         "windows_kept": s.windows_kept,
-        "unreachable_vertices": values.distances.iter().filter(|d| d.is_infinite()).count(),
+        "unreachable_vertices": values.unreachable_vertices(),
     });
     outputs.write(path, |w| {
         serde_json::to_writer_pretty(&mut *w, &json)?;

@@ -405,19 +405,14 @@ impl MeshSolverCore {
 }
 
 impl MeshSolverCore {
-    /// One run from `sources` until `stop`, with the GIL released: the only place a
-    /// field is computed, so `runs` counts every one.
+    /// One run from `sources` until `stop`, with the GIL released: the field.
     fn run(
         &self,
         py: Python<'_>,
         sources: &[PointArg],
         stop: Stop,
     ) -> PyResult<Field<BuiltinMetric>> {
-        let sources = sources_of(sources)?;
-        let solver = &self.solver;
-        self.runs.fetch_add(1, Ordering::Relaxed);
-        py.detach(|| solver.field(Sources::from(sources).until(stop)))
-            .map_err(error)
+        self.counted(py, sources, stop, Solver::field)
     }
 
     /// The values and labels at vertices of one run: no field is kept (the exact
@@ -428,10 +423,23 @@ impl MeshSolverCore {
         sources: &[PointArg],
         stop: Stop,
     ) -> PyResult<VertexValues> {
+        self.counted(py, sources, stop, Solver::vertex_values)
+    }
+
+    /// `ask` of the solver for one run from `sources` until `stop`, with the GIL
+    /// released: the only place runs are made for the one-call methods and fields,
+    /// so `runs` counts every one.
+    fn counted<R: Send>(
+        &self,
+        py: Python<'_>,
+        sources: &[PointArg],
+        stop: Stop,
+        ask: impl FnOnce(&Solver<BuiltinMetric>, Sources<'static>) -> Result<R, geotracks::Error> + Send,
+    ) -> PyResult<R> {
         let sources = sources_of(sources)?;
         let solver = &self.solver;
         self.runs.fetch_add(1, Ordering::Relaxed);
-        py.detach(|| solver.vertex_values(Sources::from(sources).until(stop)))
+        py.detach(|| ask(solver, Sources::from(sources).until(stop)))
             .map_err(error)
     }
 }

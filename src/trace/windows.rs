@@ -261,7 +261,7 @@ impl<M: Metric, T: Topology> Query<'_, M, T> {
 }
 
 /// The most restarts one path may make (see `Query::restart_in_face`): each is a
-/// parent cut back after it was carried, a handful on a long path.
+/// line lost at a joined wave's seam, none seen on the shared meshes; more is a loop.
 const MAX_RESTARTS: u32 = 1000;
 
 /// The point at fraction `t` of `edge` from its lower vertex (a vertex at either end).

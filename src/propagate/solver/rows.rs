@@ -36,6 +36,14 @@ pub struct VertexValues {
     pub stats: Stats,
 }
 
+impl VertexValues {
+    /// How many vertices the run did not reach (`inf`), as
+    /// [`Field::unreachable_vertices`](crate::Field::unreachable_vertices).
+    pub fn unreachable_vertices(&self) -> usize {
+        self.distances.iter().filter(|d| d.is_infinite()).count()
+    }
+}
+
 impl<M: Metric, T: Topology> Solver<M, T> {
     /// The distance from `sources` at every vertex, and each vertex's nearest source:
     /// what [`Solver::field`] gives at the vertices, for a caller who needs nothing
