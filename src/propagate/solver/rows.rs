@@ -138,7 +138,7 @@ impl<M: Metric, T: Topology> Solver<M, T> {
             pool.lock()
                 .ok()
                 .and_then(|mut p| p.pop())
-                .unwrap_or_default()
+                .unwrap_or_else(Workspace::values_only)
         };
         // (Runs on the setup, shared by reference: the metric need only be `Sync`.)
         let setup = self.setup();
@@ -146,7 +146,6 @@ impl<M: Metric, T: Topology> Solver<M, T> {
             .par_iter()
             .map(|&source| {
                 let mut ws = take();
-                ws.values_only = true;
                 let row = setup
                     .run(&mut ws, &Sources::from(source).until(&stop))
                     .map(|stats| {
