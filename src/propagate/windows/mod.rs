@@ -435,6 +435,11 @@ impl<T: Topology> ExactRun<'_, T> {
             }));
         }
         for &f in mesh.edge_faces(edge).iter() {
+            if list.iter().all(|w| w.from == f) {
+                // Every window came through this face (the common case on one side
+                // of a manifold edge): nothing to work out for it.
+                continue;
+            }
             let crossing = self.crossing(edge, f);
             for (i, waiting) in list.iter().enumerate() {
                 if waiting.from != f {
