@@ -4,7 +4,7 @@
 //! (distances at any point, paths) read them back; both use the frames here.
 
 use crate::field::Wave;
-use crate::mesh::FaceFrame;
+use crate::mesh::{FaceFrame, Topology};
 use geotracks_metrics::{FacePoint, Metric};
 
 /// Slack on window tests, as a fraction of the edge. Window ends are rounded inwards to
@@ -19,9 +19,115 @@ pub(crate) const TIE: f64 = 1e-12;
 /// their ends are rounded inwards to `f32` (a few units in the last place apart where
 /// they meet), and a real gap between them (the shadow of a vertex) is far wider.
 pub(crate) const TOUCH: f32 = 1e-6;
+/// ... or when the gap between them, seen from the source, is narrower than this angle
+/// (radians; plus the frames' turn). Two windows of one wave meet on the line from the
+/// source through a vertex, and where that line grazes the edge they end on, rounding
+/// of its direction moves their ends far along the edge (measured: 8e-6 of a 15-long
+/// edge crossed at 7e-7 rad) while the angle between them stays at rounding (2e-11).
+/// A gap that narrow that is real (a hole's corner seen from far) costs a line through
+/// it about `(α ℓ)² / ℓ`: 1e-18 relative.
+const ANGLE_TOUCH: f64 = 1e-9;
+
+/// Whether windows `a` and `b` (fractions of the edge `frame`) of one wave with source
+/// `s` (a point of the frame's plane) overlap or meet: to [`TOUCH`] of the edge, or to
+/// [`ANGLE_TOUCH`] plus `turn` as seen from `s`.
+pub(crate) fn windows_touch(
+    a: (f32, f32),
+    b: (f32, f32),
+    s: P,
+    frame: &EdgeFrame,
+    turn: f64,
+) -> bool {
+    if b.0 <= a.1 + TOUCH && a.0 <= b.1 + TOUCH {
+        return true;
+    }
+    // The gap's ends, in order along the edge.
+    let (g0, g1) = if b.0 > a.1 { (a.1, b.0) } else { (b.1, a.0) };
+    let at = |w: f32| frame.at_edge_coords(w as f64 * frame.len, 0.0).sub(s);
+    let (p, q) = (at(g0), at(g1));
+    p.cross(q).abs() <= (ANGLE_TOUCH + turn) * p.length() * q.length()
+}
 /// Two waves are the same when their sources and σ agree to this, relative to the
 /// edge's length and the source's distance.
 pub(crate) const SAME_SOURCE: f64 = 1e-9;
+/// How many units in the last place of its faces' longest edge an edge's corners may
+/// be off in a face's frame (measured: a little over one): the edge's direction, and
+/// with it a source seen from the edge, turns by up to this many `f64::EPSILON` times
+/// that longest edge over the edge's own length ([`frame_turn`]).
+const FRAME_ROUNDING: f64 = 4.0;
+
+/// By how much (in radians) the direction of an edge of length `len`, in faces whose
+/// longest edge is `scale`, may differ from one face's frame to another's by rounding.
+/// Negligible on a well-shaped mesh (`4 ε`); a short edge of a face with a far corner
+/// is measured to `ε` of that corner's distance, not of its own length, and a source
+/// 2.5 away seen across a 7.6e-6 edge of a face 90 long moves by 3.5e-9 from one frame
+/// to the other: more than [`SAME_SOURCE`] of it.
+pub(crate) fn frame_turn(len: f64, scale: f64) -> f64 {
+    FRAME_ROUNDING * f64::EPSILON * (scale / len).max(1.0)
+}
+
+/// An edge as the flattenings of the faces around it see it: its shortest and longest
+/// length over them, and the longest edge of those faces (what the lengths' rounding
+/// is relative to). One decision for every engine and query on whether faces glue.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct EdgeGlue {
+    pub shortest: f64,
+    pub longest: f64,
+    pub scale: f64,
+}
+
+impl EdgeGlue {
+    /// No face seen yet.
+    pub const NONE: EdgeGlue = EdgeGlue {
+        shortest: f64::INFINITY,
+        longest: 0.0,
+        scale: 0.0,
+    };
+
+    /// Also seen at length `len` in a face whose longest edge is `face_longest`.
+    pub fn with(self, len: f64, face_longest: f64) -> EdgeGlue {
+        EdgeGlue {
+            shortest: self.shortest.min(len),
+            longest: self.longest.max(len),
+            scale: self.scale.max(face_longest),
+        }
+    }
+
+    /// Per edge of `mesh`, as the flattened `frames` (one per face) see it.
+    pub fn of_edges<T: Topology>(mesh: &T, frames: &[FaceFrame]) -> Vec<EdgeGlue> {
+        let mut glue = vec![EdgeGlue::NONE; mesh.edge_count()];
+        for (f, frame) in frames.iter().enumerate() {
+            let sides = frame_sides(frame);
+            let longest = sides.iter().fold(0.0f64, |m, &l| m.max(l));
+            for (l, e) in sides.into_iter().zip(mesh.face_edges(f as u32)) {
+                glue[e as usize] = glue[e as usize].with(l, longest);
+            }
+        }
+        glue
+    }
+
+    /// Whether the faces glue isometrically along the edge: they give it one length, to
+    /// 1e-9 of it, or to rounding of the faces' own size (a short edge of a face with a
+    /// far corner is measured to `ε` of that corner's distance, not of its own length).
+    pub fn glues(&self) -> bool {
+        self.longest - self.shortest <= 1e-9 * self.longest + 1e-12 * self.scale
+    }
+
+    /// How far its direction may turn from one face's frame to another's
+    /// ([`frame_turn`]).
+    pub fn turn(&self) -> f64 {
+        frame_turn(self.longest, self.scale)
+    }
+}
+
+/// The lengths of a flattened face's sides, side `s` from corner `s` to `s + 1`.
+pub(crate) fn frame_sides(frame: &FaceFrame) -> [f64; 3] {
+    let c = frame.corners();
+    [0, 1, 2].map(|s| {
+        let (a, b) = (c[s], c[(s + 1) % 3]);
+        (b[0] - a[0]).hypot(b[1] - a[1])
+    })
+}
 
 /// A point of the plane.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -120,18 +226,20 @@ impl EdgeFrame {
 }
 
 /// How far apart two waves' sources (and `σ`s) may lie and still be the same wave, for
-/// a wave with source `a` and `σ = sa` seen from an edge of length `len`.
+/// a wave with source `a` and `σ = sa` seen from an edge of length `len`, whose frames
+/// may turn by `turn` radians ([`frame_turn`], 0 where the frames are not in doubt).
 #[inline]
-pub(crate) fn same_source_slack(a: P, sa: f64, len: f64) -> f64 {
-    SAME_SOURCE * (len + a.0.abs() + a.1.abs() + sa.abs())
+pub(crate) fn same_source_slack(a: P, sa: f64, len: f64, turn: f64) -> f64 {
+    let reach = len + a.0.abs() + a.1.abs();
+    SAME_SOURCE * (reach + sa.abs()) + turn * reach
 }
 
 /// Whether two waves have the same source (points `a`, `b` of one face's plane, path
-/// lengths `sa`, `sb` up to them), to [`SAME_SOURCE`] of their scale
-/// ([`same_source_slack`]).
+/// lengths `sa`, `sb` up to them), to [`SAME_SOURCE`] of their scale and the frames'
+/// `turn` ([`same_source_slack`]).
 #[inline]
-pub(crate) fn same_source(a: P, sa: f64, b: P, sb: f64, len: f64) -> bool {
-    let slack = same_source_slack(a, sa, len);
+pub(crate) fn same_source(a: P, sa: f64, b: P, sb: f64, len: f64, turn: f64) -> bool {
+    let slack = same_source_slack(a, sa, len, turn);
     (a.0 - b.0).abs() <= slack && (a.1 - b.1).abs() <= slack && (sa - sb).abs() <= slack
 }
 

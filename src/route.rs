@@ -249,7 +249,12 @@ impl<M: Metric, T: Topology> Setup<M, T> {
         workspace: &Workspace,
         node: u32,
     ) -> Option<(Vec<SurfacePoint>, Vec<u32>, u32)> {
-        let query = trace::Query::new(&*self.mesh, &self.metric, workspace.view(&self.layout));
+        let query = trace::Query::new(
+            &*self.mesh,
+            &self.metric,
+            workspace.view(&self.layout),
+            self.wave_turn(),
+        );
         let mut points = vec![self.layout.surface_point(node)];
         let mut faces = Vec::new();
         let source = query.follow_parents(node, &mut points, &mut faces)?;

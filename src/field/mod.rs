@@ -156,6 +156,7 @@ impl<M: Metric, D: FieldStorage, T: Topology> Field<M, D, T> {
             self.solver.mesh(),
             self.solver.metric(),
             self.data.view(layout),
+            self.solver.setup().wave_turn(),
         )
     }
 

@@ -66,12 +66,27 @@ use super::tracks::{FaceRecord, TrackTables};
 use crate::field::Wave;
 use crate::flat::{
     hinge, hinge_end, in_window, project, same_source, same_source_slack, uv, wave_value_on_edge,
-    EdgeFrame, P, TIE, TOUCH,
+    windows_touch, EdgeFrame, P, TIE,
 };
 use crate::mesh::Topology;
 use crate::mesh::NONE;
 use crate::surface::Source;
 use geotracks_metrics::Metric;
+
+/// What the engine knows of each edge block besides its nodes.
+#[derive(Default)]
+pub(in crate::propagate) struct WaveEdges {
+    /// Whether every face around the edge gives it the same length (waves cross it).
+    pub isometric: Vec<bool>,
+    /// The most (radians) any edge's direction turns, by rounding, from one face's
+    /// frame to another's ([`crate::flat::EdgeGlue::turn`]). A source carried across
+    /// such an edge moves by that much times its distance, and every comparison of
+    /// two copies of a source downstream inherits it, so the bound is the mesh's, not
+    /// the edge's at hand (measured: copies 6e-9 apart met at edges whose own faces
+    /// are well shaped, after coming in by a face 1.4e7 times longer than its short
+    /// edge). Two sources that near are one to within what the frames can tell.
+    pub turn: f64,
+}
 
 /// Settles nodes until the run is over ([`settle_all`]). `waves` holds one
 /// [`Wave`] per Steiner node (reset by the caller); `seeds` are the sources' offers,
@@ -79,7 +94,7 @@ use geotracks_metrics::Metric;
 pub(super) fn propagate<M: Metric, T: Topology, Q: Queue>(
     search: &mut Frontier<'_, M, T, Q>,
     tables: &TrackTables,
-    isometric: &[bool],
+    edges: &WaveEdges,
     waves: &mut [Wave],
     seeds: &[Seed],
     sources: &[Source],
@@ -88,7 +103,7 @@ pub(super) fn propagate<M: Metric, T: Topology, Q: Queue>(
     let mut run = Waves {
         search,
         tables,
-        isometric,
+        edges,
         waves,
         vertex_count,
     };
@@ -118,8 +133,7 @@ impl<M: Metric, T: Topology, Q: Queue> Settle for Waves<'_, '_, M, T, Q> {
 struct Waves<'r, 'a, M, T, Q> {
     search: &'r mut Frontier<'a, M, T, Q>,
     tables: &'r TrackTables,
-    /// Per edge block: whether every face around the edge gives it the same length.
-    isometric: &'r [bool],
+    edges: &'r WaveEdges,
     waves: &'r mut [Wave],
     vertex_count: u32,
 }
@@ -244,7 +258,7 @@ impl<M: Metric, T: Topology, Q: Queue> Waves<'_, '_, M, T, Q> {
         let spacing = 1.0 / (count + 1) as f64;
         let own = (index + 1) as f64 * spacing;
         let len = edge.step * (count + 1) as f64;
-        let iso = self.isometric[block as usize];
+        let iso = self.edges.isometric[block as usize];
         // Along an edge whose faces give it different lengths the wave's frame is its
         // face's alone: it is not carried (a fresh wave starts).
         let carried = iso.then_some(&wave);
@@ -289,7 +303,12 @@ impl<M: Metric, T: Topology, Q: Queue> Waves<'_, '_, M, T, Q> {
                 frame,
                 pq,
                 f,
-                same_source_slack: same_source_slack(P(wave.sx, wave.sy), wave.sigma, frame.len),
+                same_source_slack: same_source_slack(
+                    P(wave.sx, wave.sy),
+                    wave.sigma,
+                    frame.len,
+                    self.edges.turn,
+                ),
             };
             for step in 1..3 {
                 let ts = (s + step) % 3;
@@ -544,7 +563,8 @@ impl<M: Metric, T: Topology, Q: Queue> Waves<'_, '_, M, T, Q> {
         let (mut w0, mut w1) = (tw.w0, tw.w1);
         // The same wave has the same σ: a node whose σ differs (most) is passed over
         // before anything is computed for it (`same_source` checks σ to this too).
-        let sigma_slack = same_source_slack(st, tw.sigma, tf.len);
+        let turn = self.edges.turn;
+        let sigma_slack = same_source_slack(st, tw.sigma, tf.len, turn);
         for other in [(ts + 1) % 3, (ts + 2) % 3] {
             let count = r.count(other);
             let lo = r.lo[other];
@@ -554,18 +574,18 @@ impl<M: Metric, T: Topology, Q: Queue> Waves<'_, '_, M, T, Q> {
                 if (ow.sigma - tw.sigma).abs() > sigma_slack
                     || !ow.is_some()
                     || self.search.parent_face[o as usize] == f
-                    || !self.isometric[self.search.layout.block(o) as usize]
+                    || !self.edges.isometric[self.search.layout.block(o) as usize]
                 {
                     continue;
                 }
                 let of = *of
                     .get_or_insert_with(|| EdgeFrame::new(&r.frame, other, r.is_reversed(other)));
                 let so = of.at_edge_coords(ow.sx, -ow.sy);
-                if !same_source(st, tw.sigma, so, ow.sigma, tf.len) {
+                if !same_source(st, tw.sigma, so, ow.sigma, tf.len, turn) {
                     continue;
                 }
                 let (o0, o1) = project(&ow, so, &of, tf);
-                if o0 <= o1 && o0 <= w1 + TOUCH && w0 <= o1 + TOUCH {
+                if o0 <= o1 && windows_touch((w0, w1), (o0, o1), st, tf, turn) {
                     w0 = w0.min(o0);
                     w1 = w1.max(o1);
                 }
@@ -590,14 +610,14 @@ impl<M: Metric, T: Topology, Q: Queue> Waves<'_, '_, M, T, Q> {
         let s = entry.frame.at_edge_coords(wave.sx, -wave.sy);
         let tf = EdgeFrame::new(&r.frame, ts, r.is_reversed(ts));
         let st = tf.at_edge_coords(current.sx, current.sy);
-        if !same_source(st, current.sigma, s, wave.sigma, tf.len) {
+        if !same_source(st, current.sigma, s, wave.sigma, tf.len, self.edges.turn) {
             return;
         }
         let (w0, w1) = project(wave, s, &entry.frame, &tf);
         if w0 > w1 {
             return;
         }
-        let touch = w0 <= current.w1 + TOUCH && current.w0 <= w1 + TOUCH;
+        let touch = windows_touch((current.w0, current.w1), (w0, w1), st, &tf, self.edges.turn);
         let (n0, n1) = (w0.min(current.w0), w1.max(current.w1));
         if touch && (n0 < current.w0 || n1 > current.w1) {
             let wave = self.wave_mut(t);

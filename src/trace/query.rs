@@ -17,6 +17,9 @@ pub(crate) struct Query<'a, M, T> {
     pub(super) mesh: &'a T,
     pub(super) metric: &'a M,
     pub(super) field: FieldView<'a>,
+    /// How far two copies of one wave's source may lie apart and be one, as the engine
+    /// allowed (`Setup::wave_turn`).
+    pub(super) turn: f64,
 }
 
 impl<M, T> Clone for Query<'_, M, T> {
@@ -109,12 +112,14 @@ impl Origin {
 
 impl<'a, M: Metric, T: Topology> Query<'a, M, T> {
     /// A query on `field`, which was computed on `mesh` under `metric` (the solver
-    /// checks that).
-    pub(crate) fn new(mesh: &'a T, metric: &'a M, field: FieldView<'a>) -> Self {
+    /// checks that) by an engine that took copies of one source `turn` apart
+    /// (relative) for one.
+    pub(crate) fn new(mesh: &'a T, metric: &'a M, field: FieldView<'a>, turn: f64) -> Self {
         Query {
             mesh,
             metric,
             field,
+            turn,
         }
     }
 

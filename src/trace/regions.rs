@@ -364,7 +364,9 @@ impl<'f, 'q, 'a, M: Metric, T: Topology> LabelGrid<'f, 'q, 'a, M, T> {
                     .find(|&j| {
                         let cj = &field.candidates[j];
                         match (site(ci), site(cj)) {
-                            (Some(a), Some(b)) => same_source(a, ci.sigma, b, cj.sigma, scale),
+                            (Some(a), Some(b)) => {
+                                same_source(a, ci.sigma, b, cj.sigma, scale, query.turn)
+                            }
                             _ => false,
                         }
                     })

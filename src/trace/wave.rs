@@ -8,7 +8,8 @@ use super::face_field::{Candidate, ValueSource};
 use super::Query;
 use crate::field::Wave;
 use crate::flat::{
-    flat_frame, hinge_end, in_window, same_source, same_source_slack, uv, EdgeFrame, P,
+    flat_frame, frame_sides, hinge_end, in_window, same_source, same_source_slack, uv, EdgeFrame,
+    EdgeGlue, P,
 };
 use crate::mesh::Topology;
 use crate::mesh::{FaceFrame, NONE};
@@ -53,18 +54,20 @@ impl<M: Metric, T: Topology> Query<'_, M, T> {
     /// flattened length (as the engine's `isometric_edges` decides; a wave never
     /// crosses any other edge).
     pub(super) fn glues(&self, edge: u32) -> bool {
-        let len = |f: u32| -> Option<f64> {
+        self.edge_glue(edge).is_some_and(|g| g.glues())
+    }
+
+    /// How the flattened faces around `edge` see it; `None` where one has no
+    /// flattening.
+    pub(super) fn edge_glue(&self, edge: u32) -> Option<EdgeGlue> {
+        let mut glue = EdgeGlue::NONE;
+        for &f in self.mesh.edge_faces(edge).iter() {
             let frame = self.flat(f)?;
             let s = self.mesh.edge_slot(f, edge)?;
-            Some(self.edge_frame(&frame, f, s).len)
-        };
-        let faces = self.mesh.edge_faces(edge);
-        let Some(b) = faces.first().and_then(|&f| len(f)) else {
-            return false;
-        };
-        faces
-            .iter()
-            .all(|&f| len(f).is_some_and(|a| (a - b).abs() <= 1e-9 * b))
+            let sides = frame_sides(&frame);
+            glue = glue.with(sides[s], sides.iter().fold(0.0f64, |m, &l| m.max(l)));
+        }
+        (glue.longest > 0.0).then_some(glue)
     }
 
     /// Node `q`'s wave unfolded into face `f` (flattened frame `frame`, `q` on `slot`):
@@ -277,7 +280,7 @@ impl<M: Metric, T: Topology> Query<'_, M, T> {
                     continue;
                 };
                 let w2 = self.wave(q2)?;
-                if same_source(s, wave.sigma, s2, w2.sigma, of.len) && in_window(w2, x) {
+                if same_source(s, wave.sigma, s2, w2.sigma, of.len, self.turn) && in_window(w2, x) {
                     let at2 = x.clamp(0.0, 1.0);
                     points.push(SurfacePoint::Edge { edge: e2, t: at2 });
                     faces.push(h);
@@ -350,9 +353,10 @@ impl<M: Metric, T: Topology> Query<'_, M, T> {
     }
 
     /// The source that lies at `s` (a point of face `h`, flattened `frame`) with start
-    /// `sigma`, both to [`SAME_SOURCE`](crate::flat::SAME_SOURCE) of their scale.
+    /// `sigma`, both to [`SAME_SOURCE`](crate::flat::SAME_SOURCE) of their scale and the
+    /// engine's frames' turn.
     fn source_at(&self, h: u32, frame: &FaceFrame, s: P, sigma: f64) -> Option<u32> {
-        let near = same_source_slack(s, sigma, frame.l01);
+        let near = same_source_slack(s, sigma, frame.l01, self.turn);
         self.field
             .sources
             .iter()

@@ -223,13 +223,13 @@ impl<M: Metric, T: Topology> Setup<M, T> {
         match &self.engine {
             Engine::Wave {
                 tables,
-                isometric,
+                edges,
                 bucket_width,
                 ..
             } => {
                 buckets.reset(nodes, *bucket_width);
                 search.run(buckets, seeds, |s| {
-                    wave::propagate(s, tables, isometric, waves, seeds, sources)
+                    wave::propagate(s, tables, edges, waves, seeds, sources)
                 })
             }
             Engine::Tracks {

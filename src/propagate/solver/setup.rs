@@ -4,12 +4,13 @@
 
 use super::{Setup, Workspace};
 use crate::field::SolverId;
-use crate::flat;
+use crate::flat::{self, EdgeGlue};
 use crate::mesh::Topology;
 use crate::mesh::{Csr, FaceFrame};
 use crate::propagate::budget;
 use crate::propagate::frontier::edge_steps;
 use crate::propagate::tracks::TrackTables;
+use crate::propagate::wave::WaveEdges;
 use crate::propagate::windows::ExactTables;
 use crate::propagate::{Method, Options};
 use crate::steiner::{SteinerLayout, SteinerScheme};
@@ -25,8 +26,8 @@ pub(in crate::propagate) enum Engine {
     Wave {
         /// The per-face records, with the vertices' rows.
         tables: Arc<TrackTables>,
-        /// Per edge block: whether its faces glue isometrically.
-        isometric: Vec<bool>,
+        /// Per edge block: whether its faces glue, and how far its frames may turn.
+        edges: WaveEdges,
         /// How far below a node's value its offers can reach (see `Frontier::reach`).
         reach: f64,
         /// The bucket queue's width ([`bucket_width`]).
@@ -63,6 +64,17 @@ struct Planned {
 }
 
 impl<M: Metric, T: Topology> Setup<M, T> {
+    /// How far apart, relative to their distance, two copies of one wave's source may
+    /// lie and still be one (the wavefront engine's frames' rounding: `WaveEdges::turn`;
+    /// 0 for the other engines). Queries that follow waves compare to it as the engine
+    /// did.
+    pub(crate) fn wave_turn(&self) -> f64 {
+        match &self.engine {
+            Engine::Wave { edges, .. } => edges.turn,
+            _ => 0.0,
+        }
+    }
+
     /// Prepares `mesh` for runs under `metric` with `options` (see
     /// [`Solver::new`](super::Solver::new)).
     pub(super) fn new(mesh: Arc<T>, metric: M, options: &Options) -> Result<Self, Error> {
@@ -112,10 +124,10 @@ impl<M: Metric, T: Topology> Setup<M, T> {
         let engine = match method {
             Method::Wave => Engine::Wave {
                 tables: Arc::new(tables()?.with_vertex_rows(mesh, &layout)),
-                isometric: planned
+                edges: planned
                     .flat
                     .as_ref()
-                    .map_or_else(Vec::new, |flat| flat.isometric_blocks(&layout)),
+                    .map_or_else(WaveEdges::default, |flat| flat.wave_edges(&layout)),
                 reach: planned.reach,
                 bucket_width: bucket_width(&steps),
             },
@@ -337,8 +349,8 @@ fn edge_lengths<T: Topology>(mesh: &T, flat_frames: Option<&[FaceFrame]>) -> Vec
     lengths
 }
 
-/// The edges' lengths in the faces' flattenings (the wavefront engine's), and which
-/// edges refract.
+/// The edges' lengths in the faces' flattenings (the wavefront engine's), which edges
+/// refract, and how far their frames may turn.
 struct FlatEdges {
     /// Per edge, the longest of its lengths in the faces around it; a length that
     /// agrees with the edge's length in space to rounding (`1e-12` relative) is taken
@@ -346,54 +358,44 @@ struct FlatEdges {
     /// there are then exactly the Steiner graph's (a length a unit in the last place
     /// apart could round the count the other way).
     lengths: Vec<f64>,
-    /// Per edge, whether two faces around it give it different lengths (beyond `1e-9`
-    /// of it and rounding): waves do not cross it.
+    /// Per edge, how the faces around it see it ([`EdgeGlue`]): whether waves cross it
+    /// and how far their sources may move by rounding as they do.
+    glue: Vec<EdgeGlue>,
+    /// Per edge, whether its faces do not glue (waves do not cross it).
     refracting: Vec<bool>,
 }
 
 impl FlatEdges {
     fn new<T: Topology>(mesh: &T, frames: &[FaceFrame], in_space: &[f64]) -> FlatEdges {
-        // Per edge: its shortest and longest length over the faces around it, and the
-        // longest edge of those faces (what the lengths' rounding is relative to).
-        let mut range = vec![[f64::INFINITY, 0.0f64, 0.0f64]; mesh.edge_count()];
-        for (f, frame) in frames.iter().enumerate() {
-            let c = frame.corners();
-            let sides = [0, 1, 2].map(|s| {
-                let (a, b) = (c[s], c[(s + 1) % 3]);
-                (b[0] - a[0]).hypot(b[1] - a[1])
-            });
-            let longest = sides.iter().fold(0.0f64, |m, &l| m.max(l));
-            for (l, e) in sides.into_iter().zip(mesh.face_edges(f as u32)) {
-                let r = &mut range[e as usize];
-                *r = [r[0].min(l), r[1].max(l), r[2].max(longest)];
-            }
-        }
-        let mut lengths = Vec::with_capacity(range.len());
-        let mut refracting = Vec::with_capacity(range.len());
-        for (&[shortest, longest, scale], &e) in range.iter().zip(in_space) {
-            // Two faces glue where they give the edge one length, to 1e-9 of it, or to
-            // rounding of the face's own size: a short edge of a face with a far corner
-            // is measured to 1e-16 of that corner's distance, not of its own length.
-            refracting.push(longest - shortest > 1e-9 * longest + 1e-12 * scale);
-            lengths.push(if shortest > longest || (longest - e).abs() <= 1e-12 * e {
-                e
-            } else {
-                longest
-            });
-        }
+        let glue = EdgeGlue::of_edges(mesh, frames);
+        let lengths = glue
+            .iter()
+            .zip(in_space)
+            .map(|(g, &e)| {
+                if g.shortest > g.longest || (g.longest - e).abs() <= 1e-12 * e {
+                    e
+                } else {
+                    g.longest
+                }
+            })
+            .collect();
+        let refracting = glue.iter().map(|g| !g.glues()).collect();
         FlatEdges {
             lengths,
+            glue,
             refracting,
         }
     }
 
-    /// Per edge block of `layout`: whether waves cross it (its faces glue).
-    fn isometric_blocks(&self, layout: &SteinerLayout) -> Vec<bool> {
-        let mut iso = vec![true; self.refracting.len()];
+    /// Per edge block of `layout`, whether waves cross it (its faces glue), and the
+    /// most any edge's frames turn ([`EdgeGlue::turn`]).
+    fn wave_edges(&self, layout: &SteinerLayout) -> WaveEdges {
+        let mut isometric = vec![true; self.glue.len()];
         for (e, &r) in self.refracting.iter().enumerate() {
-            iso[layout.block_of_edge(e as u32) as usize] = !r;
+            isometric[layout.block_of_edge(e as u32) as usize] = !r;
         }
-        iso
+        let turn = self.glue.iter().fold(0.0f64, |m, g| m.max(g.turn()));
+        WaveEdges { isometric, turn }
     }
 }
 

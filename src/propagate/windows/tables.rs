@@ -1,8 +1,7 @@
 //! What the exact engine works out once per solver: the faces' flattened frames, the
 //! edges' lengths (checking that faces glue) and the vertices where paths bend.
 
-use super::geometry::norm;
-use crate::flat::{flat_frame, P};
+use crate::flat::{flat_frame, EdgeGlue, P};
 use crate::mesh::{FaceFrame, Topology};
 use crate::Error;
 use geotracks_metrics::Metric;
@@ -18,7 +17,8 @@ pub(in crate::propagate) struct ExactTables {
     pub bends: Vec<bool>,
     /// The longest edge (flattened): no point of a face is farther from its corners.
     pub reach: f64,
-    /// Per edge, its length (in its first face's plane; the others agree to 1e-9).
+    /// Per edge, its length (the longest its faces' planes give it; they glue, to
+    /// 1e-9 of it or to rounding of their size: [`EdgeGlue::glues`]).
     pub lengths: Vec<f64>,
 }
 
@@ -43,25 +43,21 @@ impl ExactTables {
             })?;
             frames.push(frame);
         }
-        let mut lengths = vec![f64::NAN; mesh.edge_count()];
-        let mut reach = 0.0f64;
+        let glue = EdgeGlue::of_edges(mesh, &frames);
+        if let Some((e, g)) = glue.iter().enumerate().find(|(_, g)| !g.glues()) {
+            return Err(not_exact(format!(
+                "its faces do not glue: edge {e} is {:e} long in one face and {:e} in another",
+                g.shortest, g.longest
+            )));
+        }
+        let lengths: Vec<f64> = glue.iter().map(|g| g.longest).collect();
+        let reach = lengths.iter().fold(0.0f64, |m, &l| m.max(l));
         let mut angles = vec![0.0f64; mesh.vertex_count()];
         for (f, frame) in frames.iter().enumerate() {
-            let f = f as u32;
             let c = frame.corners().map(|[x, y]| P(x, y));
-            let vertices = mesh.face_vertices(f);
-            for (s, e) in mesh.face_edges(f).into_iter().enumerate() {
+            let vertices = mesh.face_vertices(f as u32);
+            for s in 0..3 {
                 let d = c[(s + 1) % 3].sub(c[s]);
-                let l = norm(d.0, d.1);
-                reach = reach.max(l);
-                let known = &mut lengths[e as usize];
-                if known.is_nan() {
-                    *known = l;
-                } else if (l - *known).abs() > 1e-9 * l.max(*known) {
-                    return Err(not_exact(format!(
-                        "its faces do not glue: edge {e} is {known:e} long in one face and {l:e} in face {f}"
-                    )));
-                }
                 // The angle at corner s, between its two edges.
                 let (to_next, to_prev) = (d, c[(s + 2) % 3].sub(c[s]));
                 let angle = to_next.cross(to_prev).abs().atan2(to_next.dot(to_prev));
