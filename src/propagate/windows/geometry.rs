@@ -117,8 +117,8 @@ pub(crate) fn trim_pair(a: &mut Lines, b: &mut Lines, tolerance: f64) {
     }
     // Most pairs are settled by their ranges over the overlap (a value along the edge
     // is convex: least at the point nearest its source, greatest at an end).
-    let range = |w: &Lines| {
-        let (at_lo, at_hi) = (w.value_at(lo), w.value_at(hi));
+    let ends = |w: &Lines| [w.value_at(lo), w.value_at(hi)];
+    let range = |w: &Lines, [at_lo, at_hi]: [f64; 2]| {
         let least = if w.sx > lo && w.sx < hi {
             w.sigma + w.sy
         } else {
@@ -126,12 +126,44 @@ pub(crate) fn trim_pair(a: &mut Lines, b: &mut Lines, tolerance: f64) {
         };
         (least, at_lo.max(at_hi))
     };
-    let ((a_least, a_most), (b_least, b_most)) = (range(a), range(b));
-    if a_least > b_most + tolerance || b_least > a_most + tolerance {
+    let (a_ends, b_ends) = (ends(a), ends(b));
+    let ((a_least, a_most), (b_least, b_most)) = (range(a, a_ends), range(b, b_ends));
+    let side = |diff: f64| -> i8 {
+        if diff > tolerance {
+            1
+        } else if diff < -tolerance {
+            -1
+        } else {
+            0
+        }
+    };
+    let whole = if a_least > b_most + tolerance || b_least > a_most + tolerance {
+        if a_least > b_most + tolerance {
+            1
+        } else {
+            -1
+        }
+    } else {
+        // The difference of the two values is monotone on either side of the one
+        // point of the edge's line where both sources lie in the same direction (on
+        // the line through them): its derivative, the difference of the cosines of
+        // the two lines' angles with the edge, vanishes only there. So where it has
+        // one sign at both ends of the overlap, and at that point too if it lies
+        // inside, it has that sign over the whole overlap, and no crossing is sought.
+        let at_lo = side(a_ends[0] - b_ends[0]);
+        if at_lo != 0
+            && at_lo == side(a_ends[1] - b_ends[1])
+            && same_side_within(a, b, lo, hi, at_lo, &side)
+        {
+            at_lo
+        } else {
+            0
+        }
+    };
+    if whole != 0 {
         let pieces = [lo, hi];
-        let better = [if a_least > b_most + tolerance { 1 } else { -1 }];
-        cut_back(a, &pieces, &better, 1);
-        cut_back(b, &pieces, &better, -1);
+        cut_back(a, &pieces, &[whole], 1);
+        cut_back(b, &pieces, &[whole], -1);
         return;
     }
     let mut cuts = [lo, hi, hi, hi];
@@ -183,6 +215,28 @@ pub(crate) fn trim_pair(a: &mut Lines, b: &mut Lines, tolerance: f64) {
     let (pieces, better) = (&cuts[..], &better[..n]);
     cut_back(a, pieces, better, 1);
     cut_back(b, pieces, better, -1);
+}
+
+/// Whether the difference `a − b` of two windows' values keeps side `at_ends` (as
+/// `side` judges it) at the one point strictly inside `(lo, hi)` where it can turn,
+/// the point of the edge's line on the line through both sources; `true` when there
+/// is none. Two sources on the edge's line itself (where the values have kinks, and
+/// the difference two turning points) are left to the crossings.
+fn same_side_within(
+    a: &Lines,
+    b: &Lines,
+    lo: f64,
+    hi: f64,
+    at_ends: i8,
+    side: &impl Fn(f64) -> i8,
+) -> bool {
+    if a.sy == b.sy {
+        // The line through the sources is parallel to the edge (no turning point),
+        // or both lie on the edge's line.
+        return a.sy > 0.0 || a.sx == b.sx;
+    }
+    let turn = a.sx + a.sy * (b.sx - a.sx) / (a.sy - b.sy);
+    !(turn > lo && turn < hi) || side(a.value_at(turn) - b.value_at(turn)) == at_ends
 }
 
 /// Cuts `w` back from each end over the consecutive pieces (bounded by `pieces`)
@@ -476,6 +530,45 @@ mod tests {
         };
         assert!(hi.trim(1.0, f64::INFINITY, 1.0, 0.0));
         assert!(close(hi.b1, 1.0 - 1.0 / 12.0));
+    }
+
+    #[test]
+    fn a_pair_is_settled_whole_only_where_its_difference_cannot_turn() {
+        // a: a near source (a V along the edge), b: a far one (nearly flat). a is
+        // longer at both ends of [0, 1] but shorter in the middle, where the line
+        // through both sources meets the edge (x = 0.5): a keeps its middle.
+        let mut a = Lines {
+            sx: 0.5,
+            sy: 0.1,
+            sigma: 9.7,
+            b0: 0.0,
+            b1: 1.0,
+        };
+        let mut b = Lines {
+            sx: 0.5,
+            sy: 10.0,
+            sigma: 0.0,
+            ..a
+        };
+        trim_pair(&mut a, &mut b, 1e-13);
+        // a = b where (x − 0.5)² + 0.01 and (x − 0.5)² + 100 differ by 0.3 in root.
+        let root = |x: f64| a.value_at(x) - b.value_at(x);
+        assert!(a.b0 > 0.0 && a.b1 < 1.0 && a.b0 < a.b1, "{a:?}");
+        assert!(root(a.b0).abs() < 1e-12 && root(a.b1).abs() < 1e-12);
+        assert_eq!(
+            (b.b0, b.b1),
+            (0.0, 1.0),
+            "b is shorter at both ends: kept whole"
+        );
+        // Beyond the roots (0.5 ± 0.28), on an overlap [0.8, 1] that the turning
+        // point (0.5) lies outside of: a is longer throughout, and goes.
+        let mut a = Lines { b0: 0.8, ..a };
+        a.b1 = 1.0;
+        let mut b = Lines { b0: 0.8, ..b };
+        trim_pair(&mut a, &mut b, 1e-13);
+        let shorter_at = |x: f64| a.value_at(x) < b.value_at(x);
+        assert!(!shorter_at(0.8) && !shorter_at(1.0));
+        assert!(a.b0 > a.b1, "a is longer over the whole overlap: {a:?}");
     }
 
     #[test]
