@@ -28,43 +28,14 @@ pub(crate) const TOUCH: f32 = 1e-6;
 /// it about `(α ℓ)² / ℓ`: 1e-18 relative.
 const ANGLE_TOUCH: f64 = 1e-9;
 
-/// Whether windows `a` and `b` (fractions of the edge `frame`) of one wave with source
-/// `s` (a point of the frame's plane) overlap or meet: to [`TOUCH`] of the edge, or to
-/// [`ANGLE_TOUCH`] plus `turn` as seen from `s`.
-pub(crate) fn windows_touch(
-    a: (f32, f32),
-    b: (f32, f32),
-    s: P,
-    frame: &EdgeFrame,
-    turn: f64,
-) -> bool {
-    if b.0 <= a.1 + TOUCH && a.0 <= b.1 + TOUCH {
-        return true;
-    }
-    // The gap's ends, in order along the edge.
-    let (g0, g1) = if b.0 > a.1 { (a.1, b.0) } else { (b.1, a.0) };
-    let at = |w: f32| frame.at_edge_coords(w as f64 * frame.len, 0.0).sub(s);
-    let (p, q) = (at(g0), at(g1));
-    p.cross(q).abs() <= (ANGLE_TOUCH + turn) * p.length() * q.length()
-}
 /// Two waves are the same when their sources and σ agree to this, relative to the
 /// edge's length and the source's distance.
 pub(crate) const SAME_SOURCE: f64 = 1e-9;
 /// How many units in the last place of its faces' longest edge an edge's corners may
 /// be off in a face's frame (measured: a little over one): the edge's direction, and
 /// with it a source seen from the edge, turns by up to this many `f64::EPSILON` times
-/// that longest edge over the edge's own length ([`frame_turn`]).
+/// that longest edge over the edge's own length ([`EdgeGlue::turn`]).
 const FRAME_ROUNDING: f64 = 4.0;
-
-/// By how much (in radians) the direction of an edge of length `len`, in faces whose
-/// longest edge is `scale`, may differ from one face's frame to another's by rounding.
-/// Negligible on a well-shaped mesh (`4 ε`); a short edge of a face with a far corner
-/// is measured to `ε` of that corner's distance, not of its own length, and a source
-/// 2.5 away seen across a 7.6e-6 edge of a face 90 long moves by 3.5e-9 from one frame
-/// to the other: more than [`SAME_SOURCE`] of it.
-pub(crate) fn frame_turn(len: f64, scale: f64) -> f64 {
-    FRAME_ROUNDING * f64::EPSILON * (scale / len).max(1.0)
-}
 
 /// An edge as the flattenings of the faces around it see it: its shortest and longest
 /// length over them, and the longest edge of those faces (what the lengths' rounding
@@ -113,10 +84,14 @@ impl EdgeGlue {
         self.longest - self.shortest <= 1e-9 * self.longest + 1e-12 * self.scale
     }
 
-    /// How far its direction may turn from one face's frame to another's
-    /// ([`frame_turn`]).
+    /// By how much (in radians) its direction may differ from one face's frame to
+    /// another's by rounding. Negligible on a well-shaped mesh (`4 ε`); a short edge of
+    /// a face with a far corner is measured to `ε` of that corner's distance, not of
+    /// its own length, and a source 2.5 away seen across a 7.6e-6 edge of a face 90
+    /// long moves by 3.5e-9 from one frame to the other: more than [`SAME_SOURCE`] of
+    /// it.
     pub fn turn(&self) -> f64 {
-        frame_turn(self.longest, self.scale)
+        FRAME_ROUNDING * f64::EPSILON * (self.scale / self.longest).max(1.0)
     }
 }
 
@@ -227,7 +202,7 @@ impl EdgeFrame {
 
 /// How far apart two waves' sources (and `σ`s) may lie and still be the same wave, for
 /// a wave with source `a` and `σ = sa` seen from an edge of length `len`, whose frames
-/// may turn by `turn` radians ([`frame_turn`], 0 where the frames are not in doubt).
+/// may turn by `turn` radians ([`EdgeGlue::turn`], 0 where the frames are not in doubt).
 #[inline]
 pub(crate) fn same_source_slack(a: P, sa: f64, len: f64, turn: f64) -> f64 {
     let reach = len + a.0.abs() + a.1.abs();
@@ -247,6 +222,26 @@ pub(crate) fn same_source(a: P, sa: f64, b: P, sb: f64, len: f64, turn: f64) -> 
 #[inline(always)]
 pub(crate) fn in_window(wave: &Wave, x: f64) -> bool {
     x >= wave.w0 as f64 - WINDOW_SLACK && x <= wave.w1 as f64 + WINDOW_SLACK
+}
+
+/// Whether windows `a` and `b` (fractions of the edge `frame`) of one wave with source
+/// `s` (a point of the frame's plane) overlap or meet: to [`TOUCH`] of the edge, or to
+/// [`ANGLE_TOUCH`] plus `turn` as seen from `s`.
+pub(crate) fn windows_touch(
+    a: (f32, f32),
+    b: (f32, f32),
+    s: P,
+    frame: &EdgeFrame,
+    turn: f64,
+) -> bool {
+    if b.0 <= a.1 + TOUCH && a.0 <= b.1 + TOUCH {
+        return true;
+    }
+    // The gap's ends, in order along the edge.
+    let (g0, g1) = if b.0 > a.1 { (a.1, b.0) } else { (b.1, a.0) };
+    let at = |w: f32| frame.at_edge_coords(w as f64 * frame.len, 0.0).sub(s);
+    let (p, q) = (at(g0), at(g1));
+    p.cross(q).abs() <= (ANGLE_TOUCH + turn) * p.length() * q.length()
 }
 
 /// The end of `wave`'s window (a fraction of its edge) at which a line that crosses the

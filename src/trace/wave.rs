@@ -51,7 +51,7 @@ impl<M: Metric, T: Topology> Query<'_, M, T> {
     }
 
     /// Whether waves cross `edge` unbent: every face around it gives it the same
-    /// flattened length (as the engine's `isometric_edges` decides; a wave never
+    /// flattened length, to rounding (as the engine decides: [`EdgeGlue::glues`]; a wave never
     /// crosses any other edge).
     pub(super) fn glues(&self, edge: u32) -> bool {
         self.edge_glue(edge).is_some_and(|g| g.glues())

@@ -358,11 +358,12 @@ struct FlatEdges {
     /// there are then exactly the Steiner graph's (a length a unit in the last place
     /// apart could round the count the other way).
     lengths: Vec<f64>,
-    /// Per edge, how the faces around it see it ([`EdgeGlue`]): whether waves cross it
-    /// and how far their sources may move by rounding as they do.
-    glue: Vec<EdgeGlue>,
-    /// Per edge, whether its faces do not glue (waves do not cross it).
+    /// Per edge, whether its faces do not glue ([`EdgeGlue::glues`]): waves do not
+    /// cross it.
     refracting: Vec<bool>,
+    /// The most any edge's direction turns from one face's frame to another's
+    /// ([`EdgeGlue::turn`]).
+    turn: f64,
 }
 
 impl FlatEdges {
@@ -379,23 +380,24 @@ impl FlatEdges {
                 }
             })
             .collect();
-        let refracting = glue.iter().map(|g| !g.glues()).collect();
         FlatEdges {
             lengths,
-            glue,
-            refracting,
+            refracting: glue.iter().map(|g| !g.glues()).collect(),
+            turn: glue.iter().fold(0.0f64, |m, g| m.max(g.turn())),
         }
     }
 
     /// Per edge block of `layout`, whether waves cross it (its faces glue), and the
     /// most any edge's frames turn ([`EdgeGlue::turn`]).
     fn wave_edges(&self, layout: &SteinerLayout) -> WaveEdges {
-        let mut isometric = vec![true; self.glue.len()];
+        let mut isometric = vec![true; self.refracting.len()];
         for (e, &r) in self.refracting.iter().enumerate() {
             isometric[layout.block_of_edge(e as u32) as usize] = !r;
         }
-        let turn = self.glue.iter().fold(0.0f64, |m, g| m.max(g.turn()));
-        WaveEdges { isometric, turn }
+        WaveEdges {
+            isometric,
+            turn: self.turn,
+        }
     }
 }
 

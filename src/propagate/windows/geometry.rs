@@ -191,14 +191,7 @@ pub(crate) fn trim_pair(a: &mut Lines, b: &mut Lines, tolerance: f64) {
     for i in 0..n {
         let judge = |t: f64| {
             let x = cuts[i] + t * (cuts[i + 1] - cuts[i]);
-            let diff = a.value_at(x) - b.value_at(x);
-            if diff > tolerance {
-                1
-            } else if diff < -tolerance {
-                -1
-            } else {
-                0
-            }
+            side(a.value_at(x) - b.value_at(x))
         };
         let mid = judge(0.5);
         let agree = mid != 0 || (judge(0.25) == 0 && judge(0.75) == 0);
