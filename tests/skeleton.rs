@@ -62,13 +62,27 @@ fn betti(b0: usize, b1: usize, b2: usize) -> geotracks::mesh::Betti {
 /// Every pruning level the topology checks try.
 const LEVELS: [f64; 7] = [0.0, 0.01, 0.05, 0.2, 0.5, 2.0, f64::INFINITY];
 
-/// The skeleton has the complex's topology at every pruning level: as many cycles as
-/// b1, one component per component, and pruning only ever removes points.
+/// Every tubularity level the topology checks try.
+const TUBULAR: [f64; 7] = [0.0, 0.3, 0.7, 1.0, 1.5, 4.0, f64::INFINITY];
+
+/// The skeleton has the complex's topology at every pruning level, by erosion thickness
+/// and by tubularity: as many cycles as b1, one component per component, and rising
+/// levels only ever remove points.
 fn check_topology(name: &str, skeleton: &Skeleton, betti: geotracks::mesh::Betti) {
     assert_eq!(skeleton.added_cycles, 0, "{name}");
+    check_levels(name, &LEVELS, |t| skeleton.pruned(t), betti);
+    check_levels(name, &TUBULAR, |t| skeleton.pruned_tubular(t), betti);
+}
+
+fn check_levels(
+    name: &str,
+    levels: &[f64],
+    prune: impl Fn(f64) -> Skeleton,
+    betti: geotracks::mesh::Betti,
+) {
     let mut previous: Option<Vec<SurfacePoint>> = None;
-    for level in LEVELS {
-        let pruned = skeleton.pruned(level);
+    for &level in levels {
+        let pruned = prune(level);
         assert_eq!(
             (pruned.cycle_count(), pruned.component_count()),
             (betti.b1, betti.b0),
@@ -333,10 +347,118 @@ fn a_graph_burns_from_its_tips_by_branch_length() {
     assert_eq!(kept(2.2), positions.len() - 4);
     assert_eq!(kept(2.3), 1);
     assert_eq!(skeleton.pruned(2.3).points[0].position, [-0.5, 0.0, 0.0]);
-    // The same reach everywhere (a constant radius) changes nothing.
+    // The same reach everywhere (a constant radius) changes no significance; every
+    // branch's tubularity is then its significance over that radius.
     let radii = vec![0.5; positions.len()];
     let late = Skeleton::from_curves(&positions, &edges, Some(&radii));
-    assert_eq!(late, skeleton);
+    assert_eq!(late.edges, skeleton.edges);
+    for (a, b) in late.points.iter().zip(&skeleton.points) {
+        assert_eq!(a.significance, b.significance);
+        assert_eq!(a.tubularity, a.significance / 0.5);
+        // Without radii, nothing is judged thin.
+        assert_eq!(b.tubularity, f64::INFINITY);
+    }
+}
+
+#[test]
+fn a_bump_goes_before_a_limb_of_the_same_length() {
+    // A sheet: a strip 10 × 1 with two equal side flaps 0.5 wide and 1 long, one at
+    // x = 2, where the shape is thick (medial radius 1.5), one at x = 8, where it is
+    // thin (0.25): on the sheet the two branches are the same, but the first is a bump
+    // on a thick body and the second a limb of a thin one.
+    let cell = 0.25;
+    let inside = |i: i32, j: i32| {
+        let (x, y) = (i as f64 * cell, j as f64 * cell);
+        let flap = |x0: f64| (x0 - 0.25..x0 + 0.25).contains(&x) && y < 1.5;
+        (0.0..10.0).contains(&x) && ((-0.5..0.5).contains(&y) || flap(2.0) || flap(8.0))
+    };
+    let mut ids = std::collections::HashMap::new();
+    let (mut vertices, mut faces) = (Vec::new(), Vec::new());
+    let mut id = |i: i32, j: i32, vertices: &mut Vec<String>| {
+        *ids.entry((i, j)).or_insert_with(|| {
+            let (x, y) = (i as f64 * cell, j as f64 * cell);
+            let radius = if x < 5.0 { 1.5 } else { 0.25 };
+            vertices.push(format!("v {x} {y} 0 {radius}"));
+            vertices.len() - 1
+        })
+    };
+    for i in 0..40 {
+        for j in -2..6 {
+            if inside(i, j) {
+                let [a, b, c, d] = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)]
+                    .map(|(i, j)| id(i, j, &mut vertices));
+                faces.push(format!("f {a} {b} {c}"));
+                faces.push(format!("f {a} {c} {d}"));
+            }
+        }
+    }
+    let text = format!(
+        "{} 0 {}\n{}\n{}\n",
+        vertices.len(),
+        faces.len(),
+        vertices.join("\n"),
+        faces.join("\n")
+    );
+    let axis = geotracks::mesh::io::read_medial_axis_bytes("flaps.ma", text.as_bytes()).unwrap();
+    let (skeleton, _) = Skeleton::of_medial_axis(&axis, Burn::Boundary, &K5).unwrap();
+    check_topology("strip with two flaps", &skeleton, axis.betti_numbers());
+    // Each flap's branch: the points above the strip, at its x.
+    let branch = |x0: f64| {
+        skeleton
+            .points
+            .iter()
+            .filter(move |p| p.position[1] > 0.75 && (p.position[0] - x0).abs() < 0.3)
+    };
+    let (bump, limb) = (branch(2.0).next().unwrap(), branch(8.0).next().unwrap());
+    // The same on the sheet: the same erosion thickness (no threshold of it takes one
+    // and keeps the other) ...
+    assert!(
+        abs_diff_eq!(bump.significance, limb.significance, epsilon = 1e-9),
+        "{bump:?} {limb:?}"
+    );
+    // ... but for its thickness the bump is short and the limb long.
+    let ratio = limb.tubularity / bump.tubularity;
+    assert!(
+        abs_diff_eq!(ratio, 6.0, epsilon = 1e-9),
+        "{bump:?} {limb:?}"
+    );
+    let threshold = 2.0 * bump.tubularity;
+    let pruned = skeleton.pruned_tubular(threshold);
+    let kept = |x0: f64| {
+        pruned
+            .points
+            .iter()
+            .any(|p| p.position[1] > 0.75 && (p.position[0] - x0).abs() < 0.3)
+    };
+    assert!(!kept(2.0) && kept(8.0));
+    // Tubularity never rises towards a tip: every kept point's neighbours on the way
+    // in are kept too (checked by the topology above), and the trunk outlives both.
+    assert!(pruned.points.iter().any(|p| p.position[0] < 1.0));
+    // Scale-free: the same axis eight times larger (a power of two, so that every
+    // rounding scales too and ties on this regular grid break alike) has the same
+    // tubularity everywhere.
+    let large: String = text
+        .lines()
+        .map(|line| match line.strip_prefix("v ") {
+            Some(rest) => {
+                let c: Vec<f64> = rest.split(' ').map(|w| w.parse().unwrap()).collect();
+                format!(
+                    "v {} {} {} {}\n",
+                    8.0 * c[0],
+                    8.0 * c[1],
+                    8.0 * c[2],
+                    8.0 * c[3]
+                )
+            }
+            None => format!("{line}\n"),
+        })
+        .collect();
+    let axis8 = geotracks::mesh::io::read_medial_axis_bytes("flaps8.ma", large.as_bytes()).unwrap();
+    let (large, _) = Skeleton::of_medial_axis(&axis8, Burn::Boundary, &K5).unwrap();
+    for (a, b) in skeleton.points.iter().zip(&large.points) {
+        assert_eq!(a.tubularity, b.tubularity, "{a:?} {b:?}");
+        assert_eq!(8.0 * a.significance, b.significance, "{a:?} {b:?}");
+    }
 }
 
 /// Components of a medial axis: its faces and free edges joined by shared vertices.
@@ -374,7 +496,7 @@ fn check_axis_skeleton(path: &Path) {
     for burn in [Burn::Boundary, Burn::Radius] {
         let (unpruned, _) = Skeleton::of_medial_axis(&axis, burn, &K5).unwrap();
         check_topology(&path.display().to_string(), &unpruned, betti);
-        let (skeleton, fire) = medial_axis_skeleton(&axis, burn, &K5, 0.0).unwrap();
+        let (skeleton, fire) = medial_axis_skeleton(&axis, burn, &K5, 0.0, 0.0).unwrap();
         let boundary =
             mesh.is_some_and(|m| (0..m.edge_count() as u32).any(|e| m.edge_faces(e).len() == 1));
         assert_eq!(fire.is_some(), boundary && burn == Burn::Boundary);

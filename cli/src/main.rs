@@ -124,7 +124,7 @@ const ISOLINES_EXAMPLES: &str = "  geotracks isolines mesh.obj --source 0 -o iso
   geotracks isolines mesh.obj --source f:12:0.2,0.3,0.5 --levels 20 --tensor m.txt -o iso.csv";
 
 const SKELETON_EXAMPLES: &str =
-    "  geotracks skeleton cow.ma --prune 7% -o cow_skeleton.obj --field cow_fire.ply
+    "  geotracks skeleton cow.ma --prune 5% --tubular 1 -o cow_skeleton.obj --field cow_fire.ply
   geotracks skeleton axis.ma --burn radius --prune 0.05 -o skeleton.json
   geotracks skeleton cow.ma -o cow.obj --png cow.png --view 30,20";
 

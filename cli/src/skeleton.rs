@@ -4,7 +4,9 @@ use crate::output::Outputs;
 use crate::picture::CameraArgs;
 use crate::{ui, CliResult, Short};
 use geotracks::mesh::io::{read_medial_axis, write_obj_lines_to, write_ply_with_distance_to};
-use geotracks::skeleton::{medial_axis_skeleton, Burn, Prune, DEFAULT_PRUNE_PERCENT};
+use geotracks::skeleton::{
+    medial_axis_skeleton, Burn, Prune, DEFAULT_MIN_TUBULARITY, DEFAULT_PRUNE_PERCENT,
+};
 use geotracks::{Method, Options};
 use geotracks_render::render_skeleton;
 use std::path::PathBuf;
@@ -40,11 +42,17 @@ pub struct SkeletonArgs {
     /// bounding box diagonal (`2%`); 0 keeps everything, `inf` only what never burns.
     #[arg(long, value_name = "T", default_value_t = format!("{DEFAULT_PRUNE_PERCENT}%"))]
     prune: String,
+    /// Also prune branches whose erosion thickness is less than R times the medial
+    /// radius where they join the rest (their tubularity): a bump short for its
+    /// thickness goes before a long thin limb of the same length; 0 keeps everything.
+    #[arg(long, value_name = "R", default_value_t = DEFAULT_MIN_TUBULARITY, value_parser = parse_tubular)]
+    tubular: f64,
     /// When each point may burn.
     #[arg(long, value_enum, default_value = "boundary")]
     burn: BurnArg,
     /// Output: OBJ polylines (`v` and `l` lines; junctions shared) or a JSON graph
-    /// (points with position, medial radius and significance; edges; polylines).
+    /// (points with position, medial radius, significance and tubularity; edges;
+    /// polylines).
     #[arg(short, long, value_name = "SKELETON.obj|.json")]
     output: PathBuf,
     /// Also write the grassfire field as a coloured PLY of the sheets.
@@ -56,6 +64,14 @@ pub struct SkeletonArgs {
     png: Option<PathBuf>,
     #[command(flatten)]
     camera: CameraArgs,
+}
+
+/// Parses `--tubular`: a number ≥ 0.
+fn parse_tubular(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(r) if r >= 0.0 => Ok(r),
+        _ => Err(format!("'{text}': expected a number >= 0 (such as 1.5)")),
+    }
 }
 
 pub fn run(args: &SkeletonArgs) -> CliResult {
@@ -87,7 +103,7 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
         BurnArg::Radius => Burn::Radius,
         BurnArg::Boundary => Burn::Boundary,
     };
-    let (skeleton, fire) = medial_axis_skeleton(&axis, burn, &options, prune)?;
+    let (skeleton, fire) = medial_axis_skeleton(&axis, burn, &options, prune, args.tubular)?;
     drop(spinner);
     if skeleton.added_cycles > 0 {
         eprintln!(
@@ -142,7 +158,8 @@ enum Format {
     Json,
 }
 
-/// The skeleton as a JSON graph; a significance of `inf` (what never burns) is `null`.
+/// The skeleton as a JSON graph; a significance or tubularity of `inf` (what never
+/// burns) is `null`.
 fn write_json(
     w: &mut dyn std::io::Write,
     skeleton: &geotracks::skeleton::Skeleton,
@@ -157,6 +174,7 @@ fn write_json(
                 "position": p.position,
                 "radius": p.radius,
                 "significance": finite(p.significance),
+                "tubularity": finite(p.tubularity),
             })
         })
         .collect();

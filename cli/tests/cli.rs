@@ -1199,12 +1199,15 @@ fn skeleton_writes_a_connected_obj_graph_and_the_field() {
     assert!(points.iter().any(|p| p[0] >= 3.0));
     let ply_bytes = std::fs::read(&ply).unwrap();
     assert!(ply_bytes.starts_with(b"ply\n"));
-    // … and, unpruned, is in the skeleton whole; the JSON graph says so.
+    // … and, unpruned (by length and by tubularity), is in the skeleton whole; the
+    // JSON graph says so.
     let json = dir.path().join("skeleton.json");
     geotracks_ok(&[
         "skeleton",
         SHEET_FINS,
         "--prune",
+        "0",
+        "--tubular",
         "0",
         "-o",
         json.to_str().unwrap(),
@@ -1275,6 +1278,11 @@ fn skeleton_bad_input_fails_cleanly() {
         "--prune",
     );
     assert_fails(
+        &["skeleton", SHEET_FINS, "--tubular=-0.5", "-o", o],
+        &obj,
+        "--tubular",
+    );
+    assert_fails(
         &["skeleton", SHEET_FINS, "--k", "0", "-o", o],
         &obj,
         "k = 0",
@@ -1316,7 +1324,7 @@ fn skeleton_bad_input_fails_cleanly() {
     let (points, _) = read_obj_graph(&obj);
     assert_eq!(points.len(), 1);
     // Curves alone are their own skeleton, unpruned; pruned, they burn from their tips
-    // (at 7 % of the diagonal, a star of short branches burns to its longest path).
+    // (at 5 % of the diagonal, a star of short branches burns to its longest path).
     geotracks_ok(&["skeleton", curves, "--prune", "0", "-o", o]);
     let (points, lines) = read_obj_graph(&obj);
     assert_eq!((points.len(), lines.len()), (4, 3));

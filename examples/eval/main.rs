@@ -39,7 +39,7 @@
 //! table; `--radius` burns by the medial radius):
 //!
 //! ```text
-//! cargo run --release --example eval -- ../shared/data --skeletons [7] [--k 5] [--radius]
+//! cargo run --release --example eval -- ../shared/data --skeletons [7] [--k 5] [--radius] [--tubular 1]
 //! ```
 //!
 //! With `--engines` it measures each engine against every exact reference, with its time,
@@ -121,12 +121,12 @@ fn main() {
     }
 }
 
-/// `eval DATA_DIR --skeletons [PRUNE_PERCENT] [--k K] [--radius]`.
+/// `eval DATA_DIR --skeletons [PRUNE_PERCENT] [--k K] [--radius] [--tubular T]`.
 fn skeletons_main(argv: &[String], at: usize) -> Result<(), String> {
     let data = argv
         .get(1)
         .filter(|a| !a.starts_with("--"))
-        .ok_or("usage: eval DATA_DIR --skeletons [PRUNE_PERCENT] [--k K]")?;
+        .ok_or("usage: eval DATA_DIR --skeletons [PRUNE_PERCENT] [--k K] [--tubular T]")?;
     let prune = match argv.get(at + 1) {
         Some(p) if !p.starts_with("--") => p
             .trim_end_matches('%')
@@ -146,7 +146,14 @@ fn skeletons_main(argv: &[String], at: usize) -> Result<(), String> {
     } else {
         geotracks::skeleton::Burn::Boundary
     };
-    skeletons::skeletons(std::path::Path::new(data), prune, k, burn)
+    let tubular = match argv.iter().position(|a| a == "--tubular") {
+        Some(i) => argv
+            .get(i + 1)
+            .and_then(|v| v.parse().ok())
+            .ok_or("--tubular takes a number")?,
+        None => geotracks::skeleton::DEFAULT_MIN_TUBULARITY,
+    };
+    skeletons::skeletons(std::path::Path::new(data), prune, tubular, k, burn)
 }
 
 struct Args {

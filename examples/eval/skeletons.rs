@@ -13,7 +13,13 @@ use std::time::Instant;
 /// Pruning levels, in % of the axis's bounding-box diagonal.
 const LEVELS: [f64; 8] = [0.0, 0.5, 1.0, 2.0, 3.0, 5.0, 10.0, f64::INFINITY];
 
-pub fn skeletons(data: &Path, prune_percent: f64, k: f64, burn: Burn) -> Result<(), String> {
+pub fn skeletons(
+    data: &Path,
+    prune_percent: f64,
+    tubular: f64,
+    k: f64,
+    burn: Burn,
+) -> Result<(), String> {
     let dir = data.join("ma");
     let mut names: Vec<String> = std::fs::read_dir(&dir)
         .map_err(|e| format!("{}: {e}", dir.display()))?
@@ -47,9 +53,14 @@ pub fn skeletons(data: &Path, prune_percent: f64, k: f64, burn: Burn) -> Result<
         let start = Instant::now();
         let axis = read_medial_axis(&path).map_err(|e| e.to_string())?;
         let diagonal = axis.diagonal();
-        let (at_default, _) =
-            medial_axis_skeleton(&axis, burn, &options, prune_percent / 100.0 * diagonal)
-                .map_err(|e| e.to_string())?;
+        let (at_default, _) = medial_axis_skeleton(
+            &axis,
+            burn,
+            &options,
+            prune_percent / 100.0 * diagonal,
+            tubular,
+        )
+        .map_err(|e| e.to_string())?;
         let seconds = start.elapsed().as_secs_f64();
         let betti = axis.betti_numbers();
         let (full, _) =
@@ -137,7 +148,7 @@ pub fn skeletons(data: &Path, prune_percent: f64, k: f64, burn: Burn) -> Result<
             comparisons.push((name.clone(), at_default, reference, diagonal, floor));
         }
     }
-    println!("\nAgainst CGAL's mean-curvature-flow skeleton of the shape, at --prune {prune_percent} %: both sampled every 0.2 % of the diagonal; distances in % of the diagonal.\n");
+    println!("\nAgainst CGAL's mean-curvature-flow skeleton of the shape, at --prune {prune_percent} % and --tubular {tubular}: both sampled every 0.2 % of the diagonal; distances in % of the diagonal.\n");
     println!("| axis | reference → ours mean / max | ours → reference mean / max | tips ours / reference | junctions ours / reference | length ours / reference | reference → axis mean |");
     println!("|---|---:|---:|---:|---:|---:|---:|");
     for (name, ours, reference, diagonal, floor) in comparisons {

@@ -577,13 +577,20 @@ class Skeleton(NamedTuple):
     b1: int
 
 
-def skeleton(axis, prune="7%", burn: str = "boundary", k: float = 5.0) -> Skeleton:
+def skeleton(
+    axis, prune="5%", burn: str = "boundary", k: float = 5.0, tubular: float = 1.0
+) -> Skeleton:
     """The curve skeleton of a medial axis file (``.ma``) with the axis's topology, as
     ``geotracks skeleton`` makes it.
 
-    :param prune: a length, or a percentage of the bounding-box diagonal (``"7%"``, the
+    :param prune: a length, or a percentage of the bounding-box diagonal (``"5%"``, the
         default); branches whose erosion thickness is less go whole.
+    :param tubular: branches whose erosion thickness is less than this many times the
+        medial radius where they join the rest go whole too (a bump short for its
+        thickness before a thin limb of the same length); 0 keeps them.
     :param burn: ``"boundary"`` (the grassfire from the axis's border) or ``"radius"``
         (each point burns at its medial radius).
     """
-    return Skeleton(*_skeleton(str(axis), str(prune), str(burn), _real(k, "k")))
+    return Skeleton(
+        *_skeleton(str(axis), str(prune), str(burn), _real(k, "k"), _real(tubular, "tubular"))
+    )

@@ -507,11 +507,12 @@ fn terrain_route<'py>(
 }
 
 /// The curve skeleton of a medial axis file (`.ma`), pruned at `prune` (a length, or
-/// a percentage of the bounding-box diagonal such as `"7%"`), burnt from the border
+/// a percentage of the bounding-box diagonal such as `"5%"`) and at `tubular` (the
+/// least erosion thickness over the medial radius where a branch joins), burnt from the border
 /// (`burn="boundary"`) or by medial radius (`"radius"`): `(points (p, 3), radii (p,),
 /// significance (p,), edges (e, 2), b1)`.
 #[pyfunction]
-#[pyo3(signature = (axis, prune="7%", burn="boundary", k=5.0))]
+#[pyo3(signature = (axis, prune="5%", burn="boundary", k=5.0, tubular=geotracks::skeleton::DEFAULT_MIN_TUBULARITY))]
 #[allow(clippy::type_complexity)] // five named arrays, as the Python wrapper documents
 fn skeleton<'py>(
     py: Python<'py>,
@@ -519,6 +520,7 @@ fn skeleton<'py>(
     prune: &str,
     burn: &str,
     k: f64,
+    tubular: f64,
 ) -> PyResult<(
     Matrix<'py, f64>,
     Vector<'py, f64>,
@@ -537,12 +539,15 @@ fn skeleton<'py>(
         }
     };
     let prune: Prune = prune.parse().map_err(|e| error(format!("prune {e}")))?;
+    if tubular.is_nan() || tubular < 0.0 {
+        return Err(error(format!("tubular {tubular}: expected a number >= 0")));
+    }
     let (skeleton, b1) = py
         .detach(|| {
             let axis = geotracks::mesh::io::read_medial_axis(&axis).map_err(|e| e.to_string())?;
             let threshold = prune.threshold(axis.diagonal());
             let options = Options::DEFAULT.with_k(k).with_method(Method::Tracks);
-            let (skeleton, _) = medial_axis_skeleton(&axis, burn, &options, threshold)
+            let (skeleton, _) = medial_axis_skeleton(&axis, burn, &options, threshold, tubular)
                 .map_err(|e| e.to_string())?;
             Ok::<_, String>((skeleton, axis.betti_numbers().b1))
         })

@@ -277,11 +277,21 @@ def test_skeleton_of_a_medial_axis():
     import scipy.sparse as sparse
     from scipy.sparse.csgraph import connected_components
 
-    graph = sparse.coo_matrix((np.ones(len(sk.edges)), (sk.edges[:, 0], sk.edges[:, 1])), shape=(p, p))
-    components = connected_components(graph, directed=False)[0]
-    assert len(sk.edges) - p + components == sk.b1
-    everything = geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune=0)
+    def cycles(sk):
+        n = len(sk.points)
+        edges = (np.ones(len(sk.edges)), (sk.edges[:, 0], sk.edges[:, 1]))
+        components = connected_components(sparse.coo_matrix(edges, shape=(n, n)), directed=False)[0]
+        return len(sk.edges) - n + components
+
+    assert cycles(sk) == sk.b1
+    everything = geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune=0, tubular=0)
     assert len(everything.points) > p
+    # By tubularity alone, branches go too, and the cycles stay.
+    thick = geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune=0, tubular=1e9)
+    assert len(thick.points) < len(everything.points)
+    assert cycles(thick) == thick.b1
+    with pytest.raises(geotracks.GeotracksError, match="tubular"):
+        geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", tubular=-1)
     with pytest.raises(geotracks.GeotracksError, match="prune"):
         geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune="-1")
     with pytest.raises(geotracks.GeotracksError, match="burn"):

@@ -39,7 +39,7 @@ const NODE: [f64; 3] = [25.0, 25.0, 25.0];
 ///     e 0 1\ne 2 3\n\
 ///     f 0 1 3\nf 0 3 2\nf 2 3 5\nf 2 5 4\n";
 /// let axis = read_medial_axis_bytes("two_sheets.ma", text.as_bytes())?;
-/// let (skeleton, _) = medial_axis_skeleton(&axis, Burn::Boundary, &Options::DEFAULT, 0.0)?;
+/// let (skeleton, _) = medial_axis_skeleton(&axis, Burn::Boundary, &Options::DEFAULT, 0.0, 0.0)?;
 /// let picture = render_skeleton(&axis, &skeleton, &PictureOptions::DEFAULT)?;
 /// assert_eq!((picture.width, picture.height), (1024, 768));
 /// # Ok::<(), Box<dyn std::error::Error>>(())

@@ -43,6 +43,9 @@ pub(crate) struct Thinning {
     /// Per vertex: its branch's significance (see the module's notes); `inf` for
     /// vertices never removed; NaN for vertices that no face or line element uses.
     pub significance: Vec<f64>,
+    /// Per vertex: where its branch ends, the vertex of a more significant branch (or
+    /// of what never burns) that it burnt into; `NONE` for vertices never removed.
+    pub ends: Vec<u32>,
     /// Every edge that was a curve at some time (a line element, or an edge that lost its
     /// last face), as a vertex pair.
     pub curves: Vec<[u32; 2]>,
@@ -452,6 +455,7 @@ impl<'c, 'm, L: Fn(u32) -> f64, C: Fn(u32, u32) -> f64> Collapse<'c, 'm, L, C> {
             }
         }
         let own = self.significance.clone();
+        let mut ends = vec![NONE; own.len()];
         let mut elder = vec![NONE; own.len()];
         for &v in &self.burnt {
             let p = self.parent[v as usize] as usize;
@@ -465,6 +469,9 @@ impl<'c, 'm, L: Fn(u32) -> f64, C: Fn(u32, u32) -> f64> Collapse<'c, 'm, L, C> {
             // What never burnt ends every branch that burnt into it.
             if elder[p] == v && !self.vertex_alive[p] {
                 self.significance[v as usize] = self.significance[p];
+                ends[v as usize] = ends[p];
+            } else {
+                ends[v as usize] = p as u32;
             }
         }
         let curves = self
@@ -476,6 +483,7 @@ impl<'c, 'm, L: Fn(u32) -> f64, C: Fn(u32, u32) -> f64> Collapse<'c, 'm, L, C> {
             .collect();
         Thinning {
             significance: self.significance,
+            ends,
             curves,
             punctured: self.punctured,
             opened: self.opened,
