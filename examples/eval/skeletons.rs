@@ -149,8 +149,8 @@ pub fn skeletons(
         }
     }
     println!("\nAgainst CGAL's mean-curvature-flow skeleton of the shape, at --prune {prune_percent} % and --tubular {tubular}: both sampled every 0.2 % of the diagonal; distances in % of the diagonal.\n");
-    println!("| axis | reference → ours mean / max | ours → reference mean / max | tips ours / reference | junctions ours / reference | length ours / reference | reference → axis mean |");
-    println!("|---|---:|---:|---:|---:|---:|---:|");
+    println!("| axis | reference → ours mean / max | ours → reference mean / max | tips ours / reference | junctions ours / reference | length ours / reference | turning per length ours / reference | reference → axis mean |");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|");
     for (name, ours, reference, diagonal, floor) in comparisons {
         let ours_segments = segments_of(&ours.polyline_positions());
         let step = 0.002 * diagonal;
@@ -160,7 +160,7 @@ pub fn skeletons(
         let pct = |x: f64| 100.0 * x / diagonal;
         let junctions = junction_count(&ours);
         println!(
-            "| {name} | {:.2} % / {:.2} % | {:.2} % / {:.2} % | {} / {} | {} / {} | {:.1} / {:.1} | {} |",
+            "| {name} | {:.2} % / {:.2} % | {:.2} % / {:.2} % | {} / {} | {} / {} | {:.1} / {:.1} | {:.2} / {:.2} | {} |",
             pct(to_ours_mean),
             pct(to_ours_max),
             pct(to_ref_mean),
@@ -171,6 +171,8 @@ pub fn skeletons(
             reference.junctions,
             ours.length(),
             reference.segments.iter().map(|(a, b)| a.distance(*b)).sum::<f64>(),
+            turning(&ours.polyline_positions()) * diagonal,
+            turning(&reference.branches) * diagonal,
             floor.map_or("–".into(), |f| format!("{:.2} %", pct(f)))
         );
     }
@@ -210,6 +212,24 @@ pub fn skeletons(
         ));
     }
     Ok(())
+}
+
+/// How much the polylines turn per unit of their length (the sum of the angles between
+/// consecutive segments, over the total length): a smooth curve's is the same however
+/// finely it is sampled; zig-zags add to it. Reported times the diagonal (scale-free).
+fn turning(lines: &[Vec<[f64; 3]>]) -> f64 {
+    let (mut angle, mut length) = (0.0, 0.0);
+    for line in lines {
+        let points: Vec<DVec3> = line.iter().map(|&p| DVec3::from(p)).collect();
+        length += points.windows(2).map(|w| w[0].distance(w[1])).sum::<f64>();
+        for w in points.windows(3) {
+            let (u, v) = (w[1] - w[0], w[2] - w[1]);
+            if u.length() > 0.0 && v.length() > 0.0 {
+                angle += u.angle_between(v);
+            }
+        }
+    }
+    angle / length.max(f64::MIN_POSITIVE)
 }
 
 /// Rows of the breakdown per axis and direction.
