@@ -419,9 +419,7 @@ pub(super) fn put(picture: &mut Picture, x: i64, y: i64, colour: [f64; 3]) {
         return;
     }
     let i = (y as usize * picture.width as usize + x as usize) * 4;
-    for (byte, c) in picture.rgba[i..i + 3].iter_mut().zip(colour) {
-        *byte = c.round().clamp(0.0, 255.0) as u8;
-    }
+    picture.rgba[i..i + 3].copy_from_slice(&bytes(colour));
     picture.rgba[i + 3] = 255;
 }
 

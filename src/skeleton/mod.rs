@@ -181,11 +181,19 @@ impl Skeleton {
     /// grassfire reaches it: [`Skeleton::from_reach`] with its vertex distances, under
     /// its metric.
     pub fn from_grassfire<M: Metric>(fire: &Grassfire<M>) -> Skeleton {
+        Skeleton::of_fire(fire, None)
+    }
+
+    /// [`Skeleton::from_grassfire`], with the tubularity measured against `radius` (one
+    /// per vertex; `None`: the grassfire's distances).
+    fn of_fire<M: Metric>(fire: &Grassfire<M>, radius: Option<&[f64]>) -> Skeleton {
         let solver = fire.solver();
-        Skeleton::from_reach(
+        let reach = fire.field().vertex_distances();
+        Skeleton::thinned(
             solver.mesh(),
             solver.metric(),
-            fire.field().vertex_distances(),
+            reach,
+            radius.unwrap_or(reach),
         )
     }
 
@@ -552,8 +560,9 @@ pub enum Burn {
 
 /// The skeleton of a medial axis read from a `.ma` file, ready to use:
 /// [`Skeleton::of_medial_axis`] pruned at `prune` (a length, see
-/// [`Skeleton::pruned`]) and at `min_tubularity` ([`Skeleton::pruned_tubular`]), smoothed on the axis ([`Skeleton::smoothed`] with
-/// [`Skeleton::SMOOTHING`] rounds) and given the medial radii. Also returns the
+/// [`Skeleton::pruned`]) and at `min_tubularity` ([`Skeleton::pruned_tubular`]),
+/// smoothed on the axis ([`Skeleton::smoothed`] with [`Skeleton::SMOOTHING`] rounds)
+/// and given the medial radii. Also returns the
 /// grassfire's distance field for [`Burn::Boundary`] on an axis with sheets and a
 /// border.
 ///
@@ -613,11 +622,7 @@ fn burn_from_border<M: Metric + Clone>(
     radius: Option<&[f64]>,
 ) -> Result<(Skeleton, Option<Field<M>>), Error> {
     match Grassfire::burn(mesh, metric.clone(), options) {
-        Ok(fire) => {
-            let reach = fire.field().vertex_distances();
-            let skeleton = Skeleton::thinned(mesh, &metric, reach, radius.unwrap_or(reach));
-            Ok((skeleton, Some(fire.into_field())))
-        }
+        Ok(fire) => Ok((Skeleton::of_fire(&fire, radius), Some(fire.into_field()))),
         Err(Error::NoBoundary) => {
             let unreached = vec![f64::INFINITY; mesh.vertex_count()];
             let radius = radius.unwrap_or(&unreached);

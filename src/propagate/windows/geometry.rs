@@ -137,12 +137,10 @@ pub(crate) fn trim_pair(a: &mut Lines, b: &mut Lines, tolerance: f64) {
             0
         }
     };
-    let whole = if a_least > b_most + tolerance || b_least > a_most + tolerance {
-        if a_least > b_most + tolerance {
-            1
-        } else {
-            -1
-        }
+    let whole = if a_least > b_most + tolerance {
+        1
+    } else if b_least > a_most + tolerance {
+        -1
     } else {
         // The difference of the two values is monotone on either side of the one
         // point of the edge's line where both sources lie in the same direction (on
@@ -555,8 +553,11 @@ mod tests {
         );
         // Beyond the roots (0.5 ± 0.28), on an overlap [0.8, 1] that the turning
         // point (0.5) lies outside of: a is longer throughout, and goes.
-        let mut a = Lines { b0: 0.8, ..a };
-        a.b1 = 1.0;
+        let mut a = Lines {
+            b0: 0.8,
+            b1: 1.0,
+            ..a
+        };
         let mut b = Lines { b0: 0.8, ..b };
         trim_pair(&mut a, &mut b, 1e-13);
         let shorter_at = |x: f64| a.value_at(x) < b.value_at(x);
