@@ -77,6 +77,9 @@ pub enum Error {
     /// A metric could not be built from its data.
     #[error(transparent)]
     Metric(#[from] MetricError),
+    /// A medial axis could not be computed from a surface.
+    #[error(transparent)]
+    MedialAxis(#[from] crate::medial::MedialAxisError),
     /// No source was given.
     #[error("no source given: at least one source vertex is needed")]
     NoSource,

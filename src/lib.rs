@@ -74,6 +74,7 @@
 mod error;
 pub mod field;
 mod flat;
+pub mod medial;
 pub mod mesh;
 pub mod options;
 pub mod propagate;

@@ -664,3 +664,44 @@ fn the_dunce_hat_reports_the_cycle_it_cannot_avoid() {
         );
     }
 }
+
+#[test]
+fn extra_cycles_are_cut_where_narrow_keeping_the_longest() {
+    // A big square loop (side 10) with a small triangle loop on one corner, and a tail.
+    let mut positions: Vec<[f64; 3]> = (0..40)
+        .map(|i| {
+            let t = f64::from(i) / 4.0;
+            match i / 10 {
+                0 => [t, 0.0, 0.0],
+                1 => [10.0, t - 10.0, 0.0],
+                2 => [30.0 - t, 10.0, 0.0],
+                _ => [0.0, 40.0 - t, 0.0],
+            }
+        })
+        .collect();
+    let mut edges: Vec<[u32; 2]> = (0..40).map(|i| [i, (i + 1) % 40]).collect();
+    positions.extend([[-0.5, -0.2, 0.0], [-0.2, -0.5, 0.0], [-1.0, -3.0, 0.0]]);
+    edges.extend([[0, 40], [40, 41], [41, 0], [41, 42]]);
+    let skeleton = Skeleton::from_curves(&positions, &edges, None);
+    assert_eq!(skeleton.cycle_count(), 2);
+    // Width: the big loop is wide, the small one narrow.
+    let width = |i: usize| if i < 40 { 1.0 } else { 0.1 };
+    let one = skeleton.with_cycles_cut(1, width, 0.0);
+    assert_eq!((one.cycle_count(), one.component_count()), (1, 1));
+    // The loop kept is the long one: every point of the square still has two neighbours.
+    let degree = one.degrees();
+    assert!(one
+        .points
+        .iter()
+        .zip(&degree)
+        .filter(|(p, _)| p.position[2] == 0.0 && p.position[0] >= 0.0 && p.position[1] >= 0.0)
+        .all(|(_, &d)| d >= 2));
+    let none = skeleton.with_cycles_cut(0, width, 0.0);
+    assert_eq!((none.cycle_count(), none.component_count()), (0, 1));
+    // Pruning what the cuts leave: the short pieces go, the tree stays connected.
+    let pruned = skeleton.with_cycles_cut(0, width, 2.0);
+    assert_eq!(pruned.component_count(), 1);
+    assert!(pruned.points.len() < none.points.len());
+    // No more cycles than allowed: unchanged.
+    assert_eq!(skeleton.with_cycles_cut(2, width, 5.0), skeleton);
+}

@@ -9,6 +9,7 @@ mod distance;
 mod inputs;
 mod isolines;
 mod matrix;
+mod medial;
 mod metric;
 mod output;
 mod path;
@@ -67,8 +68,13 @@ enum Command {
     /// field's regions meet) as polylines: .obj, .csv or .geojson.
     #[command(after_help = with_examples(points::SP_HELP, ISOLINES_EXAMPLES))]
     Isolines(isolines::IsolinesArgs),
-    /// The curve skeleton of a medial axis (.ma): burnt, thinned without changing its
-    /// topology, pruned by erosion thickness; OBJ polylines or a JSON graph with radii.
+    /// The medial axis of a closed surface mesh, from the Voronoi diagram of points
+    /// sampled on it: its sheets with the medial radius at each vertex, as .ma.
+    #[command(name = "medial-axis", after_help = with_examples("", MEDIAL_AXIS_EXAMPLES))]
+    MedialAxis(medial::MedialAxisArgs),
+    /// The curve skeleton of a medial axis (.ma), or of a closed surface mesh through its
+    /// medial axis: burnt, thinned without changing its topology, pruned by erosion
+    /// thickness; OBJ polylines or a JSON graph with radii.
     #[command(after_help = with_examples("", SKELETON_EXAMPLES))]
     Skeleton(skeleton::SkeletonArgs),
     /// The cheapest route between two map points of an elevation grid (ESRI .asc or
@@ -126,7 +132,12 @@ const ISOLINES_EXAMPLES: &str = "  geotracks isolines mesh.obj --source 0 -o iso
 const SKELETON_EXAMPLES: &str =
     "  geotracks skeleton cow.ma --prune 5% --tubular 1 -o cow_skeleton.obj --field cow_fire.ply
   geotracks skeleton axis.ma --burn radius --prune 0.05 -o skeleton.json
-  geotracks skeleton cow.ma -o cow.obj --png cow.png --view 30,20";
+  geotracks skeleton cow.ma -o cow.obj --png cow.png --view 30,20
+  geotracks skeleton spot.obj -o spot_skeleton.obj   # a closed surface: its medial axis first";
+
+const MEDIAL_AXIS_EXAMPLES: &str = "  geotracks medial-axis spot.obj -o spot.ma --png spot_axis.png
+  geotracks medial-axis part.stl --spacing 0.5 --angle 75 -o part.ma
+  geotracks skeleton spot.ma -o spot_skeleton.obj";
 
 const TERRAIN_EXAMPLES: &str = "  geotracks terrain dem.tif --from 499.5,499.5 --to 9490.5,9290.7 -o route.geojson
   geotracks terrain dem.asc --from 1010,5010 --to 1290,5180 --cost slope:4,max:30 -o route.csv --png map.png";
@@ -146,6 +157,7 @@ fn main() -> ExitCode {
         Command::Path(args) => path::run(&args),
         Command::Matrix(args) => matrix::run(&args),
         Command::Isolines(args) => isolines::run(&args),
+        Command::MedialAxis(args) => medial::run(&args),
         Command::Skeleton(args) => skeleton::run(&args),
         Command::Terrain(args) => terrain::run(&args),
         Command::Info { mesh, weld } => info(&mesh, weld),

@@ -1,11 +1,12 @@
-//! `geotracks skeleton`: the skeleton of a medial axis, burnt from its boundary.
+//! `geotracks skeleton`: the skeleton of a medial axis (read, or computed from a closed
+//! surface), burnt from its boundary.
 
 use crate::output::Outputs;
 use crate::picture::CameraArgs;
 use crate::{ui, CliResult, Short};
-use geotracks::mesh::io::{read_medial_axis, write_obj_lines_to, write_ply_with_distance_to};
+use geotracks::mesh::io::{write_obj_lines_to, write_ply_with_distance_to};
 use geotracks::skeleton::{
-    medial_axis_skeleton, Burn, Prune, DEFAULT_MIN_TUBULARITY, DEFAULT_PRUNE_PERCENT,
+    medial_axis_skeleton_with_cycles, Burn, Prune, DEFAULT_MIN_TUBULARITY, DEFAULT_PRUNE_PERCENT,
 };
 use geotracks::{Method, Options};
 use geotracks_render::render_skeleton;
@@ -24,8 +25,11 @@ pub enum BurnArg {
 /// Arguments of `geotracks skeleton`.
 #[derive(clap::Args)]
 pub struct SkeletonArgs {
-    /// The medial axis (.ma: vertices with radius, edges, faces).
+    /// The medial axis (.ma: vertices with radius, edges, faces), or a closed surface
+    /// mesh (OBJ, PLY, OFF, STL) whose medial axis is computed first.
     axis: PathBuf,
+    #[command(flatten)]
+    sampling: crate::medial::SamplingArgs,
     /// Mean number of Steiner points per edge.
     #[arg(long, default_value_t = 5.0)]
     k: f64,
@@ -93,7 +97,7 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
     outputs.declare_some(args.png.as_ref())?;
     let start = Instant::now();
     let spinner = ui::Spinner::start("reading the medial axis, burning and thinning it");
-    let axis = read_medial_axis(&args.axis)?;
+    let (axis, solid_cycles) = crate::medial::load_axis(&args.axis, &args.sampling)?;
     let prune = prune.threshold(axis.diagonal());
     let options = crate::metric::WorkLimit::apply(
         args.work_limit,
@@ -103,7 +107,14 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
         BurnArg::Radius => Burn::Radius,
         BurnArg::Boundary => Burn::Boundary,
     };
-    let (skeleton, fire) = medial_axis_skeleton(&axis, burn, &options, prune, args.tubular)?;
+    let (skeleton, fire) = medial_axis_skeleton_with_cycles(
+        &axis,
+        burn,
+        &options,
+        prune,
+        args.tubular,
+        solid_cycles.unwrap_or(usize::MAX),
+    )?;
     drop(spinner);
     if skeleton.added_cycles > 0 {
         eprintln!(
@@ -137,13 +148,14 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
     }
     outputs.commit()?;
     ui::info!(
-        "{}: {} skeleton points, {} polylines, {} component(s), {} cycle(s) (the axis has b1 = {}), {} tips, length {}, {:.3} s; wrote {}",
+        "{}: {} skeleton points, {} polylines, {} component(s), {} cycle(s) ({} has b1 = {}), {} tips, length {}, {:.3} s; wrote {}",
         args.axis.display(),
         skeleton.points.len(),
         lines.len(),
         skeleton.component_count(),
         skeleton.cycle_count(),
-        axis.betti_numbers().b1,
+        if solid_cycles.is_some() { "the solid" } else { "the axis" },
+        solid_cycles.unwrap_or(axis.betti_numbers().b1),
         skeleton.tip_count(),
         Short(skeleton.length()),
         start.elapsed().as_secs_f64(),

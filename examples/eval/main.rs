@@ -39,7 +39,7 @@
 //! table; `--radius` burns by the medial radius):
 //!
 //! ```text
-//! cargo run --release --example eval -- ../shared/data --skeletons [7] [--k 5] [--radius] [--tubular 1]
+//! cargo run --release --example eval -- ../shared/data --skeletons [7] [--k 5] [--radius] [--tubular 1] [--from-meshes [ANGLE]]
 //! ```
 //!
 //! With `--engines` it measures each engine against every exact reference, with its time,
@@ -153,7 +153,21 @@ fn skeletons_main(argv: &[String], at: usize) -> Result<(), String> {
             .ok_or("--tubular takes a number")?,
         None => geotracks::skeleton::DEFAULT_MIN_TUBULARITY,
     };
-    skeletons::skeletons(std::path::Path::new(data), prune, tubular, k, burn)
+    let axes = match argv.iter().position(|a| a == "--from-meshes") {
+        Some(i) => {
+            let angle = match argv.get(i + 1) {
+                Some(a) if !a.starts_with("--") => {
+                    a.parse().map_err(|_| format!("bad angle '{a}'"))?
+                }
+                _ => geotracks::medial::MedialAxisOptions::DEFAULT_MIN_ANGLE_DEGREES,
+            };
+            skeletons::Axes::FromMeshes(
+                geotracks::medial::MedialAxisOptions::default().with_min_angle_degrees(angle),
+            )
+        }
+        None => skeletons::Axes::Files,
+    };
+    skeletons::skeletons(std::path::Path::new(data), prune, tubular, k, burn, axes)
 }
 
 struct Args {

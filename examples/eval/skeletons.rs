@@ -3,8 +3,10 @@
 //! mean-curvature-flow skeleton of the same shape, the distances between the two curves
 //! (the guide's Skeletons page table).
 
+use geotracks::medial::{medial_axis, solid_cycles, MedialAxisOptions};
 use geotracks::mesh::io::read_medial_axis;
-use geotracks::skeleton::{medial_axis_skeleton, Burn, Skeleton};
+use geotracks::mesh::io::{read_mesh, MedialAxis};
+use geotracks::skeleton::{medial_axis_skeleton_with_cycles, Burn, Skeleton};
 use geotracks::{Method, Options};
 use glam::DVec3;
 use std::path::Path;
@@ -13,19 +15,58 @@ use std::time::Instant;
 /// Pruning levels, in % of the axis's bounding-box diagonal.
 const LEVELS: [f64; 8] = [0.0, 0.5, 1.0, 2.0, 3.0, 5.0, 10.0, f64::INFINITY];
 
+/// Where the axes come from: the shared `.ma` files, or the shared meshes that have a
+/// mean-curvature-flow reference (`meshes/<name>.obj`), through their medial axis at
+/// this angle.
+#[derive(Clone, Copy)]
+pub enum Axes {
+    Files,
+    FromMeshes(MedialAxisOptions),
+}
+
+/// The axis of `name` and the most cycles its skeleton may have.
+fn load(data: &Path, name: &str, axes: Axes) -> Result<(MedialAxis, usize), String> {
+    match axes {
+        Axes::Files => {
+            let path = data.join("ma").join(format!("{name}.ma"));
+            Ok((
+                read_medial_axis(&path).map_err(|e| e.to_string())?,
+                usize::MAX,
+            ))
+        }
+        Axes::FromMeshes(options) => {
+            let path = data.join("meshes").join(format!("{name}.obj"));
+            let mesh = read_mesh(&path).map_err(|e| e.to_string())?;
+            let axis = medial_axis(&mesh, &options).map_err(|e| format!("{name}: {e}"))?;
+            Ok((axis, solid_cycles(&mesh)))
+        }
+    }
+}
+
 pub fn skeletons(
     data: &Path,
     prune_percent: f64,
     tubular: f64,
     k: f64,
     burn: Burn,
+    axes: Axes,
 ) -> Result<(), String> {
-    let dir = data.join("ma");
+    let (dir, extension, suffix) = match axes {
+        Axes::Files => (data.join("ma"), "ma", ".ma"),
+        Axes::FromMeshes(_) => (data.join("skeleton"), "obj", ".mcf.obj"),
+    };
     let mut names: Vec<String> = std::fs::read_dir(&dir)
         .map_err(|e| format!("{}: {e}", dir.display()))?
         .filter_map(|entry| {
             let path = entry.ok()?.path();
-            (path.extension()? == "ma").then(|| path.file_stem()?.to_str().map(String::from))?
+            (path.extension()? == extension).then_some(())?;
+            let name = path
+                .file_name()?
+                .to_str()?
+                .strip_suffix(suffix)?
+                .to_string();
+            let mesh = data.join("meshes").join(format!("{name}.obj"));
+            (matches!(axes, Axes::Files) || mesh.exists()).then_some(name)
         })
         .collect();
     names.sort();
@@ -49,16 +90,16 @@ pub fn skeletons(
     let mut comparisons = Vec::new();
     let mut breakdowns = Vec::new();
     for name in &names {
-        let path = dir.join(format!("{name}.ma"));
         let start = Instant::now();
-        let axis = read_medial_axis(&path).map_err(|e| e.to_string())?;
+        let (axis, max_cycles) = load(data, name, axes)?;
         let diagonal = axis.diagonal();
-        let (at_default, _) = medial_axis_skeleton(
+        let (at_default, _) = medial_axis_skeleton_with_cycles(
             &axis,
             burn,
             &options,
             prune_percent / 100.0 * diagonal,
             tubular,
+            max_cycles,
         )
         .map_err(|e| e.to_string())?;
         let seconds = start.elapsed().as_secs_f64();

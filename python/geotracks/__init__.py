@@ -37,6 +37,7 @@ from ._geotracks import DEFAULT_WORK_LIMIT, GeotracksError
 from ._geotracks import MeshSolverCore as _Core
 from ._geotracks import read_mesh as _read_mesh
 from ._geotracks import skeleton as _skeleton
+from ._geotracks import medial_axis as _medial_axis
 from ._geotracks import terrain_route as _terrain_route
 
 __all__ = [
@@ -54,6 +55,8 @@ __all__ = [
     "TensorField",
     "read_mesh",
     "skeleton",
+    "medial_axis",
+    "MedialAxis",
     "terrain_route",
 ]
 
@@ -578,10 +581,19 @@ class Skeleton(NamedTuple):
 
 
 def skeleton(
-    axis, prune="5%", burn: str = "boundary", k: float = 5.0, tubular: float = 1.0
+    axis,
+    prune="5%",
+    burn: str = "boundary",
+    k: float = 5.0,
+    tubular: float = 1.0,
+    spacing: Optional[float] = None,
+    angle: float = 60.0,
+    span: float = 1.5,
+    weld: bool = False,
 ) -> Skeleton:
-    """The curve skeleton of a medial axis file (``.ma``) with the axis's topology, as
-    ``geotracks skeleton`` makes it.
+    """The curve skeleton of a medial axis file (``.ma``), or of a closed surface mesh
+    file (OBJ, PLY, OFF, STL) through its :func:`medial_axis`, with the axis's topology,
+    as ``geotracks skeleton`` makes it.
 
     :param prune: a length, or a percentage of the bounding-box diagonal (``"5%"``, the
         default); branches whose erosion thickness is less go whole.
@@ -590,7 +602,60 @@ def skeleton(
         thickness before a thin limb of the same length); 0 keeps them.
     :param burn: ``"boundary"`` (the grassfire from the axis's border) or ``"radius"``
         (each point burns at its medial radius).
+    :param spacing, angle, span, weld: for a surface mesh, as in :func:`medial_axis`.
     """
     return Skeleton(
-        *_skeleton(str(axis), str(prune), str(burn), _real(k, "k"), _real(tubular, "tubular"))
+        *_skeleton(
+            str(axis),
+            str(prune),
+            str(burn),
+            _real(k, "k"),
+            _real(tubular, "tubular"),
+            None if spacing is None else _real(spacing, "spacing"),
+            _real(angle, "angle"),
+            _real(span, "span"),
+            bool(weld),
+        )
     )
+
+
+class MedialAxis(NamedTuple):
+    """A medial axis: sheets of triangles with the medial ball radius at each vertex."""
+
+    #: Vertex positions, shape ``(n, 3)``.
+    positions: np.ndarray
+    #: The medial ball radius at each vertex, shape ``(n,)``.
+    radii: np.ndarray
+    #: Triangles (vertex indices), shape ``(f, 3)``.
+    faces: np.ndarray
+
+
+def medial_axis(
+    mesh,
+    spacing: Optional[float] = None,
+    angle: float = 60.0,
+    span: float = 1.5,
+    weld: bool = False,
+) -> MedialAxis:
+    """The medial axis of the solid that a closed surface mesh file bounds, from the
+    Voronoi diagram of points sampled on it, as ``geotracks medial-axis`` makes it.
+
+    :param spacing: the largest distance between samples on a face (points are added
+        on faces larger than that); ``None``: the mesh's mean edge length.
+    :param angle: keep the Voronoi facets whose two samples are seen under at least
+        this many degrees from the facet; larger drops more spikes toward the surface.
+    :param span: keep the Voronoi facets whose two samples lie at least this many
+        spacings apart; larger drops more of the sampling's spikes, and more of the
+        axis at the tips of limbs.
+    :param weld: merge vertices at identical positions first (seams split them, which
+        would leave the surface open).
+    :raises GeotracksError: for an open or non-manifold surface, or one with no volume.
+    """
+    positions, radii, faces = _medial_axis(
+        str(mesh),
+        None if spacing is None else _real(spacing, "spacing"),
+        _real(angle, "angle"),
+        _real(span, "span"),
+        bool(weld),
+    )
+    return MedialAxis(positions, radii, faces)

@@ -132,7 +132,15 @@ def terrain_route(
     method: str = "wave",
 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], float]: ...
 def skeleton(
-    axis: str, prune: str = "7%", burn: str = "boundary", k: float = 5.0
+    axis: str,
+    prune: str = "5%",
+    burn: str = "boundary",
+    k: float = 5.0,
+    tubular: float = 1.0,
+    spacing: float | None = None,
+    angle: float = 60.0,
+    span: float = 1.5,
+    weld: bool = False,
 ) -> tuple[
     npt.NDArray[np.float64],
     npt.NDArray[np.float64],
@@ -140,3 +148,10 @@ def skeleton(
     npt.NDArray[np.int64],
     int,
 ]: ...
+def medial_axis(
+    mesh: str,
+    spacing: float | None = None,
+    angle: float = 60.0,
+    span: float = 1.5,
+    weld: bool = False,
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.int64]]: ...

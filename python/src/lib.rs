@@ -506,14 +506,84 @@ fn terrain_route<'py>(
     ))
 }
 
-/// The curve skeleton of a medial axis file (`.ma`), pruned at `prune` (a length, or
-/// a percentage of the bounding-box diagonal such as `"5%"`) and at `tubular` (the
-/// least erosion thickness over the medial radius where a branch joins), burnt from the border
-/// (`burn="boundary"`) or by medial radius (`"radius"`): `(points (p, 3), radii (p,),
-/// significance (p,), edges (e, 2), b1)`.
+/// The medial axis options of `spacing` (None: the default) and `angle` (degrees).
+fn medial_options(
+    spacing: Option<f64>,
+    angle: f64,
+    span: f64,
+) -> PyResult<geotracks::medial::MedialAxisOptions> {
+    if spacing.is_some_and(|s| !(s > 0.0 && s.is_finite())) {
+        return Err(error(format!(
+            "spacing {}: expected a positive length",
+            spacing.unwrap_or_default()
+        )));
+    }
+    if !(angle > 0.0 && angle < 180.0) {
+        return Err(error(format!(
+            "angle {angle}: expected degrees between 0 and 180"
+        )));
+    }
+    if !(span >= 0.0 && span.is_finite()) {
+        return Err(error(format!("span {span}: expected a number >= 0")));
+    }
+    Ok(geotracks::medial::MedialAxisOptions::default()
+        .with_spacing(spacing)
+        .with_min_angle_degrees(angle)
+        .with_min_span(span))
+}
+
+/// The medial axis of a file: read from `.ma`, or computed from a closed surface mesh.
+fn axis_of_file(
+    path: &std::path::Path,
+    weld: bool,
+    options: &geotracks::medial::MedialAxisOptions,
+) -> Result<(geotracks::mesh::io::MedialAxis, Option<usize>), String> {
+    geotracks::medial::medial_axis_of_file(path, weld, options).map_err(|e| match e {
+        geotracks::Error::Mesh(e) => e.to_string(),
+        e => format!("{}: {e}", path.display()),
+    })
+}
+
+/// The medial axis of a closed surface mesh file: `(positions (n, 3), radii (n,), faces
+/// (f, 3))`.
 #[pyfunction]
-#[pyo3(signature = (axis, prune="5%", burn="boundary", k=5.0, tubular=geotracks::skeleton::DEFAULT_MIN_TUBULARITY))]
-#[allow(clippy::type_complexity)] // five named arrays, as the Python wrapper documents
+#[pyo3(signature = (mesh, spacing=None, angle=geotracks::medial::MedialAxisOptions::DEFAULT_MIN_ANGLE_DEGREES, span=geotracks::medial::MedialAxisOptions::DEFAULT_MIN_SPAN, weld=false))]
+fn medial_axis<'py>(
+    py: Python<'py>,
+    mesh: std::path::PathBuf,
+    spacing: Option<f64>,
+    angle: f64,
+    span: f64,
+    weld: bool,
+) -> PyResult<(Matrix<'py, f64>, Vector<'py, f64>, Matrix<'py, i64>)> {
+    let options = medial_options(spacing, angle, span)?;
+    let axis = py
+        .detach(|| {
+            let read = geotracks::mesh::io::ReadOptions::DEFAULT.with_weld(weld);
+            let surface =
+                geotracks::mesh::io::read_mesh_with(&mesh, &read).map_err(|e| e.to_string())?;
+            geotracks::medial::medial_axis(&surface, &options)
+                .map_err(|e| format!("{}: {e}", mesh.display()))
+        })
+        .map_err(error)?;
+    let triangles: &[[u32; 3]] = axis.surface.as_ref().map_or(&[], |m| m.triangles());
+    let faces = Array2::from_shape_fn((triangles.len(), 3), |(i, c)| triangles[i][c] as i64);
+    Ok((
+        matrix3(&axis.positions, |p| *p).into_pyarray(py),
+        axis.radii.clone().into_pyarray(py),
+        faces.into_pyarray(py),
+    ))
+}
+
+/// The curve skeleton of a medial axis file (`.ma`), or of a closed surface mesh file
+/// through its medial axis (`spacing`, `angle`, `span`, `weld` as in [`medial_axis`]), pruned at
+/// `prune` (a length, or a percentage of the bounding-box diagonal such as `"5%"`) and
+/// at `tubular` (the least erosion thickness over the medial radius where a branch
+/// joins), burnt from the border (`burn="boundary"`) or by medial radius (`"radius"`):
+/// `(points (p, 3), radii (p,), significance (p,), edges (e, 2), b1)`.
+#[pyfunction]
+#[pyo3(signature = (axis, prune="5%", burn="boundary", k=5.0, tubular=geotracks::skeleton::DEFAULT_MIN_TUBULARITY, spacing=None, angle=geotracks::medial::MedialAxisOptions::DEFAULT_MIN_ANGLE_DEGREES, span=geotracks::medial::MedialAxisOptions::DEFAULT_MIN_SPAN, weld=false))]
+#[allow(clippy::type_complexity, clippy::too_many_arguments)] // five named arrays, as the Python wrapper documents; the keywords are Python's
 fn skeleton<'py>(
     py: Python<'py>,
     axis: std::path::PathBuf,
@@ -521,6 +591,10 @@ fn skeleton<'py>(
     burn: &str,
     k: f64,
     tubular: f64,
+    spacing: Option<f64>,
+    angle: f64,
+    span: f64,
+    weld: bool,
 ) -> PyResult<(
     Matrix<'py, f64>,
     Vector<'py, f64>,
@@ -528,7 +602,7 @@ fn skeleton<'py>(
     Matrix<'py, i64>,
     usize,
 )> {
-    use geotracks::skeleton::{medial_axis_skeleton, Burn, Prune};
+    use geotracks::skeleton::{medial_axis_skeleton_with_cycles, Burn, Prune};
     let burn = match burn {
         "boundary" => Burn::Boundary,
         "radius" => Burn::Radius,
@@ -542,14 +616,18 @@ fn skeleton<'py>(
     if tubular.is_nan() || tubular < 0.0 {
         return Err(error(format!("tubular {tubular}: expected a number >= 0")));
     }
+    let medial = medial_options(spacing, angle, span)?;
     let (skeleton, b1) = py
         .detach(|| {
-            let axis = geotracks::mesh::io::read_medial_axis(&axis).map_err(|e| e.to_string())?;
+            let (axis, solid_cycles) = axis_of_file(&axis, weld, &medial)?;
             let threshold = prune.threshold(axis.diagonal());
             let options = Options::DEFAULT.with_k(k).with_method(Method::Tracks);
-            let (skeleton, _) = medial_axis_skeleton(&axis, burn, &options, threshold, tubular)
-                .map_err(|e| e.to_string())?;
-            Ok::<_, String>((skeleton, axis.betti_numbers().b1))
+            let max_cycles = solid_cycles.unwrap_or(usize::MAX);
+            let (skeleton, _) = medial_axis_skeleton_with_cycles(
+                &axis, burn, &options, threshold, tubular, max_cycles,
+            )
+            .map_err(|e| e.to_string())?;
+            Ok::<_, String>((skeleton, solid_cycles.unwrap_or(axis.betti_numbers().b1)))
         })
         .map_err(error)?;
     let p = &skeleton.points;
@@ -575,6 +653,7 @@ fn _geotracks(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(read_mesh, m)?)?;
     m.add_function(wrap_pyfunction!(terrain_route, m)?)?;
     m.add_function(wrap_pyfunction!(skeleton, m)?)?;
+    m.add_function(wrap_pyfunction!(medial_axis, m)?)?;
     m.add("GeotracksError", m.py().get_type::<GeotracksError>())?;
     m.add("DEFAULT_WORK_LIMIT", Options::DEFAULT_WORK_LIMIT)?;
     Ok(())

@@ -442,3 +442,29 @@ def test_knobs_that_scale_work_are_bounded_before_any_work():
     solver = geotracks.MeshSolver(V, F)
     with pytest.raises(geotracks.GeotracksError, match="distance matrix of 1000000 rows"):
         solver.distance_matrix(np.zeros(1_000_000, dtype=np.int64))
+
+
+def test_medial_axis_and_skeleton_of_a_surface():
+    axis = geotracks.medial_axis(DATA / "spot.obj")
+    n = len(axis.positions)
+    assert axis.positions.shape == (n, 3) and axis.radii.shape == (n,)
+    assert axis.faces.shape[1] == 3 and axis.faces.max() < n
+    assert np.all(axis.radii > 0)
+    # Spot has no handle: its skeleton is one tree.
+    sk = geotracks.skeleton(DATA / "spot.obj")
+    assert sk.b1 == 0
+    assert len(sk.edges) == len(sk.points) - 1
+    # A stricter span keeps less of the axis.
+    strict = geotracks.medial_axis(DATA / "spot.obj", span=3.0)
+    assert len(strict.faces) < len(axis.faces)
+    with pytest.raises(geotracks.GeotracksError, match="angle"):
+        geotracks.medial_axis(DATA / "spot.obj", angle=200)
+    with pytest.raises(geotracks.GeotracksError, match="spacing"):
+        geotracks.medial_axis(DATA / "spot.obj", spacing=0)
+
+
+def test_medial_axis_of_an_open_surface_is_refused(tmp_path):
+    path = tmp_path / "open.obj"
+    path.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\n")
+    with pytest.raises(geotracks.GeotracksError, match="not closed"):
+        geotracks.medial_axis(path)

@@ -41,6 +41,7 @@
 //! # Ok::<(), geotracks::Error>(())
 //! ```
 
+mod cycles;
 mod geometry;
 mod grassfire;
 mod thinning;
@@ -575,8 +576,32 @@ pub fn medial_axis_skeleton(
     prune: f64,
     min_tubularity: f64,
 ) -> Result<(Skeleton, Option<Field<Euclidean>>), Error> {
+    medial_axis_skeleton_with_cycles(axis, burn, options, prune, min_tubularity, usize::MAX)
+}
+
+/// [`medial_axis_skeleton`] with at most `max_cycles` independent cycles: after pruning,
+/// extra cycles are cut ([`Skeleton::with_cycles_cut`], widest by medial radius) and
+/// what the cuts leave pruned again. For an axis computed from a sampled surface
+/// ([`crate::medial::medial_axis`]), whose sheets have small holes that the solid
+/// does not: `max_cycles` is then the solid's genus.
+///
+/// # Errors
+/// As [`Skeleton::of_medial_axis`].
+pub fn medial_axis_skeleton_with_cycles(
+    axis: &MedialAxis,
+    burn: Burn,
+    options: &Options,
+    prune: f64,
+    min_tubularity: f64,
+    max_cycles: usize,
+) -> Result<(Skeleton, Option<Field<Euclidean>>), Error> {
     let (skeleton, field) = Skeleton::of_medial_axis(axis, burn, options)?;
     let skeleton = skeleton.pruned(prune).pruned_tubular(min_tubularity);
+    let radius = |i: usize| match skeleton.points[i].on {
+        SurfacePoint::Vertex(v) => axis.radii[v as usize],
+        _ => 0.0,
+    };
+    let skeleton = skeleton.with_cycles_cut(max_cycles, radius, prune);
     let skeleton = match &axis.surface {
         Some(mesh) => skeleton.smoothed(mesh, Skeleton::SMOOTHING),
         None => skeleton,

@@ -281,6 +281,12 @@ impl Records {
 
     /// The medial axis: its sheets (if any face is usable) with the free edges attached.
     fn into_axis(self, path: &Path, allow_curves_only: bool) -> Result<MedialAxis, MeshError> {
+        self.into_unnamed_axis(allow_curves_only)
+            .map_err(|e| e.in_file(path))
+    }
+
+    /// [`Records::into_axis`] with errors that name no file (an axis built in memory).
+    fn into_unnamed_axis(self, allow_curves_only: bool) -> Result<MedialAxis, MeshError> {
         let Records {
             positions,
             radii,
@@ -296,13 +302,12 @@ impl Records {
             {
                 None
             }
-            Err(e) => return Err(e.in_file(path)),
+            Err(e) => return Err(e),
         };
         let free_edges = free_edges(surface.as_ref(), &edges);
         let surface = match surface {
             Some(mut mesh) => {
-                mesh.set_line_elements(free_edges.clone())
-                    .map_err(|e| e.in_file(path))?;
+                mesh.set_line_elements(free_edges.clone())?;
                 Some(mesh)
             }
             None => None,
@@ -340,4 +345,56 @@ fn free_edges(mesh: Option<&TriMesh>, edges: &[[u32; 2]]) -> Vec<[u32; 2]> {
     free.sort_unstable();
     free.dedup();
     free
+}
+
+/// A medial axis built in memory from its sheets' triangles (indices into `positions`)
+/// and curves (`edges`; those of a kept triangle are not curves): vertices at identical
+/// positions are merged first (the first one's radius is kept), so triangles that meet
+/// at a copy of a vertex share it.
+pub(super) fn from_parts(
+    positions: Vec<[f64; 3]>,
+    radii: Vec<f64>,
+    triangles: Vec<[u32; 3]>,
+    edges: Vec<[u32; 2]>,
+) -> Result<MedialAxis, MeshError> {
+    let mut records = Records {
+        positions,
+        radii,
+        edges,
+        triangles,
+    };
+    records.weld();
+    records.into_unnamed_axis(true)
+}
+
+/// Writes `axis` in the `.ma` format: every vertex with its radius, every edge (those of
+/// the sheets' faces and the free ones, each once, as readers of the format expect)
+/// and every face, indices 0-based; numbers in shortest round-trip form.
+pub(super) fn write_to(w: &mut dyn std::io::Write, axis: &MedialAxis) -> std::io::Result<()> {
+    let triangles: &[[u32; 3]] = axis.surface.as_ref().map_or(&[], |m| m.triangles());
+    let mut edges: Vec<[u32; 2]> = triangles
+        .iter()
+        .flat_map(|&[a, b, c]| [[a, b], [b, c], [c, a]])
+        .chain(axis.free_edges.iter().copied())
+        .map(|[a, b]| [a.min(b), a.max(b)])
+        .collect();
+    edges.sort_unstable();
+    edges.dedup();
+    writeln!(
+        w,
+        "{} {} {}",
+        axis.positions.len(),
+        edges.len(),
+        triangles.len()
+    )?;
+    for (p, r) in axis.positions.iter().zip(&axis.radii) {
+        writeln!(w, "v {} {} {} {r}", p[0], p[1], p[2])?;
+    }
+    for [a, b] in &edges {
+        writeln!(w, "e {a} {b}")?;
+    }
+    for [a, b, c] in triangles {
+        writeln!(w, "f {a} {b} {c}")?;
+    }
+    Ok(())
 }

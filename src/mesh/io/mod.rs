@@ -2,7 +2,7 @@
 //!
 //! Readers: OBJ, PLY (ascii and binary; faces and triangle strips), OFF, STL (ascii and
 //! binary, vertices welded) and the medial-axis `.ma` format. Writers: PLY with a per-vertex `distance` and colours,
-//! OBJ polylines, and [`write_atomically`] for anything else. Every writer writes to a
+//! OBJ polylines, `.ma` medial axes ([`write_medial_axis`]), and [`write_atomically`] for anything else. Every writer writes to a
 //! temporary file beside the target and renames it at the end, so a failure never leaves
 //! a partial file.
 //!
@@ -75,6 +75,48 @@ impl MedialAxis {
     pub fn diagonal(&self) -> f64 {
         let [lo, hi] = super::report::bounding_box(self.positions.iter().copied());
         (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt()
+    }
+
+    /// A medial axis built in memory: sheets (`triangles`, indices into `positions`),
+    /// curves (`edges`; an edge of a kept triangle is no curve) and the medial ball
+    /// radius of each vertex. Vertices at identical positions are merged (the first
+    /// one's radius is kept) and degenerate triangles dropped, as when a `.ma` file is
+    /// read with welding.
+    ///
+    /// # Errors
+    /// [`MeshError::IndexOutOfRange`] for an index past `positions`,
+    /// [`MeshError::NonFiniteVertex`] for a position that is not finite,
+    /// [`MeshError::NoUsableFace`] when neither a usable triangle nor a curve is left.
+    ///
+    /// # Panics
+    /// If `radii` and `positions` differ in length.
+    ///
+    /// ```
+    /// use geotracks::mesh::io::MedialAxis;
+    /// // Two triangles of a unit square, the second one naming a copy of vertex 1.
+    /// let positions = vec![
+    ///     [0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0], [1.0, 0.0, 0.0],
+    /// ];
+    /// let axis = MedialAxis::from_parts(
+    ///     positions,
+    ///     vec![0.5, 0.4, 0.3, 0.2, 0.1],
+    ///     vec![[0, 1, 2], [4, 3, 2]],
+    ///     vec![],
+    /// )?;
+    /// // The copy was merged (keeping the first radius): the triangles share an edge.
+    /// assert_eq!(axis.positions.len(), 4);
+    /// assert_eq!(axis.radii[1], 0.4);
+    /// assert_eq!(axis.surface.as_ref().map(|m| m.edge_count()), Some(5));
+    /// # Ok::<(), geotracks::mesh::MeshError>(())
+    /// ```
+    pub fn from_parts(
+        positions: Vec<[f64; 3]>,
+        radii: Vec<f64>,
+        triangles: Vec<[u32; 3]>,
+        edges: Vec<[u32; 2]>,
+    ) -> Result<MedialAxis, MeshError> {
+        assert_eq!(positions.len(), radii.len(), "one radius per position");
+        ma::from_parts(positions, radii, triangles, edges)
     }
 
     /// Betti numbers over GF(2) of the sheets and free edges together: what a skeleton
@@ -296,6 +338,43 @@ pub fn read_obj_bytes(bytes: &[u8]) -> Result<TriMesh, MeshError> {
         });
     }
     obj::read(path, bytes, false)
+}
+
+/// Writes a medial axis as a `.ma` file (see [`read_medial_axis`]): every vertex with
+/// its radius, every edge (the sheets' and the free ones) and every face. Written to a
+/// temporary file and renamed, so a failure leaves nothing behind.
+///
+/// # Errors
+/// [`MeshError::NonFiniteVertex`] for a position or radius that is not finite;
+/// [`MeshError::Io`] if the file cannot be written.
+pub fn write_medial_axis(path: impl AsRef<Path>, axis: &MedialAxis) -> Result<(), MeshError> {
+    if let Some((vertex, (&position, _))) = axis
+        .positions
+        .iter()
+        .zip(&axis.radii)
+        .enumerate()
+        .find(|(_, (p, r))| !p.iter().all(|c| c.is_finite()) || !r.is_finite())
+    {
+        return Err(MeshError::NonFiniteVertex { vertex, position });
+    }
+    write_atomically(path.as_ref(), |w| ma::write_to(w, axis))
+}
+
+/// As [`write_medial_axis`], into `w`.
+///
+/// # Errors
+/// What `w` returns; an error of kind [`std::io::ErrorKind::InvalidInput`] for a
+/// position or radius that is not finite.
+pub fn write_medial_axis_to(w: &mut dyn std::io::Write, axis: &MedialAxis) -> std::io::Result<()> {
+    if let Some(i) = (0..axis.positions.len())
+        .find(|&i| !axis.positions[i].iter().all(|c| c.is_finite()) || !axis.radii[i].is_finite())
+    {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            format!("medial axis vertex {i} is not finite"),
+        ));
+    }
+    ma::write_to(w, axis)
 }
 
 /// Reads a `.ma` medial axis with its radii (whatever the file's extension).

@@ -1,0 +1,208 @@
+//! The closed surface a medial axis is computed from: its checks, its faces turned
+//! outward, and the points sampled on it with their outward normals.
+
+use super::MedialAxisError;
+use crate::mesh::TriMesh;
+use glam::DVec3;
+
+/// Points on the surface with the outward unit normal there.
+pub(super) struct Samples {
+    /// The mesh's vertices that faces use, then the added points.
+    pub points: Vec<[f64; 3]>,
+    /// Outward unit normal per point.
+    pub normals: Vec<DVec3>,
+}
+
+/// The mesh's triangles with every face turned so that its normal (by the right-hand
+/// rule) points out of the solid the surface bounds.
+///
+/// Faces are turned to agree with their neighbours across every edge (a file whose
+/// winding is inconsistent is mended); each connected part keeps the winding most of its
+/// faces had, and when the whole then encloses a negative volume every face is turned.
+/// So a hollow solid whose inner shell is wound inward, as it should be, stays right.
+///
+/// # Errors
+/// [`MedialAxisError::OpenSurface`] for an edge with one face,
+/// [`MedialAxisError::NonManifoldSurface`] for one with more than two,
+/// [`MedialAxisError::NonOrientableSurface`] when no winding agrees across every edge.
+pub(super) fn outward_triangles(mesh: &TriMesh) -> Result<Vec<[u32; 3]>, MedialAxisError> {
+    for e in 0..mesh.edge_count() as u32 {
+        let faces = mesh.edge_faces(e).len();
+        let edge = mesh.edge_vertices(e);
+        match faces {
+            1 => return Err(MedialAxisError::OpenSurface { edge }),
+            2 => {}
+            _ => return Err(MedialAxisError::NonManifoldSurface { edge, faces }),
+        }
+    }
+    let mut turned = consistent_winding(mesh)?;
+    let oriented = |f: usize, turned: &[bool]| {
+        let [a, b, c] = mesh.triangles()[f];
+        if turned[f] {
+            [a, c, b]
+        } else {
+            [a, b, c]
+        }
+    };
+    let volume: f64 = (0..mesh.face_count())
+        .map(|f| {
+            let [a, b, c] = oriented(f, &turned).map(|v| mesh.position(v));
+            a.dot(b.cross(c))
+        })
+        .sum();
+    if volume < 0.0 {
+        turned.iter_mut().for_each(|t| *t = !*t);
+    }
+    Ok((0..mesh.face_count())
+        .map(|f| oriented(f, &turned))
+        .collect())
+}
+
+/// Which faces to turn so that neighbours cross each shared edge in opposite
+/// directions, each connected part keeping its majority's winding.
+fn consistent_winding(mesh: &TriMesh) -> Result<Vec<bool>, MedialAxisError> {
+    let n = mesh.face_count();
+    let mut turned = vec![false; n];
+    let mut seen = vec![false; n];
+    let mut stack = Vec::new();
+    let mut part = Vec::new();
+    for start in 0..n {
+        if seen[start] {
+            continue;
+        }
+        seen[start] = true;
+        stack.push(start as u32);
+        part.clear();
+        while let Some(f) = stack.pop() {
+            part.push(f);
+            let [a, b, c] = mesh.triangles()[f as usize];
+            let [a, b, c] = if turned[f as usize] {
+                [a, c, b]
+            } else {
+                [a, b, c]
+            };
+            for (u, v) in [(a, b), (b, c), (c, a)] {
+                let e = edge_between(mesh, u, v);
+                for &g in mesh.edge_faces(e) {
+                    if g == f {
+                        continue;
+                    }
+                    // `g` must run v → u; it does unturned when its file winding has it.
+                    let turn_g = !runs(mesh.triangles()[g as usize], v, u);
+                    if !seen[g as usize] {
+                        seen[g as usize] = true;
+                        turned[g as usize] = turn_g;
+                        stack.push(g);
+                    } else if turned[g as usize] != turn_g {
+                        return Err(MedialAxisError::NonOrientableSurface { face: g });
+                    }
+                }
+            }
+        }
+        if 2 * part.iter().filter(|&&f| turned[f as usize]).count() > part.len() {
+            for &f in &part {
+                turned[f as usize] = !turned[f as usize];
+            }
+        }
+    }
+    Ok(turned)
+}
+
+/// Whether the triangle runs from `u` to `v` along one of its sides.
+fn runs([a, b, c]: [u32; 3], u: u32, v: u32) -> bool {
+    (a, b) == (u, v) || (b, c) == (u, v) || (c, a) == (u, v)
+}
+
+/// The edge of the mesh between two vertices of a face.
+fn edge_between(mesh: &TriMesh, u: u32, v: u32) -> u32 {
+    let key = [u.min(v), u.max(v)];
+    *mesh
+        .vertex_edges(u)
+        .iter()
+        .find(|&&e| mesh.edge_vertices(e) == key)
+        .expect("a face's side is an edge of the mesh")
+}
+
+/// The vertices with their angle-weighted outward normals, and, where a face's side is
+/// longer than `spacing`, points added along its sides and across it (a regular
+/// barycentric grid) so that no sample is farther than about `spacing` from the next:
+/// poles need samples denser than the shape's features, and a mesh's large flat faces
+/// (a machined part's) have them only at their corners.
+pub(super) fn samples(mesh: &TriMesh, triangles: &[[u32; 3]], spacing: f64) -> Samples {
+    let p = |v: u32| mesh.position(v);
+    let face_normal = |[a, b, c]: [u32; 3]| (p(b) - p(a)).cross(p(c) - p(a)).normalize_or_zero();
+    let mut normals = vec![DVec3::ZERO; mesh.vertex_count()];
+    for &t in triangles {
+        let n = face_normal(t);
+        for i in 0..3 {
+            let (v, a, b) = (t[i], t[(i + 1) % 3], t[(i + 2) % 3]);
+            let angle = (p(a) - p(v)).angle_between(p(b) - p(v));
+            if angle.is_finite() {
+                normals[v as usize] += angle * n;
+            }
+        }
+    }
+    // A vertex no face uses is no point of the surface: it is left out.
+    let mut samples = Samples {
+        points: Vec::new(),
+        normals: Vec::new(),
+    };
+    for (v, n) in normals.iter().enumerate() {
+        if !mesh.vertex_faces(v as u32).is_empty() {
+            samples.points.push(mesh.positions()[v].to_array());
+            samples.normals.push(n.normalize_or_zero());
+        }
+    }
+    for e in 0..mesh.edge_count() as u32 {
+        let [a, b] = mesh.edge_vertices(e);
+        let pieces = (mesh.edge_length(e) / spacing).ceil().max(1.0) as u32;
+        let n = mesh
+            .edge_faces(e)
+            .iter()
+            .map(|&f| face_normal(triangles[f as usize]))
+            .sum::<DVec3>()
+            .normalize_or_zero();
+        for i in 1..pieces {
+            let s = f64::from(i) / f64::from(pieces);
+            samples.points.push(p(a).lerp(p(b), s).to_array());
+            samples.normals.push(n);
+        }
+    }
+    for (f, &t) in triangles.iter().enumerate() {
+        let pieces = mesh
+            .face_edges(f as u32)
+            .iter()
+            .map(|&e| (mesh.edge_length(e) / spacing).ceil().max(1.0) as u32)
+            .max()
+            .unwrap_or(1);
+        let n = face_normal(t);
+        for i in 1..pieces {
+            for j in 1..pieces - i {
+                let (bi, bj) = (f64::from(i), f64::from(j));
+                let bk = f64::from(pieces) - bi - bj;
+                let q = (bi * p(t[0]) + bj * p(t[1]) + bk * p(t[2])) / f64::from(pieces);
+                samples.points.push(q.to_array());
+                samples.normals.push(n);
+            }
+        }
+    }
+    samples
+}
+
+/// How many samples [`samples`] makes for `spacing`, without making them.
+pub(super) fn sample_count(mesh: &TriMesh, spacing: f64) -> u64 {
+    let pieces = |e: u32| (mesh.edge_length(e) / spacing).ceil().max(1.0) as u64;
+    let edges: u64 = (0..mesh.edge_count() as u32).map(|e| pieces(e) - 1).sum();
+    let faces: u64 = (0..mesh.face_count() as u32)
+        .map(|f| {
+            let n = mesh
+                .face_edges(f)
+                .iter()
+                .map(|&e| pieces(e))
+                .max()
+                .unwrap_or(1);
+            (n.saturating_sub(1)) * (n.saturating_sub(2)) / 2
+        })
+        .sum();
+    mesh.vertex_count() as u64 + edges + faces
+}

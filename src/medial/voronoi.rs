@@ -1,0 +1,395 @@
+//! The inner Voronoi diagram of the samples: Voronoi vertices (the Delaunay
+//! tetrahedra's circumcentres) that lie inside the solid, Voronoi edges between them
+//! (one per Delaunay triangle) and Voronoi facets (one per Delaunay edge, through the
+//! circumcentres of the tetrahedra around it) made only of them; then the facets that
+//! are spikes toward the surface are collapsed away.
+
+use super::delaunay::{circumcentre, Delaunay, OUTSIDE};
+use super::surface::Samples;
+use crate::mesh::FaceFrame;
+use glam::DVec3;
+use std::collections::HashMap;
+
+/// The medial axis kept of the inner Voronoi diagram.
+pub(super) struct InnerAxis {
+    /// Voronoi vertices used by a kept facet or curve.
+    pub positions: Vec<[f64; 3]>,
+    /// Their medial ball radius (the circumradius).
+    pub radii: Vec<f64>,
+    /// The kept facets, fan-triangulated.
+    pub triangles: Vec<[u32; 3]>,
+    /// Voronoi edges kept outside every kept facet (they join parts of the axis).
+    pub curves: Vec<[u32; 2]>,
+    /// How many Voronoi vertices lay inside.
+    pub inner_vertices: usize,
+}
+
+/// The longest a ring of tetrahedra around one edge can be before the walk is taken for
+/// a broken triangulation (a ring has a handful; thousands only on a sphere's centre).
+const MAX_RING: usize = 1 << 16;
+
+/// A Voronoi facet: its vertices (tetrahedra) in order around it, as a range of
+/// [`Complex::corners`], and the widest angle under which its Delaunay edge is seen
+/// from one of them.
+struct Facet {
+    corners: std::ops::Range<usize>,
+    angle: f64,
+    /// The length of its Delaunay edge: how far apart the two samples it separates lie.
+    span: f64,
+}
+
+/// The inner Voronoi diagram as a 2-complex: facets, and every Voronoi edge between two
+/// inner vertices (with the facets it bounds).
+struct Complex {
+    facets: Vec<Facet>,
+    corners: Vec<u32>,
+    /// Voronoi edges as ordered tetrahedron pairs, with their index.
+    edge_ids: HashMap<[u32; 2], u32>,
+    edges: Vec<[u32; 2]>,
+}
+
+impl Complex {
+    fn edge(&mut self, a: u32, b: u32) -> u32 {
+        let key = [a.min(b), a.max(b)];
+        let next = self.edges.len() as u32;
+        let id = *self.edge_ids.entry(key).or_insert(next);
+        if id == next {
+            self.edges.push(key);
+        }
+        id
+    }
+
+    /// The edges of facet `f`, around it.
+    fn facet_edges(&self, f: usize) -> impl Iterator<Item = [u32; 2]> + '_ {
+        let ring = &self.corners[self.facets[f].corners.clone()];
+        (0..ring.len()).map(move |i| {
+            let (a, b) = (ring[i], ring[(i + 1) % ring.len()]);
+            [a.min(b), a.max(b)]
+        })
+    }
+}
+
+/// Which Voronoi vertices lie inside, with their position: `c` is inner when it lies
+/// behind the tangent plane of each of its four samples (`(c − p)·n < 0`). Its ball is
+/// empty of samples, so on a dense enough sampling no surface lies between `p` and `c`,
+/// and the side of `p`'s tangent plane is the side of the surface.
+///
+/// Where the surface is not what its normals say (a fold, faces through each other),
+/// a ball can pass that test from outside; a ball inside the solid also lies inside
+/// its bounding box, give or take `slack` (a ball empty of samples can bulge out
+/// between them), and one that does not is left out.
+fn inner_centres(samples: &Samples, dt: &Delaunay, slack: f64) -> Vec<Option<DVec3>> {
+    let point = |v: u32| DVec3::from_array(samples.points[v as usize]);
+    let (lo, hi) = bounding_box(samples);
+    dt.tets
+        .iter()
+        .map(|tet| {
+            let [a, b, c, d] = tet.map(|v| samples.points[v as usize]);
+            let centre = DVec3::from_array(circumcentre(a, b, c, d));
+            let radius = centre.distance(DVec3::from_array(a));
+            let inner = centre.is_finite()
+                && (centre - radius).cmpge(lo - slack).all()
+                && (centre + radius).cmple(hi + slack).all()
+                && tet
+                    .iter()
+                    .all(|&v| (centre - point(v)).dot(samples.normals[v as usize]) < 0.0);
+            inner.then_some(centre)
+        })
+        .collect()
+}
+
+/// The samples' bounding box.
+fn bounding_box(samples: &Samples) -> (DVec3, DVec3) {
+    samples.points.iter().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(DVec3::from_array(*p)), hi.max(DVec3::from_array(*p))),
+    )
+}
+
+/// The inner Voronoi diagram's facets and edges.
+fn inner_complex(samples: &Samples, dt: &Delaunay, centres: &[Option<DVec3>]) -> Complex {
+    let point = |v: u32| DVec3::from_array(samples.points[v as usize]);
+    let mut complex = Complex {
+        facets: Vec::new(),
+        corners: Vec::new(),
+        edge_ids: HashMap::new(),
+        edges: Vec::new(),
+    };
+    let mut ring = Vec::new();
+    for t in 0..dt.tets.len() as u32 {
+        if centres[t as usize].is_none() {
+            continue;
+        }
+        for &n in &dt.neighbours[t as usize] {
+            if n != OUTSIDE && n > t && centres[n as usize].is_some() {
+                complex.edge(t, n);
+            }
+        }
+        for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
+            // Each facet once: from the lowest tetrahedron of its ring.
+            if !ring_around(dt, t, i, j, &mut ring)
+                || ring.iter().any(|&r| r < t || centres[r as usize].is_none())
+            {
+                continue;
+            }
+            let tet = dt.tets[t as usize];
+            let (p, q) = (point(tet[i]), point(tet[j]));
+            let angle = ring
+                .iter()
+                .map(|&r| {
+                    let c = centres[r as usize].expect("inner");
+                    (p - c).angle_between(q - c)
+                })
+                .fold(0.0, f64::max);
+            let start = complex.corners.len();
+            complex.corners.extend_from_slice(&ring);
+            complex.facets.push(Facet {
+                corners: start..complex.corners.len(),
+                angle,
+                span: p.distance(q),
+            });
+        }
+    }
+    complex
+}
+
+/// The medial axis of the inner Voronoi diagram of samples about `spacing` apart: its
+/// facets whose Delaunay edge `p q` is seen from one of their vertices `c` under at
+/// least `min_angle` (radians, `∠ p c q`) and is at least `min_span` long, with the
+/// others collapsed away where they can be.
+///
+/// On a surface sampled densely enough, the inner Voronoi diagram has the solid's
+/// topology (its facets, edges and vertices inside; those of the surface's own
+/// Delaunay edges reach the outer poles and are left out). Where the ball touches the
+/// surface at two far-apart points, as a medial ball does, the angle is large; facets
+/// between neighbouring samples are spikes toward the surface. A spike is only removed
+/// through a free edge (an elementary collapse, which changes no topology), so the
+/// filter opens no hole and splits no part; edges left joining parts are kept as
+/// curves, dangling ones collapsed too.
+pub(super) fn inner_axis(
+    samples: &Samples,
+    dt: &Delaunay,
+    spacing: f64,
+    min_angle: f64,
+    min_span: f64,
+) -> InnerAxis {
+    let centres = inner_centres(samples, dt, spacing);
+    let complex = inner_complex(samples, dt, &centres);
+    let (alive, uses, gone) = collapse_spikes(&complex, min_angle, min_span);
+    let mut out = InnerAxis {
+        positions: Vec::new(),
+        radii: Vec::new(),
+        triangles: Vec::new(),
+        curves: Vec::new(),
+        inner_vertices: centres.iter().flatten().count(),
+    };
+    let rep = merged_centres(&complex, &centres, samples);
+    let mut vertex_of = HashMap::new();
+    let mut vertex = |r: u32, out: &mut InnerAxis| {
+        let r = rep[r as usize];
+        *vertex_of.entry(r).or_insert_with(|| {
+            let c = centres[r as usize].expect("inner");
+            out.positions.push(c.to_array());
+            out.radii.push(c.distance(DVec3::from_array(
+                samples.points[dt.tets[r as usize][0] as usize],
+            )));
+            out.positions.len() as u32 - 1
+        })
+    };
+    let mut ring = Vec::new();
+    for (f, facet) in complex.facets.iter().enumerate() {
+        if !alive[f] {
+            continue;
+        }
+        ring.clear();
+        for &r in &complex.corners[facet.corners.clone()] {
+            if ring.last() != Some(&rep[r as usize]) {
+                ring.push(rep[r as usize]);
+            }
+        }
+        while ring.len() > 1 && ring.first() == ring.last() {
+            ring.pop();
+        }
+        if ring.len() == 2 {
+            // Shrunk to a segment by the merges: a curve.
+            let (a, b) = (vertex(ring[0], &mut out), vertex(ring[1], &mut out));
+            out.curves.push([a, b]);
+        }
+        if ring.len() < 3 {
+            continue;
+        }
+        let first = vertex(ring[0], &mut out);
+        for w in ring[1..].windows(2) {
+            let (b, c) = (vertex(w[0], &mut out), vertex(w[1], &mut out));
+            let corners = [first, b, c].map(|v| DVec3::from_array(out.positions[v as usize]));
+            if FaceFrame::of_triangle(corners).is_some() {
+                out.triangles.push([first, b, c]);
+            } else {
+                // A sliver of a facet (nearly collinear circumcentres) is no face a mesh
+                // keeps: its sides stay, as curves, so that nothing comes apart.
+                out.curves.extend([[first, b], [b, c], [c, first]]);
+            }
+        }
+    }
+    for [a, b] in joining_curves(&complex, &uses, &gone) {
+        if rep[a as usize] != rep[b as usize] {
+            let (a, b) = (vertex(a, &mut out), vertex(b, &mut out));
+            out.curves.push([a, b]);
+        }
+    }
+    out
+}
+
+/// For each tetrahedron, the one whose circumcentre stands for it: circumcentres closer
+/// than rounding can tell apart (`1e-9` of the samples' extent) along a Voronoi edge are
+/// one. Five or more samples on one sphere (the corners of a mesh's planar quads, and
+/// their neighbours) give several tetrahedra with the same circumcentre, computed a
+/// rounding apart; kept apart, their facets would be flat slivers. Contracting the
+/// edges between them changes no topology.
+fn merged_centres(complex: &Complex, centres: &[Option<DVec3>], samples: &Samples) -> Vec<u32> {
+    let (lo, hi) = bounding_box(samples);
+    let tolerance = 1e-9 * lo.distance(hi);
+    let mut sets = crate::mesh::DisjointSets::new(centres.len());
+    for &[a, b] in &complex.edges {
+        let (Some(ca), Some(cb)) = (centres[a as usize], centres[b as usize]) else {
+            continue;
+        };
+        if ca.distance(cb) <= tolerance {
+            sets.join(a, b);
+        }
+    }
+    (0..centres.len() as u32).map(|t| sets.find(t)).collect()
+}
+
+/// Collapses the facets seen under less than `min_angle` through their free edges,
+/// until none is left with one; returns which facets are left, how many of them use
+/// each edge, and which edges went with a facet.
+fn collapse_spikes(
+    complex: &Complex,
+    min_angle: f64,
+    min_span: f64,
+) -> (Vec<bool>, Vec<u32>, Vec<bool>) {
+    let mut uses = vec![0u32; complex.edges.len()];
+    let mut facets_of: Vec<Vec<u32>> = vec![Vec::new(); complex.edges.len()];
+    for f in 0..complex.facets.len() {
+        for e in complex.facet_edges(f) {
+            let id = complex.edge_ids[&e] as usize;
+            uses[id] += 1;
+            facets_of[id].push(f as u32);
+        }
+    }
+    let mut alive = vec![true; complex.facets.len()];
+    let mut gone = vec![false; complex.edges.len()];
+    let narrow =
+        |f: usize| complex.facets[f].angle < min_angle || complex.facets[f].span < min_span;
+    let mut queue: Vec<u32> = (0..complex.facets.len() as u32)
+        .filter(|&f| narrow(f as usize))
+        .collect();
+    while let Some(f) = queue.pop() {
+        let f = f as usize;
+        let free = complex
+            .facet_edges(f)
+            .map(|e| complex.edge_ids[&e] as usize)
+            .find(|&e| uses[e] == 1 && !gone[e]);
+        let (true, Some(free)) = (alive[f], free) else {
+            continue;
+        };
+        // The facet goes with its free edge: both leave the complex.
+        alive[f] = false;
+        gone[free] = true;
+        for e in complex.facet_edges(f) {
+            let id = complex.edge_ids[&e] as usize;
+            uses[id] -= 1;
+            if uses[id] == 1 {
+                queue.extend(
+                    facets_of[id]
+                        .iter()
+                        .filter(|&&g| alive[g as usize] && narrow(g as usize)),
+                );
+            }
+        }
+    }
+    (alive, uses, gone)
+}
+
+/// The Voronoi edges in no facet left that join parts of the axis: dangling ones (an
+/// end in nothing else) are collapsed, one after the other.
+fn joining_curves(complex: &Complex, uses: &[u32], gone: &[bool]) -> Vec<[u32; 2]> {
+    let mut degree: HashMap<u32, u32> = HashMap::new();
+    // A vertex of a kept facet is never a free end.
+    for (e, &[a, b]) in complex.edges.iter().enumerate() {
+        if gone[e] {
+            continue;
+        }
+        let weight = if uses[e] > 0 { 2 } else { 1 };
+        *degree.entry(a).or_default() += weight;
+        *degree.entry(b).or_default() += weight;
+    }
+    let mut kept: Vec<bool> = (0..uses.len()).map(|e| uses[e] == 0 && !gone[e]).collect();
+    let mut at: HashMap<u32, Vec<u32>> = HashMap::new();
+    for (e, &[a, b]) in complex.edges.iter().enumerate() {
+        if kept[e] {
+            at.entry(a).or_default().push(e as u32);
+            at.entry(b).or_default().push(e as u32);
+        }
+    }
+    let mut ends: Vec<u32> = degree
+        .iter()
+        .filter(|(_, &d)| d == 1)
+        .map(|(&v, _)| v)
+        .collect();
+    while let Some(v) = ends.pop() {
+        let Some(&e) = at[&v].iter().find(|&&e| kept[e as usize]) else {
+            continue;
+        };
+        kept[e as usize] = false;
+        for w in complex.edges[e as usize] {
+            let d = degree.get_mut(&w).expect("an end of an edge");
+            *d -= 1;
+            if *d == 1 {
+                ends.push(w);
+            }
+        }
+    }
+    (0..complex.edges.len())
+        .filter(|&e| kept[e])
+        .map(|e| complex.edges[e])
+        .collect()
+}
+
+/// The tetrahedra around the edge between local vertices `i` and `j` of tetrahedron
+/// `t`, in order, starting with `t`; `false` for an edge on the convex hull (its ring is
+/// not closed, so it has no bounded Voronoi facet).
+fn ring_around(dt: &Delaunay, t: u32, i: usize, j: usize, ring: &mut Vec<u32>) -> bool {
+    ring.clear();
+    let tet = dt.tets[t as usize];
+    let (a, b) = (tet[i], tet[j]);
+    let k = (0..4).find(|&k| k != i && k != j).expect("four corners");
+    let l = 6 - i - j - k;
+    // Leave `t` across the facet opposite one of its two other vertices, `kept` being the
+    // other; in each next tetrahedron, leave across the facet opposite the vertex kept
+    // from the one before, and keep its new vertex.
+    let (mut current, mut kept, mut leave) = (t, tet[l], tet[k]);
+    loop {
+        ring.push(current);
+        let cur = dt.tets[current as usize];
+        let k = cur
+            .iter()
+            .position(|&v| v == leave)
+            .expect("vertex of the tetrahedron");
+        let next = dt.neighbours[current as usize][k];
+        if next == OUTSIDE || ring.len() > MAX_RING {
+            return false;
+        }
+        if next == t {
+            return true;
+        }
+        let fresh = *dt.tets[next as usize]
+            .iter()
+            .find(|&&v| v != a && v != b && v != kept)
+            .expect("a tetrahedron has four vertices");
+        leave = kept;
+        kept = fresh;
+        current = next;
+    }
+}

@@ -1,0 +1,300 @@
+//! Medial axes of closed surfaces from the Voronoi diagram of their samples: where the
+//! axis lies and how wide its balls are on shapes whose medial axis is known, the
+//! skeletons built on it, and the surfaces that bound no solid.
+
+mod common;
+
+use common::{grid, sphere, torus};
+use geotracks::medial::solid_cycles;
+use geotracks::medial::{medial_axis, MedialAxisError, MedialAxisOptions};
+use geotracks::mesh::io::{read_medial_axis, write_medial_axis, MedialAxis};
+use geotracks::mesh::TriMesh;
+use geotracks::skeleton::{medial_axis_skeleton_with_cycles, Burn};
+use geotracks::{Error, Options};
+use std::collections::HashMap;
+
+const K5: Options = Options::DEFAULT.with_k(5.0);
+
+/// The closed surface of a union of unit voxels (quads between a filled voxel and an
+/// empty one, wound outward), vertices shared on the integer grid.
+fn voxels(filled: &[[i32; 3]]) -> TriMesh {
+    let set: std::collections::HashSet<[i32; 3]> = filled.iter().copied().collect();
+    let mut ids: HashMap<[i32; 3], u32> = HashMap::new();
+    let mut positions = Vec::new();
+    let mut id = |p: [i32; 3]| {
+        *ids.entry(p).or_insert_with(|| {
+            positions.push(p.map(f64::from));
+            positions.len() as u32 - 1
+        })
+    };
+    let mut triangles = Vec::new();
+    for &v in filled {
+        for a in 0..3 {
+            for s in [1, -1] {
+                let mut n = v;
+                n[a] += s;
+                if set.contains(&n) {
+                    continue;
+                }
+                let (b, c) = ((a + 1) % 3, (a + 2) % 3);
+                let mut base = v;
+                base[a] += i32::from(s > 0);
+                let corner = |db: i32, dc: i32| {
+                    let mut p = base;
+                    p[b] += db;
+                    p[c] += dc;
+                    p
+                };
+                let mut q = [corner(0, 0), corner(1, 0), corner(1, 1), corner(0, 1)];
+                if s < 0 {
+                    q.reverse();
+                }
+                let q = q.map(&mut id);
+                triangles.push([q[0], q[1], q[2]]);
+                triangles.push([q[0], q[2], q[3]]);
+            }
+        }
+    }
+    TriMesh::new(positions, triangles).unwrap()
+}
+
+/// A T of voxels: a bar 9 long across the top, a stem 5 long down from its middle,
+/// both 1 × 1 thick.
+fn t_shape() -> Vec<[i32; 3]> {
+    let mut v: Vec<[i32; 3]> = (-4..=4).map(|x| [x, 5, 0]).collect();
+    v.extend((0..5).map(|y| [0, y, 0]));
+    v
+}
+
+fn axis(mesh: &TriMesh, spacing: f64) -> MedialAxis {
+    medial_axis(
+        mesh,
+        &MedialAxisOptions::default().with_spacing(Some(spacing)),
+    )
+    .unwrap()
+}
+
+#[test]
+fn a_jittered_sphere_has_its_axis_at_the_centre() {
+    let mesh = sphere(3, 0.01, 7);
+    let axis = axis(&mesh, 1.0);
+    for (p, r) in axis.positions.iter().zip(&axis.radii) {
+        let d = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+        assert!(d < 0.15 && (0.85..1.01).contains(r), "{p:?} radius {r}");
+    }
+}
+
+#[test]
+fn a_torus_has_its_core_circle_as_axis_and_skeleton() {
+    let (big, small) = (2.0, 0.5);
+    let mesh = torus(64, 16, big, small);
+    let axis = axis(&mesh, 0.1);
+    for (p, r) in axis.positions.iter().zip(&axis.radii) {
+        let off = ((p[0].hypot(p[1]) - big).powi(2) + p[2] * p[2]).sqrt();
+        // Every ball lies in the tube. The cross-sections are regular 16-gons, all on
+        // spheres about the core: their Voronoi vertices spread across the tube (the
+        // skeleton below is what lies on the core), and a ball empty of samples bulges
+        // out between them (by up to 10 % here, where they are 0.25 apart on the
+        // outer side).
+        assert!(
+            r + off <= small * 1.15,
+            "ball of radius {r} at {p:?} leaves the tube"
+        );
+    }
+    assert_eq!(axis.betti_numbers().b0, 1);
+    assert_eq!(solid_cycles(&mesh), 1);
+    let prune = 0.05 * axis.diagonal();
+    let (skeleton, _) =
+        medial_axis_skeleton_with_cycles(&axis, Burn::Boundary, &K5, prune, 1.0, 1).unwrap();
+    // The core loop, with the few short branches the star-shaped axis leaves.
+    assert_eq!((skeleton.cycle_count(), skeleton.component_count()), (1, 1));
+    assert!(skeleton.tip_count() <= 8, "{} tips", skeleton.tip_count());
+    // The loop (what never burns) follows the core.
+    let core_offset = |q: [f64; 3]| ((q[0].hypot(q[1]) - big).powi(2) + q[2] * q[2]).sqrt();
+    let on_loop: Vec<f64> = skeleton
+        .points
+        .iter()
+        .filter(|p| p.significance.is_infinite())
+        .map(|p| core_offset(p.position))
+        .collect();
+    assert!(on_loop.len() > 20);
+    let mean = on_loop.iter().sum::<f64>() / on_loop.len() as f64;
+    let max = on_loop.iter().copied().fold(0.0, f64::max);
+    assert!(
+        mean < 0.1 * small && max < 0.3 * small,
+        "loop off the core by {mean} on average, {max} at most"
+    );
+}
+
+#[test]
+fn a_boxs_axis_stays_inside_with_balls_at_most_half_its_thickness() {
+    let mesh = voxels(&(0..4).map(|x| [x, 0, 0]).collect::<Vec<_>>());
+    let axis = axis(&mesh, 0.2);
+    for (p, r) in axis.positions.iter().zip(&axis.radii) {
+        // A ball empty of samples 0.2 apart bulges out between them by a little.
+        assert!(*r <= 0.5 + 0.02, "radius {r} at {p:?}");
+        let inside = p[0] > 0.0 && p[0] < 4.0 && (0..3).skip(1).all(|c| p[c] > 0.0 && p[c] < 1.0);
+        assert!(inside, "{p:?}");
+    }
+    // The middle of the box is covered: its centre line lies on the axis.
+    for x in [1.0, 2.0, 3.0] {
+        let near = axis.positions.iter().any(|p| {
+            (p[0] - x).abs() < 0.2 && (p[1] - 0.5).abs() < 0.05 && (p[2] - 0.5).abs() < 0.05
+        });
+        assert!(near, "no axis point near the centre line at x = {x}");
+    }
+}
+
+#[test]
+fn every_arm_of_a_t_gets_a_branch() {
+    let mesh = voxels(&t_shape());
+    let axis = axis(&mesh, 0.25);
+    assert_eq!(axis.betti_numbers().b0, 1);
+    let prune = 0.05 * axis.diagonal();
+    let cycles = solid_cycles(&mesh);
+    assert_eq!(cycles, 0);
+    let (skeleton, _) =
+        medial_axis_skeleton_with_cycles(&axis, Burn::Boundary, &K5, prune, 1.0, cycles).unwrap();
+    assert_eq!((skeleton.component_count(), skeleton.cycle_count()), (1, 0));
+    let tips: Vec<[f64; 3]> = skeleton
+        .degrees()
+        .iter()
+        .zip(&skeleton.points)
+        .filter(|(d, _)| **d == 1)
+        .map(|(_, p)| p.position)
+        .collect();
+    // A square bar's medial axis is two diagonal sheets that reach its four edges, so
+    // tips along the bars are the axis's own; what matters is that each arm's end
+    // has one.
+    // The arms end at x = ±4.5 (the bar) and y = 0 (the stem).
+    let ends = [[-4.0, 5.5], [5.0, 5.5], [0.5, 0.0]];
+    for e in ends {
+        let near = tips.iter().any(|t| (t[0] - e[0]).hypot(t[1] - e[1]) < 1.2);
+        assert!(near, "no tip near the arm's end {e:?}: tips {tips:?}");
+    }
+}
+
+#[test]
+fn the_winding_of_the_file_does_not_matter() {
+    let mesh = torus(48, 12, 2.0, 0.5);
+    let tris = mesh.triangles();
+    let positions: Vec<[f64; 3]> = mesh.positions().iter().map(|p| p.to_array()).collect();
+    let inward: Vec<[u32; 3]> = tris.iter().map(|&[a, b, c]| [a, c, b]).collect();
+    let mixed: Vec<[u32; 3]> = tris
+        .iter()
+        .enumerate()
+        .map(|(i, &[a, b, c])| if i % 3 == 0 { [a, c, b] } else { [a, b, c] })
+        .collect();
+    let reference = axis(&mesh, 0.15);
+    for triangles in [inward, mixed] {
+        let other = axis(&TriMesh::new(positions.clone(), triangles).unwrap(), 0.15);
+        assert_eq!(other.positions, reference.positions);
+        assert_eq!(other.radii, reference.radii);
+    }
+}
+
+#[test]
+fn the_written_axis_reads_back_the_same() {
+    let axis = axis(&torus(32, 10, 2.0, 0.5), 0.2);
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("torus.ma");
+    write_medial_axis(&path, &axis).unwrap();
+    let back = read_medial_axis(&path).unwrap();
+    assert_eq!(back.positions, axis.positions);
+    assert_eq!(back.radii, axis.radii);
+    let faces = |a: &MedialAxis| a.surface.as_ref().unwrap().triangles().to_vec();
+    assert_eq!(faces(&back), faces(&axis));
+    assert_eq!(back.betti_numbers(), axis.betti_numbers());
+}
+
+#[test]
+fn surfaces_that_bound_no_solid_are_refused() {
+    let open = grid(4, 1.0);
+    let err = medial_axis(&open, &MedialAxisOptions::default()).unwrap_err();
+    assert!(
+        matches!(err, Error::MedialAxis(MedialAxisError::OpenSurface { .. })),
+        "{err}"
+    );
+    // Three sheets on one edge: a tetrahedron's surface with a fin.
+    let positions = vec![
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [-1.0, -1.0, 0.0],
+    ];
+    let mut triangles = vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]];
+    triangles.push([0, 1, 4]);
+    let fin = TriMesh::new(positions, triangles).unwrap();
+    let err = medial_axis(&fin, &MedialAxisOptions::default()).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            Error::MedialAxis(
+                MedialAxisError::OpenSurface { .. } | MedialAxisError::NonManifoldSurface { .. }
+            )
+        ),
+        "{err}"
+    );
+    // Two triangles back to back: closed, but no volume.
+    let flat = TriMesh::new(
+        vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+        vec![[0, 1, 2], [0, 2, 1]],
+    );
+    if let Ok(flat) = flat {
+        let err = medial_axis(&flat, &MedialAxisOptions::default()).unwrap_err();
+        assert!(
+            matches!(
+                err,
+                Error::MedialAxis(MedialAxisError::Flat(_) | MedialAxisError::Empty { .. })
+            ),
+            "{err}"
+        );
+    }
+}
+
+#[test]
+fn options_out_of_range_are_refused_before_any_work() {
+    let mesh = torus(16, 8, 2.0, 0.5);
+    for options in [
+        MedialAxisOptions::default().with_spacing(Some(0.0)),
+        MedialAxisOptions::default().with_spacing(Some(f64::NAN)),
+        MedialAxisOptions::default().with_min_angle_degrees(0.0),
+        MedialAxisOptions::default().with_min_angle_degrees(180.0),
+    ] {
+        let err = medial_axis(&mesh, &options).unwrap_err();
+        assert!(
+            matches!(
+                err,
+                Error::MedialAxis(MedialAxisError::InvalidOption { .. })
+            ),
+            "{err}"
+        );
+    }
+    let err = medial_axis(
+        &mesh,
+        &MedialAxisOptions::default().with_spacing(Some(1e-4)),
+    )
+    .unwrap_err();
+    assert!(
+        matches!(
+            err,
+            Error::MedialAxis(MedialAxisError::TooManySamples { .. })
+        ),
+        "{err}"
+    );
+}
+
+#[test]
+fn spot_gives_one_tree_along_its_body() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/spot.obj");
+    let mesh = geotracks::mesh::io::read_mesh(path).unwrap();
+    let axis = medial_axis(&mesh, &MedialAxisOptions::default()).unwrap();
+    let prune = 0.05 * axis.diagonal();
+    let (skeleton, _) =
+        medial_axis_skeleton_with_cycles(&axis, Burn::Boundary, &K5, prune, 1.0, 0).unwrap();
+    assert_eq!(skeleton.component_count(), 1);
+    assert_eq!(skeleton.cycle_count(), 0);
+    let tips = skeleton.tip_count();
+    assert!((4..=20).contains(&tips), "{tips} tips");
+}
