@@ -79,7 +79,7 @@ pub enum Error {
     Metric(#[from] MetricError),
     /// A medial axis could not be computed from a surface.
     #[error(transparent)]
-    MedialAxis(#[from] crate::medial::MedialAxisError),
+    MedialAxis(#[from] crate::skeleton::medial::MedialAxisError),
     /// No source was given.
     #[error("no source given: at least one source vertex is needed")]
     NoSource,

@@ -34,7 +34,8 @@
 //!   searched from both ends at once where it can.
 //! - [`skeleton`]: curve skeletons of medial axes with the axis's topology: burnt from
 //!   the border or by radius, thinned by collapses in burn order, pruned by erosion
-//!   thickness.
+//!   thickness; and ([`skeleton::medial`]) the medial axis of a closed surface mesh,
+//!   from the Voronoi diagram of points sampled on it.
 //!
 //! Dependencies point one way: applications ([`skeleton`], routes) run the engines in
 //! [`propagate`], which make fields; [`field`] answers its queries with [`trace`];
@@ -74,7 +75,6 @@
 mod error;
 pub mod field;
 mod flat;
-pub mod medial;
 pub mod mesh;
 pub mod options;
 pub mod propagate;

@@ -5,10 +5,10 @@
 mod common;
 
 use common::{grid, sphere, torus};
-use geotracks::medial::solid_cycles;
-use geotracks::medial::{medial_axis, MedialAxisError, MedialAxisOptions};
 use geotracks::mesh::io::{read_medial_axis, write_medial_axis, MedialAxis};
 use geotracks::mesh::TriMesh;
+use geotracks::skeleton::medial::solid_cycles;
+use geotracks::skeleton::medial::{medial_axis, MedialAxisError, MedialAxisOptions};
 use geotracks::skeleton::{medial_axis_skeleton_with_cycles, Burn};
 use geotracks::{Error, Options};
 use std::collections::HashMap;

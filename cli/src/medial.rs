@@ -5,8 +5,8 @@
 use crate::output::Outputs;
 use crate::picture::CameraArgs;
 use crate::{ui, CliResult, Short};
-use geotracks::medial::{medial_axis, medial_axis_of_file, MedialAxisOptions};
 use geotracks::mesh::io::MedialAxis;
+use geotracks::skeleton::medial::{medial_axis, medial_axis_of_file, MedialAxisOptions};
 use geotracks_render::render_field;
 use std::path::{Path, PathBuf};
 use std::time::Instant;

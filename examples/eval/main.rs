@@ -36,10 +36,11 @@
 //! components and tips at each pruning level against the axis's Betti numbers (exit 1 if
 //! they differ), the end-to-end time, and, where `DATA_DIR/skeleton/<name>.mcf.obj` has a
 //! mean-curvature-flow skeleton, the distances between the two (the guide's Skeletons page
-//! table; `--radius` burns by the medial radius):
+//! table; `--radius` burns by the medial radius; `--from-meshes` computes the axes
+//! from `DATA_DIR/meshes/<name>.obj` instead, at that angle and span):
 //!
 //! ```text
-//! cargo run --release --example eval -- ../shared/data --skeletons [7] [--k 5] [--radius] [--tubular 1] [--from-meshes [ANGLE]]
+//! cargo run --release --example eval -- ../shared/data --skeletons [7] [--k 5] [--radius] [--tubular 1] [--from-meshes [ANGLE] [--span S]]
 //! ```
 //!
 //! With `--engines` it measures each engine against every exact reference, with its time,
@@ -159,10 +160,19 @@ fn skeletons_main(argv: &[String], at: usize) -> Result<(), String> {
                 Some(a) if !a.starts_with("--") => {
                     a.parse().map_err(|_| format!("bad angle '{a}'"))?
                 }
-                _ => geotracks::medial::MedialAxisOptions::DEFAULT_MIN_ANGLE_DEGREES,
+                _ => geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_ANGLE_DEGREES,
+            };
+            let span = match argv.iter().position(|a| a == "--span") {
+                Some(i) => argv
+                    .get(i + 1)
+                    .and_then(|v| v.parse().ok())
+                    .ok_or("--span takes a number")?,
+                None => geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_SPAN,
             };
             skeletons::Axes::FromMeshes(
-                geotracks::medial::MedialAxisOptions::default().with_min_angle_degrees(angle),
+                geotracks::skeleton::medial::MedialAxisOptions::default()
+                    .with_min_angle_degrees(angle)
+                    .with_min_span(span),
             )
         }
         None => skeletons::Axes::Files,

@@ -3,9 +3,9 @@
 //! mean-curvature-flow skeleton of the same shape, the distances between the two curves
 //! (the guide's Skeletons page table).
 
-use geotracks::medial::{medial_axis, solid_cycles, MedialAxisOptions};
 use geotracks::mesh::io::read_medial_axis;
 use geotracks::mesh::io::{read_mesh, MedialAxis};
+use geotracks::skeleton::medial::{medial_axis, solid_cycles, MedialAxisOptions};
 use geotracks::skeleton::{medial_axis_skeleton_with_cycles, Burn, Skeleton};
 use geotracks::{Method, Options};
 use glam::DVec3;

@@ -511,7 +511,7 @@ fn medial_options(
     spacing: Option<f64>,
     angle: f64,
     span: f64,
-) -> PyResult<geotracks::medial::MedialAxisOptions> {
+) -> PyResult<geotracks::skeleton::medial::MedialAxisOptions> {
     if spacing.is_some_and(|s| !(s > 0.0 && s.is_finite())) {
         return Err(error(format!(
             "spacing {}: expected a positive length",
@@ -526,7 +526,7 @@ fn medial_options(
     if !(span >= 0.0 && span.is_finite()) {
         return Err(error(format!("span {span}: expected a number >= 0")));
     }
-    Ok(geotracks::medial::MedialAxisOptions::default()
+    Ok(geotracks::skeleton::medial::MedialAxisOptions::default()
         .with_spacing(spacing)
         .with_min_angle_degrees(angle)
         .with_min_span(span))
@@ -536,9 +536,9 @@ fn medial_options(
 fn axis_of_file(
     path: &std::path::Path,
     weld: bool,
-    options: &geotracks::medial::MedialAxisOptions,
+    options: &geotracks::skeleton::medial::MedialAxisOptions,
 ) -> Result<(geotracks::mesh::io::MedialAxis, Option<usize>), String> {
-    geotracks::medial::medial_axis_of_file(path, weld, options).map_err(|e| match e {
+    geotracks::skeleton::medial::medial_axis_of_file(path, weld, options).map_err(|e| match e {
         geotracks::Error::Mesh(e) => e.to_string(),
         e => format!("{}: {e}", path.display()),
     })
@@ -547,7 +547,7 @@ fn axis_of_file(
 /// The medial axis of a closed surface mesh file: `(positions (n, 3), radii (n,), faces
 /// (f, 3))`.
 #[pyfunction]
-#[pyo3(signature = (mesh, spacing=None, angle=geotracks::medial::MedialAxisOptions::DEFAULT_MIN_ANGLE_DEGREES, span=geotracks::medial::MedialAxisOptions::DEFAULT_MIN_SPAN, weld=false))]
+#[pyo3(signature = (mesh, spacing=None, angle=geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_ANGLE_DEGREES, span=geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_SPAN, weld=false))]
 fn medial_axis<'py>(
     py: Python<'py>,
     mesh: std::path::PathBuf,
@@ -562,7 +562,7 @@ fn medial_axis<'py>(
             let read = geotracks::mesh::io::ReadOptions::DEFAULT.with_weld(weld);
             let surface =
                 geotracks::mesh::io::read_mesh_with(&mesh, &read).map_err(|e| e.to_string())?;
-            geotracks::medial::medial_axis(&surface, &options)
+            geotracks::skeleton::medial::medial_axis(&surface, &options)
                 .map_err(|e| format!("{}: {e}", mesh.display()))
         })
         .map_err(error)?;
@@ -582,7 +582,7 @@ fn medial_axis<'py>(
 /// joins), burnt from the border (`burn="boundary"`) or by medial radius (`"radius"`):
 /// `(points (p, 3), radii (p,), significance (p,), edges (e, 2), b1)`.
 #[pyfunction]
-#[pyo3(signature = (axis, prune="5%", burn="boundary", k=5.0, tubular=geotracks::skeleton::DEFAULT_MIN_TUBULARITY, spacing=None, angle=geotracks::medial::MedialAxisOptions::DEFAULT_MIN_ANGLE_DEGREES, span=geotracks::medial::MedialAxisOptions::DEFAULT_MIN_SPAN, weld=false))]
+#[pyo3(signature = (axis, prune="5%", burn="boundary", k=5.0, tubular=geotracks::skeleton::DEFAULT_MIN_TUBULARITY, spacing=None, angle=geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_ANGLE_DEGREES, span=geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_SPAN, weld=false))]
 #[allow(clippy::type_complexity, clippy::too_many_arguments)] // five named arrays, as the Python wrapper documents; the keywords are Python's
 fn skeleton<'py>(
     py: Python<'py>,

@@ -1,5 +1,5 @@
 //! Cutting a skeleton's extra cycles: a medial axis computed from a sampled surface has
-//! small holes where its sheets are thin (see [`crate::medial`]), and thinning keeps a
+//! small holes where its sheets are thin (see [`crate::skeleton::medial`]), and thinning keeps a
 //! cycle around each; the solid has as many independent cycles as its genus.
 
 use super::{Skeleton, SkeletonPoint};

@@ -8,6 +8,10 @@
 //! simplices that a collapse may remove, and pruning removes only branches from their
 //! tips. How it works is in the `thinning` module's notes.
 //!
+//! A closed surface mesh gets its medial axis from [`medial`] first; that axis has a
+//! few small holes the solid does not, which
+//! [`medial_axis_skeleton_with_cycles`] cuts.
+//!
 //! ```
 //! use geotracks::{mesh::TriMesh, skeleton::Skeleton, Euclidean, Options};
 //!
@@ -44,6 +48,7 @@
 mod cycles;
 mod geometry;
 mod grassfire;
+pub mod medial;
 mod thinning;
 
 pub use grassfire::Grassfire;
@@ -582,7 +587,7 @@ pub fn medial_axis_skeleton(
 /// [`medial_axis_skeleton`] with at most `max_cycles` independent cycles: after pruning,
 /// extra cycles are cut ([`Skeleton::with_cycles_cut`], widest by medial radius) and
 /// what the cuts leave pruned again. For an axis computed from a sampled surface
-/// ([`crate::medial::medial_axis`]), whose sheets have small holes that the solid
+/// ([`crate::skeleton::medial::medial_axis`]), whose sheets have small holes that the solid
 /// does not: `max_cycles` is then the solid's genus.
 ///
 /// # Errors

@@ -36,7 +36,7 @@
 //! or fold back, balls outside can pass, and the axis then has parts outside the solid.
 //!
 //! ```
-//! use geotracks::medial::{medial_axis, MedialAxisOptions};
+//! use geotracks::skeleton::medial::{medial_axis, MedialAxisOptions};
 //! use geotracks::mesh::TriMesh;
 //! // A box 4 × 1 × 1: its medial axis is a sheet along its length, with wedges at the
 //! // ends.
