@@ -335,9 +335,17 @@ fn info(path: &std::path::Path, weld: bool) -> CliResult {
     } else {
         inputs::load_mesh(path, weld)?.report()
     };
-    println!("{}", path.display());
-    println!("{report}");
-    Ok(())
+    print_out(format_args!("{}\n{report}", path.display()))
+}
+
+/// Writes a line to standard output; a reader that stopped reading (`| head`) is no
+/// error, and no panic (which `println!` would be).
+pub(crate) fn print_out(text: std::fmt::Arguments<'_>) -> CliResult {
+    use std::io::Write;
+    match writeln!(std::io::stdout().lock(), "{text}") {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        other => other.map_err(|e| format!("standard output: {e}").into()),
+    }
 }
 
 #[cfg(test)]

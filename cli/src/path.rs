@@ -93,7 +93,7 @@ pub fn run(args: &PathArgs) -> CliResult {
             ui::say!("{line}");
         }
         // The result, alone on the last line (also with --quiet).
-        println!("{}", Value(path.length));
+        crate::print_out(format_args!("{}", Value(path.length)))?;
     }
     crate::report_run(&args.mesh, field.stats(), &args.output);
     Ok(())

@@ -165,7 +165,7 @@ pub fn run(args: &TerrainArgs) -> CliResult {
     }
     outputs.commit()?;
 
-    say_route(args, &route, contours.map(|(_, lines)| lines.len()));
+    say_route(args, &route, contours.map(|(_, lines)| lines.len()))?;
     let timings = Timings {
         read_seconds,
         field_seconds,
@@ -238,7 +238,7 @@ fn whole_grid_field(
 /// Says what the route is: its ends, cost model, points, lengths and traced cost, how
 /// many contours were written (`contour_lines`), then its cost (on standard output,
 /// alone on the last line, unless the route itself goes there).
-fn say_route(args: &TerrainArgs, route: &Route, contour_lines: Option<usize>) {
+fn say_route(args: &TerrainArgs, route: &Route, contour_lines: Option<usize>) -> CliResult {
     let (cost, length, length_2d) = (route.cost(), route.length(), route.length_2d());
     let elevation = |p: Option<&geotracks::glam::DVec3>| p.map_or(f64::NAN, |p| p.z);
     let (first, last) = (route.points.first(), route.points.last());
@@ -269,8 +269,9 @@ fn say_route(args: &TerrainArgs, route: &Route, contour_lines: Option<usize>) {
             ui::say!("{line}");
         }
         // The result, alone on the last line (also with --quiet).
-        println!("{}", Value(cost));
+        crate::print_out(format_args!("{}", Value(cost)))?;
     }
+    Ok(())
 }
 
 /// Where a run's time went, for the report.

@@ -39,11 +39,12 @@ macro_rules! info {
 }
 pub(crate) use info;
 
-/// A line on stdout that is a summary, not data (hidden by `--quiet`).
+/// A line on stdout that is a summary, not data (hidden by `--quiet`); a closed pipe
+/// (`| head`) drops it quietly.
 macro_rules! say {
     ($($arg:tt)*) => {
         if $crate::ui::shows_info() {
-            println!($($arg)*);
+            let _ = $crate::print_out(format_args!($($arg)*));
         }
     };
 }

@@ -2014,3 +2014,21 @@ fn knobs_that_scale_work_are_refused_before_the_work() {
         "a distance matrix of 10000000 rows",
     );
 }
+
+#[test]
+fn a_reader_that_stops_reading_is_no_panic() {
+    use std::process::{Command, Stdio};
+    // `geotracks info mesh | head -1`: the pipe closes after the first line.
+    let mesh = concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/data/spot.obj");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_geotracks"))
+        .args(["info", mesh])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(out.status.success(), "{stderr}");
+}

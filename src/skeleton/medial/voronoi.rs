@@ -43,29 +43,44 @@ struct Facet {
 struct Complex {
     facets: Vec<Facet>,
     corners: Vec<u32>,
-    /// Voronoi edges as ordered tetrahedron pairs, with their index.
-    edge_ids: HashMap<[u32; 2], u32>,
+    /// Voronoi edges (between two inner tetrahedra that share a facet), lower first.
     edges: Vec<[u32; 2]>,
+    /// The edge across each facet slot of each tetrahedron (its index in `edges`, kept
+    /// at the lower of the two tetrahedra; `u32::MAX` elsewhere): a Voronoi edge is a
+    /// Delaunay triangle, so the slot numbers it without a hash.
+    slot_edges: Vec<u32>,
+    /// Per corner of a facet, the edge from it to the next corner.
+    corner_edges: Vec<u32>,
 }
 
 impl Complex {
-    fn edge(&mut self, a: u32, b: u32) -> u32 {
-        let key = [a.min(b), a.max(b)];
-        let next = self.edges.len() as u32;
-        let id = *self.edge_ids.entry(key).or_insert(next);
-        if id == next {
-            self.edges.push(key);
-        }
-        id
+    /// The edge between tetrahedra `a` and `b`, neighbours in `dt`.
+    fn edge_between(&self, dt: &Delaunay, a: u32, b: u32) -> u32 {
+        let (lo, hi) = (a.min(b), a.max(b));
+        let k = dt.neighbours[lo as usize]
+            .iter()
+            .position(|&n| n == hi)
+            .expect("consecutive tetrahedra of a ring are neighbours");
+        self.slot_edges[lo as usize * 4 + k]
     }
 
-    /// The edges of facet `f`, around it.
-    fn facet_edges(&self, f: usize) -> impl Iterator<Item = [u32; 2]> + '_ {
-        let ring = &self.corners[self.facets[f].corners.clone()];
-        (0..ring.len()).map(move |i| {
-            let (a, b) = (ring[i], ring[(i + 1) % ring.len()]);
-            [a.min(b), a.max(b)]
-        })
+    /// The edges of facet `f`, around it, as indices into `edges`.
+    fn facet_edges(&self, f: usize) -> impl Iterator<Item = usize> + '_ {
+        self.corner_edges[self.facets[f].corners.clone()]
+            .iter()
+            .map(|&e| e as usize)
+    }
+
+    /// Numbers the edges of every facet, once all are known ([`Complex::corner_edges`]).
+    fn number_facet_edges(&mut self, dt: &Delaunay) {
+        let mut corner_edges = Vec::with_capacity(self.corners.len());
+        for facet in &self.facets {
+            let ring = &self.corners[facet.corners.clone()];
+            for i in 0..ring.len() {
+                corner_edges.push(self.edge_between(dt, ring[i], ring[(i + 1) % ring.len()]));
+            }
+        }
+        self.corner_edges = corner_edges;
     }
 }
 
@@ -112,24 +127,25 @@ fn inner_complex(samples: &Samples, dt: &Delaunay, centres: &[Option<DVec3>]) ->
     let mut complex = Complex {
         facets: Vec::new(),
         corners: Vec::new(),
-        edge_ids: HashMap::new(),
         edges: Vec::new(),
+        slot_edges: vec![u32::MAX; dt.tets.len() * 4],
+        corner_edges: Vec::new(),
     };
     let mut ring = Vec::new();
     for t in 0..dt.tets.len() as u32 {
         if centres[t as usize].is_none() {
             continue;
         }
-        for &n in &dt.neighbours[t as usize] {
+        for (k, &n) in dt.neighbours[t as usize].iter().enumerate() {
             if n != OUTSIDE && n > t && centres[n as usize].is_some() {
-                complex.edge(t, n);
+                complex.slot_edges[t as usize * 4 + k] = complex.edges.len() as u32;
+                complex.edges.push([t, n]);
             }
         }
         for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
-            // Each facet once: from the lowest tetrahedron of its ring.
-            if !ring_around(dt, t, i, j, &mut ring)
-                || ring.iter().any(|&r| r < t || centres[r as usize].is_none())
-            {
+            // Each facet once: from the lowest tetrahedron of its ring, all inside.
+            let skip = |r: u32| r < t || centres[r as usize].is_none();
+            if !ring_around(dt, t, i, j, &mut ring, skip) {
                 continue;
             }
             let tet = dt.tets[t as usize];
@@ -150,6 +166,7 @@ fn inner_complex(samples: &Samples, dt: &Delaunay, centres: &[Option<DVec3>]) ->
             });
         }
     }
+    complex.number_facet_edges(dt);
     complex
 }
 
@@ -184,17 +201,17 @@ pub(super) fn inner_axis(
         inner_vertices: centres.iter().flatten().count(),
     };
     let rep = merged_centres(&complex, &centres, samples);
-    let mut vertex_of = HashMap::new();
+    let mut vertex_of = vec![u32::MAX; dt.tets.len()];
     let mut vertex = |r: u32, out: &mut InnerAxis| {
-        let r = rep[r as usize];
-        *vertex_of.entry(r).or_insert_with(|| {
-            let c = centres[r as usize].expect("inner");
+        let r = rep[r as usize] as usize;
+        if vertex_of[r] == u32::MAX {
+            let c = centres[r].expect("inner");
             out.positions.push(c.to_array());
-            out.radii.push(c.distance(DVec3::from_array(
-                samples.points[dt.tets[r as usize][0] as usize],
-            )));
-            out.positions.len() as u32 - 1
-        })
+            out.radii
+                .push(c.distance(DVec3::from_array(samples.points[dt.tets[r][0] as usize])));
+            vertex_of[r] = out.positions.len() as u32 - 1;
+        }
+        vertex_of[r]
     };
     let mut ring = Vec::new();
     for (f, facet) in complex.facets.iter().enumerate() {
@@ -272,8 +289,7 @@ fn collapse_spikes(
     let mut uses = vec![0u32; complex.edges.len()];
     let mut facets_of: Vec<Vec<u32>> = vec![Vec::new(); complex.edges.len()];
     for f in 0..complex.facets.len() {
-        for e in complex.facet_edges(f) {
-            let id = complex.edge_ids[&e] as usize;
+        for id in complex.facet_edges(f) {
             uses[id] += 1;
             facets_of[id].push(f as u32);
         }
@@ -287,18 +303,14 @@ fn collapse_spikes(
         .collect();
     while let Some(f) = queue.pop() {
         let f = f as usize;
-        let free = complex
-            .facet_edges(f)
-            .map(|e| complex.edge_ids[&e] as usize)
-            .find(|&e| uses[e] == 1 && !gone[e]);
+        let free = complex.facet_edges(f).find(|&e| uses[e] == 1 && !gone[e]);
         let (true, Some(free)) = (alive[f], free) else {
             continue;
         };
         // The facet goes with its free edge: both leave the complex.
         alive[f] = false;
         gone[free] = true;
-        for e in complex.facet_edges(f) {
-            let id = complex.edge_ids[&e] as usize;
+        for id in complex.facet_edges(f) {
             uses[id] -= 1;
             if uses[id] == 1 {
                 queue.extend(
@@ -359,8 +371,17 @@ fn joining_curves(complex: &Complex, uses: &[u32], gone: &[bool]) -> Vec<[u32; 2
 
 /// The tetrahedra around the edge between local vertices `i` and `j` of tetrahedron
 /// `t`, in order, starting with `t`; `false` for an edge on the convex hull (its ring is
-/// not closed, so it has no bounded Voronoi facet).
-fn ring_around(dt: &Delaunay, t: u32, i: usize, j: usize, ring: &mut Vec<u32>) -> bool {
+/// not closed, so it has no bounded Voronoi facet), or as soon as a tetrahedron of the
+/// ring is one to `skip` (the walk around each edge is then done once, not once per
+/// tetrahedron of its ring).
+fn ring_around(
+    dt: &Delaunay,
+    t: u32,
+    i: usize,
+    j: usize,
+    ring: &mut Vec<u32>,
+    skip: impl Fn(u32) -> bool,
+) -> bool {
     ring.clear();
     let tet = dt.tets[t as usize];
     let (a, b) = (tet[i], tet[j]);
@@ -378,11 +399,11 @@ fn ring_around(dt: &Delaunay, t: u32, i: usize, j: usize, ring: &mut Vec<u32>) -
             .position(|&v| v == leave)
             .expect("vertex of the tetrahedron");
         let next = dt.neighbours[current as usize][k];
-        if next == OUTSIDE || ring.len() > MAX_RING {
-            return false;
-        }
         if next == t {
             return true;
+        }
+        if next == OUTSIDE || ring.len() > MAX_RING || skip(next) {
+            return false;
         }
         let fresh = *dt.tets[next as usize]
             .iter()
