@@ -298,3 +298,38 @@ fn spot_gives_one_tree_along_its_body() {
     let tips = skeleton.tip_count();
     assert!((4..=20).contains(&tips), "{tips} tips");
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(24))]
+
+    /// Bumpy closed surfaces (a sphere's vertices moved in and out at random, up to
+    /// folding it): an axis or a typed error, never a panic; an axis's balls are finite
+    /// and no wider than the shape, and it is one piece where the surface is.
+    #[test]
+    fn bumpy_spheres_give_an_axis_or_an_error(
+        seed in 1u64..1_000_000,
+        jitter in 0.0f64..0.8,
+        spacing in 0.15f64..0.6,
+        angle in 20.0f64..120.0,
+        span in 0.0f64..3.0,
+    ) {
+        let mesh = sphere(2, jitter, seed);
+        let options = MedialAxisOptions::default()
+            .with_spacing(Some(spacing))
+            .with_min_angle_degrees(angle)
+            .with_min_span(span);
+        match medial_axis(&mesh, &options) {
+            Ok(axis) => {
+                let [lo, hi] = mesh.report().bounding_box;
+                let diagonal = (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt();
+                proptest::prop_assert!(axis
+                    .radii
+                    .iter()
+                    .all(|&r| r.is_finite() && r > 0.0 && r <= diagonal));
+                proptest::prop_assert!(axis.betti_numbers().b0 >= 1);
+            }
+            Err(Error::MedialAxis(_)) => {}
+            Err(e) => proptest::prop_assert!(false, "unexpected error {e}"),
+        }
+    }
+}
