@@ -686,7 +686,7 @@ fn extra_cycles_are_cut_where_narrow_keeping_the_longest() {
     assert_eq!(skeleton.cycle_count(), 2);
     // Width: the big loop is wide, the small one narrow.
     let width = |i: usize| if i < 40 { 1.0 } else { 0.1 };
-    let one = skeleton.with_cycles_cut(1, width, 0.0);
+    let one = skeleton.clone().with_cycles_cut(1, width, 0.0);
     assert_eq!((one.cycle_count(), one.component_count()), (1, 1));
     // The loop kept is the long one: every point of the square still has two neighbours.
     let degree = one.degrees();
@@ -696,12 +696,12 @@ fn extra_cycles_are_cut_where_narrow_keeping_the_longest() {
         .zip(&degree)
         .filter(|(p, _)| p.position[2] == 0.0 && p.position[0] >= 0.0 && p.position[1] >= 0.0)
         .all(|(_, &d)| d >= 2));
-    let none = skeleton.with_cycles_cut(0, width, 0.0);
+    let none = skeleton.clone().with_cycles_cut(0, width, 0.0);
     assert_eq!((none.cycle_count(), none.component_count()), (0, 1));
     // Pruning what the cuts leave: the short pieces go, the tree stays connected.
-    let pruned = skeleton.with_cycles_cut(0, width, 2.0);
+    let pruned = skeleton.clone().with_cycles_cut(0, width, 2.0);
     assert_eq!(pruned.component_count(), 1);
     assert!(pruned.points.len() < none.points.len());
     // No more cycles than allowed: unchanged.
-    assert_eq!(skeleton.with_cycles_cut(2, width, 5.0), skeleton);
+    assert_eq!(skeleton.clone().with_cycles_cut(2, width, 5.0), skeleton);
 }

@@ -326,9 +326,7 @@ pub(crate) fn output_format<F: Copy>(
 }
 
 fn info(path: &std::path::Path, weld: bool) -> CliResult {
-    let is_axis = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("ma"));
+    let is_axis = geotracks::mesh::io::is_medial_axis_path(path);
     // A medial axis may be made of curves only, which a mesh reader refuses.
     let report = if is_axis && !weld {
         geotracks::mesh::io::read_medial_axis(path)?.report()

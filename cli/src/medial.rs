@@ -74,11 +74,16 @@ fn parse_angle(text: &str) -> Result<f64, String> {
 /// The medial axis of `path`: read from a `.ma` file, or computed from any other mesh
 /// (which must be a closed surface), with the solid's number of cycles then.
 pub fn load_axis(path: &Path, sampling: &SamplingArgs) -> CliResult<(MedialAxis, Option<usize>)> {
-    medial_axis_of_file(path, sampling.weld, &sampling.options()).map_err(|e| match e {
-        // A reader's error names the file already.
+    medial_axis_of_file(path, sampling.weld, &sampling.options()).map_err(|e| named(path, e))
+}
+
+/// A library error for the file at `path`: a reader's names the file already, others
+/// get it.
+fn named(path: &Path, e: geotracks::Error) -> Box<dyn std::error::Error> {
+    match e {
         geotracks::Error::Mesh(e) => e.into(),
         e => format!("{}: {e}", path.display()).into(),
-    })
+    }
 }
 
 /// Arguments of `geotracks medial-axis`.
@@ -109,8 +114,7 @@ pub fn run(args: &MedialAxisArgs) -> CliResult {
     let start = Instant::now();
     let spinner = ui::Spinner::start("sampling the surface, building its Voronoi diagram");
     let mesh = crate::inputs::load_mesh(&args.mesh, args.sampling.weld)?;
-    let axis = medial_axis(&mesh, &args.sampling.options())
-        .map_err(|e| format!("{}: {e}", args.mesh.display()))?;
+    let axis = medial_axis(&mesh, &args.sampling.options()).map_err(|e| named(&args.mesh, e))?;
     drop(spinner);
     if let (Some(path), Some(sheets)) = (&args.png, &axis.surface) {
         let picture = render_field(sheets, &axis.radii, &[], &[], &args.camera.options())?;

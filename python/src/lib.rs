@@ -506,30 +506,27 @@ fn terrain_route<'py>(
     ))
 }
 
-/// The medial axis options of `spacing` (None: the default) and `angle` (degrees).
+/// The medial axis options of `spacing` (None: the default), `angle` (degrees) and
+/// `span` (spacings), checked (also for a `.ma` file, which does not use them).
 fn medial_options(
     spacing: Option<f64>,
     angle: f64,
     span: f64,
 ) -> PyResult<geotracks::skeleton::medial::MedialAxisOptions> {
-    if spacing.is_some_and(|s| !(s > 0.0 && s.is_finite())) {
-        return Err(error(format!(
-            "spacing {}: expected a positive length",
-            spacing.unwrap_or_default()
-        )));
-    }
-    if !(angle > 0.0 && angle < 180.0) {
-        return Err(error(format!(
-            "angle {angle}: expected degrees between 0 and 180"
-        )));
-    }
-    if !(span >= 0.0 && span.is_finite()) {
-        return Err(error(format!("span {span}: expected a number >= 0")));
-    }
-    Ok(geotracks::skeleton::medial::MedialAxisOptions::default()
+    let options = geotracks::skeleton::medial::MedialAxisOptions::default()
         .with_spacing(spacing)
         .with_min_angle_degrees(angle)
-        .with_min_span(span))
+        .with_min_span(span);
+    options.validate().map_err(|e| error(e.to_string()))?;
+    Ok(options)
+}
+
+/// A library error for `path`: a reader's names the file already, others get it.
+fn named(path: &std::path::Path, e: geotracks::Error) -> String {
+    match e {
+        geotracks::Error::Mesh(e) => e.to_string(),
+        e => format!("{}: {e}", path.display()),
+    }
 }
 
 /// The medial axis of a file: read from `.ma`, or computed from a closed surface mesh.
@@ -538,10 +535,8 @@ fn axis_of_file(
     weld: bool,
     options: &geotracks::skeleton::medial::MedialAxisOptions,
 ) -> Result<(geotracks::mesh::io::MedialAxis, Option<usize>), String> {
-    geotracks::skeleton::medial::medial_axis_of_file(path, weld, options).map_err(|e| match e {
-        geotracks::Error::Mesh(e) => e.to_string(),
-        e => format!("{}: {e}", path.display()),
-    })
+    geotracks::skeleton::medial::medial_axis_of_file(path, weld, options)
+        .map_err(|e| named(path, e))
 }
 
 /// The medial axis of a closed surface mesh file: `(positions (n, 3), radii (n,), faces
@@ -563,7 +558,7 @@ fn medial_axis<'py>(
             let surface =
                 geotracks::mesh::io::read_mesh_with(&mesh, &read).map_err(|e| e.to_string())?;
             geotracks::skeleton::medial::medial_axis(&surface, &options)
-                .map_err(|e| format!("{}: {e}", mesh.display()))
+                .map_err(|e| named(&mesh, e))
         })
         .map_err(error)?;
     let triangles: &[[u32; 3]] = axis.surface.as_ref().map_or(&[], |m| m.triangles());

@@ -23,13 +23,13 @@ impl Skeleton {
     /// If `width` panics for a point index below `self.points.len()`.
     #[must_use]
     pub fn with_cycles_cut(
-        &self,
+        self,
         max_cycles: usize,
         width: impl Fn(usize) -> f64,
         prune: f64,
     ) -> Skeleton {
         if self.cycle_count() <= max_cycles {
-            return self.clone();
+            return self;
         }
         let n = self.points.len();
         let position = |i: u32| DVec3::from(self.points[i as usize].position);
@@ -42,11 +42,14 @@ impl Skeleton {
         let mut outside = Vec::new();
         for e in order {
             let [a, b] = self.edges[e];
-            if a != b && sets.join(a, b) {
+            if a == b {
+                continue;
+            }
+            if sets.join(a, b) {
                 tree[a as usize].push(b);
                 tree[b as usize].push(a);
-            } else if a != b {
-                outside.push(self.edges[e]);
+            } else {
+                outside.push([a, b]);
             }
         }
         let forest = Forest::new(&tree, |a, b| length([a, b]));

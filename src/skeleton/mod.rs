@@ -602,7 +602,9 @@ pub fn medial_axis_skeleton_with_cycles(
 ) -> Result<(Skeleton, Option<Field<Euclidean>>), Error> {
     let (skeleton, field) = Skeleton::of_medial_axis(axis, burn, options)?;
     let skeleton = skeleton.pruned(prune).pruned_tubular(min_tubularity);
-    let radius = |i: usize| match skeleton.points[i].on {
+    // Thinning leaves its points on the axis's vertices.
+    let on: Vec<SurfacePoint> = skeleton.points.iter().map(|p| p.on).collect();
+    let radius = |i: usize| match on[i] {
         SurfacePoint::Vertex(v) => axis.radii[v as usize],
         _ => 0.0,
     };

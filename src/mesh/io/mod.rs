@@ -245,25 +245,40 @@ fn weld_positions(positions: &mut Vec<[f64; 3]>) -> Option<Vec<u32>> {
     if positions.iter().flatten().any(|c| !c.is_finite()) {
         return None;
     }
-    let mut first: std::collections::HashMap<[u64; 3], u32> =
-        std::collections::HashMap::with_capacity(positions.len());
+    let first = first_copies(positions);
+    let mut new_id = vec![0u32; positions.len()];
     let mut welded = Vec::with_capacity(positions.len());
-    let map: Vec<u32> = positions
-        .iter()
-        .map(|p| {
-            *first
-                .entry(p.map(|c| (c + 0.0).to_bits()))
-                .or_insert_with(|| {
-                    welded.push(*p);
-                    welded.len() as u32 - 1
-                })
-        })
-        .collect();
+    for (i, &f) in first.iter().enumerate() {
+        if f as usize == i {
+            new_id[i] = welded.len() as u32;
+            welded.push(positions[i]);
+        }
+    }
     if welded.len() == positions.len() {
         return None;
     }
     *positions = welded;
-    Some(map)
+    Some(first.iter().map(|&f| new_id[f as usize]).collect())
+}
+
+/// For each position, the index of the first one bit-identical to it (`-0.0` as `0.0`,
+/// so that the two zeros are one point): itself for a first copy.
+pub(crate) fn first_copies(positions: &[[f64; 3]]) -> Vec<u32> {
+    let mut first: std::collections::HashMap<[u64; 3], u32> =
+        std::collections::HashMap::with_capacity(positions.len());
+    (0..positions.len() as u32)
+        .map(|i| {
+            *first
+                .entry(positions[i as usize].map(|c| (c + 0.0).to_bits()))
+                .or_insert(i)
+        })
+        .collect()
+}
+
+/// Whether `path` names a medial axis file: its extension is `ma`, in any case.
+pub fn is_medial_axis_path(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("ma"))
 }
 
 /// [`read_mesh`] on a file held in memory: `path` chooses the format by its extension
@@ -348,13 +363,8 @@ pub fn read_obj_bytes(bytes: &[u8]) -> Result<TriMesh, MeshError> {
 /// [`MeshError::NonFiniteVertex`] for a position or radius that is not finite;
 /// [`MeshError::Io`] if the file cannot be written.
 pub fn write_medial_axis(path: impl AsRef<Path>, axis: &MedialAxis) -> Result<(), MeshError> {
-    if let Some((vertex, (&position, _))) = axis
-        .positions
-        .iter()
-        .zip(&axis.radii)
-        .enumerate()
-        .find(|(_, (p, r))| !p.iter().all(|c| c.is_finite()) || !r.is_finite())
-    {
+    if let Some(vertex) = first_non_finite(axis) {
+        let position = axis.positions[vertex];
         return Err(MeshError::NonFiniteVertex { vertex, position });
     }
     write_atomically(path.as_ref(), |w| ma::write_to(w, axis))
@@ -366,15 +376,20 @@ pub fn write_medial_axis(path: impl AsRef<Path>, axis: &MedialAxis) -> Result<()
 /// What `w` returns; an error of kind [`std::io::ErrorKind::InvalidInput`] for a
 /// position or radius that is not finite.
 pub fn write_medial_axis_to(w: &mut dyn std::io::Write, axis: &MedialAxis) -> std::io::Result<()> {
-    if let Some(i) = (0..axis.positions.len())
-        .find(|&i| !axis.positions[i].iter().all(|c| c.is_finite()) || !axis.radii[i].is_finite())
-    {
+    if let Some(i) = first_non_finite(axis) {
         return Err(std::io::Error::new(
             std::io::ErrorKind::InvalidInput,
             format!("medial axis vertex {i} is not finite"),
         ));
     }
     ma::write_to(w, axis)
+}
+
+/// The first vertex of `axis` whose position or radius is not finite, which `.ma`
+/// cannot hold.
+fn first_non_finite(axis: &MedialAxis) -> Option<usize> {
+    (0..axis.positions.len())
+        .find(|&i| !axis.positions[i].iter().all(|c| c.is_finite()) || !axis.radii[i].is_finite())
 }
 
 /// Reads a `.ma` medial axis with its radii (whatever the file's extension).

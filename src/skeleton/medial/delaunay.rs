@@ -131,7 +131,8 @@ pub(crate) fn tetrahedralize(points: &[[f64; 3]]) -> Result<Delaunay, DelaunayEr
     if let Some(index) = points.iter().position(|p| !p.iter().all(|c| c.is_finite())) {
         return Err(DelaunayError::NonFinite { index });
     }
-    let representative = representatives(points);
+    // The smallest index of a point equal to each (`-0.0` equals `0.0`).
+    let representative = crate::mesh::io::first_copies(points);
     let distinct: Vec<u32> = (0..points.len() as u32)
         .filter(|&i| representative[i as usize] == i)
         .collect();
@@ -179,21 +180,6 @@ fn coord([x, y, z]: [f64; 3]) -> Coord3D<f64> {
 fn orient(pts: &[[f64; 3]], v: [u32; 4]) -> f64 {
     let [a, b, c, d] = v.map(|i| coord(pts[i as usize]));
     robust::orient3d(a, b, c, d)
-}
-
-/// For each point, the smallest index of a point equal to it (`-0.0` equals `0.0`).
-fn representatives(points: &[[f64; 3]]) -> Vec<u32> {
-    // Equal points have equal bits once +0.0 has turned -0.0 into +0.0: sorted together.
-    let key = |i: u32| points[i as usize].map(|c| (c + 0.0).to_bits());
-    let mut sorted: Vec<u32> = (0..points.len() as u32).collect();
-    sorted.sort_unstable_by_key(|&i| (key(i), i));
-    let mut representative: Vec<u32> = (0..points.len() as u32).collect();
-    for pair in sorted.windows(2) {
-        if key(pair[0]) == key(pair[1]) {
-            representative[pair[1] as usize] = representative[pair[0] as usize];
-        }
-    }
-    representative
 }
 
 /// The points, scaled by a power of two when their largest coordinate is beyond 2^±64:

@@ -120,6 +120,42 @@ impl MedialAxisOptions {
         self
     }
 
+    /// Checks the options that are given (a spacing of `None` is the mesh's to choose).
+    ///
+    /// # Errors
+    /// [`MedialAxisError::InvalidOption`] for an angle outside (0, 180), a span that is
+    /// negative or not finite, or a spacing that is not positive and finite.
+    pub fn validate(&self) -> Result<(), MedialAxisError> {
+        let invalid = |option, value, expected| {
+            Err(MedialAxisError::InvalidOption {
+                option,
+                value,
+                expected,
+            })
+        };
+        let angle = self.min_angle_degrees;
+        if !(angle > 0.0 && angle < 180.0) {
+            return invalid(
+                "min_angle_degrees",
+                angle,
+                "an angle in degrees between 0 and 180",
+            );
+        }
+        if !(self.min_span >= 0.0 && self.min_span.is_finite()) {
+            return invalid(
+                "min_span",
+                self.min_span,
+                "a finite number >= 0 (in units of the spacing)",
+            );
+        }
+        match self.spacing {
+            Some(s) if !(s > 0.0 && s.is_finite()) => {
+                invalid("spacing", s, "a positive, finite length")
+            }
+            _ => Ok(()),
+        }
+    }
+
     /// Sets [`MedialAxisOptions::max_samples`].
     #[must_use]
     pub fn with_max_samples(mut self, max: u64) -> Self {
@@ -221,32 +257,10 @@ pub enum MedialAxisError {
 /// fine, [`MedialAxisError::Flat`] for a surface with no volume and
 /// [`MedialAxisError::Empty`] when nothing inside passes the angle test.
 pub fn medial_axis(mesh: &TriMesh, options: &MedialAxisOptions) -> Result<MedialAxis, Error> {
+    options.validate()?;
     let angle = options.min_angle_degrees;
-    if !(angle > 0.0 && angle < 180.0) {
-        return Err(MedialAxisError::InvalidOption {
-            option: "min_angle_degrees",
-            value: angle,
-            expected: "an angle in degrees between 0 and 180",
-        }
-        .into());
-    }
-    if !(options.min_span >= 0.0 && options.min_span.is_finite()) {
-        return Err(MedialAxisError::InvalidOption {
-            option: "min_span",
-            value: options.min_span,
-            expected: "a finite number >= 0 (in units of the spacing)",
-        }
-        .into());
-    }
+    // The mean edge length of a mesh, which has a face of non-zero area: positive.
     let spacing = options.spacing.unwrap_or_else(|| mesh.mean_edge_length());
-    if !(spacing > 0.0 && spacing.is_finite()) {
-        return Err(MedialAxisError::InvalidOption {
-            option: "spacing",
-            value: spacing,
-            expected: "a positive, finite length",
-        }
-        .into());
-    }
     let count = surface::sample_count(mesh, spacing);
     if count > options.max_samples {
         return Err(MedialAxisError::TooManySamples {
@@ -262,13 +276,7 @@ pub fn medial_axis(mesh: &TriMesh, options: &MedialAxisOptions) -> Result<Medial
         .map_err(|e| MedialAxisError::Flat(e.to_string()))?;
     let span = options.min_span * spacing;
     let inner = voronoi::inner_axis(&samples, &dt, spacing, angle.to_radians(), span);
-    if inner.triangles.is_empty() && inner.curves.is_empty() {
-        return Err(MedialAxisError::Empty {
-            inner: inner.inner_vertices,
-            min_angle_degrees: angle,
-        }
-        .into());
-    }
+    // Nothing kept: no usable face nor curve for the axis.
     let empty = MedialAxisError::Empty {
         inner: inner.inner_vertices,
         min_angle_degrees: angle,
@@ -305,11 +313,7 @@ pub fn medial_axis_of_file(
     options: &MedialAxisOptions,
 ) -> Result<(MedialAxis, Option<usize>), Error> {
     let path = path.as_ref();
-    let is_ma = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case("ma"));
-    if is_ma {
+    if crate::mesh::io::is_medial_axis_path(path) {
         return Ok((crate::mesh::io::read_medial_axis(path)?, None));
     }
     let read = crate::mesh::io::ReadOptions::DEFAULT.with_weld(weld);

@@ -76,19 +76,21 @@ fn consistent_winding(mesh: &TriMesh) -> Result<Vec<bool>, MedialAxisError> {
         while let Some(f) = stack.pop() {
             part.push(f);
             let [a, b, c] = mesh.triangles()[f as usize];
-            let [a, b, c] = if turned[f as usize] {
+            let oriented = if turned[f as usize] {
                 [a, c, b]
             } else {
                 [a, b, c]
             };
-            for (u, v) in [(a, b), (b, c), (c, a)] {
-                let e = edge_between(mesh, u, v);
+            for &e in &mesh.face_edges(f) {
+                let [u, v] = mesh.edge_vertices(e);
+                let forward = runs(oriented, u, v);
                 for &g in mesh.edge_faces(e) {
                     if g == f {
                         continue;
                     }
-                    // `g` must run v → u; it does unturned when its file winding has it.
-                    let turn_g = !runs(mesh.triangles()[g as usize], v, u);
+                    // `g` must run the other way along `e`: its file winding does
+                    // unless it runs the way `f` does.
+                    let turn_g = runs(mesh.triangles()[g as usize], u, v) == forward;
                     if !seen[g as usize] {
                         seen[g as usize] = true;
                         turned[g as usize] = turn_g;
@@ -111,16 +113,6 @@ fn consistent_winding(mesh: &TriMesh) -> Result<Vec<bool>, MedialAxisError> {
 /// Whether the triangle runs from `u` to `v` along one of its sides.
 fn runs([a, b, c]: [u32; 3], u: u32, v: u32) -> bool {
     (a, b) == (u, v) || (b, c) == (u, v) || (c, a) == (u, v)
-}
-
-/// The edge of the mesh between two vertices of a face.
-fn edge_between(mesh: &TriMesh, u: u32, v: u32) -> u32 {
-    let key = [u.min(v), u.max(v)];
-    *mesh
-        .vertex_edges(u)
-        .iter()
-        .find(|&&e| mesh.edge_vertices(e) == key)
-        .expect("a face's side is an edge of the mesh")
 }
 
 /// The vertices with their angle-weighted outward normals, and, where a face's side is
@@ -155,7 +147,7 @@ pub(super) fn samples(mesh: &TriMesh, triangles: &[[u32; 3]], spacing: f64) -> S
     }
     for e in 0..mesh.edge_count() as u32 {
         let [a, b] = mesh.edge_vertices(e);
-        let pieces = (mesh.edge_length(e) / spacing).ceil().max(1.0) as u32;
+        let pieces = edge_pieces(mesh, e, spacing);
         let n = mesh
             .edge_faces(e)
             .iter()
@@ -169,12 +161,7 @@ pub(super) fn samples(mesh: &TriMesh, triangles: &[[u32; 3]], spacing: f64) -> S
         }
     }
     for (f, &t) in triangles.iter().enumerate() {
-        let pieces = mesh
-            .face_edges(f as u32)
-            .iter()
-            .map(|&e| (mesh.edge_length(e) / spacing).ceil().max(1.0) as u32)
-            .max()
-            .unwrap_or(1);
+        let pieces = face_pieces(mesh, f as u32, spacing);
         let n = face_normal(t);
         for i in 1..pieces {
             for j in 1..pieces - i {
@@ -191,18 +178,30 @@ pub(super) fn samples(mesh: &TriMesh, triangles: &[[u32; 3]], spacing: f64) -> S
 
 /// How many samples [`samples`] makes for `spacing`, without making them.
 pub(super) fn sample_count(mesh: &TriMesh, spacing: f64) -> u64 {
-    let pieces = |e: u32| (mesh.edge_length(e) / spacing).ceil().max(1.0) as u64;
-    let edges: u64 = (0..mesh.edge_count() as u32).map(|e| pieces(e) - 1).sum();
+    let edges: u64 = (0..mesh.edge_count() as u32)
+        .map(|e| u64::from(edge_pieces(mesh, e, spacing)) - 1)
+        .sum();
     let faces: u64 = (0..mesh.face_count() as u32)
         .map(|f| {
-            let n = mesh
-                .face_edges(f)
-                .iter()
-                .map(|&e| pieces(e))
-                .max()
-                .unwrap_or(1);
-            (n.saturating_sub(1)) * (n.saturating_sub(2)) / 2
+            let n = u64::from(face_pieces(mesh, f, spacing));
+            (n - 1) * n.saturating_sub(2) / 2
         })
         .sum();
     mesh.vertex_count() as u64 + edges + faces
+}
+
+/// How many pieces edge `e` is cut into so that none is longer than `spacing` (at
+/// least one; the count saturates for an edge beyond four billion spacings, which the
+/// sample count then refuses).
+fn edge_pieces(mesh: &TriMesh, e: u32, spacing: f64) -> u32 {
+    (mesh.edge_length(e) / spacing).ceil().max(1.0) as u32
+}
+
+/// The pieces of face `f`'s longest side: its barycentric grid's size.
+fn face_pieces(mesh: &TriMesh, f: u32, spacing: f64) -> u32 {
+    mesh.face_edges(f)
+        .iter()
+        .map(|&e| edge_pieces(mesh, e, spacing))
+        .max()
+        .unwrap_or(1)
 }

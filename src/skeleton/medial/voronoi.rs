@@ -29,13 +29,11 @@ pub(super) struct InnerAxis {
 const MAX_RING: usize = 1 << 16;
 
 /// A Voronoi facet: its vertices (tetrahedra) in order around it, as a range of
-/// [`Complex::corners`], and the widest angle under which its Delaunay edge is seen
-/// from one of them.
+/// [`Complex::corners`], and whether it is a spike toward the surface (see
+/// [`inner_axis`]).
 struct Facet {
     corners: std::ops::Range<usize>,
-    angle: f64,
-    /// The length of its Delaunay edge: how far apart the two samples it separates lie.
-    span: f64,
+    spike: bool,
 }
 
 /// The inner Voronoi diagram as a 2-complex: facets, and every Voronoi edge between two
@@ -91,11 +89,15 @@ impl Complex {
 ///
 /// Where the surface is not what its normals say (a fold, faces through each other),
 /// a ball can pass that test from outside; a ball inside the solid also lies inside
-/// its bounding box, give or take `slack` (a ball empty of samples can bulge out
+/// its bounding box (`lo`, `hi`: the samples'), give or take `slack` (a ball empty of samples can bulge out
 /// between them), and one that does not is left out.
-fn inner_centres(samples: &Samples, dt: &Delaunay, slack: f64) -> Vec<Option<DVec3>> {
+fn inner_centres(
+    samples: &Samples,
+    dt: &Delaunay,
+    (lo, hi): (DVec3, DVec3),
+    slack: f64,
+) -> Vec<Option<DVec3>> {
     let point = |v: u32| DVec3::from_array(samples.points[v as usize]);
-    let (lo, hi) = bounding_box(samples);
     dt.tets
         .iter()
         .map(|tet| {
@@ -115,14 +117,18 @@ fn inner_centres(samples: &Samples, dt: &Delaunay, slack: f64) -> Vec<Option<DVe
 
 /// The samples' bounding box.
 fn bounding_box(samples: &Samples) -> (DVec3, DVec3) {
-    samples.points.iter().fold(
-        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-        |(lo, hi), p| (lo.min(DVec3::from_array(*p)), hi.max(DVec3::from_array(*p))),
-    )
+    let [lo, hi] = crate::mesh::bounding_box(samples.points.iter().copied());
+    (DVec3::from_array(lo), DVec3::from_array(hi))
 }
 
-/// The inner Voronoi diagram's facets and edges.
-fn inner_complex(samples: &Samples, dt: &Delaunay, centres: &[Option<DVec3>]) -> Complex {
+/// The inner Voronoi diagram's facets and edges; a facet is a spike when no vertex of
+/// it sees its Delaunay edge under `min_angle`, or the edge is shorter than `min_span`.
+fn inner_complex(
+    samples: &Samples,
+    dt: &Delaunay,
+    centres: &[Option<DVec3>],
+    (min_angle, min_span): (f64, f64),
+) -> Complex {
     let point = |v: u32| DVec3::from_array(samples.points[v as usize]);
     let mut complex = Complex {
         facets: Vec::new(),
@@ -161,8 +167,7 @@ fn inner_complex(samples: &Samples, dt: &Delaunay, centres: &[Option<DVec3>]) ->
             complex.corners.extend_from_slice(&ring);
             complex.facets.push(Facet {
                 corners: start..complex.corners.len(),
-                angle,
-                span: p.distance(q),
+                spike: angle < min_angle || p.distance(q) < min_span,
             });
         }
     }
@@ -190,9 +195,10 @@ pub(super) fn inner_axis(
     min_angle: f64,
     min_span: f64,
 ) -> InnerAxis {
-    let centres = inner_centres(samples, dt, spacing);
-    let complex = inner_complex(samples, dt, &centres);
-    let (alive, uses, gone) = collapse_spikes(&complex, min_angle, min_span);
+    let (lo, hi) = bounding_box(samples);
+    let centres = inner_centres(samples, dt, (lo, hi), spacing);
+    let complex = inner_complex(samples, dt, &centres, (min_angle, min_span));
+    let (alive, uses, gone) = collapse_spikes(&complex);
     let mut out = InnerAxis {
         positions: Vec::new(),
         radii: Vec::new(),
@@ -200,7 +206,7 @@ pub(super) fn inner_axis(
         curves: Vec::new(),
         inner_vertices: centres.iter().flatten().count(),
     };
-    let rep = merged_centres(&complex, &centres, samples);
+    let rep = merged_centres(&complex, &centres, 1e-9 * lo.distance(hi));
     let mut vertex_of = vec![u32::MAX; dt.tets.len()];
     let mut vertex = |r: u32, out: &mut InnerAxis| {
         let r = rep[r as usize] as usize;
@@ -258,14 +264,12 @@ pub(super) fn inner_axis(
 }
 
 /// For each tetrahedron, the one whose circumcentre stands for it: circumcentres closer
-/// than rounding can tell apart (`1e-9` of the samples' extent) along a Voronoi edge are
-/// one. Five or more samples on one sphere (the corners of a mesh's planar quads, and
+/// than rounding can tell apart (`tolerance`, `1e-9` of the samples' extent) along a
+/// Voronoi edge are one. Five or more samples on one sphere (the corners of a mesh's planar quads, and
 /// their neighbours) give several tetrahedra with the same circumcentre, computed a
 /// rounding apart; kept apart, their facets would be flat slivers. Contracting the
 /// edges between them changes no topology.
-fn merged_centres(complex: &Complex, centres: &[Option<DVec3>], samples: &Samples) -> Vec<u32> {
-    let (lo, hi) = bounding_box(samples);
-    let tolerance = 1e-9 * lo.distance(hi);
+fn merged_centres(complex: &Complex, centres: &[Option<DVec3>], tolerance: f64) -> Vec<u32> {
     let mut sets = crate::mesh::DisjointSets::new(centres.len());
     for &[a, b] in &complex.edges {
         let (Some(ca), Some(cb)) = (centres[a as usize], centres[b as usize]) else {
@@ -278,14 +282,10 @@ fn merged_centres(complex: &Complex, centres: &[Option<DVec3>], samples: &Sample
     (0..centres.len() as u32).map(|t| sets.find(t)).collect()
 }
 
-/// Collapses the facets seen under less than `min_angle` through their free edges,
-/// until none is left with one; returns which facets are left, how many of them use
-/// each edge, and which edges went with a facet.
-fn collapse_spikes(
-    complex: &Complex,
-    min_angle: f64,
-    min_span: f64,
-) -> (Vec<bool>, Vec<u32>, Vec<bool>) {
+/// Collapses the spikes through their free edges, until none is left with one;
+/// returns which facets are left, how many of them use each edge, and which edges went
+/// with a facet.
+fn collapse_spikes(complex: &Complex) -> (Vec<bool>, Vec<u32>, Vec<bool>) {
     let mut uses = vec![0u32; complex.edges.len()];
     let mut facets_of: Vec<Vec<u32>> = vec![Vec::new(); complex.edges.len()];
     for f in 0..complex.facets.len() {
@@ -296,14 +296,14 @@ fn collapse_spikes(
     }
     let mut alive = vec![true; complex.facets.len()];
     let mut gone = vec![false; complex.edges.len()];
-    let narrow =
-        |f: usize| complex.facets[f].angle < min_angle || complex.facets[f].span < min_span;
+    let spike = |f: usize| complex.facets[f].spike;
     let mut queue: Vec<u32> = (0..complex.facets.len() as u32)
-        .filter(|&f| narrow(f as usize))
+        .filter(|&f| spike(f as usize))
         .collect();
     while let Some(f) = queue.pop() {
         let f = f as usize;
-        let free = complex.facet_edges(f).find(|&e| uses[e] == 1 && !gone[e]);
+        // An edge that went with a facet is used by none: no test for it needed.
+        let free = complex.facet_edges(f).find(|&e| uses[e] == 1);
         let (true, Some(free)) = (alive[f], free) else {
             continue;
         };
@@ -316,7 +316,7 @@ fn collapse_spikes(
                 queue.extend(
                     facets_of[id]
                         .iter()
-                        .filter(|&&g| alive[g as usize] && narrow(g as usize)),
+                        .filter(|&&g| alive[g as usize] && spike(g as usize)),
                 );
             }
         }
