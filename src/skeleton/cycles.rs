@@ -67,7 +67,62 @@ impl Skeleton {
             })
             .collect();
         edges.extend(loops.iter().take(max_cycles).map(|&(_, e)| e));
-        self.reburnt(edges).pruned(prune)
+        let mut cut = self.reburnt(edges);
+        cut.raise_towards_the_core();
+        cut.pruned(prune)
+    }
+
+    /// Raises each point's significance to at least that of every point beyond it, seen
+    /// from the most significant point of its component, so that pruning takes branches
+    /// from their tips and never cuts a component in two. The cuts can leave a branch
+    /// of the thinning (with its erosion thickness) hanging from a piece of a former
+    /// cycle that the new burn finds less significant; the piece must stay while the
+    /// branch does.
+    fn raise_towards_the_core(&mut self) {
+        let n = self.points.len();
+        let mut around = vec![Vec::new(); n];
+        for &[a, b] in &self.edges {
+            around[a as usize].push(b);
+            around[b as usize].push(a);
+        }
+        let mut by_significance: Vec<u32> = (0..n as u32).collect();
+        by_significance.sort_by(|&a, &b| {
+            let s = |i: u32| self.points[i as usize].significance;
+            s(b).total_cmp(&s(a))
+        });
+        // Breadth first from each component's most significant point; then from the
+        // last point reached back to the first, each raises its parent.
+        let mut parent = vec![u32::MAX; n];
+        let mut order = Vec::with_capacity(n);
+        let mut seen = vec![false; n];
+        for root in by_significance {
+            if seen[root as usize] {
+                continue;
+            }
+            seen[root as usize] = true;
+            let start = order.len();
+            order.push(root);
+            let mut next = start;
+            while next < order.len() {
+                let a = order[next];
+                next += 1;
+                for &b in &around[a as usize] {
+                    if !seen[b as usize] {
+                        seen[b as usize] = true;
+                        parent[b as usize] = a;
+                        order.push(b);
+                    }
+                }
+            }
+        }
+        for &i in order.iter().rev() {
+            let p = parent[i as usize];
+            if p != u32::MAX {
+                let s = self.points[i as usize].significance;
+                let up = &mut self.points[p as usize].significance;
+                *up = up.max(s);
+            }
+        }
     }
 
     /// The skeleton on `edges` (a subgraph of its own), with the points that were on
@@ -148,5 +203,59 @@ impl Forest {
             b = self.parent[b as usize];
         }
         total - 2.0 * self.height[a as usize]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn point(x: f64, y: f64, significance: f64) -> SkeletonPoint {
+        SkeletonPoint {
+            position: [x, y, 0.0],
+            on: SurfacePoint::Vertex(0),
+            significance,
+            tubularity: f64::INFINITY,
+            radius: None,
+        }
+    }
+
+    /// A small square loop (what never burns) with a branch of the thinning hanging
+    /// from each of two opposite corners, each with an erosion thickness larger than its
+    /// length (as a branch that stood long on curves has): cutting the loop leaves a
+    /// path whose new burn (by length) finds the loop's pieces less significant than
+    /// the branches, and pruning between the two must keep the corners the branches
+    /// hang from and the path between them, or the skeleton falls in two.
+    #[test]
+    fn cutting_a_cycle_never_splits_the_skeleton() {
+        let mut points = vec![
+            point(0.0, 0.0, f64::INFINITY),
+            point(1.0, 0.0, f64::INFINITY),
+            point(1.0, 1.0, f64::INFINITY),
+            point(0.0, 1.0, f64::INFINITY),
+        ];
+        let mut edges = vec![[0, 1], [1, 2], [2, 3], [3, 0]];
+        for (corner, direction) in [(0u32, -1.0), (2, 1.0)] {
+            let (x, y) = (f64::from(corner / 2), f64::from(corner / 2));
+            let mut previous = corner;
+            for i in 1..=10 {
+                let id = points.len() as u32;
+                points.push(point(x + direction * f64::from(i), y, 100.0));
+                edges.push([previous, id]);
+                previous = id;
+            }
+        }
+        let skeleton = Skeleton {
+            points,
+            edges,
+            ..Skeleton::default()
+        };
+        let cut = skeleton.with_cycles_cut(0, |_| 1.0, 20.0);
+        assert_eq!((cut.component_count(), cut.cycle_count()), (1, 0));
+        assert!(
+            cut.points.len() >= 20,
+            "the branches stay: {}",
+            cut.points.len()
+        );
     }
 }
