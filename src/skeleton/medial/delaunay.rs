@@ -48,8 +48,6 @@
 //! `longjmp`; `tritet` bundles TetGen, whose AGPL licence does not fit this crate's
 //! MIT/Apache-2.0; `spade` and `delaunator` are 2D.
 
-// Until the medial axis module that calls it lands.
-
 use glam::DVec3;
 use robust::{Coord, Coord3D};
 use std::ops::{Add, Mul};
