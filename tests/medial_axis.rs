@@ -9,7 +9,7 @@ use geotracks::mesh::io::{read_medial_axis, write_medial_axis, MedialAxis};
 use geotracks::mesh::TriMesh;
 use geotracks::skeleton::medial::solid_cycles;
 use geotracks::skeleton::medial::{medial_axis, MedialAxisError, MedialAxisOptions};
-use geotracks::skeleton::{medial_axis_skeleton_with_cycles, Burn};
+use geotracks::skeleton::{medial_axis_skeleton_with_cycles, Burn, Placement};
 use geotracks::{Error, Options};
 use std::collections::HashMap;
 
@@ -104,8 +104,16 @@ fn a_torus_has_its_core_circle_as_axis_and_skeleton() {
     assert_eq!(axis.betti_numbers().b0, 1);
     assert_eq!(solid_cycles(&mesh), 1);
     let prune = 0.05 * axis.diagonal();
-    let (skeleton, _) =
-        medial_axis_skeleton_with_cycles(&axis, Burn::Boundary, &K5, prune, 1.0, 1).unwrap();
+    let (skeleton, _) = medial_axis_skeleton_with_cycles(
+        &axis,
+        Burn::Boundary,
+        &K5,
+        prune,
+        1.0,
+        1,
+        Placement::OnAxis,
+    )
+    .unwrap();
     // The core loop, with the few short branches the star-shaped axis leaves.
     assert_eq!((skeleton.cycle_count(), skeleton.component_count()), (1, 1));
     assert!(skeleton.tip_count() <= 8, "{} tips", skeleton.tip_count());
@@ -153,8 +161,16 @@ fn every_arm_of_a_t_gets_a_branch() {
     let prune = 0.05 * axis.diagonal();
     let cycles = solid_cycles(&mesh);
     assert_eq!(cycles, 0);
-    let (skeleton, _) =
-        medial_axis_skeleton_with_cycles(&axis, Burn::Boundary, &K5, prune, 1.0, cycles).unwrap();
+    let (skeleton, _) = medial_axis_skeleton_with_cycles(
+        &axis,
+        Burn::Boundary,
+        &K5,
+        prune,
+        1.0,
+        cycles,
+        Placement::OnAxis,
+    )
+    .unwrap();
     assert_eq!((skeleton.component_count(), skeleton.cycle_count()), (1, 0));
     let tips: Vec<[f64; 3]> = skeleton
         .degrees()
@@ -291,8 +307,16 @@ fn spot_gives_one_tree_along_its_body() {
     let mesh = geotracks::mesh::io::read_mesh(path).unwrap();
     let axis = medial_axis(&mesh, &MedialAxisOptions::default()).unwrap();
     let prune = 0.05 * axis.diagonal();
-    let (skeleton, _) =
-        medial_axis_skeleton_with_cycles(&axis, Burn::Boundary, &K5, prune, 1.0, 0).unwrap();
+    let (skeleton, _) = medial_axis_skeleton_with_cycles(
+        &axis,
+        Burn::Boundary,
+        &K5,
+        prune,
+        1.0,
+        0,
+        Placement::OnAxis,
+    )
+    .unwrap();
     assert_eq!(skeleton.component_count(), 1);
     assert_eq!(skeleton.cycle_count(), 0);
     let tips = skeleton.tip_count();
@@ -330,6 +354,133 @@ proptest::proptest! {
             }
             Err(Error::MedialAxis(_)) => {}
             Err(e) => proptest::prop_assert!(false, "unexpected error {e}"),
+        }
+    }
+}
+
+/// A plate one voxel thick: an 8 × 8 square with four arms of different widths (3–5
+/// voxels, three to five times the plate's thickness) and lengths. Each arm: the
+/// rectangle it covers (x and y ranges, in voxel corners) and where it ends.
+struct Arm {
+    x: [f64; 2],
+    y: [f64; 2],
+    end: [f64; 2],
+}
+
+fn plate_with_arms() -> (Vec<[i32; 3]>, Vec<Arm>) {
+    let mut v: Vec<[i32; 3]> = Vec::new();
+    let mut fill = |x: std::ops::Range<i32>, y: std::ops::Range<i32>| {
+        for i in x {
+            for j in y.clone() {
+                v.push([i, j, 0]);
+            }
+        }
+    };
+    fill(0..8, 0..8);
+    fill(8..15, 3..6); // +x: 3 wide, 7 long
+    fill(-6..0, 1..6); // -x: 5 wide, 6 long
+    fill(2..5, 8..13); // +y: 3 wide, 5 long
+    fill(2..6, -9..0); // -y: 4 wide, 9 long
+    let arms = vec![
+        Arm {
+            x: [8.0, 15.0],
+            y: [3.0, 6.0],
+            end: [15.0, 4.5],
+        },
+        Arm {
+            x: [-6.0, 0.0],
+            y: [1.0, 6.0],
+            end: [-6.0, 3.5],
+        },
+        Arm {
+            x: [2.0, 5.0],
+            y: [8.0, 13.0],
+            end: [3.5, 13.0],
+        },
+        Arm {
+            x: [2.0, 6.0],
+            y: [-9.0, 0.0],
+            end: [4.0, -9.0],
+        },
+    ];
+    (v, arms)
+}
+
+/// A plate's medial axis is mostly one sheet, its middle surface (with fins out to its
+/// edges); its curve skeleton is that sheet's own medial axis, pruned: one branch along
+/// the middle of every arm, out to the arm's end, joined on the plate.
+#[test]
+fn every_arm_of_a_plate_gets_a_branch_along_its_middle() {
+    let (voxels_of_plate, arms) = plate_with_arms();
+    let mesh = voxels(&voxels_of_plate);
+    let axis = axis(&mesh, 0.25);
+    assert_eq!(
+        (axis.betti_numbers().b0, axis.betti_numbers().b1),
+        (1, 0),
+        "a plate is one piece without holes"
+    );
+    let prune = 0.05 * axis.diagonal();
+    for placement in [Placement::OnAxis, Placement::Centred] {
+        let (skeleton, _) =
+            medial_axis_skeleton_with_cycles(&axis, Burn::Boundary, &K5, prune, 1.0, 0, placement)
+                .unwrap();
+        assert_eq!(
+            (skeleton.component_count(), skeleton.cycle_count()),
+            (1, 0),
+            "{placement:?}"
+        );
+        let degree = skeleton.degrees();
+        let tips: Vec<[f64; 3]> = (0..skeleton.points.len())
+            .filter(|&i| degree[i] == 1)
+            .map(|i| skeleton.points[i].position)
+            .collect();
+        for arm in &arms {
+            let width = (arm.x[1] - arm.x[0]).min(arm.y[1] - arm.y[0]);
+            let along_x = arm.x[1] - arm.x[0] > width;
+            let tip = tips
+                .iter()
+                .any(|t| (t[0] - arm.end[0]).hypot(t[1] - arm.end[1]) < width / 2.0 + 1.0);
+            assert!(tip, "{placement:?}: no tip at {:?}: {tips:?}", arm.end);
+            // Away from the plate and the arm's end, the branch runs along the arm's
+            // middle, and it runs all the way.
+            let [lo, hi] = if along_x { arm.x } else { arm.y };
+            let middle = if along_x {
+                (arm.y[0] + arm.y[1]) / 2.0
+            } else {
+                (arm.x[0] + arm.x[1]) / 2.0
+            };
+            let (from, to) = (lo + width / 2.0 + 1.0, hi - width / 2.0 - 0.5);
+            let inside: Vec<[f64; 2]> = skeleton
+                .points
+                .iter()
+                .map(|p| {
+                    let [x, y, _] = p.position;
+                    if along_x {
+                        [x, y]
+                    } else {
+                        [y, x]
+                    }
+                })
+                .filter(|&[s, across]| {
+                    (from..=to).contains(&s) && (across - middle).abs() < width / 2.0
+                })
+                .collect();
+            for &[s, across] in &inside {
+                assert!(
+                    (across - middle).abs() < 0.5,
+                    "{placement:?}: {s}, {across}: off the middle of the arm ending at {:?}",
+                    arm.end
+                );
+            }
+            let mut s = from;
+            while s <= to {
+                assert!(
+                    inside.iter().any(|q| (q[0] - s).abs() < 0.5),
+                    "{placement:?}: a gap at {s} in the arm ending at {:?}",
+                    arm.end
+                );
+                s += 0.5;
+            }
         }
     }
 }

@@ -8,7 +8,9 @@ use common::{book, holey_grid, rectangle, sphere};
 use geotracks::glam::DVec3;
 use geotracks::mesh::io::read_medial_axis;
 use geotracks::mesh::TriMesh;
-use geotracks::skeleton::{medial_axis_skeleton, Burn, Grassfire, Skeleton};
+use geotracks::skeleton::{
+    medial_axis_skeleton, medial_axis_skeleton_with_cycles, Burn, Grassfire, Placement, Skeleton,
+};
 use geotracks::{Euclidean, Options, SurfacePoint};
 use std::path::{Path, PathBuf};
 
@@ -555,6 +557,30 @@ fn check_axis_skeleton(path: &Path) {
             "{name}: skeleton pieces vs parts of the axis"
         );
         assert_eq!(count, betti.b0, "{name}");
+        // Centred: the same graph's shape, points moved off the axis, inside balls.
+        let (centred, _) = medial_axis_skeleton_with_cycles(
+            &axis,
+            burn,
+            &K5,
+            0.0,
+            0.0,
+            usize::MAX,
+            Placement::Centred,
+        )
+        .unwrap();
+        assert_eq!(
+            (centred.cycle_count(), centred.component_count()),
+            (skeleton.cycle_count(), skeleton.component_count()),
+            "{name}: centred"
+        );
+        assert_eq!(centred.tip_count(), skeleton.tip_count(), "{name}: centred");
+        for p in &centred.points {
+            let r = p.radius.expect("a radius");
+            assert!(
+                (0.0..=hi + 1e-12).contains(&r),
+                "{name}: centred radius {r}"
+            );
+        }
     }
 }
 

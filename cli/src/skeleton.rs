@@ -6,7 +6,8 @@ use crate::picture::CameraArgs;
 use crate::{ui, CliResult, Short};
 use geotracks::mesh::io::{write_obj_lines_to, write_ply_with_distance_to};
 use geotracks::skeleton::{
-    medial_axis_skeleton_with_cycles, Burn, Prune, DEFAULT_MIN_TUBULARITY, DEFAULT_PRUNE_PERCENT,
+    medial_axis_skeleton_with_cycles, Burn, Placement, Prune, DEFAULT_MIN_TUBULARITY,
+    DEFAULT_PRUNE_PERCENT,
 };
 use geotracks::{Method, Options};
 use geotracks_render::render_skeleton;
@@ -54,6 +55,11 @@ pub struct SkeletonArgs {
     /// When each point may burn.
     #[arg(long, value_enum, default_value = "boundary")]
     burn: BurnArg,
+    /// Move the skeleton's points off the axis to the centre of the shape's
+    /// cross-section there (the cut of the medial balls by the plane across the curve),
+    /// as a mean-curvature-flow skeleton lies; by default they stay on the axis.
+    #[arg(long)]
+    centred: bool,
     /// Output: OBJ polylines (`v` and `l` lines; junctions shared) or a JSON graph
     /// (points with position, medial radius, significance and tubularity; edges;
     /// polylines).
@@ -114,6 +120,11 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
         prune,
         args.tubular,
         solid_cycles.unwrap_or(usize::MAX),
+        if args.centred {
+            Placement::Centred
+        } else {
+            Placement::OnAxis
+        },
     )?;
     drop(spinner);
     if skeleton.added_cycles > 0 {

@@ -1257,6 +1257,24 @@ fn skeleton_writes_a_connected_obj_graph_and_the_field() {
         graph["edges"].as_array().unwrap().len() + 2,
         positions.len()
     );
+    // Centred: the same graph's shape, its points at the centre of the cross-section.
+    let centred = dir.path().join("centred.json");
+    geotracks_ok(&[
+        "skeleton",
+        SHEET_FINS,
+        "--prune",
+        "0",
+        "--tubular",
+        "0",
+        "--centred",
+        "-o",
+        centred.to_str().unwrap(),
+    ]);
+    let centred: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&centred).unwrap()).unwrap();
+    assert_eq!(centred["components"], 2);
+    assert_eq!(centred["cycles"], 0);
+    assert_eq!(centred["tips"], graph["tips"]);
 }
 
 #[test]

@@ -122,7 +122,8 @@ fn main() {
     }
 }
 
-/// `eval DATA_DIR --skeletons [PRUNE_PERCENT] [--k K] [--radius] [--tubular T]`.
+/// `eval DATA_DIR --skeletons [PRUNE_PERCENT] [--k K] [--radius] [--tubular T]
+/// [--from-meshes [ANGLE] [--span S]] [--centred]`.
 fn skeletons_main(argv: &[String], at: usize) -> Result<(), String> {
     let data = argv
         .get(1)
@@ -177,7 +178,20 @@ fn skeletons_main(argv: &[String], at: usize) -> Result<(), String> {
         }
         None => skeletons::Axes::Files,
     };
-    skeletons::skeletons(std::path::Path::new(data), prune, tubular, k, burn, axes)
+    let placement = if argv.iter().any(|a| a == "--centred") {
+        geotracks::skeleton::Placement::Centred
+    } else {
+        geotracks::skeleton::Placement::OnAxis
+    };
+    skeletons::skeletons(
+        std::path::Path::new(data),
+        prune,
+        tubular,
+        k,
+        burn,
+        axes,
+        placement,
+    )
 }
 
 struct Args {

@@ -6,7 +6,7 @@
 use geotracks::mesh::io::read_medial_axis;
 use geotracks::mesh::io::{read_mesh, MedialAxis};
 use geotracks::skeleton::medial::{medial_axis, solid_cycles, MedialAxisOptions};
-use geotracks::skeleton::{medial_axis_skeleton_with_cycles, Burn, Skeleton};
+use geotracks::skeleton::{medial_axis_skeleton_with_cycles, Burn, Placement, Skeleton};
 use geotracks::{Method, Options};
 use glam::DVec3;
 use std::path::Path;
@@ -50,6 +50,7 @@ pub fn skeletons(
     k: f64,
     burn: Burn,
     axes: Axes,
+    placement: Placement,
 ) -> Result<(), String> {
     let (dir, extension, suffix) = match axes {
         Axes::Files => (data.join("ma"), "ma", ".ma"),
@@ -100,6 +101,7 @@ pub fn skeletons(
             prune_percent / 100.0 * diagonal,
             tubular,
             max_cycles,
+            placement,
         )
         .map_err(|e| e.to_string())?;
         let seconds = start.elapsed().as_secs_f64();
@@ -189,7 +191,7 @@ pub fn skeletons(
             comparisons.push((name.clone(), at_default, reference, diagonal, floor));
         }
     }
-    println!("\nAgainst CGAL's mean-curvature-flow skeleton of the shape, at --prune {prune_percent} % and --tubular {tubular}: both sampled every 0.2 % of the diagonal; distances in % of the diagonal.\n");
+    println!("\nAgainst CGAL's mean-curvature-flow skeleton of the shape, at --prune {prune_percent} % and --tubular {tubular}, points {}: both sampled every 0.2 % of the diagonal; distances in % of the diagonal.\n", match placement { Placement::OnAxis => "on the axis", Placement::Centred => "centred (--centred)" });
     println!("| axis | reference → ours mean / max | ours → reference mean / max | tips ours / reference | junctions ours / reference | length ours / reference | turning per length ours / reference | reference → axis mean |");
     println!("|---|---:|---:|---:|---:|---:|---:|---:|");
     for (name, ours, reference, diagonal, floor) in comparisons {

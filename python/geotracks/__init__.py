@@ -590,6 +590,7 @@ def skeleton(
     angle: float = 60.0,
     span: float = 1.5,
     weld: bool = False,
+    centred: bool = False,
 ) -> Skeleton:
     """The curve skeleton of a medial axis file (``.ma``), or of a closed surface mesh
     file (OBJ, PLY, OFF, STL) through its :func:`medial_axis`, with the axis's topology,
@@ -603,6 +604,10 @@ def skeleton(
     :param burn: ``"boundary"`` (the grassfire from the axis's border) or ``"radius"``
         (each point burns at its medial radius).
     :param spacing, angle, span, weld: for a surface mesh, as in :func:`medial_axis`.
+    :param centred: move the points off the axis to the centre of the shape's
+        cross-section there (the cut of the medial balls by the plane across the
+        curve), as a mean-curvature-flow skeleton lies; radii are then those of the
+        largest balls centred there. By default the points stay on the axis.
     """
     return Skeleton(
         *_skeleton(
@@ -615,6 +620,7 @@ def skeleton(
             _real(angle, "angle"),
             _real(span, "span"),
             bool(weld),
+            bool(centred),
         )
     )
 

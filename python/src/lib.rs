@@ -574,10 +574,11 @@ fn medial_axis<'py>(
 /// through its medial axis (`spacing`, `angle`, `span`, `weld` as in [`medial_axis`]), pruned at
 /// `prune` (a length, or a percentage of the bounding-box diagonal such as `"5%"`) and
 /// at `tubular` (the least erosion thickness over the medial radius where a branch
-/// joins), burnt from the border (`burn="boundary"`) or by medial radius (`"radius"`):
-/// `(points (p, 3), radii (p,), significance (p,), edges (e, 2), b1)`.
+/// joins), burnt from the border (`burn="boundary"`) or by medial radius (`"radius"`),
+/// its points on the axis or, with `centred`, at the centre of the shape's
+/// cross-section: `(points (p, 3), radii (p,), significance (p,), edges (e, 2), b1)`.
 #[pyfunction]
-#[pyo3(signature = (axis, prune="5%", burn="boundary", k=5.0, tubular=geotracks::skeleton::DEFAULT_MIN_TUBULARITY, spacing=None, angle=geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_ANGLE_DEGREES, span=geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_SPAN, weld=false))]
+#[pyo3(signature = (axis, prune="5%", burn="boundary", k=5.0, tubular=geotracks::skeleton::DEFAULT_MIN_TUBULARITY, spacing=None, angle=geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_ANGLE_DEGREES, span=geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_SPAN, weld=false, centred=false))]
 #[allow(clippy::type_complexity, clippy::too_many_arguments)] // five named arrays, as the Python wrapper documents; the keywords are Python's
 fn skeleton<'py>(
     py: Python<'py>,
@@ -590,6 +591,7 @@ fn skeleton<'py>(
     angle: f64,
     span: f64,
     weld: bool,
+    centred: bool,
 ) -> PyResult<(
     Matrix<'py, f64>,
     Vector<'py, f64>,
@@ -597,7 +599,7 @@ fn skeleton<'py>(
     Matrix<'py, i64>,
     usize,
 )> {
-    use geotracks::skeleton::{medial_axis_skeleton_with_cycles, Burn, Prune};
+    use geotracks::skeleton::{medial_axis_skeleton_with_cycles, Burn, Placement, Prune};
     let burn = match burn {
         "boundary" => Burn::Boundary,
         "radius" => Burn::Radius,
@@ -618,8 +620,13 @@ fn skeleton<'py>(
             let threshold = prune.threshold(axis.diagonal());
             let options = Options::DEFAULT.with_k(k).with_method(Method::Tracks);
             let max_cycles = solid_cycles.unwrap_or(usize::MAX);
+            let placement = if centred {
+                Placement::Centred
+            } else {
+                Placement::OnAxis
+            };
             let (skeleton, _) = medial_axis_skeleton_with_cycles(
-                &axis, burn, &options, threshold, tubular, max_cycles,
+                &axis, burn, &options, threshold, tubular, max_cycles, placement,
             )
             .map_err(|e| e.to_string())?;
             Ok::<_, String>((skeleton, solid_cycles.unwrap_or(axis.betti_numbers().b1)))

@@ -296,6 +296,10 @@ def test_skeleton_of_a_medial_axis():
         geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune="-1")
     with pytest.raises(geotracks.GeotracksError, match="burn"):
         geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", burn="fire")
+    # Centred: the same graph's shape, points off the axis, each inside a ball.
+    centred = geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune="2%", centred=True)
+    assert cycles(centred) == centred.b1
+    assert len(centred.points) == p and np.all(centred.radii >= 0)
 
 
 def test_isolines_lie_on_their_level():

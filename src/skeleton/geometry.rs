@@ -66,7 +66,7 @@ impl Skeleton {
     }
 
     /// The same graph with new points (one per point).
-    fn with_points(&self, points: Vec<SkeletonPoint>) -> Skeleton {
+    pub(super) fn with_points(&self, points: Vec<SkeletonPoint>) -> Skeleton {
         debug_assert_eq!(points.len(), self.points.len());
         Skeleton {
             points,
@@ -110,13 +110,18 @@ impl Skeleton {
     }
 }
 
-/// The faces within two rings of the vertex nearest `on`.
-fn nearby_faces(mesh: &TriMesh, on: SurfacePoint) -> Vec<u32> {
-    let centre = match on {
+/// A vertex of the simplex `on` lies in.
+pub(super) fn vertex_of(mesh: &TriMesh, on: SurfacePoint) -> u32 {
+    match on {
         SurfacePoint::Vertex(v) => v,
         SurfacePoint::Edge { edge, .. } => mesh.edge_vertices(edge)[0],
         SurfacePoint::Face { face, .. } => mesh.face_vertices(face)[0],
-    };
+    }
+}
+
+/// The faces within two rings of the vertex nearest `on`.
+pub(super) fn nearby_faces(mesh: &TriMesh, on: SurfacePoint) -> Vec<u32> {
+    let centre = vertex_of(mesh, on);
     let mut faces: Vec<u32> = Vec::new();
     for &f in mesh.vertex_faces(centre) {
         for v in mesh.face_vertices(f) {

@@ -49,9 +49,11 @@ mod cycles;
 mod geometry;
 mod grassfire;
 pub mod medial;
+mod placement;
 mod thinning;
 
 pub use grassfire::Grassfire;
+pub use placement::Placement;
 
 use crate::mesh::io::MedialAxis;
 use crate::mesh::{unique_edges, DisjointSets, TriMesh, NONE};
@@ -567,7 +569,7 @@ pub enum Burn {
 /// The skeleton of a medial axis read from a `.ma` file, ready to use:
 /// [`Skeleton::of_medial_axis`] pruned at `prune` (a length, see
 /// [`Skeleton::pruned`]) and at `min_tubularity` ([`Skeleton::pruned_tubular`]),
-/// smoothed on the axis ([`Skeleton::smoothed`] with [`Skeleton::SMOOTHING`] rounds)
+/// with its points placed on the axis ([`Skeleton::placed`], [`Placement::OnAxis`])
 /// and given the medial radii. Also returns the
 /// grassfire's distance field for [`Burn::Boundary`] on an axis with sheets and a
 /// border.
@@ -581,12 +583,20 @@ pub fn medial_axis_skeleton(
     prune: f64,
     min_tubularity: f64,
 ) -> Result<(Skeleton, Option<Field<Euclidean>>), Error> {
-    medial_axis_skeleton_with_cycles(axis, burn, options, prune, min_tubularity, usize::MAX)
+    medial_axis_skeleton_with_cycles(
+        axis,
+        burn,
+        options,
+        prune,
+        min_tubularity,
+        usize::MAX,
+        Placement::OnAxis,
+    )
 }
 
 /// [`medial_axis_skeleton`] with at most `max_cycles` independent cycles: after pruning,
 /// extra cycles are cut ([`Skeleton::with_cycles_cut`], widest by medial radius) and
-/// what the cuts leave pruned again. For an axis computed from a sampled surface
+/// what the cuts leave pruned again; the points are placed as `placement` says. For an axis computed from a sampled surface
 /// ([`crate::skeleton::medial::medial_axis`]), whose sheets have small holes that the solid
 /// does not: `max_cycles` is then the solid's genus.
 ///
@@ -599,6 +609,7 @@ pub fn medial_axis_skeleton_with_cycles(
     prune: f64,
     min_tubularity: f64,
     max_cycles: usize,
+    placement: Placement,
 ) -> Result<(Skeleton, Option<Field<Euclidean>>), Error> {
     let (skeleton, field) = Skeleton::of_medial_axis(axis, burn, options)?;
     let skeleton = skeleton.pruned(prune).pruned_tubular(min_tubularity);
@@ -609,14 +620,7 @@ pub fn medial_axis_skeleton_with_cycles(
         _ => 0.0,
     };
     let skeleton = skeleton.with_cycles_cut(max_cycles, radius, prune);
-    let skeleton = match &axis.surface {
-        Some(mesh) => skeleton.smoothed(mesh, Skeleton::SMOOTHING),
-        None => skeleton,
-    };
-    Ok((
-        skeleton.with_radii(axis.surface.as_ref(), &axis.radii),
-        field,
-    ))
+    Ok((skeleton.placed(axis, placement), field))
 }
 
 impl Skeleton {

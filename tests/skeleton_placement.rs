@@ -1,0 +1,188 @@
+//! Where a medial-axis skeleton's points go: smooth curves on the axis, or at the centre
+//! of the shape's cross-section (`Placement`), on synthetic axes whose answer is known.
+
+mod common;
+
+use common::rectangle;
+use geotracks::glam::DVec3;
+use geotracks::mesh::io::MedialAxis;
+use geotracks::skeleton::{medial_axis_skeleton_with_cycles, Burn, Placement, Skeleton};
+use geotracks::{Options, SurfacePoint};
+
+const K5: Options = Options::DEFAULT.with_k(5.0);
+
+/// The sum of the angles between consecutive segments of every polyline over their
+/// total length, times `scale`: 0 for straight lines, the same for a smooth curve however
+/// finely sampled, more for zig-zags.
+fn turning(skeleton: &Skeleton, scale: f64) -> f64 {
+    let (mut angle, mut length) = (0.0, 0.0);
+    for line in skeleton.polyline_positions() {
+        let points: Vec<DVec3> = line.into_iter().map(DVec3::from).collect();
+        length += points.windows(2).map(|w| w[0].distance(w[1])).sum::<f64>();
+        for w in points.windows(3) {
+            let (u, v) = (w[1] - w[0], w[2] - w[1]);
+            if u.length() > 0.0 && v.length() > 0.0 {
+                angle += u.angle_between(v);
+            }
+        }
+    }
+    angle / length * scale
+}
+
+/// A deterministic wobble in [-1, 1]: three incommensurate waves.
+fn wobble(x: f64, seed: f64) -> f64 {
+    ((1.7 * x + seed).sin() + (4.3 * x + 2.0 * seed).sin() + (9.1 * x + 3.0 * seed).sin()) / 3.0
+}
+
+/// The middle sheet of a slab `w` long and `h` wide, `thickness` thick (its balls'
+/// radius), with ragged long borders (moved by up to `ragged` across, in waves a few
+/// cells long, as a sampled surface's axis has them) and a bumpy sheet (by `bumps` out
+/// of its plane).
+fn ragged_strip(w: f64, h: f64, thickness: f64, ragged: f64, bumps: f64) -> MedialAxis {
+    let (nx, ny) = (160, 20);
+    let flat = rectangle(nx, ny, w, h);
+    let positions: Vec<[f64; 3]> = flat
+        .positions()
+        .iter()
+        .map(|p| {
+            let across = if p.y == 0.0 {
+                -ragged * (1.0 + wobble(p.x * 6.0, 0.3)) / 2.0
+            } else if p.y == h {
+                ragged * (1.0 + wobble(p.x * 6.0, 1.9)) / 2.0
+            } else {
+                0.0
+            };
+            [
+                p.x,
+                p.y + across,
+                bumps * wobble(p.x * 13.0 + p.y * 7.0, 0.7),
+            ]
+        })
+        .collect();
+    let radii = vec![thickness / 2.0; positions.len()];
+    MedialAxis::from_parts(positions, radii, flat.triangles().to_vec(), Vec::new()).unwrap()
+}
+
+fn skeleton(axis: &MedialAxis, placement: Placement) -> Skeleton {
+    let prune = 0.05 * axis.diagonal();
+    let (skeleton, _) =
+        medial_axis_skeleton_with_cycles(axis, Burn::Boundary, &K5, prune, 0.0, 0, placement)
+            .unwrap();
+    skeleton
+}
+
+/// Where the fires meet on a sheet with ragged borders wanders from side to side; placed,
+/// the trunk is a smooth curve on the axis (what turning is left: its ends bending into
+/// the corners, and the sheet's bumps), where the thinned points zig-zag by more than
+/// five times as much.
+#[test]
+fn a_wandering_ridge_comes_out_smooth_and_on_the_axis() {
+    let axis = ragged_strip(8.0, 1.0, 0.8, 0.25, 0.002);
+    let mesh = axis.surface.as_ref().unwrap();
+    let diagonal = axis.diagonal();
+    let (thinned, _) = Skeleton::of_medial_axis(&axis, Burn::Boundary, &K5).unwrap();
+    let thinned = thinned.pruned(0.05 * diagonal);
+    for placement in [Placement::OnAxis, Placement::Centred] {
+        let placed = skeleton(&axis, placement);
+        assert_eq!(
+            (placed.cycle_count(), placed.component_count()),
+            (0, 1),
+            "{placement:?}"
+        );
+        assert_eq!(placed.tip_count(), thinned.tip_count(), "{placement:?}");
+        let (before, after) = (turning(&thinned, diagonal), turning(&placed, diagonal));
+        assert!(after < 10.0, "{placement:?}: turning {after}");
+        assert!(
+            before > 5.0 * after,
+            "{placement:?}: turning {before} thinned"
+        );
+        for p in &placed.points {
+            let at = DVec3::from(p.position);
+            let r = p.radius.expect("a radius");
+            assert!((0.0..=0.4 + 1e-9).contains(&r), "{placement:?}: radius {r}");
+            if placement == Placement::OnAxis {
+                let on = p.on.position(mesh);
+                assert!(on.distance(at) < 1e-9, "off its surface point");
+                let nearest = SurfacePoint::nearest(mesh, p.position).unwrap();
+                assert!(nearest.position(mesh).distance(at) < 1e-9, "off the axis");
+            }
+        }
+    }
+}
+
+/// A slab's middle sheet whose balls grow across it (radius 0.2 at one long border, 0.6
+/// at the other): the fires from the borders meet half-way across, where the skeleton
+/// stays on the axis; centred, it moves to the centroid of the balls' cut by the plane
+/// across the strip, computed here on a fine raster, and its radius is the largest ball
+/// centred there inside the shape.
+#[test]
+fn centred_points_sit_at_the_centre_of_the_cross_section() {
+    let (w, h) = (8.0, 1.0);
+    let flat = rectangle(160, 20, w, h);
+    let radius = |y: f64| 0.2 + 0.4 * y;
+    let positions: Vec<[f64; 3]> = flat.positions().iter().map(|p| p.to_array()).collect();
+    let radii = positions.iter().map(|p| radius(p[1])).collect();
+    let axis =
+        MedialAxis::from_parts(positions, radii, flat.triangles().to_vec(), Vec::new()).unwrap();
+    // The cross-section: discs centred (s, 0) of radius r(s) in the (y, z) plane.
+    let centres: Vec<f64> = (0..=400).map(|i| i as f64 / 400.0).collect();
+    let inside = |y: f64, z: f64| {
+        centres
+            .iter()
+            .any(|&s| (y - s).powi(2) + z * z < radius(s).powi(2))
+    };
+    let (mut sum, mut count) = (0.0, 0.0);
+    for i in 0..400 {
+        for j in 0..400 {
+            let (y, z) = (
+                -0.5 + 2.5 * (i as f64 + 0.5) / 400.0,
+                -1.0 + 2.0 * (j as f64 + 0.5) / 400.0,
+            );
+            if inside(y, z) {
+                sum += y;
+                count += 1.0;
+            }
+        }
+    }
+    let centroid = sum / count;
+    let inscribed = centres
+        .iter()
+        .map(|&s| radius(s) - (centroid - s).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        centroid > 0.6,
+        "the section leans to the thick side: {centroid}"
+    );
+    let middle = |skeleton: &Skeleton| -> Vec<DVec3> {
+        skeleton
+            .points
+            .iter()
+            .map(|p| DVec3::from(p.position))
+            .filter(|p| (2.0..=6.0).contains(&p.x))
+            .collect()
+    };
+    let on_axis = skeleton(&axis, Placement::OnAxis);
+    let centred = skeleton(&axis, Placement::Centred);
+    for (name, placed, y) in [
+        ("on the axis", &on_axis, 0.5),
+        ("centred", &centred, centroid),
+    ] {
+        let points = middle(placed);
+        assert!(points.len() > 50, "{name}: {} points", points.len());
+        for p in points {
+            assert!((p.y - y).abs() < 0.03, "{name}: {p} off y = {y}");
+            assert!(p.z.abs() < 0.02, "{name}: {p} out of the sheet's plane");
+        }
+    }
+    for p in centred
+        .points
+        .iter()
+        .filter(|p| (2.0..=6.0).contains(&p.position[0]))
+    {
+        let r = p.radius.unwrap();
+        assert!(
+            (r - inscribed).abs() < 0.04,
+            "radius {r}, inscribed {inscribed}"
+        );
+    }
+}
