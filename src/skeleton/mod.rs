@@ -131,7 +131,8 @@ pub struct SkeletonPoint {
     /// World position.
     pub position: [f64; 3],
     /// Where it lies on the surface: a vertex as thinning leaves it, a point in a face
-    /// once [`Skeleton::smoothed`].
+    /// once [`Skeleton::smoothed`] or [`Skeleton::placed`] on the axis; for a skeleton
+    /// [`Placement::Centred`], the point of the axis it was placed from.
     pub on: SurfacePoint,
     /// The erosion thickness of the point's branch (in the metric's length): how long
     /// the branch stood on curves only before the fire burnt it from its tip, the same

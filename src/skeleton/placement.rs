@@ -24,7 +24,8 @@ pub enum Placement {
     /// the cut of the medial balls by the plane across the curve there (the piece of the
     /// cut around the point), as a mean-curvature-flow skeleton lies. Points leave the
     /// axis (a wide sheet's curve moves to the middle of the solid's section); the
-    /// radius is then that of the largest ball centred there inside the shape.
+    /// radius is then that of the largest ball centred there inside the shape, and
+    /// [`SkeletonPoint::on`] the point of the axis it was placed from.
     Centred,
 }
 
@@ -58,7 +59,7 @@ impl Skeleton {
             .with_radii(Some(mesh), &axis.radii);
         let at: Vec<DVec3> = skeleton.points.iter().map(|p| p.position.into()).collect();
         // On the axis, points on its curves stay on them; centred, they move too.
-        let on_sheet: Vec<bool> = match placement {
+        let movable: Vec<bool> = match placement {
             Placement::OnAxis => skeleton
                 .points
                 .iter()
@@ -66,7 +67,7 @@ impl Skeleton {
                 .collect(),
             Placement::Centred => vec![true; at.len()],
         };
-        let smooth = skeleton.smoothed_by_radius(&at, &on_sheet);
+        let smooth = skeleton.smoothed_by_radius(&at, &movable);
         match placement {
             Placement::OnAxis => skeleton
                 .moved_onto(mesh, &lookup, &smooth)
@@ -74,7 +75,7 @@ impl Skeleton {
                 .with_radii(Some(mesh), &axis.radii),
             Placement::Centred => {
                 let centred = skeleton.centred(axis, &lookup, &smooth);
-                let smooth = skeleton.smoothed_by_radius(&centred, &on_sheet);
+                let smooth = skeleton.smoothed_by_radius(&centred, &movable);
                 let points = skeleton
                     .points
                     .iter()
