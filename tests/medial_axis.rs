@@ -9,7 +9,7 @@ use geotracks::mesh::io::{read_medial_axis, write_medial_axis, MedialAxis};
 use geotracks::mesh::TriMesh;
 use geotracks::skeleton::medial::solid_cycles;
 use geotracks::skeleton::medial::{medial_axis, MedialAxisError, MedialAxisOptions};
-use geotracks::skeleton::{medial_axis_skeleton_with_cycles, Burn, Placement};
+use geotracks::skeleton::{medial_axis_skeleton_with_cycles, Burn, Placement, Skeleton};
 use geotracks::{Error, Options};
 use std::collections::HashMap;
 
@@ -66,6 +66,14 @@ fn t_shape() -> Vec<[i32; 3]> {
     v
 }
 
+/// The skeleton at the defaults (5 % pruning, tubularity 1) with at most `cycles`.
+fn skeleton_of(axis: &MedialAxis, cycles: usize, placement: Placement) -> Skeleton {
+    let prune = 0.05 * axis.diagonal();
+    medial_axis_skeleton_with_cycles(axis, Burn::Boundary, &K5, prune, 1.0, cycles, placement)
+        .unwrap()
+        .0
+}
+
 fn axis(mesh: &TriMesh, spacing: f64) -> MedialAxis {
     medial_axis(
         mesh,
@@ -103,17 +111,7 @@ fn a_torus_has_its_core_circle_as_axis_and_skeleton() {
     }
     assert_eq!(axis.betti_numbers().b0, 1);
     assert_eq!(solid_cycles(&mesh), 1);
-    let prune = 0.05 * axis.diagonal();
-    let (skeleton, _) = medial_axis_skeleton_with_cycles(
-        &axis,
-        Burn::Boundary,
-        &K5,
-        prune,
-        1.0,
-        1,
-        Placement::OnAxis,
-    )
-    .unwrap();
+    let skeleton = skeleton_of(&axis, 1, Placement::OnAxis);
     // The core loop, with the few short branches the star-shaped axis leaves.
     assert_eq!((skeleton.cycle_count(), skeleton.component_count()), (1, 1));
     assert!(skeleton.tip_count() <= 8, "{} tips", skeleton.tip_count());
@@ -158,19 +156,9 @@ fn every_arm_of_a_t_gets_a_branch() {
     let mesh = voxels(&t_shape());
     let axis = axis(&mesh, 0.25);
     assert_eq!(axis.betti_numbers().b0, 1);
-    let prune = 0.05 * axis.diagonal();
     let cycles = solid_cycles(&mesh);
     assert_eq!(cycles, 0);
-    let (skeleton, _) = medial_axis_skeleton_with_cycles(
-        &axis,
-        Burn::Boundary,
-        &K5,
-        prune,
-        1.0,
-        cycles,
-        Placement::OnAxis,
-    )
-    .unwrap();
+    let skeleton = skeleton_of(&axis, cycles, Placement::OnAxis);
     assert_eq!((skeleton.component_count(), skeleton.cycle_count()), (1, 0));
     let tips: Vec<[f64; 3]> = skeleton
         .degrees()
@@ -306,17 +294,7 @@ fn spot_gives_one_tree_along_its_body() {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/spot.obj");
     let mesh = geotracks::mesh::io::read_mesh(path).unwrap();
     let axis = medial_axis(&mesh, &MedialAxisOptions::default()).unwrap();
-    let prune = 0.05 * axis.diagonal();
-    let (skeleton, _) = medial_axis_skeleton_with_cycles(
-        &axis,
-        Burn::Boundary,
-        &K5,
-        prune,
-        1.0,
-        0,
-        Placement::OnAxis,
-    )
-    .unwrap();
+    let skeleton = skeleton_of(&axis, 0, Placement::OnAxis);
     assert_eq!(skeleton.component_count(), 1);
     assert_eq!(skeleton.cycle_count(), 0);
     let tips = skeleton.tip_count();
@@ -419,11 +397,8 @@ fn every_arm_of_a_plate_gets_a_branch_along_its_middle() {
         (1, 0),
         "a plate is one piece without holes"
     );
-    let prune = 0.05 * axis.diagonal();
     for placement in [Placement::OnAxis, Placement::Centred] {
-        let (skeleton, _) =
-            medial_axis_skeleton_with_cycles(&axis, Burn::Boundary, &K5, prune, 1.0, 0, placement)
-                .unwrap();
+        let skeleton = skeleton_of(&axis, 0, placement);
         assert_eq!(
             (skeleton.component_count(), skeleton.cycle_count()),
             (1, 0),

@@ -20,6 +20,11 @@ fn read_values(path: &Path) -> Vec<f64> {
         .collect()
 }
 
+/// The JSON file at `path`.
+fn read_json(path: &Path) -> serde_json::Value {
+    serde_json::from_slice(&std::fs::read(path).unwrap()).unwrap()
+}
+
 fn square_obj(dir: &Path) -> PathBuf {
     let path = dir.join("square.obj");
     std::fs::write(
@@ -1202,17 +1207,14 @@ fn skeleton_writes_a_connected_obj_graph_and_the_field() {
     // … and, unpruned (by length and by tubularity), is in the skeleton whole; the
     // JSON graph says so.
     let json = dir.path().join("skeleton.json");
-    geotracks_ok(&[
-        "skeleton",
-        SHEET_FINS,
-        "--prune",
-        "0",
-        "--tubular",
-        "0",
-        "-o",
-        json.to_str().unwrap(),
-    ]);
-    let graph: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    let unpruned = |more: &[&str]| {
+        let mut args = vec!["skeleton", SHEET_FINS, "--prune", "0", "--tubular", "0"];
+        args.extend_from_slice(more);
+        args.extend(["-o", json.to_str().unwrap()]);
+        geotracks_ok(&args);
+        read_json(&json)
+    };
+    let graph = unpruned(&[]);
     let positions: Vec<Vec<f64>> = graph["points"]
         .as_array()
         .unwrap()
@@ -1258,20 +1260,7 @@ fn skeleton_writes_a_connected_obj_graph_and_the_field() {
         positions.len()
     );
     // Centred: the same graph's shape, its points at the centre of the cross-section.
-    let centred = dir.path().join("centred.json");
-    geotracks_ok(&[
-        "skeleton",
-        SHEET_FINS,
-        "--prune",
-        "0",
-        "--tubular",
-        "0",
-        "--centred",
-        "-o",
-        centred.to_str().unwrap(),
-    ]);
-    let centred: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(&centred).unwrap()).unwrap();
+    let centred = unpruned(&["--centred"]);
     assert_eq!(centred["components"], 2);
     assert_eq!(centred["cycles"], 0);
     assert_eq!(centred["tips"], graph["tips"]);
@@ -1632,8 +1621,7 @@ fn isolines_write_obj_csv_and_geojson_on_their_levels() {
         "-o",
         geojson.to_str().unwrap(),
     ]);
-    let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&geojson).unwrap()).unwrap();
+    let json = read_json(&geojson);
     let features = json["features"].as_array().unwrap();
     assert_eq!(features.len(), 1);
     assert_eq!(features[0]["properties"]["level"], 1.0);

@@ -3,6 +3,7 @@
 //! then kept on the axis or moved to the centre of the shape's cross-section.
 
 use super::geometry::{nearby_faces, vertex_of};
+use super::thinning::Ordered;
 use super::{Skeleton, SkeletonPoint};
 use crate::mesh::io::MedialAxis;
 use crate::mesh::{DisjointSets, TriMesh};
@@ -397,24 +398,6 @@ struct Search {
     distance: Vec<f64>,
     touched: Vec<u32>,
     heap: BinaryHeap<Reverse<(Ordered, u32)>>,
-}
-
-/// An `f64` distance ordered for the heap (never NaN here: sums of edge lengths).
-#[derive(Clone, Copy, PartialEq)]
-struct Ordered(f64);
-
-impl Eq for Ordered {}
-
-impl PartialOrd for Ordered {
-    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
-        Some(self.cmp(other))
-    }
-}
-
-impl Ord for Ordered {
-    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
-        self.0.total_cmp(&other.0)
-    }
 }
 
 impl Search {

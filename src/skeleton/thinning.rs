@@ -493,7 +493,7 @@ impl<'c, 'm, L: Fn(u32) -> f64, C: Fn(u32, u32) -> f64> Collapse<'c, 'm, L, C> {
 
 /// An f64 with a total order, for sorting and heaps.
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct Ordered(f64);
+pub(super) struct Ordered(pub(super) f64);
 
 impl Eq for Ordered {}
 
