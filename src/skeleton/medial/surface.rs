@@ -173,42 +173,7 @@ pub(super) fn samples(mesh: &TriMesh, triangles: &[[u32; 3]], spacing: f64) -> S
             }
         }
     }
-    // Off degenerate positions: see `JITTER`.
-    for (i, (point, normal)) in samples.points.iter_mut().zip(&samples.normals).enumerate() {
-        if *normal != DVec3::ZERO {
-            let (u, v) = normal.any_orthonormal_pair();
-            let [a, b] = unit_pair(i as u64);
-            let moved = DVec3::from_array(*point) + JITTER * spacing * (a * u + b * v);
-            *point = moved.to_array();
-        }
-    }
     samples
-}
-
-/// How far each sample moves along its tangent plane, in spacings, in a direction
-/// that a hash of its index picks: at most a thousandth of the spacing, which no
-/// skeleton can see. Samples on a grid (a mesh's vertices on flat faces and
-/// the points sampled between them) put five or more on one sphere again and again;
-/// the Delaunay tetrahedralization breaks such ties symbolically, but its circumcentres
-/// coincide, and the facets between them are flat: left out, they were holes and
-/// closed pockets in the axis of a flat plate (hundreds of cycles where the solid has
-/// none). Moved this little, the points are in general position and the axis has the
-/// solid's topology (a plate of voxels: b₁ 700 → 0).
-const JITTER: f64 = 1e-3;
-
-/// Two numbers in [-1, 1] from `seed` (SplitMix64: the same for the same input, so a
-/// medial axis is reproducible).
-fn unit_pair(seed: u64) -> [f64; 2] {
-    let mut z = seed.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    let mut next = || {
-        z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut x = z;
-        x = (x ^ (x >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        x = (x ^ (x >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        x ^= x >> 31;
-        (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    };
-    [next(), next()]
 }
 
 /// How many samples [`samples`] makes for `spacing`, without making them.
