@@ -8,6 +8,7 @@ use geotracks::glam::DVec3;
 use geotracks::mesh::io::MedialAxis;
 use geotracks::skeleton::{medial_axis_skeleton_with_cycles, Burn, Placement, Skeleton};
 use geotracks::{Options, SurfacePoint};
+use std::collections::HashMap;
 
 const K5: Options = Options::DEFAULT.with_k(5.0);
 
@@ -184,5 +185,159 @@ fn centred_points_sit_at_the_centre_of_the_cross_section() {
             (r - inscribed).abs() < 0.04,
             "radius {r}, inscribed {inscribed}"
         );
+    }
+}
+/// A plate's outline: an 8 × 8 square with four arms of different widths (3–5, three
+/// to five times the plate's thickness, 1) and lengths, as unit cells. Each arm: the
+/// rectangle it covers (x and y ranges) and where it ends.
+struct Arm {
+    x: [f64; 2],
+    y: [f64; 2],
+    end: [f64; 2],
+}
+
+fn plate_with_arms() -> (Vec<[i32; 2]>, Vec<Arm>) {
+    let mut v: Vec<[i32; 2]> = Vec::new();
+    let mut fill = |x: std::ops::Range<i32>, y: std::ops::Range<i32>| {
+        for i in x {
+            for j in y.clone() {
+                v.push([i, j]);
+            }
+        }
+    };
+    fill(0..8, 0..8);
+    fill(8..15, 3..6); // +x: 3 wide, 7 long
+    fill(-6..0, 1..6); // -x: 5 wide, 6 long
+    fill(2..5, 8..13); // +y: 3 wide, 5 long
+    fill(2..6, -9..0); // -y: 4 wide, 9 long
+    let arms = vec![
+        Arm {
+            x: [8.0, 15.0],
+            y: [3.0, 6.0],
+            end: [15.0, 4.5],
+        },
+        Arm {
+            x: [-6.0, 0.0],
+            y: [1.0, 6.0],
+            end: [-6.0, 3.5],
+        },
+        Arm {
+            x: [2.0, 5.0],
+            y: [8.0, 13.0],
+            end: [3.5, 13.0],
+        },
+        Arm {
+            x: [2.0, 6.0],
+            y: [-9.0, 0.0],
+            end: [4.0, -9.0],
+        },
+    ];
+    (v, arms)
+}
+
+/// The middle sheet of the plate (what its medial axis mostly is, the fins out to its
+/// edges left out): the outline's unit cells cut into `n` × `n` squares of two
+/// triangles each, every ball of radius one half (the plate's half thickness).
+fn plate_sheet(cells: &[[i32; 2]], n: i32) -> MedialAxis {
+    let mut ids: HashMap<[i32; 2], u32> = HashMap::new();
+    let mut positions = Vec::new();
+    let mut id = |p: [i32; 2]| {
+        *ids.entry(p).or_insert_with(|| {
+            positions.push([
+                f64::from(p[0]) / f64::from(n),
+                f64::from(p[1]) / f64::from(n),
+                0.0,
+            ]);
+            positions.len() as u32 - 1
+        })
+    };
+    let mut triangles = Vec::new();
+    for &[x, y] in cells {
+        for i in 0..n {
+            for j in 0..n {
+                let (u, v) = (x * n + i, y * n + j);
+                let q = [[u, v], [u + 1, v], [u + 1, v + 1], [u, v + 1]].map(&mut id);
+                triangles.push([q[0], q[1], q[2]]);
+                triangles.push([q[0], q[2], q[3]]);
+            }
+        }
+    }
+    let radii = vec![0.5; positions.len()];
+    MedialAxis::from_parts(positions, radii, triangles, Vec::new()).unwrap()
+}
+
+/// A plate's medial axis is mostly one sheet, its middle surface (with fins out to its
+/// edges); its curve skeleton is that sheet's own medial axis, pruned: one branch along
+/// the middle of every arm, out to the arm's end, joined on the plate.
+#[test]
+fn every_arm_of_a_plate_gets_a_branch_along_its_middle() {
+    let (cells, arms) = plate_with_arms();
+    let axis = plate_sheet(&cells, 4);
+    assert_eq!((axis.betti_numbers().b0, axis.betti_numbers().b1), (1, 0));
+    let prune = 0.05 * axis.diagonal();
+    for placement in [Placement::OnAxis, Placement::Centred] {
+        // At the defaults: by length and by tubularity (an arm is long for the plate's
+        // thickness).
+        let (skeleton, _) =
+            medial_axis_skeleton_with_cycles(&axis, Burn::Boundary, &K5, prune, 1.0, 0, placement)
+                .unwrap();
+        assert_eq!(
+            (skeleton.component_count(), skeleton.cycle_count()),
+            (1, 0),
+            "{placement:?}"
+        );
+        let degree = skeleton.degrees();
+        let tips: Vec<[f64; 3]> = (0..skeleton.points.len())
+            .filter(|&i| degree[i] == 1)
+            .map(|i| skeleton.points[i].position)
+            .collect();
+        for arm in &arms {
+            let width = (arm.x[1] - arm.x[0]).min(arm.y[1] - arm.y[0]);
+            let along_x = arm.x[1] - arm.x[0] > width;
+            let tip = tips
+                .iter()
+                .any(|t| (t[0] - arm.end[0]).hypot(t[1] - arm.end[1]) < width / 2.0 + 1.0);
+            assert!(tip, "{placement:?}: no tip at {:?}: {tips:?}", arm.end);
+            // Away from the plate and the arm's end, the branch runs along the arm's
+            // middle, and it runs all the way.
+            let [lo, hi] = if along_x { arm.x } else { arm.y };
+            let middle = if along_x {
+                (arm.y[0] + arm.y[1]) / 2.0
+            } else {
+                (arm.x[0] + arm.x[1]) / 2.0
+            };
+            let (from, to) = (lo + width / 2.0 + 1.0, hi - width / 2.0 - 0.5);
+            let inside: Vec<[f64; 2]> = skeleton
+                .points
+                .iter()
+                .map(|p| {
+                    let [x, y, _] = p.position;
+                    if along_x {
+                        [x, y]
+                    } else {
+                        [y, x]
+                    }
+                })
+                .filter(|&[s, across]| {
+                    (from..=to).contains(&s) && (across - middle).abs() < width / 2.0
+                })
+                .collect();
+            for &[s, across] in &inside {
+                assert!(
+                    (across - middle).abs() < 0.5,
+                    "{placement:?}: {s}, {across}: off the middle of the arm ending at {:?}",
+                    arm.end
+                );
+            }
+            let mut s = from;
+            while s <= to {
+                assert!(
+                    inside.iter().any(|q| (q[0] - s).abs() < 0.5),
+                    "{placement:?}: a gap at {s} in the arm ending at {:?}",
+                    arm.end
+                );
+                s += 0.5;
+            }
+        }
     }
 }
