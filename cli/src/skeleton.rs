@@ -57,7 +57,8 @@ pub struct SkeletonArgs {
     burn: BurnArg,
     /// Move the skeleton's points off the axis to the centre of the shape's
     /// cross-section there (the cut of the medial balls by the plane across the curve),
-    /// as a mean-curvature-flow skeleton lies; by default they stay on the axis.
+    /// as a mean-curvature-flow skeleton lies; by default they stay on the axis. An
+    /// axis of curves only (no sheets) keeps its points on its curves either way.
     #[arg(long)]
     centred: bool,
     /// Output: OBJ polylines (`v` and `l` lines; junctions shared) or a JSON graph

@@ -607,7 +607,8 @@ def skeleton(
     :param centred: move the points off the axis to the centre of the shape's
         cross-section there (the cut of the medial balls by the plane across the
         curve), as a mean-curvature-flow skeleton lies; radii are then those of the
-        largest balls centred there. By default the points stay on the axis.
+        largest balls centred there. By default the points stay on the axis; an axis of
+        curves only keeps its points on its curves either way.
     """
     return Skeleton(
         *_skeleton(

@@ -26,7 +26,8 @@ pub enum Placement {
     /// cut around the point), as a mean-curvature-flow skeleton lies. Points leave the
     /// axis (a wide sheet's curve moves to the middle of the solid's section); the
     /// radius is then that of the largest ball centred there inside the shape, and
-    /// [`SkeletonPoint::on`] the point of the axis it was placed from.
+    /// [`SkeletonPoint::on`] the point of the axis it was placed from. An axis of
+    /// curves only has no cross-sections to centre in: its points stay on its curves.
     Centred,
 }
 
