@@ -341,3 +341,44 @@ fn every_arm_of_a_plate_gets_a_branch_along_its_middle() {
         }
     }
 }
+
+/// Two sheets joined by one curve of the axis (a line element from a corner of one to
+/// a corner of the other): placed on the axis, the skeleton crosses between them along
+/// the curve, from end to end (no points put on the sheets near its ends, and its ends
+/// not smoothed away from it).
+#[test]
+fn points_along_a_curve_of_the_axis_stay_on_it() {
+    let square = rectangle(4, 4, 1.0, 1.0);
+    let mut positions: Vec<[f64; 3]> = square.positions().iter().map(|p| p.to_array()).collect();
+    let n = positions.len() as u32;
+    positions.extend(square.positions().iter().map(|p| [p.x + 3.0, p.y, 0.0]));
+    let mut triangles = square.triangles().to_vec();
+    triangles.extend(square.triangles().iter().map(|t| t.map(|v| v + n)));
+    // From the corner (1, 1) of the first square to the corner (3, 0) of the second.
+    let (a, b) = (4 * 5 + 4, n);
+    let radii = vec![0.1; positions.len()];
+    let axis = MedialAxis::from_parts(positions, radii, triangles, vec![[a, b]]).unwrap();
+    let (skeleton, _) = medial_axis_skeleton_with_cycles(
+        &axis,
+        Burn::Boundary,
+        &K5,
+        0.0,
+        0.0,
+        0,
+        Placement::OnAxis,
+    )
+    .unwrap();
+    // The gap is crossed by the curve itself, from end to end.
+    let at = |i: u32| DVec3::from(skeleton.points[i as usize].position);
+    let crossing: Vec<(DVec3, DVec3)> = skeleton
+        .edges
+        .iter()
+        .map(|&[a, b]| (at(a), at(b)))
+        .filter(|(p, q)| p.x.min(q.x) < 1.5 && p.x.max(q.x) > 2.5)
+        .collect();
+    assert_eq!(crossing.len(), 1, "{crossing:?}");
+    let (p, q) = crossing[0];
+    let (p, q) = if p.x < q.x { (p, q) } else { (q, p) };
+    assert!(p.distance(DVec3::new(1.0, 1.0, 0.0)) < 1e-9, "{p}");
+    assert!(q.distance(DVec3::new(3.0, 0.0, 0.0)) < 1e-9, "{q}");
+}

@@ -13,7 +13,8 @@ impl Skeleton {
     /// The skeleton with its polylines smoothed on the surface: each point of degree 2
     /// moves towards its neighbours' mean and back (Taubin's λ|μ smoothing, which does
     /// not shrink the curve), then onto the nearest point of the faces near where it
-    /// was, `rounds` times. Tips, junctions and points on line elements stay. Thinning
+    /// was, `rounds` times. Tips, junctions and points on line elements or at their ends
+    /// stay. Thinning
     /// leaves points on vertices, so a curve zig-zags along edges by up to a face; this
     /// takes the zig-zag out while every point stays on the surface.
     pub fn smoothed(&self, mesh: &TriMesh, rounds: usize) -> Skeleton {
@@ -26,7 +27,10 @@ impl Skeleton {
             .zip(&neighbours)
             .map(|(p, around)| {
                 let faces = nearby_faces(mesh, p.on);
-                (around.len() == 2 && !faces.is_empty()).then_some(faces)
+                let on_sheets = around
+                    .iter()
+                    .all(|&q| share_a_face(mesh, p.on, self.points[q as usize].on));
+                (around.len() == 2 && on_sheets && !faces.is_empty()).then_some(faces)
             })
             .collect();
         let mut at: Vec<DVec3> = self.points.iter().map(|p| p.position.into()).collect();
@@ -131,4 +135,18 @@ pub(super) fn nearby_faces(mesh: &TriMesh, on: SurfacePoint) -> Vec<u32> {
     faces.sort_unstable();
     faces.dedup();
     faces
+}
+
+/// Whether the skeleton's segment between `a` and `b` lies on the sheets: not along a
+/// line element, which joins two vertices that share no face (thinning leaves points
+/// on vertices; a point that placing or smoothing put inside a face or an edge is on
+/// the sheets).
+pub(super) fn share_a_face(mesh: &TriMesh, a: SurfacePoint, b: SurfacePoint) -> bool {
+    match (a, b) {
+        (SurfacePoint::Vertex(u), SurfacePoint::Vertex(v)) => {
+            let around = mesh.vertex_faces(v);
+            mesh.vertex_faces(u).iter().any(|f| around.contains(f))
+        }
+        _ => true,
+    }
 }

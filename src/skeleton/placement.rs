@@ -2,7 +2,7 @@
 //! polyline, smoothed at the scale of the shape's thickness (through junctions), and
 //! then kept on the axis or moved to the centre of the shape's cross-section.
 
-use super::geometry::{nearby_faces, vertex_of};
+use super::geometry::{nearby_faces, share_a_face, vertex_of};
 use super::thinning::Ordered;
 use super::{Skeleton, SkeletonPoint};
 use crate::mesh::io::MedialAxis;
@@ -60,13 +60,23 @@ impl Skeleton {
             .resampled(mesh, Skeleton::RESAMPLING * axis.diagonal())
             .with_radii(Some(mesh), &axis.radii);
         let at: Vec<DVec3> = skeleton.points.iter().map(|p| p.position.into()).collect();
-        // On the axis, points on its curves stay on them; centred, they move too.
+        // On the axis, points on its curves and at their ends stay; centred, they move.
         let movable: Vec<bool> = match placement {
-            Placement::OnAxis => skeleton
-                .points
-                .iter()
-                .map(|p| !mesh.vertex_faces(vertex_of(mesh, p.on)).is_empty())
-                .collect(),
+            Placement::OnAxis => {
+                let mut movable: Vec<bool> = skeleton
+                    .points
+                    .iter()
+                    .map(|p| !mesh.vertex_faces(vertex_of(mesh, p.on)).is_empty())
+                    .collect();
+                for &[a, b] in &skeleton.edges {
+                    let (p, q) = (skeleton.points[a as usize], skeleton.points[b as usize]);
+                    if !share_a_face(mesh, p.on, q.on) {
+                        movable[a as usize] = false;
+                        movable[b as usize] = false;
+                    }
+                }
+                movable
+            }
             Placement::Centred => vec![true; at.len()],
         };
         let smooth = skeleton.smoothed_by_radius(&at, &movable);
@@ -141,7 +151,8 @@ impl Skeleton {
             // At least as many steps as the polyline had, up to 3, so that a loop stays
             // a loop and two paths between the same junctions stay apart.
             let steps = ((length / spacing).round() as usize).max((line.len() - 1).min(3));
-            if faces[1..line.len() - 1].iter().any(Vec::is_empty) {
+            let on = |k: usize| self.points[line[k] as usize].on;
+            if (1..line.len()).any(|k| !share_a_face(mesh, on(k - 1), on(k))) {
                 // Along line elements: the points as they are.
                 let mut previous = first;
                 for &i in &line[1..] {
