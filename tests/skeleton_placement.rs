@@ -6,28 +6,17 @@ mod common;
 use common::rectangle;
 use geotracks::glam::DVec3;
 use geotracks::mesh::io::MedialAxis;
-use geotracks::skeleton::{medial_axis_skeleton_with_cycles, Burn, Placement, Skeleton};
+use geotracks::skeleton::{
+    medial_axis_skeleton_with_cycles, turning_per_length, Burn, Placement, Skeleton,
+};
 use geotracks::{Options, SurfacePoint};
 use std::collections::HashMap;
 
 const K5: Options = Options::DEFAULT.with_k(5.0);
 
-/// The sum of the angles between consecutive segments of every polyline over their
-/// total length, times `scale`: 0 for straight lines, the same for a smooth curve however
-/// finely sampled, more for zig-zags.
+/// How much the skeleton's polylines turn per unit of length, times `scale`.
 fn turning(skeleton: &Skeleton, scale: f64) -> f64 {
-    let (mut angle, mut length) = (0.0, 0.0);
-    for line in skeleton.polyline_positions() {
-        let points: Vec<DVec3> = line.into_iter().map(DVec3::from).collect();
-        length += points.windows(2).map(|w| w[0].distance(w[1])).sum::<f64>();
-        for w in points.windows(3) {
-            let (u, v) = (w[1] - w[0], w[2] - w[1]);
-            if u.length() > 0.0 && v.length() > 0.0 {
-                angle += u.angle_between(v);
-            }
-        }
-    }
-    angle / length * scale
+    turning_per_length(&skeleton.polyline_positions()) * scale
 }
 
 /// A deterministic wobble in [-1, 1]: three incommensurate waves.

@@ -6,7 +6,9 @@
 use geotracks::mesh::io::read_medial_axis;
 use geotracks::mesh::io::{read_mesh, MedialAxis};
 use geotracks::skeleton::medial::{medial_axis, solid_cycles, MedialAxisOptions};
-use geotracks::skeleton::{medial_axis_skeleton_with_cycles, Burn, Placement, Skeleton};
+use geotracks::skeleton::{
+    medial_axis_skeleton_with_cycles, turning_per_length, Burn, Placement, Skeleton,
+};
 use geotracks::{Method, Options};
 use glam::DVec3;
 use std::path::Path;
@@ -214,8 +216,8 @@ pub fn skeletons(
             reference.junctions,
             ours.length(),
             reference.segments.iter().map(|(a, b)| a.distance(*b)).sum::<f64>(),
-            turning(&ours.polyline_positions()) * diagonal,
-            turning(&reference.branches) * diagonal,
+            turning_per_length(&ours.polyline_positions()) * diagonal,
+            turning_per_length(&reference.branches) * diagonal,
             floor.map_or("–".into(), |f| format!("{:.2} %", pct(f)))
         );
     }
@@ -255,24 +257,6 @@ pub fn skeletons(
         ));
     }
     Ok(())
-}
-
-/// How much the polylines turn per unit of their length (the sum of the angles between
-/// consecutive segments, over the total length): a smooth curve's is the same however
-/// finely it is sampled; zig-zags add to it. Reported times the diagonal (scale-free).
-fn turning(lines: &[Vec<[f64; 3]>]) -> f64 {
-    let (mut angle, mut length) = (0.0, 0.0);
-    for line in lines {
-        let points: Vec<DVec3> = line.iter().map(|&p| DVec3::from(p)).collect();
-        length += points.windows(2).map(|w| w[0].distance(w[1])).sum::<f64>();
-        for w in points.windows(3) {
-            let (u, v) = (w[1] - w[0], w[2] - w[1]);
-            if u.length() > 0.0 && v.length() > 0.0 {
-                angle += u.angle_between(v);
-            }
-        }
-    }
-    angle / length.max(f64::MIN_POSITIVE)
 }
 
 /// Rows of the breakdown per axis and direction.

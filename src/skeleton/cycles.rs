@@ -80,11 +80,7 @@ impl Skeleton {
     /// branch does.
     fn raise_towards_the_core(&mut self) {
         let n = self.points.len();
-        let mut around = vec![Vec::new(); n];
-        for &[a, b] in &self.edges {
-            around[a as usize].push(b);
-            around[b as usize].push(a);
-        }
+        let around = self.adjacency();
         let mut by_significance: Vec<u32> = (0..n as u32).collect();
         by_significance.sort_by(|&a, &b| {
             let s = |i: u32| self.points[i as usize].significance;

@@ -14,23 +14,22 @@ impl Skeleton {
     /// moves towards its neighbours' mean and back (Taubin's λ|μ smoothing, which does
     /// not shrink the curve), then onto the nearest point of the faces near where it
     /// was, `rounds` times. Tips, junctions and points on line elements or at their ends
-    /// stay. Thinning
-    /// leaves points on vertices, so a curve zig-zags along edges by up to a face; this
-    /// takes the zig-zag out while every point stays on the surface.
+    /// ([`Skeleton::held_by_curves`]) stay. Thinning leaves points on vertices, so a
+    /// curve zig-zags along edges by up to a face; this takes the zig-zag out while
+    /// every point stays on the surface.
     pub fn smoothed(&self, mesh: &TriMesh, rounds: usize) -> Skeleton {
         const LAMBDA: f64 = 0.5;
         const MU: f64 = -0.53;
         let neighbours = self.adjacency();
+        let held = self.held_by_curves(mesh);
         let home: Vec<Option<Vec<u32>>> = self
             .points
             .iter()
             .zip(&neighbours)
-            .map(|(p, around)| {
+            .zip(held)
+            .map(|((p, around), held)| {
                 let faces = nearby_faces(mesh, p.on);
-                let on_sheets = around
-                    .iter()
-                    .all(|&q| share_a_face(mesh, p.on, self.points[q as usize].on));
-                (around.len() == 2 && on_sheets && !faces.is_empty()).then_some(faces)
+                (around.len() == 2 && !held && !faces.is_empty()).then_some(faces)
             })
             .collect();
         let mut at: Vec<DVec3> = self.points.iter().map(|p| p.position.into()).collect();
@@ -67,6 +66,20 @@ impl Skeleton {
             })
             .collect();
         self.with_points(points)
+    }
+
+    /// Per point, whether it has an edge along a line element of `mesh` (see
+    /// [`share_a_face`]): such a point lies on a curve of the axis or where one meets a
+    /// sheet, and smoothing it along the sheets would take the skeleton off the curve.
+    pub(super) fn held_by_curves(&self, mesh: &TriMesh) -> Vec<bool> {
+        let mut held = vec![false; self.points.len()];
+        for &[a, b] in &self.edges {
+            if !share_a_face(mesh, self.points[a as usize].on, self.points[b as usize].on) {
+                held[a as usize] = true;
+                held[b as usize] = true;
+            }
+        }
+        held
     }
 
     /// The same graph with new points (one per point).
@@ -149,4 +162,30 @@ pub(super) fn share_a_face(mesh: &TriMesh, a: SurfacePoint, b: SurfacePoint) -> 
         }
         _ => true,
     }
+}
+
+/// How much polylines turn per unit of their length: the sum of the angles between
+/// consecutive segments over their total length (radians per unit; times a shape's
+/// size, scale-free). A smooth curve gives the same however finely it is sampled;
+/// zig-zags add to it. Segments of no length are skipped.
+///
+/// ```
+/// use geotracks::skeleton::turning_per_length;
+/// // A right angle over a length of 2.
+/// let turn = turning_per_length(&[vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0]]]);
+/// assert!((turn - std::f64::consts::FRAC_PI_4).abs() < 1e-12);
+/// ```
+pub fn turning_per_length(lines: &[Vec<[f64; 3]>]) -> f64 {
+    let (mut angle, mut length) = (0.0, 0.0);
+    for line in lines {
+        let points: Vec<DVec3> = line.iter().map(|&p| DVec3::from(p)).collect();
+        length += points.windows(2).map(|w| w[0].distance(w[1])).sum::<f64>();
+        for w in points.windows(3) {
+            let (u, v) = (w[1] - w[0], w[2] - w[1]);
+            if u.length() > 0.0 && v.length() > 0.0 {
+                angle += u.angle_between(v);
+            }
+        }
+    }
+    angle / length.max(f64::MIN_POSITIVE)
 }

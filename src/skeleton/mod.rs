@@ -52,6 +52,7 @@ pub mod medial;
 mod placement;
 mod thinning;
 
+pub use geometry::turning_per_length;
 pub use grassfire::Grassfire;
 pub use placement::Placement;
 

@@ -62,21 +62,11 @@ impl Skeleton {
         let at: Vec<DVec3> = skeleton.points.iter().map(|p| p.position.into()).collect();
         // On the axis, points on its curves and at their ends stay; centred, they move.
         let movable: Vec<bool> = match placement {
-            Placement::OnAxis => {
-                let mut movable: Vec<bool> = skeleton
-                    .points
-                    .iter()
-                    .map(|p| !mesh.vertex_faces(vertex_of(mesh, p.on)).is_empty())
-                    .collect();
-                for &[a, b] in &skeleton.edges {
-                    let (p, q) = (skeleton.points[a as usize], skeleton.points[b as usize]);
-                    if !share_a_face(mesh, p.on, q.on) {
-                        movable[a as usize] = false;
-                        movable[b as usize] = false;
-                    }
-                }
-                movable
-            }
+            Placement::OnAxis => skeleton
+                .held_by_curves(mesh)
+                .iter()
+                .map(|held| !held)
+                .collect(),
             Placement::Centred => vec![true; at.len()],
         };
         let smooth = skeleton.smoothed_by_radius(&at, &movable);
@@ -139,10 +129,6 @@ impl Skeleton {
                 .iter()
                 .map(|&i| self.points[i as usize].position.into())
                 .collect();
-            let faces: Vec<Vec<u32>> = line
-                .iter()
-                .map(|&i| nearby_faces(mesh, self.points[i as usize].on))
-                .collect();
             let mut along = vec![0.0];
             for w in at.windows(2) {
                 along.push(along[along.len() - 1] + w[0].distance(w[1]));
@@ -162,6 +148,10 @@ impl Skeleton {
                 }
                 continue;
             }
+            let faces: Vec<Vec<u32>> = line
+                .iter()
+                .map(|&i| nearby_faces(mesh, self.points[i as usize].on))
+                .collect();
             let mut previous = first;
             let mut segment = 0;
             for step in 1..steps {
