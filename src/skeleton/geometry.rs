@@ -14,7 +14,7 @@ impl Skeleton {
     /// moves towards its neighbours' mean and back (Taubin's λ|μ smoothing, which does
     /// not shrink the curve), then onto the nearest point of the faces near where it
     /// was, `rounds` times. Tips, junctions and points on line elements or at their ends
-    /// ([`Skeleton::held_by_curves`]) stay. Thinning leaves points on vertices, so a
+    /// (with an edge along one) stay. Thinning leaves points on vertices, so a
     /// curve zig-zags along edges by up to a face; this takes the zig-zag out while
     /// every point stays on the surface.
     pub fn smoothed(&self, mesh: &TriMesh, rounds: usize) -> Skeleton {
