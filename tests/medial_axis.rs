@@ -178,6 +178,66 @@ fn every_arm_of_a_t_gets_a_branch() {
     }
 }
 
+/// The closed surface of each box `lo`..`hi`, wound outward, as one mesh: boxes that
+/// overlap give a surface whose parts run through each other.
+fn boxes(boxes: &[([f64; 3], [f64; 3])]) -> TriMesh {
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for (lo, hi) in boxes {
+        let base = positions.len() as u32;
+        positions
+            .extend((0..8).map(|i| [0, 1, 2].map(|k| if i >> k & 1 == 1 { hi[k] } else { lo[k] })));
+        for q in [
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+        ] {
+            let [a, b, c, d] = q.map(|i| base + i);
+            triangles.extend([[a, b, c], [a, c, d]]);
+        }
+    }
+    TriMesh::new(positions, triangles).unwrap()
+}
+
+#[test]
+fn parts_that_run_through_each_other_give_the_axis_of_their_union() {
+    // A cross of two bars, each a closed box of its own: the faces of each run through
+    // the other's inside. The solid is their union, one piece with four arms.
+    let bars = [
+        ([0.0, 0.0, 0.0], [4.0, 1.0, 1.0]),
+        ([1.5, -1.5, 0.2], [2.5, 2.5, 0.8]),
+    ];
+    let mesh = boxes(&bars);
+    let axis = axis(&mesh, 0.1);
+    assert_eq!(axis.betti_numbers().b0, 1);
+    let inside = |p: &[f64; 3]| {
+        bars.iter()
+            .any(|(lo, hi)| (0..3).all(|k| p[k] > lo[k] - 1e-9 && p[k] < hi[k] + 1e-9))
+    };
+    for (p, r) in axis.positions.iter().zip(&axis.radii) {
+        assert!(inside(p), "axis point {p:?} outside the solid");
+        // No ball is walled in by a face inside the solid: where the bars cross, the
+        // balls are as wide as the thinner bar allows, not cut in two by its faces.
+        assert!(*r <= 0.5 + 0.02, "ball of radius {r} at {p:?}");
+    }
+    let crossing = axis
+        .positions
+        .iter()
+        .zip(&axis.radii)
+        .filter(|(p, _)| (p[0] - 2.0).abs() < 0.3 && (p[1] - 0.5).abs() < 0.3)
+        .map(|(_, &r)| r)
+        .fold(0.0, f64::max);
+    assert!(
+        crossing > 0.45,
+        "the largest ball where the bars cross is {crossing}"
+    );
+    let skeleton = skeleton_of(&axis, solid_cycles(&mesh), Placement::OnAxis);
+    assert_eq!((skeleton.component_count(), skeleton.cycle_count()), (1, 0));
+}
+
 #[test]
 fn the_winding_of_the_file_does_not_matter() {
     let mesh = torus(48, 12, 2.0, 0.5);

@@ -48,7 +48,6 @@
 //! `longjmp`; `tritet` bundles TetGen, whose AGPL licence does not fit this crate's
 //! MIT/Apache-2.0; `spade` and `delaunator` are 2D.
 
-use glam::DVec3;
 use robust::{Coord, Coord3D};
 use std::ops::{Add, Mul};
 use thiserror::Error;
@@ -154,19 +153,33 @@ pub(crate) fn tetrahedralize(points: &[[f64; 3]]) -> Result<Delaunay, DelaunayEr
 /// rounding depends on the tetrahedron's size and not on its distance from the origin.
 ///
 /// With `b' = b − a`, `c' = c − a`, `d' = d − a`, the centre is
-/// `a + (|b'|² c'×d' + |c'|² d'×b' + |d'|² b'×c') / (2 b'·(c'×d'))`. The denominator
-/// `b'·(c'×d') = −orient3d(a, b, c, d)` is taken from the adaptive exact predicate, so it
-/// has the right sign and full relative accuracy even for a sliver, where the float
-/// triple product would cancel (Shewchuk, "Lecture notes on geometric robustness").
-/// A flat tetrahedron (none is in a [`Delaunay`]) gives non-finite coordinates.
+/// `a + (|b'|² c'×d' + |c'|² d'×b' + |d'|² b'×c') / (2 b'·(c'×d'))`, evaluated in
+/// double-double arithmetic from the exact differences. A sliver's centre (four points
+/// nearly on one circle, as on any regular grid of a surface) lies far along the
+/// circle's axis, where a rounding of the numerator or of the volume in floats moves it
+/// by as much as it is far; in double-double both keep about 100 bits, so the centre is
+/// right to the last bits of its coordinates for any tetrahedron the points can tell
+/// from flat. A flat one gives non-finite coordinates.
 pub(crate) fn circumcentre(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> [f64; 3] {
-    let origin = DVec3::from_array(a);
-    let [b3, c3, d3] = [b, c, d].map(|p| DVec3::from_array(p) - origin);
-    let volume6 = -robust::orient3d(coord(a), coord(b), coord(c), coord(d));
-    let numerator = b3.length_squared() * c3.cross(d3)
-        + c3.length_squared() * d3.cross(b3)
-        + d3.length_squared() * b3.cross(c3);
-    (origin + numerator / (2.0 * volume6)).to_array()
+    let minus = |x: Dd, y: Dd| x + Dd(-y.0, -y.1);
+    let diff = |p: [f64; 3]| [0, 1, 2].map(|k| two_sum(p[k], -a[k]));
+    let cross = |u: [Dd; 3], v: [Dd; 3]| {
+        [
+            minus(u[1] * v[2], u[2] * v[1]),
+            minus(u[2] * v[0], u[0] * v[2]),
+            minus(u[0] * v[1], u[1] * v[0]),
+        ]
+    };
+    let dot = |u: [Dd; 3], v: [Dd; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+    let [b3, c3, d3] = [b, c, d].map(diff);
+    let (cd, db, bc) = (cross(c3, d3), cross(d3, b3), cross(b3, c3));
+    let (lb, lc, ld) = (dot(b3, b3), dot(c3, c3), dot(d3, d3));
+    let volume6 = dot(b3, cd);
+    let denominator = 2.0 * (volume6.0 + volume6.1);
+    [0, 1, 2].map(|k| {
+        let n = lb * cd[k] + lc * db[k] + ld * bc[k];
+        a[k] + (n.0 + n.1) / denominator
+    })
 }
 
 /// A point as the predicates take it.

@@ -4,6 +4,7 @@
 //! conventions, and timings (ignored; run them in release).
 
 use super::*;
+use glam::DVec3;
 use proptest::prelude::*;
 use std::collections::{HashMap, HashSet};
 
@@ -270,6 +271,19 @@ fn circumcentre_of_known_tetrahedra() {
     for k in 0..3 {
         assert!((centre[k] - (a[k] + 1.0)).abs() < 1e-9, "{centre:?}");
     }
+    // A sliver: four points a hair off one circle and one plane. Its centre lies on the
+    // circle's axis at h = ε/δ + (ε² + δ²)/(2δ); a float numerator loses the δ/2 term
+    // (h off by 5e-10, against 1e-15 here).
+    let (eps, delta) = (2f64.powi(-45), 2f64.powi(-30));
+    let h = eps / delta + (eps * eps + delta * delta) / (2.0 * delta);
+    let centre = circumcentre(
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [-1.0, 0.0, 0.0],
+        [0.0, -1.0 - eps, delta],
+    );
+    let off = DVec3::from_array(centre).distance(DVec3::new(0.0, 0.0, h));
+    assert!(off < 1e-15, "{centre:?} is {off} off");
     // Random tetrahedra: the centre is as far from all four vertices.
     let points = random_cube(400, 7);
     for t in points.as_chunks::<4>().0 {

@@ -12,8 +12,10 @@
 //! 2. its vertices are sampled, with points added where its faces are larger than the
 //!    sampling [`MedialAxisOptions::spacing`] (the poles need samples denser than the
 //!    shape's features);
-//! 3. their 3D Delaunay tetrahedralization gives the Voronoi vertices (circumcentres),
-//!    each kept when it lies inside (behind its four samples' tangent planes);
+//! 3. their 3D Delaunay tetrahedralization gives the Voronoi vertices (circumcentres,
+//!    in double-double arithmetic), each kept when it lies inside: where the surface's
+//!    winding number is more than ½ (the samples on faces that lie inside the solid,
+//!    where parts of the surface run through each other, are left out first);
 //! 4. the Voronoi facets (one per Delaunay edge `p q`) whose vertices are all inside
 //!    make the inner Voronoi diagram, which has the solid's topology on a dense enough
 //!    sampling; a facet is a spike toward the surface, made by the sampling, when no
@@ -31,9 +33,9 @@
 //! [`medial_axis_skeleton_with_cycles`](crate::skeleton::medial_axis_skeleton_with_cycles)
 //! (with the solid's [`solid_cycles`], which cuts the few cycles slivers leave).
 //!
-//! A ball is taken for inside when it lies behind its four samples' tangent planes and
-//! within the surface's bounding box; on a surface whose faces run through each other,
-//! or fold back, balls outside can pass, and the axis then has parts outside the solid.
+//! The inside test is the solid's own (the winding number, summed with a
+//! bounding-volume hierarchy), not the samples' normals: it holds at sharp creases,
+//! and a surface whose parts run through each other gets the axis of their union.
 //!
 //! ```
 //! use geotracks::skeleton::medial::{medial_axis, MedialAxisOptions};
@@ -62,6 +64,7 @@
 mod delaunay;
 mod surface;
 mod voronoi;
+mod winding;
 
 use crate::mesh::io::MedialAxis;
 use crate::mesh::{MeshError, TriMesh};
@@ -271,11 +274,14 @@ pub fn medial_axis(mesh: &TriMesh, options: &MedialAxisOptions) -> Result<Medial
         .into());
     }
     let triangles = surface::outward_triangles(mesh)?;
-    let samples = surface::samples(mesh, &triangles, spacing);
+    let solid = winding::WindingNumbers::new(triangles.iter().map(|t| t.map(|v| mesh.position(v))));
+    // A step small against the sampling, far above rounding.
+    let samples =
+        surface::samples(mesh, &triangles, spacing).on_the_boundary(&solid, 1e-3 * spacing);
     let dt = delaunay::tetrahedralize(&samples.points)
         .map_err(|e| MedialAxisError::Flat(e.to_string()))?;
     let span = options.min_span * spacing;
-    let inner = voronoi::inner_axis(&samples, &dt, spacing, angle.to_radians(), span);
+    let inner = voronoi::inner_axis(&samples, &dt, &solid, angle.to_radians(), span);
     // Nothing kept: no usable face nor curve for the axis.
     let empty = MedialAxisError::Empty {
         inner: inner.inner_vertices,

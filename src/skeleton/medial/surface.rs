@@ -1,9 +1,11 @@
 //! The closed surface a medial axis is computed from: its checks, its faces turned
 //! outward, and the points sampled on it with their outward normals.
 
+use super::winding::WindingNumbers;
 use super::MedialAxisError;
 use crate::mesh::TriMesh;
 use glam::DVec3;
+use rayon::prelude::*;
 
 /// Points on the surface with the outward unit normal there.
 pub(super) struct Samples {
@@ -11,6 +13,33 @@ pub(super) struct Samples {
     pub points: Vec<[f64; 3]>,
     /// Outward unit normal per point.
     pub normals: Vec<DVec3>,
+}
+
+impl Samples {
+    /// The samples on the boundary of the solid: those a step of `offset` outward
+    /// (along their normal) leaves. A surface whose parts run through each other (two
+    /// shells that overlap, a limb pushed into the body) has faces inside the solid;
+    /// their samples would make the Voronoi diagram wall the solid off along them, so
+    /// they are left out and the axis is the one of the solid, the parts' union.
+    pub(super) fn on_the_boundary(self, solid: &WindingNumbers, offset: f64) -> Self {
+        let outside: Vec<bool> = self
+            .points
+            .par_iter()
+            .zip(&self.normals)
+            .map(|(p, n)| !solid.contains(DVec3::from_array(*p) + offset * *n))
+            .collect();
+        let keep = |i: &usize| outside[*i];
+        Self {
+            points: (0..self.points.len())
+                .filter(keep)
+                .map(|i| self.points[i])
+                .collect(),
+            normals: (0..self.points.len())
+                .filter(keep)
+                .map(|i| self.normals[i])
+                .collect(),
+        }
+    }
 }
 
 /// The mesh's triangles with every face turned so that its normal (by the right-hand

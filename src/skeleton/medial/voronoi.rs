@@ -6,8 +6,10 @@
 
 use super::delaunay::{circumcentre, Delaunay, OUTSIDE};
 use super::surface::Samples;
+use super::winding::WindingNumbers;
 use crate::mesh::FaceFrame;
 use glam::DVec3;
+use rayon::prelude::*;
 use std::collections::HashMap;
 
 /// The medial axis kept of the inner Voronoi diagram.
@@ -82,43 +84,20 @@ impl Complex {
     }
 }
 
-/// Which Voronoi vertices lie inside, with their position: `c` is inner when it lies
-/// behind the tangent plane of each of its four samples (`(c − p)·n < 0`). Its ball is
-/// empty of samples, so on a dense enough sampling no surface lies between `p` and `c`,
-/// and the side of `p`'s tangent plane is the side of the surface.
-///
-/// Where the surface is not what its normals say (a fold, faces through each other),
-/// a ball can pass that test from outside; a ball inside the solid also lies inside
-/// its bounding box (`lo`, `hi`: the samples'), give or take `slack` (a ball empty of samples can bulge out
-/// between them), and one that does not is left out.
-fn inner_centres(
-    samples: &Samples,
-    dt: &Delaunay,
-    (lo, hi): (DVec3, DVec3),
-    slack: f64,
-) -> Vec<Option<DVec3>> {
-    let point = |v: u32| DVec3::from_array(samples.points[v as usize]);
+/// Which Voronoi vertices lie inside the solid, with their position: the
+/// circumcentres where the surface's winding number is more than ½ (see
+/// [`WindingNumbers`]). The test is the solid's own, not the samples': it holds where
+/// the faces meet at sharp creases (whose vertex normals say little of the side a ball
+/// lies on) and where they run through each other.
+fn inner_centres(samples: &Samples, dt: &Delaunay, solid: &WindingNumbers) -> Vec<Option<DVec3>> {
     dt.tets
-        .iter()
+        .par_iter()
         .map(|tet| {
             let [a, b, c, d] = tet.map(|v| samples.points[v as usize]);
             let centre = DVec3::from_array(circumcentre(a, b, c, d));
-            let radius = centre.distance(DVec3::from_array(a));
-            let inner = centre.is_finite()
-                && (centre - radius).cmpge(lo - slack).all()
-                && (centre + radius).cmple(hi + slack).all()
-                && tet
-                    .iter()
-                    .all(|&v| (centre - point(v)).dot(samples.normals[v as usize]) < 0.0);
-            inner.then_some(centre)
+            (centre.is_finite() && solid.contains(centre)).then_some(centre)
         })
         .collect()
-}
-
-/// The samples' bounding box.
-fn bounding_box(samples: &Samples) -> (DVec3, DVec3) {
-    let [lo, hi] = crate::mesh::bounding_box(samples.points.iter().copied());
-    (DVec3::from_array(lo), DVec3::from_array(hi))
 }
 
 /// The inner Voronoi diagram's facets and edges; a facet is a spike when no vertex of
@@ -191,12 +170,11 @@ fn inner_complex(
 pub(super) fn inner_axis(
     samples: &Samples,
     dt: &Delaunay,
-    spacing: f64,
+    solid: &WindingNumbers,
     min_angle: f64,
     min_span: f64,
 ) -> InnerAxis {
-    let (lo, hi) = bounding_box(samples);
-    let centres = inner_centres(samples, dt, (lo, hi), spacing);
+    let centres = inner_centres(samples, dt, solid);
     let complex = inner_complex(samples, dt, &centres, (min_angle, min_span));
     let (alive, uses, gone) = collapse_spikes(&complex);
     let mut out = InnerAxis {
@@ -206,7 +184,9 @@ pub(super) fn inner_axis(
         curves: Vec::new(),
         inner_vertices: centres.iter().flatten().count(),
     };
-    let rep = merged_centres(&complex, &centres, 1e-9 * lo.distance(hi));
+    let [lo, hi] = crate::mesh::bounding_box(samples.points.iter().copied());
+    let extent = DVec3::from_array(lo).distance(DVec3::from_array(hi));
+    let rep = merged_centres(&complex, &centres, 1e-9 * extent);
     let mut vertex_of = vec![u32::MAX; dt.tets.len()];
     let mut vertex = |r: u32, out: &mut InnerAxis| {
         let r = rep[r as usize] as usize;
