@@ -188,28 +188,28 @@ mod tests {
 
     /// The 12 triangles of the box `lo`..`hi`, wound outward.
     fn cube(lo: DVec3, hi: DVec3) -> Vec<[DVec3; 3]> {
-        let corner = |i: usize| {
-            DVec3::new(
-                if i & 1 == 0 { lo.x } else { hi.x },
-                if i & 2 == 0 { lo.y } else { hi.y },
-                if i & 4 == 0 { lo.z } else { hi.z },
-            )
-        };
-        let quads = [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ];
-        quads
-            .iter()
-            .flat_map(|q| {
-                let [a, b, c, d] = q.map(corner);
-                [[a, b, c], [a, c, d]]
-            })
-            .collect()
+        let mut out = Vec::new();
+        for a in 0..3 {
+            // e_b × e_c = e_a: a loop through (b, c) = (0, 0), (1, 0), (1, 1), (0, 1)
+            // turns about +a, outward on the high side.
+            let (b, c) = ((a + 1) % 3, (a + 2) % 3);
+            for high in [false, true] {
+                let corner = |u: bool, v: bool| {
+                    let mut p = lo;
+                    p[a] = if high { hi[a] } else { lo[a] };
+                    p[b] = if u { hi[b] } else { lo[b] };
+                    p[c] = if v { hi[c] } else { lo[c] };
+                    p
+                };
+                let mut q = [(false, false), (true, false), (true, true), (false, true)]
+                    .map(|(u, v)| corner(u, v));
+                if !high {
+                    q.reverse();
+                }
+                out.extend([[q[0], q[1], q[2]], [q[0], q[2], q[3]]]);
+            }
+        }
+        out
     }
 
     /// A sphere of radius 1 about the origin: a subdivided octahedron pushed out, with
