@@ -178,6 +178,43 @@ fn every_arm_of_a_t_gets_a_branch() {
     }
 }
 
+#[test]
+fn a_voxel_plates_axis_has_no_holes_and_a_branch_along_every_arm() {
+    // A plus of voxels one thick: arms 3 wide reaching 4 past the middle square. Its
+    // flat faces are sampled on a grid, so many samples lie on one sphere (each box of
+    // 8 samples across the plate); the merged circumcentres' facets must still fit.
+    let mut cells: Vec<[i32; 3]> = Vec::new();
+    for a in -5..=5 {
+        for b in -1..=1 {
+            cells.push([a, b, 0]);
+            if !(-1..=1).contains(&a) {
+                cells.push([b, a, 0]);
+            }
+        }
+    }
+    let mesh = voxels(&cells);
+    let axis = axis(&mesh, 0.25);
+    let betti = axis.betti_numbers();
+    assert_eq!((betti.b0, betti.b1), (1, 0));
+    let skeleton = skeleton_of(&axis, solid_cycles(&mesh), Placement::OnAxis);
+    assert_eq!((skeleton.component_count(), skeleton.cycle_count()), (1, 0));
+    let tips: Vec<[f64; 3]> = skeleton
+        .degrees()
+        .iter()
+        .zip(&skeleton.points)
+        .filter(|(d, _)| **d == 1)
+        .map(|(_, p)| p.position)
+        .collect();
+    // The arms end at ±6 (cells -5..=5 span -5..6) along x and y, their middles at 0.5.
+    for end in [[6.0, 0.5], [-5.0, 0.5], [0.5, 6.0], [0.5, -5.0]] {
+        let near = tips
+            .iter()
+            .any(|t| (t[0] - end[0]).hypot(t[1] - end[1]) < 1.5);
+        assert!(near, "no tip near the arm's end {end:?}: tips {tips:?}");
+    }
+    assert!(tips.len() <= 8, "{} tips: {tips:?}", tips.len());
+}
+
 /// The closed surface of each box `lo`..`hi`, wound outward, as one mesh: boxes that
 /// overlap give a surface whose parts run through each other.
 fn boxes(boxes: &[([f64; 3], [f64; 3])]) -> TriMesh {

@@ -62,6 +62,7 @@
 //! ```
 
 mod delaunay;
+mod facets;
 mod surface;
 mod voronoi;
 mod winding;

@@ -5,9 +5,9 @@
 //! are spikes toward the surface are collapsed away.
 
 use super::delaunay::{circumcentre, Delaunay, OUTSIDE};
+use super::facets;
 use super::surface::Samples;
 use super::winding::WindingNumbers;
-use crate::mesh::FaceFrame;
 use glam::DVec3;
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -200,6 +200,7 @@ pub(super) fn inner_axis(
         vertex_of[r]
     };
     let mut ring = Vec::new();
+    let mut rings: Vec<Vec<u32>> = Vec::new();
     for (f, facet) in complex.facets.iter().enumerate() {
         if !alive[f] {
             continue;
@@ -218,21 +219,13 @@ pub(super) fn inner_axis(
             let (a, b) = (vertex(ring[0], &mut out), vertex(ring[1], &mut out));
             out.curves.push([a, b]);
         }
-        if ring.len() < 3 {
-            continue;
+        if ring.len() >= 3 {
+            rings.push(ring.iter().map(|&r| vertex(r, &mut out)).collect());
         }
-        let first = vertex(ring[0], &mut out);
-        for w in ring[1..].windows(2) {
-            let (b, c) = (vertex(w[0], &mut out), vertex(w[1], &mut out));
-            let corners = [first, b, c].map(|v| DVec3::from_array(out.positions[v as usize]));
-            if FaceFrame::of_triangle(corners).is_some() {
-                out.triangles.push([first, b, c]);
-            } else {
-                // A sliver of a facet (nearly collinear circumcentres) is no face a mesh
-                // keeps: its sides stay, as curves, so that nothing comes apart.
-                out.curves.extend([[first, b], [b, c], [c, first]]);
-            }
-        }
+    }
+    facets::split_at_vertices_along_sides(&mut rings, &out.positions);
+    for ring in &rings {
+        facets::triangulate(ring, &out.positions, &mut out.triangles, &mut out.curves);
     }
     for [a, b] in joining_curves(&complex, &uses, &gone) {
         if rep[a as usize] != rep[b as usize] {
