@@ -74,6 +74,17 @@ fn skeleton_of(axis: &MedialAxis, cycles: usize, placement: Placement) -> Skelet
         .0
 }
 
+/// Where the skeleton's tips are.
+fn tip_positions(skeleton: &Skeleton) -> Vec<[f64; 3]> {
+    skeleton
+        .degrees()
+        .iter()
+        .zip(&skeleton.points)
+        .filter(|(d, _)| **d == 1)
+        .map(|(_, p)| p.position)
+        .collect()
+}
+
 fn axis(mesh: &TriMesh, spacing: f64) -> MedialAxis {
     medial_axis(
         mesh,
@@ -160,13 +171,7 @@ fn every_arm_of_a_t_gets_a_branch() {
     assert_eq!(cycles, 0);
     let skeleton = skeleton_of(&axis, cycles, Placement::OnAxis);
     assert_eq!((skeleton.component_count(), skeleton.cycle_count()), (1, 0));
-    let tips: Vec<[f64; 3]> = skeleton
-        .degrees()
-        .iter()
-        .zip(&skeleton.points)
-        .filter(|(d, _)| **d == 1)
-        .map(|(_, p)| p.position)
-        .collect();
+    let tips = tip_positions(&skeleton);
     // A square bar's medial axis is two diagonal sheets that reach its four edges, so
     // tips along the bars are the axis's own; what matters is that each arm's end
     // has one.
@@ -198,13 +203,7 @@ fn a_voxel_plates_axis_has_no_holes_and_a_branch_along_every_arm() {
     assert_eq!((betti.b0, betti.b1), (1, 0));
     let skeleton = skeleton_of(&axis, solid_cycles(&mesh), Placement::OnAxis);
     assert_eq!((skeleton.component_count(), skeleton.cycle_count()), (1, 0));
-    let tips: Vec<[f64; 3]> = skeleton
-        .degrees()
-        .iter()
-        .zip(&skeleton.points)
-        .filter(|(d, _)| **d == 1)
-        .map(|(_, p)| p.position)
-        .collect();
+    let tips = tip_positions(&skeleton);
     // The arms end at ±6 (cells -5..=5 span -5..6) along x and y, their middles at 0.5.
     for end in [[6.0, 0.5], [-5.0, 0.5], [0.5, 6.0], [0.5, -5.0]] {
         let near = tips

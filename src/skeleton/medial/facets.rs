@@ -139,6 +139,18 @@ mod tests {
             .sum()
     }
 
+    /// Points of the plane z = 0.
+    fn in_the_plane(xy: &[(f64, f64)]) -> Vec<[f64; 3]> {
+        xy.iter().map(|&(x, y)| [x, y, 0.0]).collect()
+    }
+
+    /// `ring` cut into triangles, and the curves left.
+    fn triangulated(ring: &[u32], positions: &[[f64; 3]]) -> (Vec<[u32; 3]>, Vec<[u32; 2]>) {
+        let (mut triangles, mut curves) = (Vec::new(), Vec::new());
+        triangulate(ring, positions, &mut triangles, &mut curves);
+        (triangles, curves)
+    }
+
     /// Each side of `ring` is a side of exactly one triangle.
     fn sides_covered(ring: &[u32], triangles: &[[u32; 3]]) {
         for (i, &a) in ring.iter().enumerate() {
@@ -155,19 +167,18 @@ mod tests {
     fn a_square_with_vertices_along_its_sides_gets_no_flat_triangle() {
         // 3 × 3 points on a square's border, counter-clockwise: the corners and the
         // middles of the sides.
-        let positions = [
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [2.0, 0.0, 0.0],
-            [2.0, 1.0, 0.0],
-            [2.0, 2.0, 0.0],
-            [1.0, 2.0, 0.0],
-            [0.0, 2.0, 0.0],
-            [0.0, 1.0, 0.0],
-        ];
+        let positions = in_the_plane(&[
+            (0.0, 0.0),
+            (1.0, 0.0),
+            (2.0, 0.0),
+            (2.0, 1.0),
+            (2.0, 2.0),
+            (1.0, 2.0),
+            (0.0, 2.0),
+            (0.0, 1.0),
+        ]);
         let ring: Vec<u32> = (0..8).collect();
-        let (mut triangles, mut curves) = (Vec::new(), Vec::new());
-        triangulate(&ring, &positions, &mut triangles, &mut curves);
+        let (triangles, curves) = triangulated(&ring, &positions);
         assert!(curves.is_empty());
         assert!((area(&positions, &triangles) - 4.0).abs() < 1e-12);
         sides_covered(&ring, &triangles);
@@ -177,17 +188,16 @@ mod tests {
     fn a_triangle_with_its_vertices_along_one_side_is_fanned_from_the_far_corner() {
         // Cutting the ear at 0 or 4 first would be fine; cutting it at the apex (5)
         // would leave 0..4 in a row.
-        let positions = [
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [2.0, 0.0, 0.0],
-            [3.0, 0.0, 0.0],
-            [4.0, 0.0, 0.0],
-            [2.0, 1.0, 0.0],
-        ];
+        let positions = in_the_plane(&[
+            (0.0, 0.0),
+            (1.0, 0.0),
+            (2.0, 0.0),
+            (3.0, 0.0),
+            (4.0, 0.0),
+            (2.0, 1.0),
+        ]);
         let ring: Vec<u32> = vec![5, 0, 1, 2, 3, 4];
-        let (mut triangles, mut curves) = (Vec::new(), Vec::new());
-        triangulate(&ring, &positions, &mut triangles, &mut curves);
+        let (triangles, curves) = triangulated(&ring, &positions);
         assert!(curves.is_empty());
         assert_eq!(triangles.len(), 4);
         assert!((area(&positions, &triangles) - 2.0).abs() < 1e-12);
@@ -197,8 +207,7 @@ mod tests {
     #[test]
     fn a_polygon_in_a_row_becomes_a_path() {
         let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]];
-        let (mut triangles, mut curves) = (Vec::new(), Vec::new());
-        triangulate(&[0, 1, 2], &positions, &mut triangles, &mut curves);
+        let (triangles, curves) = triangulated(&[0, 1, 2], &positions);
         assert!(triangles.is_empty());
         assert_eq!(curves, vec![[0, 1], [1, 2]]);
     }
@@ -208,16 +217,16 @@ mod tests {
         // Two squares side by side, sharing the segment from (1, 0) to (1, 2); the
         // right one has (1, 1) on it, and a vertex past it too, (1, 1.5); the left
         // one goes straight from (1, 0) to (1, 2).
-        let positions = [
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [1.0, 2.0, 0.0],
-            [0.0, 2.0, 0.0],
-            [2.0, 0.0, 0.0],
-            [2.0, 2.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [1.0, 1.5, 0.0],
-        ];
+        let positions = in_the_plane(&[
+            (0.0, 0.0),
+            (1.0, 0.0),
+            (1.0, 2.0),
+            (0.0, 2.0),
+            (2.0, 0.0),
+            (2.0, 2.0),
+            (1.0, 1.0),
+            (1.0, 1.5),
+        ]);
         let mut rings = vec![vec![0, 1, 2, 3], vec![1, 4, 5, 2, 7, 6]];
         split_at_vertices_along_sides(&mut rings, &positions);
         assert_eq!(rings[0], vec![0, 1, 6, 7, 2, 3]);
@@ -226,7 +235,9 @@ mod tests {
         // the union is in one triangle (border) or two (inside).
         let (mut triangles, mut curves) = (Vec::new(), Vec::new());
         for ring in &rings {
-            triangulate(ring, &positions, &mut triangles, &mut curves);
+            let (t, c) = triangulated(ring, &positions);
+            triangles.extend(t);
+            curves.extend(c);
         }
         assert!(curves.is_empty());
         assert!((area(&positions, &triangles) - 4.0).abs() < 1e-12);
