@@ -22,23 +22,22 @@ impl Samples {
     /// their samples would make the Voronoi diagram wall the solid off along them, so
     /// they are left out and the axis is the one of the solid, the parts' union.
     pub(super) fn on_the_boundary(self, solid: &WindingNumbers, offset: f64) -> Self {
-        let outside: Vec<bool> = self
+        // A sample without a normal (a vertex whose faces are all degenerate) cannot be
+        // judged: it stays.
+        let keep: Vec<bool> = self
             .points
             .par_iter()
             .zip(&self.normals)
-            .map(|(p, n)| !solid.contains(DVec3::from_array(*p) + offset * *n))
+            .map(|(p, &n)| n == DVec3::ZERO || !solid.contains(DVec3::from_array(*p) + offset * n))
             .collect();
-        let keep = |i: &usize| outside[*i];
-        Self {
-            points: (0..self.points.len())
-                .filter(keep)
-                .map(|i| self.points[i])
-                .collect(),
-            normals: (0..self.points.len())
-                .filter(keep)
-                .map(|i| self.normals[i])
-                .collect(),
-        }
+        let (points, normals) = self
+            .points
+            .into_iter()
+            .zip(self.normals)
+            .zip(keep)
+            .filter_map(|(sample, keep)| keep.then_some(sample))
+            .unzip();
+        Self { points, normals }
     }
 }
 

@@ -154,7 +154,7 @@ fn inner_complex(
     complex
 }
 
-/// The medial axis of the inner Voronoi diagram of samples about `spacing` apart: its
+/// The medial axis of the inner Voronoi diagram of the samples (inside: by `solid`): its
 /// facets whose Delaunay edge `p q` is seen from one of their vertices `c` under at
 /// least `min_angle` (radians, `∠ p c q`) and is at least `min_span` long, with the
 /// others collapsed away where they can be.
