@@ -239,6 +239,51 @@ fn boxes(boxes: &[([f64; 3], [f64; 3])]) -> TriMesh {
 }
 
 #[test]
+fn a_part_of_few_large_faces_names_the_spacing_it_needs_and_gets_its_arms_at_one() {
+    // An L-shaped plate, 4 × 3 with arms 1 wide, 0.5 thick, in 20 triangles (a machined
+    // part's mesh): the mean edge length (the default spacing) is longer than the plate
+    // is thick.
+    let outline = [
+        [0.0, 0.0],
+        [4.0, 0.0],
+        [4.0, 1.0],
+        [1.0, 1.0],
+        [1.0, 3.0],
+        [0.0, 3.0],
+    ];
+    let mut positions: Vec<[f64; 3]> = outline.iter().map(|p| [p[0], p[1], 0.0]).collect();
+    positions.extend(outline.iter().map(|p| [p[0], p[1], 0.5]));
+    let mut triangles = vec![[0, 2, 1], [0, 3, 2], [0, 5, 4], [0, 4, 3]];
+    triangles.extend([[6, 7, 8], [6, 8, 9], [6, 10, 11], [6, 9, 10]]);
+    for i in 0..6 {
+        let j = (i + 1) % 6;
+        triangles.extend([[i, j, j + 6], [i, j + 6, i + 6]]);
+    }
+    let mesh = TriMesh::new(positions, triangles).unwrap();
+    match medial_axis(&mesh, &MedialAxisOptions::default()) {
+        Err(Error::MedialAxis(e @ MedialAxisError::Empty { spacing, .. })) => {
+            assert!((spacing - mesh.mean_edge_length()).abs() < 1e-12);
+            let message = e.to_string();
+            assert!(message.contains("smaller spacing"), "{message}");
+            assert!(message.contains(&spacing.to_string()), "{message}");
+        }
+        other => panic!("expected an empty axis at the default spacing, got {other:?}"),
+    }
+    let axis = axis(&mesh, 0.1);
+    let betti = axis.betti_numbers();
+    assert_eq!((betti.b0, betti.b1), (1, 0));
+    let skeleton = skeleton_of(&axis, solid_cycles(&mesh), Placement::OnAxis);
+    assert_eq!((skeleton.component_count(), skeleton.cycle_count()), (1, 0));
+    let tips = tip_positions(&skeleton);
+    for end in [[4.0, 0.5], [0.5, 3.0]] {
+        let near = tips
+            .iter()
+            .any(|t| (t[0] - end[0]).hypot(t[1] - end[1]) < 0.6);
+        assert!(near, "no tip near the arm's end {end:?}: tips {tips:?}");
+    }
+}
+
+#[test]
 fn parts_that_run_through_each_other_give_the_axis_of_their_union() {
     // A cross of two bars, each a closed box of its own: the faces of each run through
     // the other's inside. The solid is their union, one piece with four arms.

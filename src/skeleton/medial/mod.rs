@@ -236,12 +236,15 @@ pub enum MedialAxisError {
     Flat(String),
     /// No Voronoi facet inside the surface passed the angle test.
     #[error(
-        "no part of the medial axis was kept ({inner} Voronoi vertices inside): the \
-         sampling is too coarse for the shape, or the angle {min_angle_degrees}° too large"
+        "no part of the medial axis was kept ({inner} Voronoi vertices inside): samples \
+         every {spacing} are too coarse for the shape (use a smaller spacing, a few \
+         samples across its thinnest part), or the angle {min_angle_degrees}° is too large"
     )]
     Empty {
         /// How many Voronoi vertices lay inside.
         inner: usize,
+        /// The spacing of the samples (the one given, or the mesh's mean edge length).
+        spacing: f64,
         /// The angle used.
         min_angle_degrees: f64,
     },
@@ -286,6 +289,7 @@ pub fn medial_axis(mesh: &TriMesh, options: &MedialAxisOptions) -> Result<Medial
     // Nothing kept: no usable face nor curve for the axis.
     let empty = MedialAxisError::Empty {
         inner: inner.inner_vertices,
+        spacing,
         min_angle_degrees: angle,
     };
     MedialAxis::from_parts(inner.positions, inner.radii, inner.triangles, inner.curves).map_err(
