@@ -74,6 +74,29 @@ fn skeleton_of(axis: &MedialAxis, cycles: usize, placement: Placement) -> Skelet
         .0
 }
 
+/// The axis of a solid with one piece and no handle, at `spacing`, and its skeleton at
+/// the defaults: both checked to be one piece without cycles.
+fn one_tree(mesh: &TriMesh, spacing: f64) -> (MedialAxis, Skeleton) {
+    let axis = axis(mesh, spacing);
+    let betti = axis.betti_numbers();
+    assert_eq!((betti.b0, betti.b1), (1, 0));
+    assert_eq!(solid_cycles(mesh), 0);
+    let skeleton = skeleton_of(&axis, 0, Placement::OnAxis);
+    assert_eq!((skeleton.component_count(), skeleton.cycle_count()), (1, 0));
+    (axis, skeleton)
+}
+
+/// Checks that some tip of `skeleton` lies within `within` of each of `ends` (x, y).
+fn assert_tip_near_each(skeleton: &Skeleton, ends: &[[f64; 2]], within: f64) {
+    let tips = tip_positions(skeleton);
+    for end in ends {
+        let near = tips
+            .iter()
+            .any(|t| (t[0] - end[0]).hypot(t[1] - end[1]) < within);
+        assert!(near, "no tip near the arm's end {end:?}: tips {tips:?}");
+    }
+}
+
 /// Where the skeleton's tips are.
 fn tip_positions(skeleton: &Skeleton) -> Vec<[f64; 3]> {
     skeleton
@@ -164,23 +187,12 @@ fn a_boxs_axis_stays_inside_with_balls_at_most_half_its_thickness() {
 
 #[test]
 fn every_arm_of_a_t_gets_a_branch() {
-    let mesh = voxels(&t_shape());
-    let axis = axis(&mesh, 0.25);
-    assert_eq!(axis.betti_numbers().b0, 1);
-    let cycles = solid_cycles(&mesh);
-    assert_eq!(cycles, 0);
-    let skeleton = skeleton_of(&axis, cycles, Placement::OnAxis);
-    assert_eq!((skeleton.component_count(), skeleton.cycle_count()), (1, 0));
-    let tips = tip_positions(&skeleton);
+    let (_, skeleton) = one_tree(&voxels(&t_shape()), 0.25);
     // A square bar's medial axis is two diagonal sheets that reach its four edges, so
     // tips along the bars are the axis's own; what matters is that each arm's end
     // has one.
     // The arms end at x = ±4.5 (the bar) and y = 0 (the stem).
-    let ends = [[-4.0, 5.5], [5.0, 5.5], [0.5, 0.0]];
-    for e in ends {
-        let near = tips.iter().any(|t| (t[0] - e[0]).hypot(t[1] - e[1]) < 1.2);
-        assert!(near, "no tip near the arm's end {e:?}: tips {tips:?}");
-    }
+    assert_tip_near_each(&skeleton, &[[-4.0, 5.5], [5.0, 5.5], [0.5, 0.0]], 1.2);
 }
 
 #[test]
@@ -197,21 +209,11 @@ fn a_voxel_plates_axis_has_no_holes_and_a_branch_along_every_arm() {
             }
         }
     }
-    let mesh = voxels(&cells);
-    let axis = axis(&mesh, 0.25);
-    let betti = axis.betti_numbers();
-    assert_eq!((betti.b0, betti.b1), (1, 0));
-    let skeleton = skeleton_of(&axis, solid_cycles(&mesh), Placement::OnAxis);
-    assert_eq!((skeleton.component_count(), skeleton.cycle_count()), (1, 0));
-    let tips = tip_positions(&skeleton);
-    // The arms end at ±6 (cells -5..=5 span -5..6) along x and y, their middles at 0.5.
-    for end in [[6.0, 0.5], [-5.0, 0.5], [0.5, 6.0], [0.5, -5.0]] {
-        let near = tips
-            .iter()
-            .any(|t| (t[0] - end[0]).hypot(t[1] - end[1]) < 1.5);
-        assert!(near, "no tip near the arm's end {end:?}: tips {tips:?}");
-    }
-    assert!(tips.len() <= 8, "{} tips: {tips:?}", tips.len());
+    let (_, skeleton) = one_tree(&voxels(&cells), 0.25);
+    // The arms end at 6 and -5 (cells -5..=5) along x and y, their middles at 0.5.
+    let ends = [[6.0, 0.5], [-5.0, 0.5], [0.5, 6.0], [0.5, -5.0]];
+    assert_tip_near_each(&skeleton, &ends, 1.5);
+    assert!(skeleton.tip_count() <= 8, "{} tips", skeleton.tip_count());
 }
 
 /// The closed surface of each box `lo`..`hi`, wound outward, as one mesh: boxes that
@@ -269,18 +271,8 @@ fn a_part_of_few_large_faces_names_the_spacing_it_needs_and_gets_its_arms_at_one
         }
         other => panic!("expected an empty axis at the default spacing, got {other:?}"),
     }
-    let axis = axis(&mesh, 0.1);
-    let betti = axis.betti_numbers();
-    assert_eq!((betti.b0, betti.b1), (1, 0));
-    let skeleton = skeleton_of(&axis, solid_cycles(&mesh), Placement::OnAxis);
-    assert_eq!((skeleton.component_count(), skeleton.cycle_count()), (1, 0));
-    let tips = tip_positions(&skeleton);
-    for end in [[4.0, 0.5], [0.5, 3.0]] {
-        let near = tips
-            .iter()
-            .any(|t| (t[0] - end[0]).hypot(t[1] - end[1]) < 0.6);
-        assert!(near, "no tip near the arm's end {end:?}: tips {tips:?}");
-    }
+    let (_, skeleton) = one_tree(&mesh, 0.1);
+    assert_tip_near_each(&skeleton, &[[4.0, 0.5], [0.5, 3.0]], 0.6);
 }
 
 #[test]
