@@ -23,15 +23,19 @@
 //!    when `p` and `q` are less than [`MedialAxisOptions::min_span`] spacings apart
 //!    (a medial ball touches the surface at two far-apart points). Spikes are removed
 //!    only through a free edge, one after the other (elementary collapses), so the
-//!    filter opens no hole and splits nothing: the axis keeps the solid's topology,
-//!    but for slivers of facets that rounding cannot tell from flat (kept as curves);
+//!    filter opens no hole and splits nothing: the axis keeps the topology of the inner
+//!    Voronoi diagram, which is the solid's where the sampling is dense for the shape
+//!    (where a part is only a few samples across, small cycles remain);
 //! 5. circumcentres closer than rounding can tell apart (five samples or more on one
-//!    sphere: the corners of a mesh's planar quads) are one vertex.
+//!    sphere: a grid on a flat face, the corners of a mesh's planar quads) are one
+//!    vertex, and the facets around it are split at the vertices along their sides and
+//!    cut into triangles that are never flat, so that they fit without holes.
 //!
 //! The result is a [`MedialAxis`] with the circumradius as each vertex's medial radius,
 //! ready for
 //! [`medial_axis_skeleton_with_cycles`](crate::skeleton::medial_axis_skeleton_with_cycles)
-//! (with the solid's [`solid_cycles`], which cuts the few cycles slivers leave).
+//! (with the solid's [`solid_cycles`], which cuts the few cycles a coarse sampling
+//! leaves).
 //!
 //! The inside test is the solid's own (the winding number, summed with a
 //! bounding-volume hierarchy), not the samples' normals: it holds at sharp creases,
