@@ -49,7 +49,7 @@
 //! MIT/Apache-2.0; `spade` and `delaunator` are 2D.
 
 use robust::{Coord, Coord3D};
-use std::ops::{Add, Mul};
+use std::ops::{Add, Mul, Sub};
 use thiserror::Error;
 
 /// Marks "no tetrahedron" (the outside of a hull facet) in [`Delaunay::neighbours`].
@@ -157,17 +157,16 @@ pub(crate) fn tetrahedralize(points: &[[f64; 3]]) -> Result<Delaunay, DelaunayEr
 /// double-double arithmetic from the exact differences. A sliver's centre (four points
 /// nearly on one circle, as on any regular grid of a surface) lies far along the
 /// circle's axis, where a rounding of the numerator or of the volume in floats moves it
-/// by as much as it is far; in double-double both keep about 100 bits, so the centre is
-/// right to the last bits of its coordinates for any tetrahedron the points can tell
-/// from flat. A flat one gives non-finite coordinates.
+/// by as much as it is far; in double-double both keep about 100 bits through the
+/// cancellation (on the tests' sliver the centre is within 1e-15, where the float
+/// numerator is 5e-10 off). A flat one gives non-finite coordinates.
 pub(crate) fn circumcentre(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> [f64; 3] {
-    let minus = |x: Dd, y: Dd| x + Dd(-y.0, -y.1);
     let diff = |p: [f64; 3]| [0, 1, 2].map(|k| two_sum(p[k], -a[k]));
     let cross = |u: [Dd; 3], v: [Dd; 3]| {
         [
-            minus(u[1] * v[2], u[2] * v[1]),
-            minus(u[2] * v[0], u[0] * v[2]),
-            minus(u[0] * v[1], u[1] * v[0]),
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
         ]
     };
     let dot = |u: [Dd; 3], v: [Dd; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
@@ -713,8 +712,11 @@ fn insphere(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3], e: [f64; 3]) -> 
 /// called far above underflow, where the operations' bounds hold.
 fn insphere_double_double(pts: [[f64; 3]; 4], e: [f64; 3], permanent: f64) -> Option<f64> {
     let sub = |p: [f64; 3]| [0, 1, 2].map(|k| two_sum(p[k], -e[k]));
-    let minus = |x: Dd, y: Dd| x + Dd(-y.0, -y.1);
-    let det = lifted_det([sub(pts[0]), sub(pts[1]), sub(pts[2]), sub(pts[3])], minus).0;
+    let det = lifted_det(
+        [sub(pts[0]), sub(pts[1]), sub(pts[2]), sub(pts[3])],
+        Dd::sub,
+    )
+    .0;
     (det.abs() > 2f64.powi(-96) * permanent).then_some(det)
 }
 
@@ -774,6 +776,14 @@ impl Add for Dd {
         let (s, t) = (two_sum(self.0, o.0), two_sum(self.1, o.1));
         let v = fast_two_sum(s.0, s.1 + t.0);
         fast_two_sum(v.0, v.1 + t.1)
+    }
+}
+
+impl Sub for Dd {
+    type Output = Self;
+    /// The sum with the negation (exact), so as accurate as the sum.
+    fn sub(self, o: Self) -> Self {
+        self + Dd(-o.0, -o.1)
     }
 }
 
