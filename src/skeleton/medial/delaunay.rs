@@ -149,11 +149,9 @@ pub(crate) fn tetrahedralize(points: &[[f64; 3]]) -> Result<Delaunay, DelaunayEr
     Ok(builder.finish(representative))
 }
 
-/// The circumcentre of the tetrahedron `a b c d`, computed relative to `a` so that
-/// rounding depends on the tetrahedron's size and not on its distance from the origin.
-///
-/// With `b' = b − a`, `c' = c − a`, `d' = d − a`, the centre is
-/// `a + (|b'|² c'×d' + |c'|² d'×b' + |d'|² b'×c') / (2 b'·(c'×d'))`, evaluated in
+/// The circumcentre of the tetrahedron `a b c d`, relative to `a` (rounding then depends
+/// on its size, not its distance from the origin): with `b' = b − a`, `c' = c − a`,
+/// `d' = d − a`, `a + (|b'|² c'×d' + |c'|² d'×b' + |d'|² b'×c') / (2 b'·(c'×d'))`, in
 /// double-double arithmetic from the exact differences. A sliver's centre (four points
 /// nearly on one circle, as on any regular grid of a surface) lies far along the
 /// circle's axis, where a rounding of the numerator or of the volume in floats moves it
