@@ -9,7 +9,7 @@ use geotracks::mesh::io::{read_medial_axis, write_medial_axis, MedialAxis};
 use geotracks::mesh::TriMesh;
 use geotracks::skeleton::medial::solid_cycles;
 use geotracks::skeleton::medial::{medial_axis, MedialAxisError, MedialAxisOptions};
-use geotracks::skeleton::{medial_axis_skeleton_with_cycles, Burn, Placement, Skeleton};
+use geotracks::skeleton::{medial_axis_skeleton_with_cycles, Burn, Placement, Pruning, Skeleton};
 use geotracks::{Error, Options};
 use std::collections::HashMap;
 
@@ -66,10 +66,11 @@ fn t_shape() -> Vec<[i32; 3]> {
     v
 }
 
-/// The skeleton at the defaults (5 % pruning, tubularity 1) with at most `cycles`.
+/// The skeleton at the defaults (5 % pruning, tubularity 1, protrusion 0.5) with at
+/// most `cycles`.
 fn skeleton_of(axis: &MedialAxis, cycles: usize, placement: Placement) -> Skeleton {
-    let prune = 0.05 * axis.diagonal();
-    medial_axis_skeleton_with_cycles(axis, Burn::Boundary, &K5, prune, 1.0, cycles, placement)
+    let pruning = Pruning::default_for(axis.diagonal());
+    medial_axis_skeleton_with_cycles(axis, Burn::Boundary, &K5, pruning, cycles, placement)
         .unwrap()
         .0
 }

@@ -9,7 +9,8 @@ use geotracks::glam::DVec3;
 use geotracks::mesh::io::read_medial_axis;
 use geotracks::mesh::TriMesh;
 use geotracks::skeleton::{
-    medial_axis_skeleton, medial_axis_skeleton_with_cycles, Burn, Grassfire, Placement, Skeleton,
+    medial_axis_skeleton, medial_axis_skeleton_with_cycles, Burn, Grassfire, Placement, Pruning,
+    Skeleton,
 };
 use geotracks::{Euclidean, Options, SurfacePoint};
 use std::path::{Path, PathBuf};
@@ -498,7 +499,7 @@ fn check_axis_skeleton(path: &Path) {
     for burn in [Burn::Boundary, Burn::Radius] {
         let (unpruned, _) = Skeleton::of_medial_axis(&axis, burn, &K5).unwrap();
         check_topology(&path.display().to_string(), &unpruned, betti);
-        let (skeleton, fire) = medial_axis_skeleton(&axis, burn, &K5, 0.0, 0.0).unwrap();
+        let (skeleton, fire) = medial_axis_skeleton(&axis, burn, &K5, Pruning::NONE).unwrap();
         let boundary =
             mesh.is_some_and(|m| (0..m.edge_count() as u32).any(|e| m.edge_faces(e).len() == 1));
         assert_eq!(fire.is_some(), boundary && burn == Burn::Boundary);
@@ -562,8 +563,7 @@ fn check_axis_skeleton(path: &Path) {
             &axis,
             burn,
             &K5,
-            0.0,
-            0.0,
+            Pruning::NONE,
             usize::MAX,
             Placement::Centred,
         )

@@ -7,7 +7,7 @@ use common::rectangle;
 use geotracks::glam::DVec3;
 use geotracks::mesh::io::MedialAxis;
 use geotracks::skeleton::{
-    medial_axis_skeleton_with_cycles, turning_per_length, Burn, Placement, Skeleton,
+    medial_axis_skeleton_with_cycles, turning_per_length, Burn, Placement, Pruning, Skeleton,
 };
 use geotracks::{Options, SurfacePoint};
 use std::collections::HashMap;
@@ -54,10 +54,13 @@ fn ragged_strip(w: f64, h: f64, thickness: f64, ragged: f64, bumps: f64) -> Medi
 }
 
 fn skeleton(axis: &MedialAxis, placement: Placement) -> Skeleton {
-    let prune = 0.05 * axis.diagonal();
+    let pruning = Pruning {
+        tubularity: 0.0,
+        protrusion: 0.0,
+        ..Pruning::default_for(axis.diagonal())
+    };
     let (skeleton, _) =
-        medial_axis_skeleton_with_cycles(axis, Burn::Boundary, &K5, prune, 0.0, 0, placement)
-            .unwrap();
+        medial_axis_skeleton_with_cycles(axis, Burn::Boundary, &K5, pruning, 0, placement).unwrap();
     skeleton
 }
 
@@ -263,12 +266,12 @@ fn every_arm_of_a_plate_gets_a_branch_along_its_middle() {
     let (cells, arms) = plate_with_arms();
     let axis = plate_sheet(&cells, 4);
     assert_eq!((axis.betti_numbers().b0, axis.betti_numbers().b1), (1, 0));
-    let prune = 0.05 * axis.diagonal();
+    let pruning = Pruning::default_for(axis.diagonal());
     for placement in [Placement::OnAxis, Placement::Centred] {
-        // At the defaults: by length and by tubularity (an arm is long for the plate's
-        // thickness).
+        // At the defaults: by length, by tubularity (an arm is long for the plate's
+        // thickness) and by protrusion (an arm reaches out of the plate's middle).
         let (skeleton, _) =
-            medial_axis_skeleton_with_cycles(&axis, Burn::Boundary, &K5, prune, 1.0, 0, placement)
+            medial_axis_skeleton_with_cycles(&axis, Burn::Boundary, &K5, pruning, 0, placement)
                 .unwrap();
         assert_eq!(
             (skeleton.component_count(), skeleton.cycle_count()),
@@ -351,8 +354,7 @@ fn points_along_a_curve_of_the_axis_stay_on_it() {
         &axis,
         Burn::Boundary,
         &K5,
-        0.0,
-        0.0,
+        Pruning::NONE,
         0,
         Placement::OnAxis,
     )

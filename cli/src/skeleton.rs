@@ -6,8 +6,8 @@ use crate::picture::CameraArgs;
 use crate::{ui, CliResult, Short};
 use geotracks::mesh::io::{write_obj_lines_to, write_ply_with_distance_to};
 use geotracks::skeleton::{
-    medial_axis_skeleton_with_cycles, Burn, Placement, Prune, DEFAULT_MIN_TUBULARITY,
-    DEFAULT_PRUNE_PERCENT,
+    medial_axis_skeleton_with_cycles, Burn, Placement, Prune, Pruning, DEFAULT_MIN_PROTRUSION,
+    DEFAULT_MIN_TUBULARITY, DEFAULT_PRUNE_PERCENT,
 };
 use geotracks::{Method, Options};
 use geotracks_render::render_skeleton;
@@ -50,8 +50,14 @@ pub struct SkeletonArgs {
     /// Also prune branches whose erosion thickness is less than R times the medial
     /// radius where they join the rest (their tubularity): a bump short for its
     /// thickness goes before a long thin limb of the same length; 0 keeps everything.
-    #[arg(long, value_name = "R", default_value_t = DEFAULT_MIN_TUBULARITY, value_parser = parse_tubular)]
+    #[arg(long, value_name = "R", default_value_t = DEFAULT_MIN_TUBULARITY, value_parser = parse_ratio)]
     tubular: f64,
+    /// Then prune branches whose medial balls reach out of the rest of the skeleton's
+    /// balls by less than P times the medial radius where they join (their
+    /// protrusion), least protrusive first: spurs that run inside the body and bumps
+    /// that stand out less than P of its thickness go, limbs stay; 0 keeps everything.
+    #[arg(long, value_name = "P", default_value_t = DEFAULT_MIN_PROTRUSION, value_parser = parse_ratio)]
+    protrusion: f64,
     /// When each point may burn.
     #[arg(long, value_enum, default_value = "boundary")]
     burn: BurnArg,
@@ -77,8 +83,8 @@ pub struct SkeletonArgs {
     camera: CameraArgs,
 }
 
-/// Parses `--tubular`: a number ≥ 0.
-fn parse_tubular(text: &str) -> Result<f64, String> {
+/// Parses `--tubular` and `--protrusion`: a number ≥ 0.
+fn parse_ratio(text: &str) -> Result<f64, String> {
     match text.parse::<f64>() {
         Ok(r) if r >= 0.0 => Ok(r),
         _ => Err(format!("'{text}': expected a number >= 0 (such as 1.5)")),
@@ -118,8 +124,11 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
         &axis,
         burn,
         &options,
-        prune,
-        args.tubular,
+        Pruning {
+            erosion_thickness: prune,
+            tubularity: args.tubular,
+            protrusion: args.protrusion,
+        },
         solid_cycles.unwrap_or(usize::MAX),
         if args.centred {
             Placement::Centred

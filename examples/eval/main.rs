@@ -40,7 +40,7 @@
 //! from `DATA_DIR/meshes/<name>.obj` instead, at that angle and span):
 //!
 //! ```text
-//! cargo run --release --example eval -- ../shared/data --skeletons [7] [--k 5] [--radius] [--tubular 1] [--from-meshes [ANGLE] [--span S]]
+//! cargo run --release --example eval -- ../shared/data --skeletons [7] [--k 5] [--radius] [--tubular 1] [--protrusion 0.5] [--from-meshes [ANGLE] [--span S]]
 //! ```
 //!
 //! With `--engines` it measures each engine against every exact reference, with its time,
@@ -123,7 +123,7 @@ fn main() {
 }
 
 /// `eval DATA_DIR --skeletons [PRUNE_PERCENT] [--k K] [--radius] [--tubular T]
-/// [--from-meshes [ANGLE] [--span S]] [--centred]`.
+/// [--protrusion P] [--from-meshes [ANGLE] [--span S]] [--centred]`.
 fn skeletons_main(argv: &[String], at: usize) -> Result<(), String> {
     let data = argv
         .get(1)
@@ -155,6 +155,13 @@ fn skeletons_main(argv: &[String], at: usize) -> Result<(), String> {
             .ok_or("--tubular takes a number")?,
         None => geotracks::skeleton::DEFAULT_MIN_TUBULARITY,
     };
+    let protrusion = match argv.iter().position(|a| a == "--protrusion") {
+        Some(i) => argv
+            .get(i + 1)
+            .and_then(|v| v.parse().ok())
+            .ok_or("--protrusion takes a number")?,
+        None => geotracks::skeleton::DEFAULT_MIN_PROTRUSION,
+    };
     let axes = match argv.iter().position(|a| a == "--from-meshes") {
         Some(i) => {
             let angle = match argv.get(i + 1) {
@@ -185,8 +192,11 @@ fn skeletons_main(argv: &[String], at: usize) -> Result<(), String> {
     };
     skeletons::skeletons(
         std::path::Path::new(data),
-        prune,
-        tubular,
+        skeletons::Thresholds {
+            prune_percent: prune,
+            tubular,
+            protrusion,
+        },
         k,
         burn,
         axes,

@@ -7,7 +7,7 @@ use geotracks::mesh::io::read_medial_axis;
 use geotracks::mesh::io::{read_mesh, MedialAxis};
 use geotracks::skeleton::medial::{medial_axis, solid_cycles, MedialAxisOptions};
 use geotracks::skeleton::{
-    medial_axis_skeleton_with_cycles, turning_per_length, Burn, Placement, Skeleton,
+    medial_axis_skeleton_with_cycles, turning_per_length, Burn, Placement, Pruning, Skeleton,
 };
 use geotracks::{Method, Options};
 use glam::DVec3;
@@ -45,15 +45,27 @@ fn load(data: &Path, name: &str, axes: Axes) -> Result<(MedialAxis, usize), Stri
     }
 }
 
+/// The pruning thresholds as the command line takes them.
+pub struct Thresholds {
+    /// Erosion thickness, in % of the diagonal.
+    pub prune_percent: f64,
+    pub tubular: f64,
+    pub protrusion: f64,
+}
+
 pub fn skeletons(
     data: &Path,
-    prune_percent: f64,
-    tubular: f64,
+    thresholds: Thresholds,
     k: f64,
     burn: Burn,
     axes: Axes,
     placement: Placement,
 ) -> Result<(), String> {
+    let Thresholds {
+        prune_percent,
+        tubular,
+        protrusion,
+    } = thresholds;
     let (dir, extension, suffix) = match axes {
         Axes::Files => (data.join("ma"), "ma", ".ma"),
         Axes::FromMeshes(_) => (data.join("skeleton"), "obj", ".mcf.obj"),
@@ -100,8 +112,11 @@ pub fn skeletons(
             &axis,
             burn,
             &options,
-            prune_percent / 100.0 * diagonal,
-            tubular,
+            Pruning {
+                erosion_thickness: prune_percent / 100.0 * diagonal,
+                tubularity: tubular,
+                protrusion,
+            },
             max_cycles,
             placement,
         )
@@ -193,7 +208,7 @@ pub fn skeletons(
             comparisons.push((name.clone(), at_default, reference, diagonal, floor));
         }
     }
-    println!("\nAgainst CGAL's mean-curvature-flow skeleton of the shape, at --prune {prune_percent} % and --tubular {tubular}, points {}: both sampled every 0.2 % of the diagonal; distances in % of the diagonal.\n", match placement { Placement::OnAxis => "on the axis", Placement::Centred => "centred (--centred)" });
+    println!("\nAgainst CGAL's mean-curvature-flow skeleton of the shape, at --prune {prune_percent} %, --tubular {tubular} and --protrusion {protrusion}, points {}: both sampled every 0.2 % of the diagonal; distances in % of the diagonal.\n", match placement { Placement::OnAxis => "on the axis", Placement::Centred => "centred (--centred)" });
     println!("| axis | reference → ours mean / max | ours → reference mean / max | tips ours / reference | junctions ours / reference | length ours / reference | turning per length ours / reference | reference → axis mean |");
     println!("|---|---:|---:|---:|---:|---:|---:|---:|");
     for (name, ours, reference, diagonal, floor) in comparisons {

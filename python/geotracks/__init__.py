@@ -591,6 +591,7 @@ def skeleton(
     span: float = 1.5,
     weld: bool = False,
     centred: bool = False,
+    protrusion: float = 0.5,
 ) -> Skeleton:
     """The curve skeleton of a medial axis file (``.ma``), or of a closed surface mesh
     file (OBJ, PLY, OFF, STL) through its :func:`medial_axis`, with the axis's topology,
@@ -601,6 +602,10 @@ def skeleton(
     :param tubular: branches whose erosion thickness is less than this many times the
         medial radius where they join the rest go whole too (a bump short for its
         thickness before a thin limb of the same length); 0 keeps them.
+    :param protrusion: then branches whose medial balls reach out of the rest of the
+        skeleton's balls by less than this many times the medial radius where they
+        join go whole, least protrusive first (spurs inside the body, low bumps); 0
+        keeps them.
     :param burn: ``"boundary"`` (the grassfire from the axis's border) or ``"radius"``
         (each point burns at its medial radius).
     :param spacing, angle, span, weld: for a surface mesh, as in :func:`medial_axis`.
@@ -622,6 +627,7 @@ def skeleton(
             _real(span, "span"),
             bool(weld),
             bool(centred),
+            _real(protrusion, "protrusion"),
         )
     )
 

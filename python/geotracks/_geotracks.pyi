@@ -141,6 +141,8 @@ def skeleton(
     angle: float = 60.0,
     span: float = 1.5,
     weld: bool = False,
+    centred: bool = False,
+    protrusion: float = 0.5,
 ) -> tuple[
     npt.NDArray[np.float64],
     npt.NDArray[np.float64],

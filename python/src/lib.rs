@@ -574,11 +574,12 @@ fn medial_axis<'py>(
 /// through its medial axis (`spacing`, `angle`, `span`, `weld` as in [`medial_axis`]), pruned at
 /// `prune` (a length, or a percentage of the bounding-box diagonal such as `"5%"`) and
 /// at `tubular` (the least erosion thickness over the medial radius where a branch
-/// joins), burnt from the border (`burn="boundary"`) or by medial radius (`"radius"`),
+/// joins) and at `protrusion` (the least reach out of the rest's medial balls over that
+/// radius), burnt from the border (`burn="boundary"`) or by medial radius (`"radius"`),
 /// its points on the axis or, with `centred`, at the centre of the shape's
 /// cross-section: `(points (p, 3), radii (p,), significance (p,), edges (e, 2), b1)`.
 #[pyfunction]
-#[pyo3(signature = (axis, prune="5%", burn="boundary", k=5.0, tubular=geotracks::skeleton::DEFAULT_MIN_TUBULARITY, spacing=None, angle=geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_ANGLE_DEGREES, span=geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_SPAN, weld=false, centred=false))]
+#[pyo3(signature = (axis, prune="5%", burn="boundary", k=5.0, tubular=geotracks::skeleton::DEFAULT_MIN_TUBULARITY, spacing=None, angle=geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_ANGLE_DEGREES, span=geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_SPAN, weld=false, centred=false, protrusion=geotracks::skeleton::DEFAULT_MIN_PROTRUSION))]
 #[allow(clippy::type_complexity, clippy::too_many_arguments)] // five named arrays, as the Python wrapper documents; the keywords are Python's
 fn skeleton<'py>(
     py: Python<'py>,
@@ -592,6 +593,7 @@ fn skeleton<'py>(
     span: f64,
     weld: bool,
     centred: bool,
+    protrusion: f64,
 ) -> PyResult<(
     Matrix<'py, f64>,
     Vector<'py, f64>,
@@ -599,7 +601,7 @@ fn skeleton<'py>(
     Matrix<'py, i64>,
     usize,
 )> {
-    use geotracks::skeleton::{medial_axis_skeleton_with_cycles, Burn, Placement, Prune};
+    use geotracks::skeleton::{medial_axis_skeleton_with_cycles, Burn, Placement, Prune, Pruning};
     let burn = match burn {
         "boundary" => Burn::Boundary,
         "radius" => Burn::Radius,
@@ -613,11 +615,20 @@ fn skeleton<'py>(
     if tubular.is_nan() || tubular < 0.0 {
         return Err(error(format!("tubular {tubular}: expected a number >= 0")));
     }
+    if protrusion.is_nan() || protrusion < 0.0 {
+        return Err(error(format!(
+            "protrusion {protrusion}: expected a number >= 0"
+        )));
+    }
     let medial = medial_options(spacing, angle, span)?;
     let (skeleton, b1) = py
         .detach(|| {
             let (axis, solid_cycles) = axis_of_file(&axis, weld, &medial)?;
-            let threshold = prune.threshold(axis.diagonal());
+            let pruning = Pruning {
+                erosion_thickness: prune.threshold(axis.diagonal()),
+                tubularity: tubular,
+                protrusion,
+            };
             let options = Options::DEFAULT.with_k(k).with_method(Method::Tracks);
             let max_cycles = solid_cycles.unwrap_or(usize::MAX);
             let placement = if centred {
@@ -626,7 +637,7 @@ fn skeleton<'py>(
                 Placement::OnAxis
             };
             let (skeleton, _) = medial_axis_skeleton_with_cycles(
-                &axis, burn, &options, threshold, tubular, max_cycles, placement,
+                &axis, burn, &options, pruning, max_cycles, placement,
             )
             .map_err(|e| e.to_string())?;
             Ok::<_, String>((skeleton, solid_cycles.unwrap_or(axis.betti_numbers().b1)))

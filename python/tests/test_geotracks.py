@@ -284,14 +284,22 @@ def test_skeleton_of_a_medial_axis():
         return len(sk.edges) - n + components
 
     assert cycles(sk) == sk.b1
-    everything = geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune=0, tubular=0)
+    everything = geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune=0, tubular=0, protrusion=0)
     assert len(everything.points) > p
     # By tubularity alone, branches go too, and the cycles stay.
-    thick = geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune=0, tubular=1e9)
+    thick = geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune=0, tubular=1e9, protrusion=0)
     assert len(thick.points) < len(everything.points)
     assert cycles(thick) == thick.b1
     with pytest.raises(geotracks.GeotracksError, match="tubular"):
         geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", tubular=-1)
+    # By protrusion alone, branches go as well, and the cycles stay.
+    covered = geotracks.skeleton(
+        DATA / "ma" / "sheet_fins.ma", prune=0, tubular=0, protrusion=1e9
+    )
+    assert len(covered.points) < len(everything.points)
+    assert cycles(covered) == covered.b1
+    with pytest.raises(geotracks.GeotracksError, match="protrusion"):
+        geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", protrusion=-1)
     with pytest.raises(geotracks.GeotracksError, match="prune"):
         geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune="-1")
     with pytest.raises(geotracks.GeotracksError, match="burn"):

@@ -31,7 +31,7 @@ const NODE: [f64; 3] = [25.0, 25.0, 25.0];
 /// ```
 /// use geotracks::mesh::io::read_medial_axis_bytes;
 /// use geotracks_render::{render_skeleton, PictureOptions};
-/// use geotracks::skeleton::{medial_axis_skeleton, Burn};
+/// use geotracks::skeleton::{medial_axis_skeleton, Burn, Pruning};
 /// use geotracks::Options;
 /// // Two sheets sharing an edge, each with two triangles.
 /// let text = "6 2 4\n\
@@ -39,7 +39,7 @@ const NODE: [f64; 3] = [25.0, 25.0, 25.0];
 ///     e 0 1\ne 2 3\n\
 ///     f 0 1 3\nf 0 3 2\nf 2 3 5\nf 2 5 4\n";
 /// let axis = read_medial_axis_bytes("two_sheets.ma", text.as_bytes())?;
-/// let (skeleton, _) = medial_axis_skeleton(&axis, Burn::Boundary, &Options::DEFAULT, 0.0, 0.0)?;
+/// let (skeleton, _) = medial_axis_skeleton(&axis, Burn::Boundary, &Options::DEFAULT, Pruning::NONE)?;
 /// let picture = render_skeleton(&axis, &skeleton, &PictureOptions::DEFAULT)?;
 /// assert_eq!((picture.width, picture.height), (1024, 768));
 /// # Ok::<(), Box<dyn std::error::Error>>(())

@@ -50,6 +50,7 @@ mod geometry;
 mod grassfire;
 pub mod medial;
 mod placement;
+mod protrusion;
 mod thinning;
 
 pub use geometry::turning_per_length;
@@ -74,6 +75,46 @@ pub const DEFAULT_PRUNE_PERCENT: f64 = 5.0;
 /// against mean-curvature-flow skeletons (the guide's Skeletons page): bumps there stand
 /// at 0.46–0.93, limbs at 1.12 and more.
 pub const DEFAULT_MIN_TUBULARITY: f64 = 1.0;
+
+/// The least protrusion the command line keeps by default
+/// ([`Skeleton::pruned_protruding`]): a branch must reach out of the rest of the
+/// skeleton's balls by at least half the radius where it joins. Chosen, with the other
+/// two defaults, on the shared medial axes and meshes against mean-curvature-flow
+/// skeletons (the guide's Skeletons page): spurs into a body stand at 0.1–0.27 there,
+/// bumps such as a cow's hip bones at 0.37–0.73, and limbs at 0.82 and more.
+pub const DEFAULT_MIN_PROTRUSION: f64 = 0.5;
+
+/// How [`medial_axis_skeleton`] prunes a skeleton: three thresholds, each removing whole
+/// branches from their tips and never opening a loop; 0 turns one off.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pruning {
+    /// The least erosion thickness a branch keeps, a length ([`Skeleton::pruned`]).
+    pub erosion_thickness: f64,
+    /// The least tubularity ([`Skeleton::pruned_tubular`]).
+    pub tubularity: f64,
+    /// The least protrusion ([`Skeleton::pruned_protruding`]).
+    pub protrusion: f64,
+}
+
+impl Pruning {
+    /// Nothing pruned: every branch the thinning leaves.
+    pub const NONE: Pruning = Pruning {
+        erosion_thickness: 0.0,
+        tubularity: 0.0,
+        protrusion: 0.0,
+    };
+
+    /// The command line's defaults ([`DEFAULT_PRUNE_PERCENT`] of `diagonal`,
+    /// [`DEFAULT_MIN_TUBULARITY`], [`DEFAULT_MIN_PROTRUSION`]) for an axis whose
+    /// bounding box has that diagonal.
+    pub fn default_for(diagonal: f64) -> Pruning {
+        Pruning {
+            erosion_thickness: DEFAULT_PRUNE_PERCENT / 100.0 * diagonal,
+            tubularity: DEFAULT_MIN_TUBULARITY,
+            protrusion: DEFAULT_MIN_PROTRUSION,
+        }
+    }
+}
 
 /// A pruning threshold as people write it: a length in the axis's units (`0.05`,
 /// `inf`), or a percentage of its bounding-box diagonal (`7%`), so that the same value
@@ -569,12 +610,11 @@ pub enum Burn {
 }
 
 /// The skeleton of a medial axis read from a `.ma` file, ready to use:
-/// [`Skeleton::of_medial_axis`] pruned at `prune` (a length, see
-/// [`Skeleton::pruned`]) and at `min_tubularity` ([`Skeleton::pruned_tubular`]),
-/// with its points placed on the axis ([`Skeleton::placed`], [`Placement::OnAxis`])
-/// and given the medial radii. Also returns the
-/// grassfire's distance field for [`Burn::Boundary`] on an axis with sheets and a
-/// border.
+/// [`Skeleton::of_medial_axis`] pruned as `pruning` says (erosion thickness, then
+/// tubularity, then protrusion), with its points placed on the axis
+/// ([`Skeleton::placed`], [`Placement::OnAxis`]) and given the medial radii. Also
+/// returns the grassfire's distance field for [`Burn::Boundary`] on an axis with sheets
+/// and a border.
 ///
 /// # Errors
 /// As [`Skeleton::of_medial_axis`].
@@ -582,25 +622,18 @@ pub fn medial_axis_skeleton(
     axis: &MedialAxis,
     burn: Burn,
     options: &Options,
-    prune: f64,
-    min_tubularity: f64,
+    pruning: Pruning,
 ) -> Result<(Skeleton, Option<Field<Euclidean>>), Error> {
-    medial_axis_skeleton_with_cycles(
-        axis,
-        burn,
-        options,
-        prune,
-        min_tubularity,
-        usize::MAX,
-        Placement::OnAxis,
-    )
+    medial_axis_skeleton_with_cycles(axis, burn, options, pruning, usize::MAX, Placement::OnAxis)
 }
 
-/// [`medial_axis_skeleton`] with at most `max_cycles` independent cycles: after pruning,
-/// extra cycles are cut ([`Skeleton::with_cycles_cut`], widest by medial radius) and
-/// what the cuts leave pruned again; the points are placed as `placement` says. For an axis computed from a sampled surface
-/// ([`crate::skeleton::medial::medial_axis`]), whose sheets have small holes that the solid
-/// does not: `max_cycles` is then the solid's genus.
+/// [`medial_axis_skeleton`] with at most `max_cycles` independent cycles: after pruning
+/// by erosion thickness and tubularity, extra cycles are cut
+/// ([`Skeleton::with_cycles_cut`], widest by medial radius) and what the cuts leave
+/// pruned again; then branches are pruned by protrusion and the points placed as
+/// `placement` says. For an axis computed from a sampled surface
+/// ([`crate::skeleton::medial::medial_axis`]), whose sheets have small holes that the
+/// solid does not: `max_cycles` is then the solid's genus.
 ///
 /// # Errors
 /// As [`Skeleton::of_medial_axis`].
@@ -608,20 +641,22 @@ pub fn medial_axis_skeleton_with_cycles(
     axis: &MedialAxis,
     burn: Burn,
     options: &Options,
-    prune: f64,
-    min_tubularity: f64,
+    pruning: Pruning,
     max_cycles: usize,
     placement: Placement,
 ) -> Result<(Skeleton, Option<Field<Euclidean>>), Error> {
     let (skeleton, field) = Skeleton::of_medial_axis(axis, burn, options)?;
-    let skeleton = skeleton.pruned(prune).pruned_tubular(min_tubularity);
+    let prune = pruning.erosion_thickness;
+    let skeleton = skeleton.pruned(prune).pruned_tubular(pruning.tubularity);
     // Thinning leaves its points on the axis's vertices.
-    let on: Vec<SurfacePoint> = skeleton.points.iter().map(|p| p.on).collect();
-    let radius = |i: usize| match on[i] {
+    let radius_at = |on: SurfacePoint| match on {
         SurfacePoint::Vertex(v) => axis.radii[v as usize],
         _ => 0.0,
     };
-    let skeleton = skeleton.with_cycles_cut(max_cycles, radius, prune);
+    let on: Vec<SurfacePoint> = skeleton.points.iter().map(|p| p.on).collect();
+    let skeleton = skeleton.with_cycles_cut(max_cycles, |i| radius_at(on[i]), prune);
+    let skeleton =
+        skeleton.pruned_protruding(pruning.protrusion, |i| radius_at(skeleton.points[i].on));
     Ok((skeleton.placed(axis, placement), field))
 }
 
