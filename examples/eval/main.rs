@@ -122,6 +122,17 @@ fn main() {
     }
 }
 
+/// The number after `flag` in `argv`, or `default` when the flag is absent.
+fn number_after(argv: &[String], flag: &str, default: f64) -> Result<f64, String> {
+    match argv.iter().position(|a| a == flag) {
+        Some(i) => argv
+            .get(i + 1)
+            .and_then(|v| v.parse().ok())
+            .ok_or(format!("{flag} takes a number")),
+        None => Ok(default),
+    }
+}
+
 /// `eval DATA_DIR --skeletons [PRUNE_PERCENT] [--k K] [--radius] [--tubular T]
 /// [--protrusion P] [--from-meshes [ANGLE] [--span S]] [--centred]`.
 fn skeletons_main(argv: &[String], at: usize) -> Result<(), String> {
@@ -136,32 +147,22 @@ fn skeletons_main(argv: &[String], at: usize) -> Result<(), String> {
             .map_err(|_| format!("bad prune '{p}'"))?,
         _ => geotracks::skeleton::DEFAULT_PRUNE_PERCENT,
     };
-    let k = match argv.iter().position(|a| a == "--k") {
-        Some(i) => argv
-            .get(i + 1)
-            .and_then(|v| v.parse().ok())
-            .ok_or("--k takes a number")?,
-        None => 5.0,
-    };
+    let k = number_after(argv, "--k", 5.0)?;
     let burn = if argv.iter().any(|a| a == "--radius") {
         geotracks::skeleton::Burn::Radius
     } else {
         geotracks::skeleton::Burn::Boundary
     };
-    let tubular = match argv.iter().position(|a| a == "--tubular") {
-        Some(i) => argv
-            .get(i + 1)
-            .and_then(|v| v.parse().ok())
-            .ok_or("--tubular takes a number")?,
-        None => geotracks::skeleton::DEFAULT_MIN_TUBULARITY,
-    };
-    let protrusion = match argv.iter().position(|a| a == "--protrusion") {
-        Some(i) => argv
-            .get(i + 1)
-            .and_then(|v| v.parse().ok())
-            .ok_or("--protrusion takes a number")?,
-        None => geotracks::skeleton::DEFAULT_MIN_PROTRUSION,
-    };
+    let tubular = number_after(
+        argv,
+        "--tubular",
+        geotracks::skeleton::DEFAULT_MIN_TUBULARITY,
+    )?;
+    let protrusion = number_after(
+        argv,
+        "--protrusion",
+        geotracks::skeleton::DEFAULT_MIN_PROTRUSION,
+    )?;
     let axes = match argv.iter().position(|a| a == "--from-meshes") {
         Some(i) => {
             let angle = match argv.get(i + 1) {
@@ -170,13 +171,11 @@ fn skeletons_main(argv: &[String], at: usize) -> Result<(), String> {
                 }
                 _ => geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_ANGLE_DEGREES,
             };
-            let span = match argv.iter().position(|a| a == "--span") {
-                Some(i) => argv
-                    .get(i + 1)
-                    .and_then(|v| v.parse().ok())
-                    .ok_or("--span takes a number")?,
-                None => geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_SPAN,
-            };
+            let span = number_after(
+                argv,
+                "--span",
+                geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_SPAN,
+            )?;
             skeletons::Axes::FromMeshes(
                 geotracks::skeleton::medial::MedialAxisOptions::default()
                     .with_min_angle_degrees(angle)
