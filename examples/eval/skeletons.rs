@@ -140,16 +140,20 @@ pub fn skeletons(
         println!("{row} {seconds:.3} s |");
         let reference = data.join("skeleton").join(format!("{name}.mcf.obj"));
         if reference.exists() {
-            // How far the reference itself lies from the axis: no skeleton on the axis can
-            // come closer to it than that.
+            // How far the reference itself lies from the axis, mean and max: no skeleton
+            // on the axis can come closer to it than that.
             let reference = read_polylines(&reference)?;
-            let to_axis = |points: &[DVec3]| -> Option<f64> {
+            let to_axis = |points: &[DVec3]| -> Option<(f64, f64)> {
                 let mesh = axis.surface.as_ref()?;
-                let gaps = points.iter().map(|&p| {
-                    geotracks::SurfacePoint::nearest(mesh, p.to_array())
-                        .map_or(f64::INFINITY, |q| q.position(mesh).distance(p))
-                });
-                Some(gaps.sum::<f64>() / points.len().max(1) as f64)
+                let gaps: Vec<f64> = points
+                    .iter()
+                    .map(|&p| {
+                        geotracks::SurfacePoint::nearest(mesh, p.to_array())
+                            .map_or(f64::INFINITY, |q| q.position(mesh).distance(p))
+                    })
+                    .collect();
+                let mean = gaps.iter().sum::<f64>() / gaps.len().max(1) as f64;
+                Some((mean, gaps.iter().copied().fold(0.0, f64::max)))
             };
             let floor = to_axis(&sample(&reference.segments, 0.002 * diagonal));
             // Per branch of the reference: its share of the samples, its mean distance
@@ -165,7 +169,7 @@ pub fn skeletons(
                         kind: "",
                         samples: points.len(),
                         to_other: spread(&points, &ours_segments).0,
-                        floor: to_axis(&points),
+                        floor: to_axis(&points).map(|(mean, _)| mean),
                     }
                 })
                 .collect();
@@ -209,7 +213,7 @@ pub fn skeletons(
         }
     }
     println!("\nAgainst CGAL's mean-curvature-flow skeleton of the shape, at --prune {prune_percent} %, --tubular {tubular} and --protrusion {protrusion}, points {}: both sampled every 0.2 % of the diagonal; distances in % of the diagonal.\n", match placement { Placement::OnAxis => "on the axis", Placement::Centred => "centred (--centred)" });
-    println!("| axis | reference → ours mean / max | ours → reference mean / max | tips ours / reference | junctions ours / reference | length ours / reference | turning per length ours / reference | reference → axis mean |");
+    println!("| axis | reference → ours mean / max | ours → reference mean / max | tips ours / reference | junctions ours / reference | length ours / reference | turning per length ours / reference | reference → axis mean / max |");
     println!("|---|---:|---:|---:|---:|---:|---:|---:|");
     for (name, ours, reference, diagonal, floor) in comparisons {
         let ours_segments = segments_of(&ours.polyline_positions());
@@ -233,7 +237,11 @@ pub fn skeletons(
             reference.segments.iter().map(|(a, b)| a.distance(*b)).sum::<f64>(),
             turning_per_length(&ours.polyline_positions()) * diagonal,
             turning_per_length(&reference.branches) * diagonal,
-            floor.map_or("–".into(), |f| format!("{:.2} %", pct(f)))
+            floor.map_or("–".into(), |(mean, max)| format!(
+                "{:.2} % / {:.2} %",
+                pct(mean),
+                pct(max)
+            ))
         );
     }
     println!("\nWhere the distances come from: the branches (polylines between tips and junctions) that add most to each mean, with their share of it (branch samples × distance / all samples, in % of the diagonal; reference → ours less the branch's own distance to the axis, which no skeleton on the axis can remove).\n");
