@@ -15,9 +15,12 @@
 //! again once others are gone: two strands that run side by side cover each other, and
 //! pruning both at once would leave neither.
 
+use super::thinning::Ordered;
 use super::Skeleton;
 use crate::mesh::{unique_edges, NONE};
 use glam::DVec3;
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
 
 impl Skeleton {
     /// The skeleton with the branches that protrude less than `min` removed: a branch
@@ -53,11 +56,30 @@ impl Skeleton {
             return self.clone();
         }
         let mut peel = Peel::new(self, &radius);
-        while let Some((value, tip)) = peel.least_protrusive() {
+        // A branch's value only rises while it keeps its points and its joint (the rest
+        // it is measured against only loses points), so values in the heap are lower
+        // bounds: one that is still right when it comes up is the least. A branch that
+        // grows through a joint another's removal left with two branches is pushed anew.
+        let mut heap: BinaryHeap<Reverse<(Ordered, u32)>> = (0..self.points.len() as u32)
+            .filter_map(|tip| Some(Reverse((Ordered(peel.value(tip)?), tip))))
+            .collect();
+        while let Some(Reverse((Ordered(bound), tip))) = heap.pop() {
+            let Some(value) = peel.value(tip) else {
+                continue;
+            };
+            if value > bound {
+                heap.push(Reverse((Ordered(value), tip)));
+                continue;
+            }
             if value >= min {
                 break;
             }
-            peel.remove_branch(tip);
+            let joint = peel.remove_branch(tip);
+            for tip in peel.tips_through(joint) {
+                if let Some(value) = peel.value(tip) {
+                    heap.push(Reverse((Ordered(value), tip)));
+                }
+            }
         }
         self.keep(|i| peel.alive[i])
     }
@@ -125,27 +147,48 @@ impl Peel {
         }
     }
 
-    /// The tip whose branch protrudes least, with its protrusion over the radius where
-    /// it joins; `None` when no branch can go.
-    fn least_protrusive(&mut self) -> Option<(f64, u32)> {
-        let mut least: Option<(f64, u32)> = None;
-        for tip in 0..self.alive.len() as u32 {
-            if !self.alive[tip as usize] || self.degree[tip as usize] != 1 {
+    /// The protrusion of the branch from `tip` over the radius where it joins; `None`
+    /// when it cannot go: not a tip, the whole component one path, the trunk's end, or
+    /// joined where the radius is 0.
+    fn value(&mut self, tip: u32) -> Option<f64> {
+        if !self.alive[tip as usize] || self.degree[tip as usize] != 1 {
+            return None;
+        }
+        if !self.walk_branch(tip) || self.is_trunk() {
+            return None;
+        }
+        let base = self.radius[*self.branch.last().expect("a branch has two points") as usize];
+        (base > 0.0 && base.is_finite()).then(|| self.protrusion() / base)
+    }
+
+    /// The tips whose branches run through `joint` (none unless two branches are
+    /// left there, which then make one).
+    fn tips_through(&self, joint: u32) -> Vec<u32> {
+        if self.degree[joint as usize] != 2 {
+            return Vec::new();
+        }
+        let mut tips = Vec::new();
+        for &first in &self.neighbours[joint as usize] {
+            if !self.alive[first as usize] {
                 continue;
             }
-            if !self.walk_branch(tip) || self.is_trunk() {
-                continue;
+            let (mut previous, mut at) = (joint, first);
+            while self.degree[at as usize] == 2 {
+                let next = self.neighbours[at as usize]
+                    .iter()
+                    .copied()
+                    .find(|&w| w != previous && self.alive[w as usize]);
+                let Some(next) = next else { break };
+                if next == joint {
+                    break;
+                }
+                (previous, at) = (at, next);
             }
-            let base = self.radius[*self.branch.last().expect("a branch has two points") as usize];
-            if !(base > 0.0 && base.is_finite()) {
-                continue;
-            }
-            let value = self.protrusion() / base;
-            if least.is_none_or(|(v, _)| value < v) {
-                least = Some((value, tip));
+            if self.degree[at as usize] == 1 {
+                tips.push(at);
             }
         }
-        least
+        tips
     }
 
     /// Whether `self.branch` is where its trunk goes on: no other branch at the point
@@ -197,8 +240,8 @@ impl Peel {
         best
     }
 
-    /// Removes the branch from `tip`, keeping the point it joins.
-    fn remove_branch(&mut self, tip: u32) {
+    /// Removes the branch from `tip`, keeping the point it joins, which it returns.
+    fn remove_branch(&mut self, tip: u32) -> u32 {
         self.walk_branch(tip);
         let inner = self.branch.len() - 1;
         for k in 0..inner {
@@ -210,6 +253,7 @@ impl Peel {
                 }
             }
         }
+        self.branch[inner]
     }
 }
 
@@ -320,5 +364,63 @@ mod tests {
         // A shorter one (3.4 long, the trunk's halves 4), that stood less, goes.
         let (skeleton, radii) = trunk_with(&[(&tail[..6], &[0.1; 6])]);
         assert_eq!(kept(&skeleton, &radii, 0.5), 9);
+    }
+
+    /// The peel done the plain way: every value taken afresh each round, the least
+    /// (lowest tip on ties) removed while below `min`.
+    fn peeled_plainly(skeleton: &Skeleton, radii: &[f64], min: f64) -> Vec<bool> {
+        let mut peel = Peel::new(skeleton, &|i| radii[i]);
+        loop {
+            let mut least: Option<(f64, u32)> = None;
+            for tip in 0..radii.len() as u32 {
+                peel.cover.fill((f64::INFINITY, NONE));
+                if let Some(value) = peel.value(tip) {
+                    if least.is_none_or(|(v, _)| value < v) {
+                        least = Some((value, tip));
+                    }
+                }
+            }
+            match least {
+                Some((value, tip)) if value < min => {
+                    peel.remove_branch(tip);
+                }
+                _ => return peel.alive,
+            }
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+
+        /// Random trees (each point hung from an earlier one): the heap with its cached
+        /// covers removes what the plain peel removes.
+        #[test]
+        fn the_heap_peels_as_the_plain_way_does(
+            points in proptest::collection::vec(
+                (proptest::array::uniform3(-1.0f64..1.0), 0.05f64..1.0, 0usize..1000),
+                3..60,
+            ),
+        ) {
+            let positions: Vec<[f64; 3]> = points.iter().map(|p| p.0).collect();
+            let radii: Vec<f64> = points.iter().map(|p| p.1).collect();
+            let edges: Vec<[u32; 2]> = (1..points.len())
+                .map(|i| [(points[i].2 % i) as u32, i as u32])
+                .collect();
+            let skeleton = Skeleton::from_curves(&positions, &edges, None);
+            for min in [0.2, 0.6, 1.5] {
+                let plain = peeled_plainly(&skeleton, &radii, min);
+                let kept: Vec<[f64; 3]> = skeleton
+                    .pruned_protruding(min, |i| radii[i])
+                    .points
+                    .iter()
+                    .map(|p| p.position)
+                    .collect();
+                let expected: Vec<[f64; 3]> = (0..positions.len())
+                    .filter(|&i| plain[i])
+                    .map(|i| skeleton.points[i].position)
+                    .collect();
+                proptest::prop_assert_eq!(kept, expected, "at {}", min);
+            }
+        }
     }
 }
