@@ -81,7 +81,7 @@ pub const DEFAULT_MIN_TUBULARITY: f64 = 1.0;
 /// skeleton's balls by at least half the radius where it joins. Chosen, with the other
 /// two defaults, on the shared medial axes and meshes against mean-curvature-flow
 /// skeletons (the guide's Skeletons page): spurs into a body stand at 0.1–0.27 there,
-/// bumps such as a cow's hip bones at 0.37–0.73, and limbs at 0.82 and more.
+/// bumps (a cow's hip bones, its udder) at 0.25–0.73, and limbs at 0.82 and more.
 pub const DEFAULT_MIN_PROTRUSION: f64 = 0.5;
 
 /// How [`medial_axis_skeleton`] prunes a skeleton: three thresholds, each removing whole
