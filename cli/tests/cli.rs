@@ -1204,11 +1204,20 @@ fn skeleton_writes_a_connected_obj_graph_and_the_field() {
     assert!(points.iter().any(|p| p[0] >= 3.0));
     let ply_bytes = std::fs::read(&ply).unwrap();
     assert!(ply_bytes.starts_with(b"ply\n"));
-    // … and, unpruned (by length and by tubularity), is in the skeleton whole; the
-    // JSON graph says so.
+    // … and, unpruned (by length, tubularity and protrusion), is in the skeleton whole;
+    // the JSON graph says so.
     let json = dir.path().join("skeleton.json");
     let unpruned = |more: &[&str]| {
-        let mut args = vec!["skeleton", SHEET_FINS, "--prune", "0", "--tubular", "0"];
+        let mut args = vec![
+            "skeleton",
+            SHEET_FINS,
+            "--prune",
+            "0",
+            "--tubular",
+            "0",
+            "--protrusion",
+            "0",
+        ];
         args.extend_from_slice(more);
         args.extend(["-o", json.to_str().unwrap()]);
         geotracks_ok(&args);
@@ -1226,6 +1235,25 @@ fn skeleton_writes_a_connected_obj_graph_and_the_field() {
     }
     assert_eq!(graph["components"], 2);
     assert_eq!(graph["cycles"], 0);
+    // Pruned by protrusion alone, branches go and the pieces and cycles stay.
+    geotracks_ok(&[
+        "skeleton",
+        SHEET_FINS,
+        "--prune",
+        "0",
+        "--tubular",
+        "0",
+        "--protrusion",
+        "1e9",
+        "-o",
+        json.to_str().unwrap(),
+    ]);
+    let covered = read_json(&json);
+    assert!(
+        covered["points"].as_array().unwrap().len() < graph["points"].as_array().unwrap().len()
+    );
+    assert_eq!(covered["components"], 2);
+    assert_eq!(covered["cycles"], 0);
     // A picture of it, of the size asked for; a bad view leaves no file.
     let png = dir.path().join("skeleton.png");
     geotracks_ok(&[
@@ -1289,6 +1317,13 @@ fn skeleton_bad_input_fails_cleanly() {
         &obj,
         "--tubular",
     );
+    for bad in ["--protrusion=-0.5", "--protrusion=nan"] {
+        assert_fails(
+            &["skeleton", SHEET_FINS, bad, "-o", o],
+            &obj,
+            "--protrusion",
+        );
+    }
     assert_fails(
         &["skeleton", SHEET_FINS, "--k", "0", "-o", o],
         &obj,
