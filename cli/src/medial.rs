@@ -19,8 +19,8 @@ pub struct SamplingArgs {
     #[arg(long, value_name = "LENGTH", value_parser = parse_spacing)]
     spacing: Option<f64>,
     /// For a surface mesh: keep the Voronoi facets whose two samples are seen under at
-    /// least this angle (degrees) from the facet; larger drops more spikes toward the
-    /// surface.
+    /// least this angle (degrees) from the facet, and half of it from its deepest
+    /// point; larger drops more spikes toward the surface.
     #[arg(long, value_name = "DEGREES", default_value_t = MedialAxisOptions::DEFAULT_MIN_ANGLE_DEGREES, value_parser = parse_angle)]
     angle: f64,
     /// For a surface mesh: keep the Voronoi facets whose two samples lie at least this

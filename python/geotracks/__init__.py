@@ -656,7 +656,8 @@ def medial_axis(
     :param spacing: the largest distance between samples on a face (points are added
         on faces larger than that); ``None``: the mesh's mean edge length.
     :param angle: keep the Voronoi facets whose two samples are seen under at least
-        this many degrees from the facet; larger drops more spikes toward the surface.
+        this many degrees from the facet, and half of it from its deepest point;
+        larger drops more spikes toward the surface.
     :param span: keep the Voronoi facets whose two samples lie at least this many
         spacings apart; larger drops more of the sampling's spikes, and more of the
         axis at the tips of limbs.

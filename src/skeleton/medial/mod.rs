@@ -19,9 +19,11 @@
 //! 4. the Voronoi facets (one per Delaunay edge `p q`) whose vertices are all inside
 //!    make the inner Voronoi diagram, which has the solid's topology on a dense enough
 //!    sampling; a facet is a spike toward the surface, made by the sampling, when no
-//!    vertex `c` of it sees `p q` under [`MedialAxisOptions::min_angle_degrees`] or
-//!    when `p` and `q` are less than [`MedialAxisOptions::min_span`] spacings apart
-//!    (a medial ball touches the surface at two far-apart points). Spikes are removed
+//!    vertex `c` of it sees `p q` under [`MedialAxisOptions::min_angle_degrees`], when
+//!    its deepest vertex (the largest ball, where a spike meets the axis) sees it
+//!    under less than half that, or when `p` and `q` are less than
+//!    [`MedialAxisOptions::min_span`] spacings apart (a medial ball touches the surface
+//!    at two far-apart points). Spikes are removed
 //!    only through a free edge, one after the other (elementary collapses), so the
 //!    filter opens no hole and splits nothing: the axis keeps the topology of the inner
 //!    Voronoi diagram, which is the solid's where the sampling is dense for the shape
@@ -85,7 +87,8 @@ pub struct MedialAxisOptions {
     /// points added). Smaller gives a finer, more accurate axis for more time.
     pub spacing: Option<f64>,
     /// The smallest angle (degrees, in (0, 180)) under which a kept Voronoi facet's
-    /// Delaunay edge is seen from one of its vertices. Larger drops more of the spikes
+    /// Delaunay edge is seen from one of its vertices; from its deepest vertex (the
+    /// largest ball), it must be seen under at least half that. Larger drops more of the spikes
     /// toward the surface and, past a point, parts of the axis where the shape narrows
     /// quickly.
     pub min_angle_degrees: f64,

@@ -101,7 +101,12 @@ fn inner_centres(samples: &Samples, dt: &Delaunay, solid: &WindingNumbers) -> Ve
 }
 
 /// The inner Voronoi diagram's facets and edges; a facet is a spike when no vertex of
-/// it sees its Delaunay edge under `min_angle`, or the edge is shorter than `min_span`.
+/// it sees its Delaunay edge under `min_angle`, when its deepest vertex sees it under
+/// less than half that, or when the edge is shorter than `min_span`. Near the surface,
+/// where the balls are small, any two samples a few spacings apart are seen wide: a
+/// spike between them passes the first test there, but where it reaches the axis, at
+/// its deepest vertex, it sees them narrow. Sampled finer than a mesh's faces, the
+/// creases between them make such spikes everywhere.
 fn inner_complex(
     samples: &Samples,
     dt: &Delaunay,
@@ -135,18 +140,23 @@ fn inner_complex(
             }
             let tet = dt.tets[t as usize];
             let (p, q) = (point(tet[i]), point(tet[j]));
-            let angle = ring
+            let seen_from = |c: DVec3| (p - c).angle_between(q - c);
+            let centre = |r: &u32| centres[*r as usize].expect("inner");
+            let widest = ring
                 .iter()
-                .map(|&r| {
-                    let c = centres[r as usize].expect("inner");
-                    (p - c).angle_between(q - c)
-                })
+                .map(|r| seen_from(centre(r)))
                 .fold(0.0, f64::max);
+            // The deepest vertex (the largest ball) is where a spike meets the axis.
+            let deepest = ring
+                .iter()
+                .map(centre)
+                .max_by(|a, b| a.distance(p).total_cmp(&b.distance(p)))
+                .map_or(0.0, seen_from);
             let start = complex.corners.len();
             complex.corners.extend_from_slice(&ring);
             complex.facets.push(Facet {
                 corners: start..complex.corners.len(),
-                spike: angle < min_angle || p.distance(q) < min_span,
+                spike: widest < min_angle || deepest < min_angle / 2.0 || p.distance(q) < min_span,
             });
         }
     }
@@ -156,8 +166,9 @@ fn inner_complex(
 
 /// The medial axis of the inner Voronoi diagram of the samples (inside: by `solid`): its
 /// facets whose Delaunay edge `p q` is seen from one of their vertices `c` under at
-/// least `min_angle` (radians, `∠ p c q`) and is at least `min_span` long, with the
-/// others collapsed away where they can be.
+/// least `min_angle` (radians, `∠ p c q`), from their deepest vertex under at least
+/// half that, and is at least `min_span` long, with the others collapsed away where
+/// they can be.
 ///
 /// On a surface sampled densely enough, the inner Voronoi diagram has the solid's
 /// topology (its facets, edges and vertices inside; those of the surface's own
