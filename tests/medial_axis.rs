@@ -157,6 +157,32 @@ fn a_spheroid_sampled_finer_than_its_faces_keeps_its_axis_straight() {
 }
 
 #[test]
+fn a_stubby_box_keeps_its_axis() {
+    // A box 3 × 2 × 2: its medial axis is a segment along its length (x from 1 to 2)
+    // with sheets to its edges. Its skeleton's two halves are short next to its
+    // thickness (tubularity below 1), but they are its trunk: it runs along its length
+    // rather than shrinking to a point.
+    let mesh = boxes(&[([0.0, 0.0, 0.0], [3.0, 2.0, 2.0])]);
+    let (_, skeleton) = one_tree(&mesh, 0.1);
+    assert_eq!(skeleton.tip_count(), 2);
+    assert!(skeleton.length() > 2.0, "length {}", skeleton.length());
+    // Through the middle (smoothed at its thickness, 1, it leans toward the corners
+    // its ends run to), out to both ends.
+    let near = |x: f64| {
+        skeleton.points.iter().any(|p| {
+            (p.position[0] - x).abs() < 0.1
+                && (p.position[1] - 1.0).hypot(p.position[2] - 1.0) < 0.25
+        })
+    };
+    assert!(near(1.2) && near(1.5) && near(1.8));
+    let tips = tip_positions(&skeleton);
+    assert!(
+        tips.iter().any(|t| t[0] < 0.8) && tips.iter().any(|t| t[0] > 2.2),
+        "{tips:?}"
+    );
+}
+
+#[test]
 fn a_torus_has_its_core_circle_as_axis_and_skeleton() {
     let (big, small) = (2.0, 0.5);
     let mesh = torus(64, 16, big, small);

@@ -350,14 +350,22 @@ fn a_graph_burns_from_its_tips_by_branch_length() {
     assert_eq!(kept(2.2), positions.len() - 4);
     assert_eq!(kept(2.3), 1);
     assert_eq!(skeleton.pruned(2.3).points[0].position, [-0.5, 0.0, 0.0]);
-    // The same reach everywhere (a constant radius) changes no significance; every
-    // branch's tubularity is then its significance over that radius.
+    // The same reach everywhere (a constant radius) changes no significance; the
+    // shortest branch's tubularity is then its significance over that radius, and the
+    // two that end where the tripod burnt last are its trunk (`inf`: never judged
+    // short for its thickness).
     let radii = vec![0.5; positions.len()];
     let late = Skeleton::from_curves(&positions, &edges, Some(&radii));
     assert_eq!(late.edges, skeleton.edges);
     for (a, b) in late.points.iter().zip(&skeleton.points) {
         assert_eq!(a.significance, b.significance);
-        assert_eq!(a.tubularity, a.significance / 0.5);
+        let trunk = a.position[0] <= 0.0;
+        let expected = if trunk {
+            f64::INFINITY
+        } else {
+            a.significance / 0.5
+        };
+        assert_eq!(a.tubularity, expected, "{:?}", a.position);
         // Without radii, nothing is judged thin.
         assert_eq!(b.tubularity, f64::INFINITY);
     }

@@ -62,6 +62,7 @@ use crate::mesh::{unique_edges, DisjointSets, TriMesh, NONE};
 use crate::options::Options;
 use crate::surface::SurfacePoint;
 use crate::{Error, Euclidean, Field, Metric};
+use std::collections::HashMap;
 
 /// The pruning threshold the command line uses by default, in % of the bounding-box
 /// diagonal of what is skeletonized: branches whose erosion thickness is less go. It is
@@ -188,7 +189,9 @@ pub struct SkeletonPoint {
     /// that one's tubularity. A bump whose branch is short next to the body it stands
     /// on is below 1; a limb many times longer than it is thick, well above. Scale-free,
     /// never larger towards a tip than where the branch ends, `inf` where the branch
-    /// never burns or joins where the radius is 0 (a graph of curves without radii).
+    /// never burns or joins where the radius is 0 (a graph of curves without radii), and
+    /// on a tree's trunk: the two branches that stood longest where it burnt last, so
+    /// that a stubby solid keeps its axis.
     /// [`Skeleton::pruned_tubular`] keeps the points at or above a threshold.
     pub tubularity: f64,
     /// The medial ball's radius there, once [`Skeleton::with_radii`] gave them.
@@ -533,6 +536,7 @@ impl Skeleton {
 /// NaN for vertices the thinning did not use.
 fn tubularity(thinning: &thinning::Thinning, radius: &[f64]) -> Vec<f64> {
     let (significance, ends) = (&thinning.significance, &thinning.ends);
+    let trunk = trunks(thinning);
     let mut out = vec![f64::NAN; significance.len()];
     let mut chain = Vec::new();
     for v in 0..significance.len() {
@@ -558,7 +562,7 @@ fn tubularity(thinning: &thinning::Thinning, radius: &[f64]) -> Vec<f64> {
                 let base = radius[end as usize];
                 // A radius of 0 (curves without radii) or none (no fire came) says
                 // nothing of thickness.
-                let own = if base > 0.0 && base.is_finite() {
+                let own = if base > 0.0 && base.is_finite() && !trunk[u] {
                     significance[u] / base
                 } else {
                     f64::INFINITY
@@ -568,6 +572,66 @@ fn tubularity(thinning: &thinning::Thinning, radius: &[f64]) -> Vec<f64> {
         }
     }
     out
+}
+
+/// Per vertex of a thinning, whether it lies on a tree's trunk: the two branches that
+/// stood longest where the tree burnt last (what never burns there is a point, or a
+/// few joined without a cycle where the fires met at once, unlike a loop). However
+/// short for its thickness, a trunk is the shape's own length: without this, a stubby
+/// solid (a box twice as long as it is wide) would keep a point and no axis.
+fn trunks(thinning: &thinning::Thinning) -> Vec<bool> {
+    let (significance, ends) = (&thinning.significance, &thinning.ends);
+    let never = |v: u32| significance[v as usize] == f64::INFINITY;
+    // What never burns, in pieces joined by curves; a piece with fewer edges than
+    // points is a tree's last remnant, not a loop.
+    let mut pieces = DisjointSets::new(significance.len());
+    let mut edges_in: HashMap<u32, usize> = HashMap::new();
+    let joined: Vec<[u32; 2]> = unique_edges(&thinning.curves)
+        .into_iter()
+        .filter(|&[a, b]| a != b && never(a) && never(b))
+        .collect();
+    for &[a, b] in &joined {
+        pieces.join(a, b);
+    }
+    let mut points_in: HashMap<u32, usize> = HashMap::new();
+    for v in (0..significance.len() as u32).filter(|&v| never(v)) {
+        *points_in.entry(pieces.find(v)).or_default() += 1;
+    }
+    for &[a, _] in &joined {
+        *edges_in.entry(pieces.find(a)).or_default() += 1;
+    }
+    let remnant = |root: u32| edges_in.get(&root).copied().unwrap_or(0) < points_in[&root];
+    // Per remnant, the two largest significances of the branches ending on it (each
+    // branch met once, at the point next to it).
+    let mut longest: HashMap<u32, [f64; 2]> = HashMap::new();
+    for &[a, b] in &thinning.curves {
+        for (u, end) in [(a, b), (b, a)] {
+            if ends[u as usize] != end || never(u) || !never(end) {
+                continue;
+            }
+            let root = pieces.find(end);
+            if !remnant(root) {
+                continue;
+            }
+            let top = longest.entry(root).or_insert([f64::NEG_INFINITY; 2]);
+            let s = significance[u as usize];
+            if s > top[0] {
+                *top = [s, top[0]];
+            } else if s > top[1] {
+                top[1] = s;
+            }
+        }
+    }
+    ends.iter()
+        .enumerate()
+        .map(|(u, &end)| {
+            end != NONE
+                && never(end)
+                && longest
+                    .get(&pieces.find(end))
+                    .is_some_and(|&[first, second]| significance[u] >= second.min(first))
+        })
+        .collect()
 }
 
 /// Per edge of the complex (the mesh's edges, then `wires`), what a tip pays to burn
