@@ -1207,22 +1207,15 @@ fn skeleton_writes_a_connected_obj_graph_and_the_field() {
     // … and, unpruned (by length, tubularity and protrusion), is in the skeleton whole;
     // the JSON graph says so.
     let json = dir.path().join("skeleton.json");
-    let unpruned = |more: &[&str]| {
-        let mut args = vec![
-            "skeleton",
-            SHEET_FINS,
-            "--prune",
-            "0",
-            "--tubular",
-            "0",
-            "--protrusion",
-            "0",
-        ];
+    let length_and_tubularity_off = |more: &[&str]| {
+        let mut args = vec!["skeleton", SHEET_FINS, "--prune", "0", "--tubular", "0"];
         args.extend_from_slice(more);
         args.extend(["-o", json.to_str().unwrap()]);
         geotracks_ok(&args);
         read_json(&json)
     };
+    let unpruned =
+        |more: &[&str]| length_and_tubularity_off(&[&["--protrusion", "0"], more].concat());
     let graph = unpruned(&[]);
     let positions: Vec<Vec<f64>> = graph["points"]
         .as_array()
@@ -1236,19 +1229,7 @@ fn skeleton_writes_a_connected_obj_graph_and_the_field() {
     assert_eq!(graph["components"], 2);
     assert_eq!(graph["cycles"], 0);
     // Pruned by protrusion alone, branches go and the pieces and cycles stay.
-    geotracks_ok(&[
-        "skeleton",
-        SHEET_FINS,
-        "--prune",
-        "0",
-        "--tubular",
-        "0",
-        "--protrusion",
-        "1e9",
-        "-o",
-        json.to_str().unwrap(),
-    ]);
-    let covered = read_json(&json);
+    let covered = length_and_tubularity_off(&["--protrusion", "1e9"]);
     assert!(
         covered["points"].as_array().unwrap().len() < graph["points"].as_array().unwrap().len()
     );
