@@ -217,6 +217,33 @@ fn a_cube_is_unfolded_over_its_edges() {
     check_paths("cube", &field, 5);
 }
 
+/// A vertex where two fans of faces meet and nothing else (a pinch: here each fan is a
+/// triangle given twice, a closed pillow) is where paths from one fan go on into the
+/// other, bending. Every edge at it has two faces and its angles sum to less than a
+/// turn, so it looked like a flat vertex and started no windows: the far corner of the
+/// second pillow came out by the long way round (10.47, not 3.16 + 5.10). Found by the
+/// engine fuzz target.
+#[test]
+fn a_pinch_between_two_fans_is_where_paths_go_on() {
+    let positions = vec![
+        [0.0, 0.0, 0.0],
+        [0.0, 4.0, 0.0],
+        [4.0, 0.0, 0.0],
+        [0.0, 4.0, 2.0],
+        [0.0, 1.0, 3.0],
+    ];
+    let triangles = vec![[1, 4, 2], [3, 0, 4], [2, 3, 1], [1, 4, 2], [4, 3, 0]];
+    let mesh = TriMesh::new(positions, triangles).unwrap();
+    let field = exact_field(&mesh, Euclidean, &[Source::new(0)]);
+    let p = |v: usize| DVec3::from_array(mesh.positions()[v].to_array());
+    let through_the_pinch = p(0).distance(p(4)) + p(4).distance(p(2));
+    assert!(
+        (field.distance(2) - through_the_pinch).abs() <= 1e-12,
+        "{} against {through_the_pinch}",
+        field.distance(2)
+    );
+}
+
 /// A unit cube's surface, each face an `n × n` grid split along its diagonals.
 fn cube(n: usize) -> TriMesh {
     let mut positions: Vec<[f64; 3]> = Vec::new();
