@@ -40,10 +40,10 @@
 //! A window entering an edge from one face continues into every other face around it
 //! (non-manifold edges), ends at the boundary, and vertices on the boundary, on
 //! non-manifold edges or where two fans of faces pinch start windows as saddles do.
-//! Wires carry values between their
-//! vertices, which then start windows. Each window remembers the window it came from,
-//! so a geodesic is traced back along straight lines, with no search: a window is
-//! never cut once carried, so its children's lines all cross it.
+//! Wires carry values between their vertices, which then start windows. Each window
+//! remembers the window it came from, so a geodesic is traced back along straight
+//! lines, with no search: a window is never cut once carried, so its children's lines
+//! all cross it.
 //!
 //! # Cost
 //! A window waiting on its edge is 56 bytes in its edge's list; a field keeps every
