@@ -20,6 +20,7 @@ pub use homology::{graph_betti_numbers, Betti};
 pub(crate) use homology::{unique_edges, CycleSheets};
 pub(crate) use order::{spatial_edge_order, spatial_face_order};
 pub(crate) use report::bounding_box;
+pub(crate) use report::vertex_is_manifold;
 pub use report::{MeshReport, SurfaceReport};
 pub(crate) use sets::DisjointSets;
 pub use topology::{InlineIds, Topology};

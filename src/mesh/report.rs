@@ -1,4 +1,4 @@
-use super::{Betti, DisjointSets, TriMesh};
+use super::{Betti, DisjointSets, Topology, TriMesh};
 use std::collections::HashMap;
 use std::fmt;
 
@@ -212,15 +212,16 @@ fn surfaces(mesh: &TriMesh) -> Vec<SurfaceReport> {
 }
 
 /// Whether the faces around `v` form one fan: joined through edges at `v` that have
-/// exactly two faces, they make one group.
-fn vertex_is_manifold(mesh: &TriMesh, v: u32) -> bool {
+/// exactly two faces, they make one group. A vertex where two fans meet and nothing
+/// else (a pinch) is not, even when every edge at it has two faces.
+pub(crate) fn vertex_is_manifold<T: Topology>(mesh: &T, v: u32) -> bool {
     let faces = mesh.vertex_faces(v);
     if faces.len() <= 1 {
         return true;
     }
     let mut sets = DisjointSets::new(faces.len());
     let local = |f: u32| faces.iter().position(|&g| g == f);
-    for &e in mesh.vertex_edges(v) {
+    for &e in mesh.vertex_edges(v).iter() {
         if let [a, b] = *mesh.edge_faces(e) {
             if let (Some(i), Some(j)) = (local(a), local(b)) {
                 sets.join(i as u32, j as u32);

@@ -62,7 +62,6 @@ use crate::mesh::{unique_edges, DisjointSets, TriMesh, NONE};
 use crate::options::Options;
 use crate::surface::SurfacePoint;
 use crate::{Error, Euclidean, Field, Metric};
-use std::collections::HashMap;
 
 /// The pruning threshold the command line uses by default, in % of the bounding-box
 /// diagonal of what is skeletonized: branches whose erosion thickness is less go. It is
@@ -585,7 +584,6 @@ fn trunks(thinning: &thinning::Thinning) -> Vec<bool> {
     // What never burns, in pieces joined by curves; a piece with fewer edges than
     // points is a tree's last remnant, not a loop.
     let mut pieces = DisjointSets::new(significance.len());
-    let mut edges_in: HashMap<u32, usize> = HashMap::new();
     let joined: Vec<[u32; 2]> = unique_edges(&thinning.curves)
         .into_iter()
         .filter(|&[a, b]| a != b && never(a) && never(b))
@@ -593,27 +591,24 @@ fn trunks(thinning: &thinning::Thinning) -> Vec<bool> {
     for &[a, b] in &joined {
         pieces.join(a, b);
     }
-    let mut points_in: HashMap<u32, usize> = HashMap::new();
+    let (piece, count) = pieces.labels();
+    let mut points_less_edges = vec![0i64; count];
     for v in (0..significance.len() as u32).filter(|&v| never(v)) {
-        *points_in.entry(pieces.find(v)).or_default() += 1;
+        points_less_edges[piece[v as usize] as usize] += 1;
     }
     for &[a, _] in &joined {
-        *edges_in.entry(pieces.find(a)).or_default() += 1;
+        points_less_edges[piece[a as usize] as usize] -= 1;
     }
-    let remnant = |root: u32| edges_in.get(&root).copied().unwrap_or(0) < points_in[&root];
+    let remnant = |v: u32| never(v) && points_less_edges[piece[v as usize] as usize] > 0;
     // Per remnant, the two largest significances of the branches ending on it (each
     // branch met once, at the point next to it).
-    let mut longest: HashMap<u32, [f64; 2]> = HashMap::new();
+    let mut longest = vec![[f64::NEG_INFINITY; 2]; count];
     for &[a, b] in &thinning.curves {
         for (u, end) in [(a, b), (b, a)] {
-            if ends[u as usize] != end || never(u) || !never(end) {
+            if ends[u as usize] != end || never(u) || !remnant(end) {
                 continue;
             }
-            let root = pieces.find(end);
-            if !remnant(root) {
-                continue;
-            }
-            let top = longest.entry(root).or_insert([f64::NEG_INFINITY; 2]);
+            let top = &mut longest[piece[end as usize] as usize];
             let s = significance[u as usize];
             if s > top[0] {
                 *top = [s, top[0]];
@@ -625,11 +620,10 @@ fn trunks(thinning: &thinning::Thinning) -> Vec<bool> {
     ends.iter()
         .enumerate()
         .map(|(u, &end)| {
-            end != NONE
-                && never(end)
-                && longest
-                    .get(&pieces.find(end))
-                    .is_some_and(|&[first, second]| significance[u] >= second.min(first))
+            end != NONE && remnant(end) && {
+                let [first, second] = longest[piece[end as usize] as usize];
+                significance[u] >= second.min(first)
+            }
         })
         .collect()
 }

@@ -134,17 +134,23 @@ impl Peel {
         self.branch.push(tip);
         let (mut previous, mut at) = (NONE, tip);
         loop {
-            let next = self.neighbours[at as usize]
-                .iter()
-                .copied()
-                .find(|&w| w != previous && self.alive[w as usize]);
-            let Some(next) = next else { return false };
+            let Some(next) = self.next_along(at, previous) else {
+                return false;
+            };
             self.branch.push(next);
             if self.degree[next as usize] != 2 {
                 return self.degree[next as usize] > 2;
             }
             (previous, at) = (at, next);
         }
+    }
+
+    /// The live neighbour of `at` other than `previous` (the first, at a junction).
+    fn next_along(&self, at: u32, previous: u32) -> Option<u32> {
+        self.neighbours[at as usize]
+            .iter()
+            .copied()
+            .find(|&w| w != previous && self.alive[w as usize])
     }
 
     /// The protrusion of the branch from `tip` over the radius where it joins; `None`
@@ -174,11 +180,9 @@ impl Peel {
             }
             let (mut previous, mut at) = (joint, first);
             while self.degree[at as usize] == 2 {
-                let next = self.neighbours[at as usize]
-                    .iter()
-                    .copied()
-                    .find(|&w| w != previous && self.alive[w as usize]);
-                let Some(next) = next else { break };
+                let Some(next) = self.next_along(at, previous) else {
+                    break;
+                };
                 if next == joint {
                     break;
                 }

@@ -2,7 +2,7 @@
 //! edges' lengths (checking that faces glue) and the vertices where paths bend.
 
 use crate::flat::{flat_frame, EdgeGlue, P};
-use crate::mesh::{FaceFrame, Topology};
+use crate::mesh::{vertex_is_manifold, FaceFrame, Topology};
 use crate::Error;
 use geotracks_metrics::Metric;
 
@@ -75,7 +75,8 @@ impl ExactTables {
                         .vertex_edges(v)
                         .iter()
                         .any(|&e| mesh.edge_faces(e).len() != 2)
-                    || fans_around(mesh, v) > 1
+                    // A pinch: two fans meeting at the vertex alone.
+                    || !vertex_is_manifold(mesh, v)
             })
             .collect();
         Ok(ExactTables {
@@ -85,34 +86,4 @@ impl ExactTables {
             lengths,
         })
     }
-}
-
-/// How many fans of faces meet at `v`: its faces, joined where two share an edge at
-/// `v`. More than one (two cones touching at their apexes, or faces given twice, each
-/// pair closed on itself) makes `v` a pinch that paths go through, bending, from one
-/// fan to another, although every edge at it has two faces.
-fn fans_around<T: Topology>(mesh: &T, v: u32) -> usize {
-    let faces: Vec<u32> = mesh.vertex_faces(v).iter().copied().collect();
-    let mut parent: Vec<usize> = (0..faces.len()).collect();
-    fn root(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
-        }
-        i
-    }
-    for &e in mesh.vertex_edges(v).iter() {
-        let around: Vec<usize> = mesh
-            .edge_faces(e)
-            .iter()
-            .filter_map(|f| faces.iter().position(|g| g == f))
-            .collect();
-        for pair in around.windows(2) {
-            let (a, b) = (root(&mut parent, pair[0]), root(&mut parent, pair[1]));
-            parent[a] = b;
-        }
-    }
-    (0..faces.len())
-        .filter(|&i| root(&mut parent, i) == i)
-        .count()
 }
