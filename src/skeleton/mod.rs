@@ -577,7 +577,7 @@ fn tubularity(thinning: &thinning::Thinning, radius: &[f64]) -> Vec<f64> {
 /// stood longest where the tree burnt last (what never burns there is a point, or a
 /// few joined without a cycle where the fires met at once, unlike a loop). However
 /// short for its thickness, a trunk is the shape's own length: without this, a stubby
-/// solid (a box twice as long as it is wide) would keep a point and no axis.
+/// solid (a box 3 × 2 × 2) would keep a point and no axis.
 fn trunks(thinning: &thinning::Thinning) -> Vec<bool> {
     let (significance, ends) = (&thinning.significance, &thinning.ends);
     let never = |v: u32| significance[v as usize] == f64::INFINITY;
