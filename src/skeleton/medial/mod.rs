@@ -23,11 +23,11 @@
 //!    its deepest vertex (the largest ball, where a spike meets the axis) sees it
 //!    under less than half that, or when `p` and `q` are less than
 //!    [`MedialAxisOptions::min_span`] spacings apart (a medial ball touches the surface
-//!    at two far-apart points). Spikes are removed
-//!    only through a free edge, one after the other (elementary collapses), so the
-//!    filter opens no hole and splits nothing: the axis keeps the topology of the inner
-//!    Voronoi diagram, which is the solid's where the sampling is dense for the shape
-//!    (where a part is only a few samples across, small cycles remain);
+//!    at two far-apart points). Spikes are removed only through a free edge, one after
+//!    the other (elementary collapses), so the filter opens no hole and splits
+//!    nothing: the axis keeps the topology of the inner Voronoi diagram, which is the
+//!    solid's where the sampling is dense for the shape (where a part is only a few
+//!    samples across, small cycles remain);
 //! 5. circumcentres closer than rounding can tell apart (five samples or more on one
 //!    sphere: a grid on a flat face, the corners of a mesh's planar quads) are one
 //!    vertex, and the facets around it are split at the vertices along their sides and
@@ -88,9 +88,9 @@ pub struct MedialAxisOptions {
     pub spacing: Option<f64>,
     /// The smallest angle (degrees, in (0, 180)) under which a kept Voronoi facet's
     /// Delaunay edge is seen from one of its vertices; from its deepest vertex (the
-    /// largest ball), it must be seen under at least half that. Larger drops more of the spikes
-    /// toward the surface and, past a point, parts of the axis where the shape narrows
-    /// quickly.
+    /// largest ball), it must be seen under at least half that. Larger drops more of
+    /// the spikes toward the surface and, past a point, parts of the axis where the
+    /// shape narrows quickly.
     pub min_angle_degrees: f64,
     /// The shortest distance (in units of the spacing) between the two samples a kept
     /// Voronoi facet separates. A medial ball touches the surface at points far apart;
