@@ -2,22 +2,34 @@
 //! small holes where its sheets are thin (see [`crate::skeleton::medial`]), and thinning keeps a
 //! cycle around each; the solid has as many independent cycles as its genus.
 
+use super::protrusion::Peel;
 use super::{Skeleton, SkeletonPoint};
-use crate::mesh::DisjointSets;
+use crate::mesh::{unique_edges, DisjointSets};
 use crate::surface::SurfacePoint;
 use glam::DVec3;
 
 impl Skeleton {
-    /// The skeleton with at most `max_cycles` independent cycles: the graph's spanning
-    /// forest of widest edges (an edge's width: the smaller `width` of its two points,
-    /// such as their medial radius), plus the `max_cycles` edges outside it whose cycles
-    /// through the forest are the longest. A cycle around a small hole in the axis is
-    /// short and cut where it is narrowest; a handle of the shape is a long loop, and
-    /// kept. The branches the cuts leave are burnt again from their new tips along the
-    /// graph (their significance: the length burnt, as [`Skeleton::from_curves`]
-    /// gives it; tubularity `inf`), then pruned at `prune` ([`Skeleton::pruned`]); other
-    /// points keep their significance and tubularity. A skeleton with no more cycles
-    /// than `max_cycles` is returned as it is.
+    /// The skeleton with at most `max_cycles` independent cycles, none of them `filled`.
+    ///
+    /// Which cycles stay: take the graph's spanning forest of widest edges (an edge's
+    /// width: the smaller `width` of its two points, their medial radius), and of the
+    /// edges outside it, keep the `max_cycles` whose cycles through the forest are the
+    /// longest, of those whose cycle (its points in order, as indices) is not `filled`
+    /// (such as a loop whose disc the medial balls fill: it goes round no tunnel of the
+    /// solid). A cycle around a small hole in the axis is short; a handle of the shape
+    /// is a long loop, and kept.
+    ///
+    /// How the others open, one at a time, shortest first: of the branches along the
+    /// cycle (the paths between points of three or more edges), the one whose balls
+    /// reach least out of the rest's goes whole when it reaches out by less than
+    /// `protrusion` times the larger `width` at its ends (see
+    /// [`Skeleton::pruned_protruding`]): a strand that a hole split from the body adds
+    /// nothing to it. Otherwise the cycle is cut where it is narrowest, and the two
+    /// branches the cut leaves are burnt again from their new tips along the graph
+    /// (their significance: the length burnt, as [`Skeleton::from_curves`] gives it;
+    /// tubularity `inf`), then pruned at `prune` ([`Skeleton::pruned`]): a limb that a
+    /// hole joined to another part keeps its length. Other points keep their
+    /// significance and tubularity. A skeleton with nothing to cut is returned as it is.
     ///
     /// # Panics
     /// If `width` panics for a point index below `self.points.len()`.
@@ -26,9 +38,11 @@ impl Skeleton {
         self,
         max_cycles: usize,
         width: impl Fn(usize) -> f64,
+        mut filled: impl FnMut(&[u32]) -> bool,
+        protrusion: f64,
         prune: f64,
     ) -> Skeleton {
-        if self.cycle_count() <= max_cycles {
+        if self.cycle_count() == 0 {
             return self;
         }
         let n = self.points.len();
@@ -54,22 +68,110 @@ impl Skeleton {
         }
         let forest = Forest::new(&tree, |a, b| length([a, b]));
         let mut loops: Vec<(f64, [u32; 2])> = outside
-            .into_iter()
-            .map(|e| (forest.path_length(e[0], e[1]) + length(e), e))
+            .iter()
+            .map(|&e| (forest.path_length(e[0], e[1]) + length(e), e))
             .collect();
         loops.sort_by(|x, y| y.0.total_cmp(&x.0));
-        let mut edges: Vec<[u32; 2]> = (0..n as u32)
+        let mut kept = 0;
+        let mut cuts = Vec::new();
+        for &(_, [a, b]) in &loops {
+            if kept < max_cycles && !filled(&forest.path(a, b)) {
+                kept += 1;
+            } else {
+                cuts.push([a, b]);
+            }
+        }
+        if cuts.is_empty() {
+            return self;
+        }
+        cuts.reverse();
+        let (edges, dropped) = self
+            .opened(&cuts, &width, protrusion)
+            .filter(|(edges, dropped)| {
+                // Each opening takes one cycle and leaves the graph in one piece; should
+                // the branches of different cycles have overlapped, cut edges only.
+                let trial = self.on_edges(edges.clone()).keep(|i| !dropped[i]);
+                trial.cycle_count() == kept && trial.component_count() == self.component_count()
+            })
+            .unwrap_or_else(|| {
+                let cut: Vec<[u32; 2]> = cuts.iter().map(|&[a, b]| [a.min(b), a.max(b)]).collect();
+                let edges = unique_edges(&self.edges)
+                    .into_iter()
+                    .filter(|e| !cut.contains(e))
+                    .collect();
+                (edges, vec![false; n])
+            });
+        let mut cut = self.reburnt(edges);
+        cut.raise_towards_the_core();
+        cut.keep(|i| !dropped[i]).pruned(prune)
+    }
+
+    /// The graph's edges once each of `cuts` (an edge on a cycle) has opened its cycle,
+    /// in turn, as [`Skeleton::with_cycles_cut`] says; and the points of the branches
+    /// that went. `None` when a cut's edge no longer lies on a cycle.
+    fn opened(
+        &self,
+        cuts: &[[u32; 2]],
+        width: &impl Fn(usize) -> f64,
+        protrusion: f64,
+    ) -> Option<(Vec<[u32; 2]>, Vec<bool>)> {
+        let mut around: Vec<Vec<u32>> = vec![Vec::new(); self.points.len()];
+        for [a, b] in unique_edges(&self.edges) {
+            if a != b {
+                around[a as usize].push(b);
+                around[b as usize].push(a);
+            }
+        }
+        let mut peel = Peel::new(self, width);
+        let mut dropped = vec![false; self.points.len()];
+        for &[a, b] in cuts {
+            // The branch the cut lies on: from each end of the cut edge, away from the
+            // other, to the first point of other than two edges (none on a loop
+            // without one, which only opens).
+            let mut inner = Vec::new();
+            let mut ring = false;
+            let mut base = 0.0_f64;
+            for (start, other) in [(a, b), (b, a)] {
+                let (mut previous, mut at) = (other, start);
+                while !ring && around[at as usize].len() == 2 {
+                    ring = inner.contains(&at);
+                    inner.push(at);
+                    let next = around[at as usize][usize::from(around[at as usize][0] == previous)];
+                    (previous, at) = (at, next);
+                }
+                base = base.max(width(at as usize));
+            }
+            if !ring && !inner.is_empty() && peel.reach_out(&inner) < protrusion * base {
+                peel.forget(&inner);
+                for &p in &inner {
+                    dropped[p as usize] = true;
+                    for w in std::mem::take(&mut around[p as usize]) {
+                        around[w as usize].retain(|&x| x != p);
+                    }
+                }
+            } else {
+                around[a as usize].retain(|&x| x != b);
+                around[b as usize].retain(|&x| x != a);
+            }
+        }
+        let edges = (0..self.points.len() as u32)
             .flat_map(|a| {
-                tree[a as usize]
+                around[a as usize]
                     .iter()
                     .filter(move |&&b| a < b)
                     .map(move |&b| [a, b])
             })
             .collect();
-        edges.extend(loops.iter().take(max_cycles).map(|&(_, e)| e));
-        let mut cut = self.reburnt(edges);
-        cut.raise_towards_the_core();
-        cut.pruned(prune)
+        Some((edges, dropped))
+    }
+
+    /// The same points on `edges`.
+    fn on_edges(&self, edges: Vec<[u32; 2]>) -> Skeleton {
+        Skeleton {
+            points: self.points.clone(),
+            edges,
+            ..*self
+        }
     }
 
     /// Raises each point's significance to at least that of every point beyond it, seen
@@ -185,6 +287,28 @@ impl Forest {
         forest
     }
 
+    /// The points of the forest's path from `a` to `b` (of one tree), in order.
+    fn path(&self, mut a: u32, mut b: u32) -> Vec<u32> {
+        let (mut from_a, mut from_b) = (Vec::new(), Vec::new());
+        while self.depth[a as usize] > self.depth[b as usize] {
+            from_a.push(a);
+            a = self.parent[a as usize];
+        }
+        while self.depth[b as usize] > self.depth[a as usize] {
+            from_b.push(b);
+            b = self.parent[b as usize];
+        }
+        while a != b {
+            from_a.push(a);
+            from_b.push(b);
+            a = self.parent[a as usize];
+            b = self.parent[b as usize];
+        }
+        from_a.push(a);
+        from_a.extend(from_b.into_iter().rev());
+        from_a
+    }
+
     /// The length of the forest's path between `a` and `b` (of one tree).
     fn path_length(&self, mut a: u32, mut b: u32) -> f64 {
         let total = self.height[a as usize] + self.height[b as usize];
@@ -246,12 +370,110 @@ mod tests {
             edges,
             ..Skeleton::default()
         };
-        let cut = skeleton.with_cycles_cut(0, |_| 1.0, 20.0);
+        let cut = skeleton.with_cycles_cut(0, |_| 1.0, |_| false, 0.0, 20.0);
         assert_eq!((cut.component_count(), cut.cycle_count()), (1, 0));
         assert!(
             cut.points.len() >= 20,
             "the branches stay: {}",
             cut.points.len()
+        );
+    }
+
+    /// A graph of polylines through the given corners, each with one radius, joined
+    /// where they share a corner: a trunk of radius 1 along x from -5 to 5 (points every
+    /// 0.25), and `others`.
+    fn trunk_and(others: &[(&[[f64; 2]], f64)]) -> (Skeleton, Vec<f64>) {
+        let mut points: Vec<[f64; 3]> = Vec::new();
+        let mut radii = Vec::new();
+        let mut edges = Vec::new();
+        let mut id = |p: [f64; 2], r: f64, points: &mut Vec<[f64; 3]>| {
+            let at = [p[0], p[1], 0.0];
+            if let Some(i) = points
+                .iter()
+                .position(|&q| DVec3::from(q).distance(at.into()) < 1e-9)
+            {
+                return i as u32;
+            }
+            points.push(at);
+            radii.push(r);
+            points.len() as u32 - 1
+        };
+        let trunk: &[[f64; 2]] = &[[-5.0, 0.0], [-1.0, 0.0], [1.0, 0.0], [5.0, 0.0]];
+        for &(corners, r) in std::iter::once(&(trunk, 1.0)).chain(others) {
+            for pair in corners.windows(2) {
+                let (a, b) = (
+                    DVec3::new(pair[0][0], pair[0][1], 0.0),
+                    DVec3::new(pair[1][0], pair[1][1], 0.0),
+                );
+                let steps = (a.distance(b) / 0.25).round().max(1.0) as usize;
+                let mut previous = id(pair[0], r, &mut points);
+                for k in 1..=steps {
+                    let q = a.lerp(b, k as f64 / steps as f64);
+                    let next = id([q.x, q.y], r, &mut points);
+                    edges.push([previous, next]);
+                    previous = next;
+                }
+            }
+        }
+        (Skeleton::from_curves(&points, &edges, None), radii)
+    }
+
+    /// A second strand beside the trunk (a hole in a sheet split it off), its balls
+    /// inside the trunk's: the cycle opens by taking the strand whole, with no stubs
+    /// left; told to keep every branch (protrusion 0), the cut leaves two.
+    #[test]
+    fn a_strand_inside_the_body_goes_whole() {
+        let strand: &[[f64; 2]] = &[[-1.0, 0.0], [-0.75, 0.3], [0.75, 0.3], [1.0, 0.0]];
+        let (skeleton, radii) = trunk_and(&[(strand, 0.8)]);
+        assert_eq!(skeleton.cycle_count(), 1);
+        let width = |i: usize| radii[i];
+        let opened = skeleton
+            .clone()
+            .with_cycles_cut(0, width, |_| false, 0.5, 0.0);
+        assert_eq!((opened.cycle_count(), opened.component_count()), (0, 1));
+        assert_eq!(opened.tip_count(), 2);
+        assert!(
+            opened.points.iter().all(|p| p.position[1] == 0.0),
+            "the trunk is left"
+        );
+        // Filled, the cycle opens though one could stay.
+        let filled = skeleton
+            .clone()
+            .with_cycles_cut(1, width, |_| true, 0.5, 0.0);
+        assert_eq!(filled, opened);
+        assert_eq!(
+            skeleton
+                .clone()
+                .with_cycles_cut(1, width, |_| false, 0.5, 0.0),
+            skeleton
+        );
+        let cut = skeleton.with_cycles_cut(0, width, |_| false, 0.0, 0.0);
+        assert_eq!((cut.cycle_count(), cut.tip_count()), (0, 4));
+    }
+
+    /// A limb that a hole joined back to the trunk through a narrow neck: it reaches far
+    /// out of the trunk's balls, so the cycle is cut at the neck (its narrowest point) and
+    /// the limb keeps its length; the stub on the trunk side is shorter than the pruning
+    /// threshold.
+    #[test]
+    fn a_limb_joined_back_opens_at_its_neck() {
+        let limb: &[[f64; 2]] = &[[-1.0, 0.0], [-1.0, 3.0], [1.0, 3.0], [1.0, 1.0]];
+        let neck: &[[f64; 2]] = &[[1.0, 1.0], [1.0, 0.0]];
+        let (skeleton, mut radii) = trunk_and(&[(limb, 0.4), (neck, 0.3)]);
+        let narrowest = skeleton
+            .points
+            .iter()
+            .position(|p| p.position == [1.0, 0.75, 0.0]);
+        radii[narrowest.expect("on the neck")] = 0.05;
+        let opened = skeleton.with_cycles_cut(0, |i| radii[i], |_| false, 0.5, 1.5);
+        assert_eq!((opened.cycle_count(), opened.component_count()), (0, 1));
+        assert_eq!(opened.tip_count(), 3, "the trunk's ends and the limb's");
+        assert!(opened.points.iter().any(|p| p.position == [1.0, 1.5, 0.0]));
+        let neck_left =
+            |p: &SkeletonPoint| p.position[0] == 1.0 && (0.1..0.7).contains(&p.position[1]);
+        assert!(
+            !opened.points.iter().any(neck_left),
+            "the stub below the neck is pruned"
         );
     }
 }

@@ -8,9 +8,10 @@
 //! simplices that a collapse may remove, and pruning removes only branches from their
 //! tips. How it works is in the `thinning` module's notes.
 //!
-//! A closed surface mesh gets its medial axis from [`medial`] first; that axis has a
-//! few small holes the solid does not, which
-//! [`medial_axis_skeleton_with_cycles`] cuts.
+//! A medial axis can have holes that are no tunnel of the solid (its balls fill them),
+//! and a closed surface mesh gets its medial axis from [`medial`] first, which has a
+//! few small holes the solid does not: [`medial_axis_skeleton_with_cycles`] opens the
+//! loops round them.
 //!
 //! ```
 //! use geotracks::{mesh::TriMesh, skeleton::Skeleton, Euclidean, Options};
@@ -45,6 +46,7 @@
 //! # Ok::<(), geotracks::Error>(())
 //! ```
 
+mod balls;
 mod cycles;
 mod geometry;
 mod grassfire;
@@ -62,6 +64,8 @@ use crate::mesh::{unique_edges, DisjointSets, TriMesh, NONE};
 use crate::options::Options;
 use crate::surface::SurfacePoint;
 use crate::{Error, Euclidean, Field, Metric};
+use balls::Balls;
+use glam::DVec3;
 
 /// The pruning threshold the command line uses by default, in % of the bounding-box
 /// diagonal of what is skeletonized: branches whose erosion thickness is less go. It is
@@ -669,7 +673,9 @@ pub enum Burn {
 
 /// The skeleton of a medial axis read from a `.ma` file, ready to use:
 /// [`Skeleton::of_medial_axis`] pruned as `pruning` says (erosion thickness, then
-/// tubularity, then protrusion), with its points placed on the axis
+/// tubularity, then protrusion), with the loops whose disc the medial balls fill opened
+/// (holes of the axis that are no tunnel of the solid, see
+/// [`medial_axis_skeleton_with_cycles`]), its points placed on the axis
 /// ([`Skeleton::placed`], [`Placement::OnAxis`]) and given the medial radii. Also
 /// returns the grassfire's distance field for [`Burn::Boundary`] on an axis with sheets
 /// and a border.
@@ -685,13 +691,21 @@ pub fn medial_axis_skeleton(
     medial_axis_skeleton_with_cycles(axis, burn, options, pruning, usize::MAX, Placement::OnAxis)
 }
 
-/// [`medial_axis_skeleton`] with at most `max_cycles` independent cycles: after pruning
-/// by erosion thickness and tubularity, extra cycles are cut
-/// ([`Skeleton::with_cycles_cut`], widest by medial radius) and what the cuts leave
-/// pruned again; then branches are pruned by protrusion and the points placed as
-/// `placement` says. For an axis computed from a sampled surface
-/// ([`crate::skeleton::medial::medial_axis`]), whose sheets have small holes that the
-/// solid does not: `max_cycles` is then the solid's genus.
+/// [`medial_axis_skeleton`] with at most `max_cycles` independent cycles, placed as
+/// `placement` says. In order:
+/// 1. pruned by erosion thickness, tubularity and protrusion (loops never open);
+/// 2. the loops beyond `max_cycles`, and every loop whose disc the medial balls fill
+///    (sampled every eighth of the median radius round it: a tunnel narrower than that
+///    may pass unseen), opened ([`Skeleton::with_cycles_cut`]): a strand the hole split
+///    from the body goes whole, a limb the hole joined to another part is cut where the
+///    loop is narrowest, and what the cuts leave is pruned by erosion thickness;
+/// 3. pruned by protrusion again (the pieces the cuts left), and placed.
+///
+/// The thinned axis has the axis's b₁ cycles; the solid has a tunnel only where the
+/// balls leave a hole open. Approximate axes have holes where a sheet is thin (the
+/// shared `cow.ma` two, one where the tail lies against the rump), and an axis computed
+/// from a sampled surface ([`crate::skeleton::medial::medial_axis`]) more: `max_cycles`
+/// is then the solid's genus.
 ///
 /// # Errors
 /// As [`Skeleton::of_medial_axis`].
@@ -711,8 +725,29 @@ pub fn medial_axis_skeleton_with_cycles(
         SurfacePoint::Vertex(v) => axis.radii[v as usize],
         _ => 0.0,
     };
-    let on: Vec<SurfacePoint> = skeleton.points.iter().map(|p| p.on).collect();
-    let skeleton = skeleton.with_cycles_cut(max_cycles, |i| radius_at(on[i]), prune);
+    let skeleton =
+        skeleton.pruned_protruding(pruning.protrusion, |i| radius_at(skeleton.points[i].on));
+    let radius: Vec<f64> = skeleton.points.iter().map(|p| radius_at(p.on)).collect();
+    let at: Vec<DVec3> = skeleton.points.iter().map(|p| p.position.into()).collect();
+    // A loop whose disc the balls fill goes round no tunnel of the solid: a hole of the
+    // axis where a sheet is thin, which approximate axes have (the cow's has two).
+    let balls = (skeleton.cycle_count() > 0).then(|| {
+        Balls::all(
+            axis.positions
+                .iter()
+                .copied()
+                .zip(axis.radii.iter().copied()),
+        )
+    });
+    let filled = |ring: &[u32]| {
+        let points: Vec<DVec3> = ring.iter().map(|&i| at[i as usize]).collect();
+        let radii = ring.iter().map(|&i| radius[i as usize]).collect();
+        balls
+            .as_ref()
+            .is_some_and(|balls| balls.fill_loop(&points, radii))
+    };
+    let skeleton =
+        skeleton.with_cycles_cut(max_cycles, |i| radius[i], filled, pruning.protrusion, prune);
     let skeleton =
         skeleton.pruned_protruding(pruning.protrusion, |i| radius_at(skeleton.points[i].on));
     Ok((skeleton.placed(axis, placement), field))

@@ -2,6 +2,7 @@
 //! polyline, smoothed at the scale of the shape's thickness (through junctions), and
 //! then kept on the axis or moved to the centre of the shape's cross-section.
 
+use super::balls::Balls;
 use super::geometry::{nearby_faces, share_a_face, vertex_of};
 use super::thinning::Ordered;
 use super::{Skeleton, SkeletonPoint};
@@ -76,7 +77,7 @@ impl Skeleton {
                 .smoothed(mesh, Skeleton::SMOOTHING)
                 .with_radii(Some(mesh), &axis.radii),
             Placement::Centred => {
-                let centred = skeleton.centred(axis, &lookup, &smooth);
+                let centred = skeleton.centred(&lookup, &smooth);
                 let smooth = skeleton.smoothed_by_radius(&centred, &movable);
                 let points = skeleton
                     .points
@@ -235,7 +236,7 @@ impl Skeleton {
     /// Per point at `at`, the centroid of the shape's cross-section across the curve
     /// there (see [`Placement::Centred`]); tips, junctions, points without a radius and
     /// points whose cross-section is wider than eight radii stay.
-    fn centred(&self, axis: &MedialAxis, lookup: &AxisLookup, at: &[DVec3]) -> Vec<DVec3> {
+    fn centred(&self, lookup: &AxisLookup, at: &[DVec3]) -> Vec<DVec3> {
         let neighbours = self.adjacency();
         let degree = self.degrees();
         let nodes: Vec<u32> = (0..self.points.len() as u32)
@@ -267,7 +268,7 @@ impl Skeleton {
                 }
                 let centre = [2.0, 4.0, 8.0]
                     .iter()
-                    .find_map(|&half| section.centroid(axis, lookup, at[i], tangent, half * r))
+                    .find_map(|&half| section.centroid(lookup, at[i], tangent, half * r))
                     .unwrap_or(at[i]);
                 // A section that reaches a neighbouring part pulls its centroid out of
                 // the branch: the move is kept within the point's own ball, and fades
@@ -328,14 +329,10 @@ impl Skeleton {
 
 /// The axis's vertices in an R-tree (`rstar`: a kept crate, bulk-loaded, for nearest
 /// queries): where a point that smoothing moved off the axis finds the axis again; and
-/// the medial balls thinned out for cross-sections.
+/// the medial balls of its sheets, thinned, for cross-sections.
 struct AxisLookup {
     tree: RTree<GeomWithData<[f64; 3], u32>>,
-    /// Balls, largest first, none whose centre lies within a quarter of its radius of
-    /// a larger kept one's: neighbouring balls of a medial axis are nearly the same
-    /// ball, and a cross-section drawn with these differs from the whole union by at
-    /// most a quarter radius at its rim.
-    balls: RTree<GeomWithData<[f64; 3], u32>>,
+    balls: Balls,
     /// Per vertex, the connected part of the axis (sheets and curves) it belongs to: a
     /// point is put back on its own part, never on another one that passes near.
     part: Vec<u32>,
@@ -343,7 +340,6 @@ struct AxisLookup {
 
 impl AxisLookup {
     fn new(mesh: &TriMesh, axis: &MedialAxis) -> AxisLookup {
-        let radii = &axis.radii;
         let mut sets = DisjointSets::new(mesh.vertex_count());
         for t in mesh.triangles() {
             sets.join(t[0], t[1]);
@@ -356,20 +352,11 @@ impl AxisLookup {
             .filter(|&v| !mesh.vertex_faces(v).is_empty())
             .map(|v| GeomWithData::new(mesh.position(v).to_array(), v))
             .collect();
-        let mut by_size = vertices.clone();
-        by_size.sort_by(|a, b| radii[b.data as usize].total_cmp(&radii[a.data as usize]));
-        let mut balls = RTree::new();
-        for ball in by_size {
-            let r = radii[ball.data as usize];
-            if r > 0.0
-                && balls
-                    .locate_within_distance(*ball.geom(), 0.0625 * r * r)
-                    .next()
-                    .is_none()
-            {
-                balls.insert(ball);
-            }
-        }
+        let balls = Balls::thinned(
+            vertices
+                .iter()
+                .map(|v| (*v.geom(), axis.radii[v.data as usize])),
+        );
         AxisLookup {
             tree: RTree::bulk_load(vertices),
             balls,
@@ -481,7 +468,6 @@ impl Section {
     /// where branches meet) or `p` is in no ball.
     fn centroid(
         &mut self,
-        axis: &MedialAxis,
         lookup: &AxisLookup,
         p: DVec3,
         tangent: DVec3,
@@ -495,12 +481,8 @@ impl Section {
         // is (on a medial axis, whose balls overlap their neighbours') covered by
         // nearer ones.
         let reach = 2.0 * half;
-        for ball in lookup
-            .balls
-            .locate_within_distance(p.to_array(), reach * reach)
-        {
-            let c = DVec3::from(*ball.geom()) - p;
-            let r = axis.radii[ball.data as usize];
+        for (centre, r) in lookup.balls.near(p, reach) {
+            let c = centre - p;
             let d = c.dot(tangent);
             if d.abs() >= r {
                 continue;

@@ -86,7 +86,7 @@ impl Skeleton {
 }
 
 /// The skeleton's graph as branches are peeled off it, with each point's nearest cover.
-struct Peel {
+pub(super) struct Peel {
     position: Vec<DVec3>,
     radius: Vec<f64>,
     significance: Vec<f64>,
@@ -104,7 +104,7 @@ struct Peel {
 }
 
 impl Peel {
-    fn new(skeleton: &Skeleton, radius: &impl Fn(usize) -> f64) -> Peel {
+    pub(super) fn new(skeleton: &Skeleton, radius: &impl Fn(usize) -> f64) -> Peel {
         let n = skeleton.points.len();
         let mut neighbours = vec![Vec::new(); n];
         for [a, b] in unique_edges(&skeleton.edges) {
@@ -212,14 +212,22 @@ impl Peel {
     /// How far the balls of `self.branch` (less the point it joins) reach out of the
     /// balls of the rest.
     fn protrusion(&mut self) -> f64 {
+        let branch = std::mem::take(&mut self.branch);
+        let reach = self.reach_out(&branch[..branch.len() - 1]);
+        self.branch = branch;
+        reach
+    }
+
+    /// How far the balls of the live `points` reach out of the balls of the other live
+    /// points: max over p of min over q of (|p − q| + r_p − r_q).
+    pub(super) fn reach_out(&mut self, points: &[u32]) -> f64 {
         self.walk += 1;
-        let inner = self.branch.len() - 1;
-        for &p in &self.branch[..inner] {
+        for &p in points {
             self.in_branch[p as usize] = self.walk;
         }
         let mut reach = f64::NEG_INFINITY;
-        for k in 0..inner {
-            let p = self.branch[k] as usize;
+        for &p in points {
+            let p = p as usize;
             let (_, q) = self.cover[p];
             if q == NONE || !self.alive[q as usize] || self.in_branch[q as usize] == self.walk {
                 self.cover[p] = self.nearest_cover(p);
@@ -227,6 +235,19 @@ impl Peel {
             reach = reach.max(self.radius[p] + self.cover[p].0);
         }
         reach
+    }
+
+    /// Removes `points` from the graph.
+    pub(super) fn forget(&mut self, points: &[u32]) {
+        for &p in points {
+            let p = p as usize;
+            self.alive[p] = false;
+            for &w in &self.neighbours[p] {
+                if self.alive[w as usize] {
+                    self.degree[w as usize] -= 1;
+                }
+            }
+        }
     }
 
     /// Min over the live points outside the current branch of (|p − q| − r_q).
@@ -247,17 +268,11 @@ impl Peel {
     /// Removes the branch from `tip`, keeping the point it joins, which it returns.
     fn remove_branch(&mut self, tip: u32) -> u32 {
         self.walk_branch(tip);
-        let inner = self.branch.len() - 1;
-        for k in 0..inner {
-            let p = self.branch[k] as usize;
-            self.alive[p] = false;
-            for &w in &self.neighbours[p] {
-                if self.alive[w as usize] {
-                    self.degree[w as usize] -= 1;
-                }
-            }
-        }
-        self.branch[inner]
+        let branch = std::mem::take(&mut self.branch);
+        let (&joint, inner) = branch.split_last().expect("a branch has two points");
+        self.forget(inner);
+        self.branch = branch;
+        joint
     }
 }
 
