@@ -54,6 +54,7 @@ pub mod medial;
 mod placement;
 mod protrusion;
 mod thinning;
+mod trunk;
 
 pub use geometry::turning_per_length;
 pub use grassfire::Grassfire;
@@ -381,8 +382,22 @@ impl Skeleton {
     /// Both prunings together keep a branch that is long both in length and for its
     /// thickness. `min` ≤ 0 (or NaN) removes nothing.
     pub fn pruned_tubular(&self, min: f64) -> Skeleton {
+        self.pruned_tubular_but(min, &[])
+    }
+
+    /// [`Skeleton::pruned_tubular`], keeping the points `kept` marks (one flag per
+    /// point, or none), unless that would leave the graph in more pieces.
+    fn pruned_tubular_but(&self, min: f64, kept: &[bool]) -> Skeleton {
         let min = if min.is_nan() { 0.0 } else { min };
-        self.keep(|i| self.points[i].tubularity >= min)
+        let tubular = |i: usize| self.points[i].tubularity >= min;
+        if kept.is_empty() {
+            return self.keep(tubular);
+        }
+        let with_kept = self.keep(|i| tubular(i) || kept[i]);
+        if with_kept.component_count() != self.component_count() {
+            return self.keep(tubular);
+        }
+        with_kept
     }
 
     /// Independent cycles of the graph: edges − points + components.
@@ -539,7 +554,7 @@ impl Skeleton {
 /// NaN for vertices the thinning did not use.
 fn tubularity(thinning: &thinning::Thinning, radius: &[f64]) -> Vec<f64> {
     let (significance, ends) = (&thinning.significance, &thinning.ends);
-    let trunk = trunks(thinning);
+    let trunk = trunk::of_thinning(thinning);
     let mut out = vec![f64::NAN; significance.len()];
     let mut chain = Vec::new();
     for v in 0..significance.len() {
@@ -575,61 +590,6 @@ fn tubularity(thinning: &thinning::Thinning, radius: &[f64]) -> Vec<f64> {
         }
     }
     out
-}
-
-/// Per vertex of a thinning, whether it lies on a tree's trunk: the two branches that
-/// stood longest where the tree burnt last (what never burns there is a point, or a
-/// few joined without a cycle where the fires met at once, unlike a loop). However
-/// short for its thickness, a trunk is the shape's own length: without this, a stubby
-/// solid (a box 3 × 2 × 2) would keep a point and no axis.
-fn trunks(thinning: &thinning::Thinning) -> Vec<bool> {
-    let (significance, ends) = (&thinning.significance, &thinning.ends);
-    let never = |v: u32| significance[v as usize] == f64::INFINITY;
-    // What never burns, in pieces joined by curves; a piece with fewer edges than
-    // points is a tree's last remnant, not a loop.
-    let mut pieces = DisjointSets::new(significance.len());
-    let joined: Vec<[u32; 2]> = unique_edges(&thinning.curves)
-        .into_iter()
-        .filter(|&[a, b]| a != b && never(a) && never(b))
-        .collect();
-    for &[a, b] in &joined {
-        pieces.join(a, b);
-    }
-    let (piece, count) = pieces.labels();
-    let mut points_less_edges = vec![0i64; count];
-    for v in (0..significance.len() as u32).filter(|&v| never(v)) {
-        points_less_edges[piece[v as usize] as usize] += 1;
-    }
-    for &[a, _] in &joined {
-        points_less_edges[piece[a as usize] as usize] -= 1;
-    }
-    let remnant = |v: u32| never(v) && points_less_edges[piece[v as usize] as usize] > 0;
-    // Per remnant, the two largest significances of the branches ending on it (each
-    // branch met once, at the point next to it).
-    let mut longest = vec![[f64::NEG_INFINITY; 2]; count];
-    for &[a, b] in &thinning.curves {
-        for (u, end) in [(a, b), (b, a)] {
-            if ends[u as usize] != end || never(u) || !remnant(end) {
-                continue;
-            }
-            let top = &mut longest[piece[end as usize] as usize];
-            let s = significance[u as usize];
-            if s > top[0] {
-                *top = [s, top[0]];
-            } else if s > top[1] {
-                top[1] = s;
-            }
-        }
-    }
-    ends.iter()
-        .enumerate()
-        .map(|(u, &end)| {
-            end != NONE && remnant(end) && {
-                let [first, second] = longest[piece[end as usize] as usize];
-                significance[u] >= second.min(first)
-            }
-        })
-        .collect()
 }
 
 /// Per edge of the complex (the mesh's edges, then `wires`), what a tip pays to burn
@@ -694,6 +654,8 @@ pub fn medial_axis_skeleton(
 /// [`medial_axis_skeleton`] with at most `max_cycles` independent cycles, placed as
 /// `placement` says. In order:
 /// 1. pruned by erosion thickness, tubularity and protrusion (loops never open);
+///    tubularity keeps each tree's trunk as the tree will be once its loops open, so
+///    that a stubby solid whose axis has a small hole keeps its length;
 /// 2. the loops beyond `max_cycles`, and every loop whose disc the medial balls fill
 ///    (sampled every eighth of the median radius round it: a tunnel narrower than that
 ///    may pass unseen), opened ([`Skeleton::with_cycles_cut`]): a strand the hole split
@@ -719,18 +681,12 @@ pub fn medial_axis_skeleton_with_cycles(
 ) -> Result<(Skeleton, Option<Field<Euclidean>>), Error> {
     let (skeleton, field) = Skeleton::of_medial_axis(axis, burn, options)?;
     let prune = pruning.erosion_thickness;
-    let skeleton = skeleton.pruned(prune).pruned_tubular(pruning.tubularity);
     // Thinning leaves its points on the axis's vertices.
     let radius_at = |on: SurfacePoint| match on {
         SurfacePoint::Vertex(v) => axis.radii[v as usize],
         _ => 0.0,
     };
-    let skeleton =
-        skeleton.pruned_protruding(pruning.protrusion, |i| radius_at(skeleton.points[i].on));
-    let radius: Vec<f64> = skeleton.points.iter().map(|p| radius_at(p.on)).collect();
-    let at: Vec<DVec3> = skeleton.points.iter().map(|p| p.position.into()).collect();
-    // A loop whose disc the balls fill goes round no tunnel of the solid: a hole of the
-    // axis where a sheet is thin, which approximate axes have (the cow's has two).
+    let skeleton = skeleton.pruned(prune);
     let balls = (skeleton.cycle_count() > 0).then(|| {
         Balls::all(
             axis.positions
@@ -739,15 +695,28 @@ pub fn medial_axis_skeleton_with_cycles(
                 .zip(axis.radii.iter().copied()),
         )
     });
-    let filled = |ring: &[u32]| {
-        let points: Vec<DVec3> = ring.iter().map(|&i| at[i as usize]).collect();
-        let radii = ring.iter().map(|&i| radius[i as usize]).collect();
-        balls
-            .as_ref()
-            .is_some_and(|balls| balls.fill_loop(&points, radii))
+    let open = |skeleton: Skeleton, protrusion: f64, prune: f64| {
+        let radius: Vec<f64> = skeleton.points.iter().map(|p| radius_at(p.on)).collect();
+        let at: Vec<DVec3> = skeleton.points.iter().map(|p| p.position.into()).collect();
+        // A loop whose disc the balls fill goes round no tunnel of the solid: a hole of
+        // the axis where a sheet is thin, which approximate axes have.
+        let filled = |ring: &[u32]| {
+            let points: Vec<DVec3> = ring.iter().map(|&i| at[i as usize]).collect();
+            let radii = ring.iter().map(|&i| radius[i as usize]).collect();
+            balls
+                .as_ref()
+                .is_some_and(|balls| balls.fill_loop(&points, radii))
+        };
+        skeleton.with_cycles_cut(max_cycles, |i| radius[i], filled, protrusion, prune)
     };
+    // The trunk is the tree's as it will be once its loops open (cut where narrowest,
+    // nothing pruned, so the points keep their indices): a stubby solid whose axis has
+    // a small hole where the fires met keeps it.
+    let trunk = open(skeleton.clone(), 0.0, 0.0).trunk();
+    let skeleton = skeleton.pruned_tubular_but(pruning.tubularity, &trunk);
     let skeleton =
-        skeleton.with_cycles_cut(max_cycles, |i| radius[i], filled, pruning.protrusion, prune);
+        skeleton.pruned_protruding(pruning.protrusion, |i| radius_at(skeleton.points[i].on));
+    let skeleton = open(skeleton, pruning.protrusion, prune);
     let skeleton =
         skeleton.pruned_protruding(pruning.protrusion, |i| radius_at(skeleton.points[i].on));
     Ok((skeleton.placed(axis, placement), field))
