@@ -169,7 +169,7 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
     }
     outputs.commit()?;
     ui::info!(
-        "{}: {} skeleton points, {} polylines, {} component(s), {} cycle(s) ({} has b1 = {}), {} tips, length {}, {:.3} s; wrote {}",
+        "{}: {} skeleton points, {} polylines, {} component(s), {} cycle(s) ({} has b1 = {}{}), {} tips, length {}, {:.3} s; wrote {}",
         args.axis.display(),
         skeleton.points.len(),
         lines.len(),
@@ -177,6 +177,10 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
         skeleton.cycle_count(),
         if solid_cycles.is_some() { "the solid" } else { "the axis" },
         solid_cycles.unwrap_or(axis.betti_numbers().b1),
+        match skeleton.opened_cycles {
+            0 => String::new(),
+            n => format!("; {n} hole(s) of the axis opened, no tunnel of the solid"),
+        },
         skeleton.tip_count(),
         Short(skeleton.length()),
         start.elapsed().as_secs_f64(),
@@ -217,6 +221,7 @@ fn write_json(
         "polylines": lines,
         "components": skeleton.component_count(),
         "cycles": skeleton.cycle_count(),
+        "opened_cycles": skeleton.opened_cycles,
         "tips": skeleton.tip_count(),
     });
     serde_json::to_writer(&mut *w, &json).map_err(std::io::Error::other)?;

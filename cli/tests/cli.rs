@@ -1356,6 +1356,48 @@ fn skeleton_bad_input_fails_cleanly() {
     assert_eq!(points.len(), 1);
 }
 
+/// A square sheet 3 × 3 with its middle cell cut out: the hole is a tunnel of the solid
+/// when the balls are small, and no tunnel when they fill it, which the JSON and the
+/// summary say.
+#[test]
+fn skeleton_opens_a_hole_its_balls_fill() {
+    let dir = tempfile::tempdir().unwrap();
+    let id = |i: u32, j: u32| j * 4 + i;
+    let cells: Vec<(u32, u32)> = (0..3)
+        .flat_map(|i| (0..3).map(move |j| (i, j)))
+        .filter(|&c| c != (1, 1))
+        .collect();
+    for (radius, cycles, opened) in [(1.0, 0, 1), (0.2, 1, 0)] {
+        let mut text = format!("16 0 {}\n", 2 * cells.len());
+        for j in 0..4 {
+            for i in 0..4 {
+                text += &format!("v {i} {j} 0 {radius}\n");
+            }
+        }
+        for &(i, j) in &cells {
+            let [a, b, c, d] = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
+            text += &format!("f {a} {b} {c}\nf {a} {c} {d}\n");
+        }
+        let axis = dir.path().join("ring.ma");
+        std::fs::write(&axis, text).unwrap();
+        let json = dir.path().join("ring.json");
+        let out = geotracks_ok(&[
+            "skeleton",
+            axis.to_str().unwrap(),
+            "-o",
+            json.to_str().unwrap(),
+        ]);
+        let graph = read_json(&json);
+        assert_eq!(
+            (graph["cycles"].clone(), graph["opened_cycles"].clone()),
+            (cycles.into(), opened.into()),
+            "balls of radius {radius}"
+        );
+        let said = String::from_utf8_lossy(&out.stderr) + String::from_utf8_lossy(&out.stdout);
+        assert_eq!(said.contains("opened, no tunnel"), opened > 0, "{said}");
+    }
+}
+
 /// Every command's `--help` ends with examples (and so does the tool's).
 #[test]
 fn every_help_ends_with_examples() {

@@ -576,7 +576,11 @@ class Skeleton(NamedTuple):
     significance: np.ndarray
     #: Point index pairs, shape ``(e, 2)``.
     edges: np.ndarray
-    #: The axis's first Betti number: the skeleton's independent cycles.
+    #: The axis's first Betti number (from a surface mesh, the solid's: its handles).
+    #: The skeleton has as many independent cycles (edges − points + components),
+    #: less the holes of the axis that its medial balls fill (no tunnel of the solid,
+    #: which approximate axes have: the command line's JSON says how many as
+    #: ``opened_cycles``).
     b1: int
 
 

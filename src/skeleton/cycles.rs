@@ -103,6 +103,7 @@ impl Skeleton {
             });
         let mut cut = self.reburnt(edges);
         cut.raise_towards_the_core();
+        cut.opened_cycles += cuts.len();
         cut.keep(|i| !dropped[i]).pruned(prune)
     }
 

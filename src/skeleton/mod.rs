@@ -217,6 +217,10 @@ pub struct Skeleton {
     /// Cycles the skeleton has that the surface does not: parts that are contractible
     /// but cannot be collapsed (Bing's house); 0 on every medial axis we know of.
     pub added_cycles: usize,
+    /// Cycles of the thinned graph that [`Skeleton::with_cycles_cut`] opened: holes of
+    /// the axis that its balls fill (no tunnel of the solid), and cycles beyond the
+    /// solid's own.
+    pub opened_cycles: usize,
 }
 
 impl Skeleton {
@@ -362,6 +366,7 @@ impl Skeleton {
             edges,
             punctured_faces: thinning.punctured,
             added_cycles: thinning.opened,
+            opened_cycles: 0,
         }
     }
 
