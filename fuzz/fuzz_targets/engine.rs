@@ -13,20 +13,9 @@ use geotracks::mesh::TriMesh;
 use geotracks::{Density, Euclidean, Method, Metric, Options, Solver, Tensor};
 use libfuzzer_sys::fuzz_target;
 
-/// Reads the input a byte at a time; zeros once it runs out.
-struct Bytes<'a>(&'a [u8]);
-
-impl Bytes<'_> {
-    fn next(&mut self) -> u8 {
-        match self.0.split_first() {
-            Some((&b, rest)) => {
-                self.0 = rest;
-                b
-            }
-            None => 0,
-        }
-    }
-}
+#[path = "common/bytes.rs"]
+mod bytes;
+use bytes::Bytes;
 
 /// Runs both engines; compares them when `exact` (a norm metric).
 fn check<M: Metric>(mesh: &TriMesh, metric: &M, source: u32, options: Options, exact: bool) {
@@ -39,9 +28,16 @@ fn check<M: Metric>(mesh: &TriMesh, metric: &M, source: u32, options: Options, e
     if let Ok(exact_field) = exact_run {
         for v in 0..mesh.positions().len() as u32 {
             let (e, g) = (exact_field.distance(v), graph.distance(v));
-            assert_eq!(e.is_finite(), g.is_finite(), "vertex {v}: exact {e}, graph {g}");
+            assert_eq!(
+                e.is_finite(),
+                g.is_finite(),
+                "vertex {v}: exact {e}, graph {g}"
+            );
             if g.is_finite() {
-                assert!(e <= g + 1e-9 * g.max(1e-12), "vertex {v}: exact {e} above the graph's {g}");
+                assert!(
+                    e <= g + 1e-9 * g.max(1e-12),
+                    "vertex {v}: exact {e} above the graph's {g}"
+                );
             }
         }
     }

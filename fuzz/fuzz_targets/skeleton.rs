@@ -14,20 +14,9 @@ use geotracks::skeleton::{medial_axis_skeleton_with_cycles, Burn, Placement, Pru
 use geotracks::Options;
 use libfuzzer_sys::fuzz_target;
 
-/// Reads the input a byte at a time; zeros once it runs out.
-struct Bytes<'a>(&'a [u8]);
-
-impl Bytes<'_> {
-    fn next(&mut self) -> u8 {
-        match self.0.split_first() {
-            Some((&b, rest)) => {
-                self.0 = rest;
-                b
-            }
-            None => 0,
-        }
-    }
-}
+#[path = "common/bytes.rs"]
+mod bytes;
+use bytes::Bytes;
 
 fuzz_target!(|data: &[u8]| {
     let mut bytes = Bytes(data);
@@ -47,7 +36,11 @@ fuzz_target!(|data: &[u8]| {
     let Ok(axis) = MedialAxis::from_parts(positions, radii, triangles, edges) else {
         return;
     };
-    let burn = if bytes.next() % 2 == 0 { Burn::Boundary } else { Burn::Radius };
+    let burn = if bytes.next() % 2 == 0 {
+        Burn::Boundary
+    } else {
+        Burn::Radius
+    };
     let diagonal = axis.diagonal();
     let pruning = match bytes.next() % 3 {
         0 => Pruning::NONE,
@@ -59,7 +52,11 @@ fuzz_target!(|data: &[u8]| {
         },
     };
     let max_cycles = [0, 1, usize::MAX][usize::from(bytes.next() % 3)];
-    let placement = if bytes.next() % 2 == 0 { Placement::OnAxis } else { Placement::Centred };
+    let placement = if bytes.next() % 2 == 0 {
+        Placement::OnAxis
+    } else {
+        Placement::Centred
+    };
     let options = Options::DEFAULT.with_k(f64::from(1 + bytes.next() % 3));
     let Ok((skeleton, _)) =
         medial_axis_skeleton_with_cycles(&axis, burn, &options, pruning, max_cycles, placement)
@@ -67,7 +64,10 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     let betti = axis.betti_numbers();
-    assert!(skeleton.component_count() <= betti.b0.max(1), "{skeleton:?}");
+    assert!(
+        skeleton.component_count() <= betti.b0.max(1),
+        "{skeleton:?}"
+    );
     assert!(
         skeleton.cycle_count() <= max_cycles.min(betti.b1) + skeleton.added_cycles,
         "{} cycles, at most {max_cycles} of b1 = {}",
