@@ -58,6 +58,11 @@ pub struct SkeletonArgs {
     /// that stand out less than P of its thickness go, limbs stay; 0 keeps everything.
     #[arg(long, value_name = "P", default_value_t = DEFAULT_MIN_PROTRUSION, value_parser = parse_ratio)]
     protrusion: f64,
+    /// Cut each branch from a tip back to the centre of the last medial ball that
+    /// reaches its tip, where a mean-curvature-flow skeleton's tips lie; by default the
+    /// branches run out to where the axis meets the surface.
+    #[arg(long)]
+    trim_tips: bool,
     /// When each point may burn.
     #[arg(long, value_enum, default_value = "boundary")]
     burn: BurnArg,
@@ -128,6 +133,7 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
             erosion_thickness: prune,
             tubularity: args.tubular,
             protrusion: args.protrusion,
+            trim_tips: args.trim_tips,
         },
         solid_cycles.unwrap_or(usize::MAX),
         if args.centred {

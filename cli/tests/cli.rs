@@ -1398,6 +1398,49 @@ fn skeleton_opens_a_hole_its_balls_fill() {
     }
 }
 
+/// `--trim-tips` cuts branches back from their tips and keeps the graph's shape: the
+/// same components, cycles and tips, a shorter skeleton.
+#[test]
+fn skeleton_trim_tips_shortens_and_keeps_the_graph() {
+    let dir = tempfile::tempdir().unwrap();
+    let axis = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../tests/data/ma/sheet_fins.ma"
+    );
+    let run = |extra: &[&str]| {
+        let json = dir.path().join("s.json");
+        let mut args = vec!["skeleton", axis, "-o", json.to_str().unwrap()];
+        args.extend_from_slice(extra);
+        geotracks_ok(&args);
+        let graph = read_json(&json);
+        let position = |i: &serde_json::Value| -> Vec<f64> {
+            serde_json::from_value(
+                graph["points"][i.as_u64().unwrap() as usize]["position"].clone(),
+            )
+            .unwrap()
+        };
+        let length: f64 = graph["edges"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|e| {
+                let (a, b) = (position(&e[0]), position(&e[1]));
+                a.iter()
+                    .zip(&b)
+                    .map(|(x, y)| (x - y).powi(2))
+                    .sum::<f64>()
+                    .sqrt()
+            })
+            .sum();
+        let counts = ["components", "cycles", "tips"].map(|k| graph[k].clone());
+        (counts, length)
+    };
+    let (counts, length) = run(&[]);
+    let (trimmed_counts, trimmed) = run(&["--trim-tips"]);
+    assert_eq!(trimmed_counts, counts);
+    assert!(trimmed < length - 0.05, "{trimmed} against {length}");
+}
+
 /// Every command's `--help` ends with examples (and so does the tool's).
 #[test]
 fn every_help_ends_with_examples() {

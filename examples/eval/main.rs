@@ -40,7 +40,7 @@
 //! from `DATA_DIR/meshes/<name>.obj` instead, at that angle and span):
 //!
 //! ```text
-//! cargo run --release --example eval -- ../shared/data --skeletons [7] [--k 5] [--radius] [--tubular 1] [--protrusion 0.5] [--from-meshes [ANGLE] [--span S]]
+//! cargo run --release --example eval -- ../shared/data --skeletons [7] [--k 5] [--radius] [--tubular 1] [--protrusion 0.5] [--trim-tips] [--from-meshes [ANGLE] [--span S]]
 //! ```
 //!
 //! With `--engines` it measures each engine against every exact reference, with its time,
@@ -134,7 +134,7 @@ fn number_after(argv: &[String], flag: &str, default: f64) -> Result<f64, String
 }
 
 /// `eval DATA_DIR --skeletons [PRUNE_PERCENT] [--k K] [--radius] [--tubular T]
-/// [--protrusion P] [--from-meshes [ANGLE] [--span S]] [--centred]`.
+/// [--protrusion P] [--trim-tips] [--from-meshes [ANGLE] [--span S]] [--centred]`.
 fn skeletons_main(argv: &[String], at: usize) -> Result<(), String> {
     let data = argv
         .get(1)
@@ -195,6 +195,7 @@ fn skeletons_main(argv: &[String], at: usize) -> Result<(), String> {
             prune_percent: prune,
             tubular,
             protrusion,
+            trim_tips: argv.iter().any(|a| a == "--trim-tips"),
         },
         k,
         burn,

@@ -51,6 +51,7 @@ pub struct Thresholds {
     pub prune_percent: f64,
     pub tubular: f64,
     pub protrusion: f64,
+    pub trim_tips: bool,
 }
 
 pub fn skeletons(
@@ -65,6 +66,7 @@ pub fn skeletons(
         prune_percent,
         tubular,
         protrusion,
+        trim_tips,
     } = thresholds;
     let (dir, extension, suffix) = match axes {
         Axes::Files => (data.join("ma"), "ma", ".ma"),
@@ -116,6 +118,7 @@ pub fn skeletons(
                 erosion_thickness: prune_percent / 100.0 * diagonal,
                 tubularity: tubular,
                 protrusion,
+                trim_tips,
             },
             max_cycles,
             placement,
@@ -212,7 +215,7 @@ pub fn skeletons(
             comparisons.push((name.clone(), at_default, reference, diagonal, floor));
         }
     }
-    println!("\nAgainst CGAL's mean-curvature-flow skeleton of the shape, at --prune {prune_percent} %, --tubular {tubular} and --protrusion {protrusion}, points {}: both sampled every 0.2 % of the diagonal; distances in % of the diagonal.\n", match placement { Placement::OnAxis => "on the axis", Placement::Centred => "centred (--centred)" });
+    println!("\nAgainst CGAL's mean-curvature-flow skeleton of the shape, at --prune {prune_percent} %, --tubular {tubular} and --protrusion {protrusion}{}, points {}: both sampled every 0.2 % of the diagonal; distances in % of the diagonal.\n", if trim_tips { ", tips trimmed (--trim-tips)" } else { "" }, match placement { Placement::OnAxis => "on the axis", Placement::Centred => "centred (--centred)" });
     println!("| axis | reference → ours mean / max | ours → reference mean / max | tips ours / reference | junctions ours / reference | length ours / reference | turning per length ours / reference | reference → axis mean / max |");
     println!("|---|---:|---:|---:|---:|---:|---:|---:|");
     for (name, ours, reference, diagonal, floor) in comparisons {

@@ -49,6 +49,7 @@ fuzz_target!(|data: &[u8]| {
             erosion_thickness: f64::from(bytes.next() % 8) * 0.25,
             tubularity: f64::from(bytes.next() % 8) * 0.25,
             protrusion: f64::from(bytes.next() % 8) * 0.25,
+            trim_tips: bytes.next() % 2 == 0,
         },
     };
     let max_cycles = [0, 1, usize::MAX][usize::from(bytes.next() % 3)];

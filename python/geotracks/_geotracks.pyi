@@ -143,6 +143,7 @@ def skeleton(
     weld: bool = False,
     centred: bool = False,
     protrusion: float = 0.5,
+    trim_tips: bool = False,
 ) -> tuple[
     npt.NDArray[np.float64],
     npt.NDArray[np.float64],

@@ -579,7 +579,7 @@ fn medial_axis<'py>(
 /// its points on the axis or, with `centred`, at the centre of the shape's
 /// cross-section: `(points (p, 3), radii (p,), significance (p,), edges (e, 2), b1)`.
 #[pyfunction]
-#[pyo3(signature = (axis, prune="5%", burn="boundary", k=5.0, tubular=geotracks::skeleton::DEFAULT_MIN_TUBULARITY, spacing=None, angle=geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_ANGLE_DEGREES, span=geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_SPAN, weld=false, centred=false, protrusion=geotracks::skeleton::DEFAULT_MIN_PROTRUSION))]
+#[pyo3(signature = (axis, prune="5%", burn="boundary", k=5.0, tubular=geotracks::skeleton::DEFAULT_MIN_TUBULARITY, spacing=None, angle=geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_ANGLE_DEGREES, span=geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_SPAN, weld=false, centred=false, protrusion=geotracks::skeleton::DEFAULT_MIN_PROTRUSION, trim_tips=false))]
 #[allow(clippy::type_complexity, clippy::too_many_arguments)] // five named arrays, as the Python wrapper documents; the keywords are Python's
 fn skeleton<'py>(
     py: Python<'py>,
@@ -594,6 +594,7 @@ fn skeleton<'py>(
     weld: bool,
     centred: bool,
     protrusion: f64,
+    trim_tips: bool,
 ) -> PyResult<(
     Matrix<'py, f64>,
     Vector<'py, f64>,
@@ -628,6 +629,7 @@ fn skeleton<'py>(
                 erosion_thickness: prune.threshold(axis.diagonal()),
                 tubularity: tubular,
                 protrusion,
+                trim_tips,
             };
             let options = Options::DEFAULT.with_k(k).with_method(Method::Tracks);
             let max_cycles = solid_cycles.unwrap_or(usize::MAX);

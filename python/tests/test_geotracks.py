@@ -304,6 +304,9 @@ def test_skeleton_of_a_medial_axis():
         geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune="-1")
     with pytest.raises(geotracks.GeotracksError, match="burn"):
         geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", burn="fire")
+    # Tips trimmed to their last ball: fewer points, the same cycles.
+    trimmed = geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune="2%", trim_tips=True)
+    assert len(trimmed.points) < p and cycles(trimmed) == trimmed.b1
     # Centred: the same graph's shape, points off the axis, each inside a ball.
     centred = geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune="2%", centred=True)
     assert cycles(centred) == centred.b1

@@ -54,6 +54,7 @@ pub mod medial;
 mod placement;
 mod protrusion;
 mod thinning;
+mod tips;
 mod trunk;
 
 pub use geometry::turning_per_length;
@@ -90,7 +91,8 @@ pub const DEFAULT_MIN_TUBULARITY: f64 = 1.0;
 pub const DEFAULT_MIN_PROTRUSION: f64 = 0.5;
 
 /// How [`medial_axis_skeleton`] prunes a skeleton: three thresholds, each removing whole
-/// branches from their tips and never opening a loop; 0 turns one off.
+/// branches from their tips and never opening a loop (0 turns one off), and whether the
+/// tips are cut back to their last ball.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Pruning {
     /// The least erosion thickness a branch keeps, a length ([`Skeleton::pruned`]).
@@ -99,6 +101,11 @@ pub struct Pruning {
     pub tubularity: f64,
     /// The least protrusion ([`Skeleton::pruned_protruding`]).
     pub protrusion: f64,
+    /// Whether each branch from a tip is cut back to the centre of the last medial ball
+    /// that reaches its tip ([`Skeleton::tips_trimmed`]), where a mean-curvature-flow
+    /// skeleton's tips lie, rather than running out to where the axis meets the
+    /// surface. Off in the defaults.
+    pub trim_tips: bool,
 }
 
 impl Pruning {
@@ -107,6 +114,7 @@ impl Pruning {
         erosion_thickness: 0.0,
         tubularity: 0.0,
         protrusion: 0.0,
+        trim_tips: false,
     };
 
     /// The command line's defaults ([`DEFAULT_PRUNE_PERCENT`] of `diagonal`,
@@ -117,6 +125,7 @@ impl Pruning {
             erosion_thickness: DEFAULT_PRUNE_PERCENT / 100.0 * diagonal,
             tubularity: DEFAULT_MIN_TUBULARITY,
             protrusion: DEFAULT_MIN_PROTRUSION,
+            trim_tips: false,
         }
     }
 }
@@ -724,6 +733,11 @@ pub fn medial_axis_skeleton_with_cycles(
     let skeleton = open(skeleton, pruning.protrusion, prune);
     let skeleton =
         skeleton.pruned_protruding(pruning.protrusion, |i| radius_at(skeleton.points[i].on));
+    let skeleton = if pruning.trim_tips {
+        skeleton.tips_trimmed(|i| radius_at(skeleton.points[i].on))
+    } else {
+        skeleton
+    };
     Ok((skeleton.placed(axis, placement), field))
 }
 

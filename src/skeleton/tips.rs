@@ -1,0 +1,112 @@
+//! Where a branch ends: at the centre of the last medial ball that reaches its tip.
+
+use super::Skeleton;
+use glam::DVec3;
+
+impl Skeleton {
+    /// The skeleton with each branch from a tip cut back to the innermost point whose
+    /// medial ball (`radius` per point) still holds the tip, walking in from the tip while
+    /// the balls do: thinning leaves a branch running out to where the axis meets the
+    /// surface, with balls shrinking to nothing, and the last ball that reaches that
+    /// far is where the shape's end is centred (as a mean-curvature-flow skeleton's
+    /// tip lies). A branch keeps at least one point besides the one it joins, and a
+    /// component that is one path is cut from both ends, never past its middle.
+    ///
+    /// The rule takes the tip for the shape's end: on an axis whose branch stops short
+    /// of the surface it cuts up to a radius more than the shape has there, and where
+    /// the balls shrink faster than the branch runs (a pointed end) it cuts nothing.
+    #[must_use]
+    pub fn tips_trimmed(&self, radius: impl Fn(usize) -> f64) -> Skeleton {
+        let around = self.adjacency();
+        let mut removed = vec![false; self.points.len()];
+        let position = |i: u32| DVec3::from(self.points[i as usize].position);
+        for tip in (0..self.points.len() as u32).filter(|&i| around[i as usize].len() == 1) {
+            // The branch from the tip to the point it joins.
+            let mut branch = vec![tip];
+            let (mut previous, mut at) = (tip, around[tip as usize][0]);
+            while around[at as usize].len() == 2 {
+                branch.push(at);
+                let next = around[at as usize][usize::from(around[at as usize][0] == previous)];
+                (previous, at) = (at, next);
+            }
+            // A component that is one path is cut from both ends, to its middle at most.
+            let most = if around[at as usize].len() == 1 {
+                branch.len().div_ceil(2)
+            } else {
+                branch.len()
+            };
+            let end = position(tip);
+            let held = branch
+                .iter()
+                .take_while(|&&p| position(p).distance(end) <= radius(p as usize))
+                .count();
+            let cut = held.saturating_sub(1).min(most - 1);
+            for &p in &branch[..cut] {
+                removed[p as usize] = true;
+            }
+        }
+        self.keep(|i| !removed[i])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A trunk along x from -2 to 2 (radius 1) with a limb of radius 0.3 up y from its
+    /// middle to y = 2.5; points every 0.05.
+    fn trunk_and_limb() -> (Skeleton, Vec<f64>) {
+        let mut points: Vec<[f64; 3]> = (-40..=40)
+            .map(|i| [f64::from(i) * 0.05, 0.0, 0.0])
+            .collect();
+        let mut radii = vec![1.0; points.len()];
+        let mut edges: Vec<[u32; 2]> = (0..80).map(|i| [i, i + 1]).collect();
+        let mut previous = 40;
+        for j in 1..=50 {
+            let y = f64::from(j) * 0.05;
+            points.push([0.0, y, 0.0]);
+            radii.push(0.3);
+            edges.push([previous, points.len() as u32 - 1]);
+            previous = points.len() as u32 - 1;
+        }
+        (Skeleton::from_curves(&points, &edges, None), radii)
+    }
+
+    #[test]
+    fn a_limb_ends_where_its_last_ball_reaches_the_tip() {
+        let (skeleton, radii) = trunk_and_limb();
+        let trimmed = skeleton.tips_trimmed(|i| radii[i]);
+        assert_eq!((trimmed.tip_count(), trimmed.component_count()), (3, 1));
+        let top = trimmed
+            .points
+            .iter()
+            .map(|p| p.position[1])
+            .fold(0.0, f64::max);
+        // The ball at y = 2.2 is the last that reaches the tip at 2.5 …
+        assert!((top - 2.2).abs() < 0.06, "the limb ends at {top}");
+        // … and the trunk's ends, whose balls reach 1 past them, keep at least half of
+        // it each: a path is never cut past its middle, and here joins the limb.
+        let xs = trimmed.points.iter().map(|p| p.position[0]);
+        let (lo, hi) = xs.fold((0.0, 0.0), |(lo, hi): (f64, f64), x| (lo.min(x), hi.max(x)));
+        assert!(lo < -0.9 && hi > 0.9 && lo > -1.1 && hi < 1.1, "{lo} {hi}");
+    }
+
+    #[test]
+    fn a_path_is_cut_from_both_ends_to_its_middle_at_most() {
+        let points: Vec<[f64; 3]> = (0..=10).map(|i| [f64::from(i), 0.0, 0.0]).collect();
+        let edges: Vec<[u32; 2]> = (0..10).map(|i| [i, i + 1]).collect();
+        let skeleton = Skeleton::from_curves(&points, &edges, None);
+        let trimmed = skeleton.tips_trimmed(|_| 100.0);
+        assert_eq!(trimmed.component_count(), 1);
+        assert!(!trimmed.points.is_empty() && trimmed.points.len() <= 3);
+        assert!(trimmed
+            .points
+            .iter()
+            .all(|p| (4.0..=6.0).contains(&p.position[0])));
+        assert_eq!(
+            skeleton.tips_trimmed(|_| 0.5),
+            skeleton,
+            "balls that reach no point"
+        );
+    }
+}
