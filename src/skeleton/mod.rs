@@ -675,13 +675,14 @@ pub fn medial_axis_skeleton(
 ///    may pass unseen), opened ([`Skeleton::with_cycles_cut`]): a strand the hole split
 ///    from the body goes whole, a limb the hole joined to another part is cut where the
 ///    loop is narrowest, and what the cuts leave is pruned by erosion thickness;
-/// 3. pruned by protrusion again (the pieces the cuts left), and placed.
+/// 3. pruned by protrusion again (the pieces the cuts left), its tips cut back to their
+///    last ball if `pruning` says so ([`Skeleton::tips_trimmed`]), and placed.
 ///
 /// The thinned axis has the axis's b₁ cycles; the solid has a tunnel only where the
-/// balls leave a hole open. Approximate axes have holes where a sheet is thin (the
-/// shared `cow.ma` two, one where the tail lies against the rump), and an axis computed
-/// from a sampled surface ([`crate::skeleton::medial::medial_axis`]) more: `max_cycles`
-/// is then the solid's genus.
+/// balls leave a hole open. Approximate axes have holes where a sheet is thin (where a
+/// tail lies against a rump, say), and an axis computed from a sampled surface
+/// ([`crate::skeleton::medial::medial_axis`]) more: `max_cycles` is then the solid's
+/// genus.
 ///
 /// # Errors
 /// As [`Skeleton::of_medial_axis`].
