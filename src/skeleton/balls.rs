@@ -6,6 +6,11 @@ use glam::DVec3;
 use rstar::primitives::GeomWithData;
 use rstar::RTree;
 
+/// Samples per medial radius (the median round a loop) when a loop's disc is tested
+/// against the balls: a tunnel narrower than about a sixth of the balls round it could
+/// pass between the samples.
+const FILL_STEPS_PER_RADIUS: f64 = 8.0;
+
 /// Medial balls in an R-tree (`rstar`: a kept crate, for the balls near a point).
 pub(super) struct Balls {
     tree: RTree<GeomWithData<[f64; 3], f64>>,
@@ -90,14 +95,7 @@ impl Balls {
             })
         })
     }
-}
 
-/// Samples per medial radius (the median round a loop) when a loop's disc is tested
-/// against the balls: a tunnel narrower than about a sixth of the balls round it could
-/// pass between the samples.
-const FILL_STEPS_PER_RADIUS: f64 = 8.0;
-
-impl Balls {
     /// Whether the balls fill a disc spanned by the loop through `points`, whose medial
     /// radii are `radii`: [`Balls::fill`] sampled every eighth of the median radius.
     pub(super) fn fill_loop(&self, points: &[DVec3], mut radii: Vec<f64>) -> bool {

@@ -19,13 +19,13 @@ impl Skeleton {
     /// solid). A cycle around a small hole in the axis is short; a handle of the shape
     /// is a long loop, and kept.
     ///
-    /// How the others open, one at a time, shortest first: of the branches along the
-    /// cycle (the paths between points of three or more edges), the one whose balls
-    /// reach least out of the rest's goes whole when it reaches out by less than
-    /// `protrusion` times the larger `width` at its ends (see
-    /// [`Skeleton::pruned_protruding`]): a strand that a hole split from the body adds
-    /// nothing to it. Otherwise the cycle is cut where it is narrowest, and the two
-    /// branches the cut leaves are burnt again from their new tips along the graph
+    /// How the others open, one at a time, shortest first, at the cycle's edge outside
+    /// the forest (its narrowest): the branch that edge lies on (the path between the
+    /// points of three or more edges either side of it) goes whole when its balls reach
+    /// out of the rest's by less than `protrusion` times the larger `width` at its ends
+    /// (see [`Skeleton::pruned_protruding`]): a strand that a hole split from the body
+    /// adds nothing to it. Otherwise only that edge goes, and the two branches the cut
+    /// leaves are burnt again from their new tips along the graph
     /// (their significance: the length burnt, as [`Skeleton::from_curves`] gives it;
     /// tubularity `inf`), then pruned at `prune` ([`Skeleton::pruned`]): a limb that a
     /// hole joined to another part keeps its length. Other points keep their
@@ -85,22 +85,18 @@ impl Skeleton {
             return self;
         }
         cuts.reverse();
-        let (edges, dropped) = self
-            .opened(&cuts, &width, protrusion)
-            .filter(|(edges, dropped)| {
-                // Each opening takes one cycle and leaves the graph in one piece; should
-                // the branches of different cycles have overlapped, cut edges only.
-                let trial = self.on_edges(edges.clone()).keep(|i| !dropped[i]);
-                trial.cycle_count() == kept && trial.component_count() == self.component_count()
-            })
-            .unwrap_or_else(|| {
-                let cut: Vec<[u32; 2]> = cuts.iter().map(|&[a, b]| [a.min(b), a.max(b)]).collect();
-                let edges = unique_edges(&self.edges)
-                    .into_iter()
-                    .filter(|e| !cut.contains(e))
-                    .collect();
-                (edges, vec![false; n])
-            });
+        let (mut edges, mut dropped) = self.opened(&cuts, &width, protrusion);
+        // Each opening takes one cycle and leaves the graph in one piece; should the
+        // branches of different cycles have overlapped, cut edges only.
+        let trial = self.on_edges(edges.clone()).keep(|i| !dropped[i]);
+        if trial.cycle_count() != kept || trial.component_count() != self.component_count() {
+            let cut: Vec<[u32; 2]> = cuts.iter().map(|&[a, b]| [a.min(b), a.max(b)]).collect();
+            edges = unique_edges(&self.edges)
+                .into_iter()
+                .filter(|e| !cut.contains(e))
+                .collect();
+            dropped = vec![false; n];
+        }
         let mut cut = self.reburnt(edges);
         cut.raise_towards_the_core();
         cut.opened_cycles += cuts.len();
@@ -109,13 +105,13 @@ impl Skeleton {
 
     /// The graph's edges once each of `cuts` (an edge on a cycle) has opened its cycle,
     /// in turn, as [`Skeleton::with_cycles_cut`] says; and the points of the branches
-    /// that went. `None` when a cut's edge no longer lies on a cycle.
+    /// that went.
     fn opened(
         &self,
         cuts: &[[u32; 2]],
         width: &impl Fn(usize) -> f64,
         protrusion: f64,
-    ) -> Option<(Vec<[u32; 2]>, Vec<bool>)> {
+    ) -> (Vec<[u32; 2]>, Vec<bool>) {
         let mut around: Vec<Vec<u32>> = vec![Vec::new(); self.points.len()];
         for [a, b] in unique_edges(&self.edges) {
             if a != b {
@@ -134,11 +130,18 @@ impl Skeleton {
             let mut base = 0.0_f64;
             for (start, other) in [(a, b), (b, a)] {
                 let (mut previous, mut at) = (other, start);
-                while !ring && around[at as usize].len() == 2 {
-                    ring = inner.contains(&at);
+                while around[at as usize].len() == 2 {
                     inner.push(at);
                     let next = around[at as usize][usize::from(around[at as usize][0] == previous)];
                     (previous, at) = (at, next);
+                    // Back where it started: a loop without a junction.
+                    ring |= at == start;
+                    if ring {
+                        break;
+                    }
+                }
+                if ring {
+                    break;
                 }
                 base = base.max(width(at as usize));
             }
@@ -163,7 +166,7 @@ impl Skeleton {
                     .map(move |&b| [a, b])
             })
             .collect();
-        Some((edges, dropped))
+        (edges, dropped)
     }
 
     /// The same points on `edges`.

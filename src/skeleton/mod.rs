@@ -671,8 +671,8 @@ pub fn medial_axis_skeleton(
 ///    tubularity keeps each tree's trunk as the tree will be once its loops open, so
 ///    that a stubby solid whose axis has a small hole keeps its length;
 /// 2. the loops beyond `max_cycles`, and every loop whose disc the medial balls fill
-///    (sampled every eighth of the median radius round it: a tunnel narrower than that
-///    may pass unseen), opened ([`Skeleton::with_cycles_cut`]): a strand the hole split
+///    (sampled every eighth of the median radius round it: a tunnel narrower than about
+///    a sixth of that radius may pass unseen), opened ([`Skeleton::with_cycles_cut`]): a strand the hole split
 ///    from the body goes whole, a limb the hole joined to another part is cut where the
 ///    loop is narrowest, and what the cuts leave is pruned by erosion thickness;
 /// 3. pruned by protrusion again (the pieces the cuts left), its tips cut back to their

@@ -17,32 +17,34 @@ impl Skeleton {
     /// the balls shrink faster than the branch runs (a pointed end) it cuts nothing.
     #[must_use]
     pub fn tips_trimmed(&self, radius: impl Fn(usize) -> f64) -> Skeleton {
-        let around = self.adjacency();
+        let degree = self.degrees();
         let mut removed = vec![false; self.points.len()];
         let position = |i: u32| DVec3::from(self.points[i as usize].position);
-        for tip in (0..self.points.len() as u32).filter(|&i| around[i as usize].len() == 1) {
-            // The branch from the tip to the point it joins.
-            let mut branch = vec![tip];
-            let (mut previous, mut at) = (tip, around[tip as usize][0]);
-            while around[at as usize].len() == 2 {
-                branch.push(at);
-                let next = around[at as usize][usize::from(around[at as usize][0] == previous)];
-                (previous, at) = (at, next);
-            }
+        for mut line in self.polylines() {
+            let tip = |i: u32| degree[i as usize] == 1;
+            let (first, last) = (line[0], line[line.len() - 1]);
             // A component that is one path is cut from both ends, to its middle at most.
-            let most = if around[at as usize].len() == 1 {
-                branch.len().div_ceil(2)
-            } else {
-                branch.len()
-            };
-            let end = position(tip);
-            let held = branch
-                .iter()
-                .take_while(|&&p| position(p).distance(end) <= radius(p as usize))
-                .count();
-            let cut = held.saturating_sub(1).min(most - 1);
-            for &p in &branch[..cut] {
-                removed[p as usize] = true;
+            let both = tip(first) && tip(last);
+            for from_tip in [tip(first), tip(last)] {
+                if from_tip {
+                    // The branch from the tip, less the point it joins.
+                    let branch = &line[..line.len() - 1];
+                    let most = if both {
+                        branch.len().div_ceil(2)
+                    } else {
+                        branch.len()
+                    };
+                    let end = position(branch[0]);
+                    let held = branch
+                        .iter()
+                        .take_while(|&&p| position(p).distance(end) <= radius(p as usize))
+                        .count();
+                    let cut = held.saturating_sub(1).min(most - 1);
+                    for &p in &branch[..cut] {
+                        removed[p as usize] = true;
+                    }
+                }
+                line.reverse();
             }
         }
         self.keep(|i| !removed[i])
