@@ -53,6 +53,7 @@ mod grassfire;
 pub mod medial;
 mod placement;
 mod protrusion;
+mod straighten;
 mod thinning;
 mod tips;
 mod trunk;

@@ -1,6 +1,7 @@
-//! Where a medial-axis skeleton's points go once thinned: resampled evenly along each
-//! polyline, smoothed at the scale of the shape's thickness (through junctions), and
-//! then kept on the axis or moved to the centre of the shape's cross-section.
+//! Where a medial-axis skeleton's points go once thinned: each branch's folds taken
+//! out, resampled evenly along each polyline, smoothed at the scale of the shape's
+//! thickness (through junctions), and then kept on the axis or moved to the centre of
+//! the shape's cross-section.
 
 use super::balls::Balls;
 use super::geometry::{nearby_faces, share_a_face, vertex_of};
@@ -40,12 +41,15 @@ impl Skeleton {
 
     /// The skeleton of a medial axis with its points placed (thinning leaves them on the
     /// axis's vertices, and the ridge where its fires met wanders across a wide sheet):
-    /// 1. resampled every [`Skeleton::RESAMPLING`] of the diagonal
+    /// 1. each branch's folds taken out: where the branch runs away and back, by at
+    ///    least [`Skeleton::FOLD`] times the distance across, it steps across instead,
+    ///    within the medial ball it steps from, on the axis's sheets;
+    /// 2. resampled every [`Skeleton::RESAMPLING`] of the diagonal
     ///    ([`Skeleton::resampled`]);
-    /// 2. smoothed through junctions: each point moves to the Gaussian-weighted mean of
+    /// 3. smoothed through junctions: each point moves to the Gaussian-weighted mean of
     ///    the points near it along the graph, σ = [`Skeleton::SMOOTHING_RADII`] medial
     ///    radii there (a curve cannot say more about a shape than its thickness);
-    /// 3. for [`Placement::OnAxis`], put back on the nearest point of the axis and
+    /// 4. for [`Placement::OnAxis`], put back on the nearest point of the axis and
     ///    smoothed on it ([`Skeleton::smoothed`], [`Skeleton::SMOOTHING`] rounds), with
     ///    the radius interpolated there; for [`Placement::Centred`], moved to the centre
     ///    of the shape's cross-section and smoothed again, with the radius of the largest
@@ -57,8 +61,11 @@ impl Skeleton {
             return self.with_radii(None, &axis.radii);
         };
         let lookup = AxisLookup::new(mesh, axis);
+        let spacing = Skeleton::RESAMPLING * axis.diagonal();
         let skeleton = self
-            .resampled(mesh, Skeleton::RESAMPLING * axis.diagonal())
+            .with_radii(Some(mesh), &axis.radii)
+            .straightened(mesh, &lookup, spacing)
+            .resampled(mesh, spacing)
             .with_radii(Some(mesh), &axis.radii);
         let at: Vec<DVec3> = skeleton.points.iter().map(|p| p.position.into()).collect();
         // On the axis, points on its curves and at their ends stay; centred, they move.
@@ -293,23 +300,13 @@ impl Skeleton {
             .points
             .iter()
             .zip(to)
-            .map(|(p, &to)| {
-                let own = vertex_of(mesh, p.on);
-                let placed = (!mesh.vertex_faces(own).is_empty())
-                    .then(|| lookup.nearest_vertex(to, own))
-                    .flatten()
-                    .and_then(|near| {
-                        let faces = nearby_faces(mesh, SurfacePoint::Vertex(near));
-                        SurfacePoint::nearest_among(mesh, faces, to)
-                    });
-                match placed {
-                    Some((on, position)) => SkeletonPoint {
-                        position: position.to_array(),
-                        on,
-                        ..*p
-                    },
-                    None => *p,
-                }
+            .map(|(p, &to)| match lookup.onto_sheets(mesh, p.on, to) {
+                Some((on, position)) => SkeletonPoint {
+                    position: position.to_array(),
+                    on,
+                    ..*p
+                },
+                None => *p,
             })
             .collect();
         self.with_points(points)
@@ -330,7 +327,7 @@ impl Skeleton {
 /// The axis's vertices in an R-tree (`rstar`: a kept crate, bulk-loaded, for nearest
 /// queries): where a point that smoothing moved off the axis finds the axis again; and
 /// the medial balls of its sheets, thinned, for cross-sections.
-struct AxisLookup {
+pub(super) struct AxisLookup {
     tree: RTree<GeomWithData<[f64; 3], u32>>,
     balls: Balls,
     /// Per vertex, the connected part of the axis (sheets and curves) it belongs to: a
@@ -339,7 +336,7 @@ struct AxisLookup {
 }
 
 impl AxisLookup {
-    fn new(mesh: &TriMesh, axis: &MedialAxis) -> AxisLookup {
+    pub(super) fn new(mesh: &TriMesh, axis: &MedialAxis) -> AxisLookup {
         let mut sets = DisjointSets::new(mesh.vertex_count());
         for t in mesh.triangles() {
             sets.join(t[0], t[1]);
@@ -362,6 +359,22 @@ impl AxisLookup {
             balls,
             part: sets.labels().0,
         }
+    }
+
+    /// The nearest point to `to` of the sheets of the part of the axis that `from` lies
+    /// on, and where it is; `None` if that part has no sheets near `from`.
+    pub(super) fn onto_sheets(
+        &self,
+        mesh: &TriMesh,
+        from: SurfacePoint,
+        to: DVec3,
+    ) -> Option<(SurfacePoint, DVec3)> {
+        let own = vertex_of(mesh, from);
+        if mesh.vertex_faces(own).is_empty() {
+            return None;
+        }
+        let near = self.nearest_vertex(to, own)?;
+        SurfacePoint::nearest_among(mesh, nearby_faces(mesh, SurfacePoint::Vertex(near)), to)
     }
 
     /// The vertex with faces nearest `p` on the same part of the axis as `of`.
