@@ -796,3 +796,52 @@ fn a_hole_the_balls_fill_leaves_no_cycle() {
         );
     }
 }
+
+/// A thin limb that an axis has as a curve (as the axis of a coarsely sampled tube
+/// has), between two small pieces of sheet: the curve burns from its ends along its
+/// length, and the skeleton keeps it whole at the default pruning, with both burns and
+/// also with a sheet at one end only. (Reached by the grassfire that runs along it,
+/// every point of the curve would burn as soon as the fire passed, and the limb would
+/// be pruned to a point.)
+#[test]
+fn a_limb_the_axis_has_as_a_curve_stays_whole() {
+    // Triangles at x in [-0.2, 0] and x in [10, 10.2], a curve of 100 steps between.
+    let mut positions = vec![[-0.2, -0.1, 0.0], [-0.2, 0.1, 0.0], [0.0, 0.0, 0.0]];
+    for i in 1..100 {
+        positions.push([0.1 * f64::from(i), 0.02 * (f64::from(i) * 1.3).sin(), 0.0]);
+    }
+    positions.extend([[10.0, 0.0, 0.0], [10.2, -0.1, 0.0], [10.2, 0.1, 0.0]]);
+    let last = positions.len() as u32 - 3;
+    let curve: Vec<[u32; 2]> = (2..last).map(|v| [v, v + 1]).collect();
+    for sheets in [vec![[0, 1, 2], [last, last + 1, last + 2]], vec![[0, 1, 2]]] {
+        let kept = if sheets.len() == 2 {
+            positions.len()
+        } else {
+            positions.len() - 2
+        };
+        let radii = vec![0.1; kept];
+        let curve: Vec<[u32; 2]> = curve
+            .iter()
+            .copied()
+            .filter(|e| (e[1] as usize) < kept)
+            .collect();
+        let axis = geotracks::mesh::io::MedialAxis::from_parts(
+            positions[..kept].to_vec(),
+            radii,
+            sheets.clone(),
+            curve,
+        )
+        .unwrap();
+        for burn in [Burn::Boundary, Burn::Radius] {
+            let pruning = Pruning::default_for(axis.diagonal());
+            let (skeleton, _) = medial_axis_skeleton(&axis, burn, &K5, pruning).unwrap();
+            let length = skeleton.length();
+            assert!(
+                length > 9.0,
+                "{} sheet(s), {burn:?}: length {length}, {} tips",
+                sheets.len(),
+                skeleton.tip_count()
+            );
+        }
+    }
+}

@@ -1,5 +1,6 @@
 //! The grassfire: a distance field burnt into a surface from its whole boundary.
 
+use super::Skeleton;
 use crate::mesh::TriMesh;
 use crate::options::Options;
 use crate::propagate::Solver;
@@ -85,5 +86,47 @@ impl<M: Metric> Grassfire<M> {
     /// The solver the fire burnt with (its mesh, metric and Steiner layout).
     pub fn solver(&self) -> &Solver<M> {
         self.field.solver()
+    }
+}
+
+/// Per vertex, when the fire from the sheets' border may take it: `distance` on the
+/// sheets, 0 at a vertex of curves only. A curve has no width: it is all border, and
+/// burns from its free ends along its length, so that its significance is the length
+/// burnt (as on an axis of curves alone). Were it reached by the grassfire that runs
+/// along it, every point of a curve would be taken as soon as the fire passed, and a
+/// limb that an axis has as curves (a thin tube sampled coarsely) would be pruned
+/// away, however long.
+pub(super) fn curves_reached_at_once(mesh: &TriMesh, distance: &[f64]) -> Vec<f64> {
+    distance
+        .iter()
+        .enumerate()
+        .map(|(v, &d)| {
+            if mesh.vertex_faces(v as u32).is_empty() {
+                0.0
+            } else {
+                d
+            }
+        })
+        .collect()
+}
+
+/// The unpruned skeleton of `mesh` burnt from its border, with the grassfire's field;
+/// without a border, punctured (no fire reaches: every reach is `inf`) and no field.
+/// Tubularity against `radius` (one per vertex; `None`: the grassfire's distances).
+pub(super) fn burn_from_border<M: Metric + Clone>(
+    mesh: &TriMesh,
+    metric: M,
+    options: &Options,
+    radius: Option<&[f64]>,
+) -> Result<(Skeleton, Option<Field<M>>), Error> {
+    match Grassfire::burn(mesh, metric.clone(), options) {
+        Ok(fire) => Ok((Skeleton::of_fire(&fire, radius), Some(fire.into_field()))),
+        Err(Error::NoBoundary) => {
+            let unreached = vec![f64::INFINITY; mesh.vertex_count()];
+            let reach = curves_reached_at_once(mesh, &unreached);
+            let radius = radius.unwrap_or(&unreached);
+            Ok((Skeleton::thinned(mesh, &metric, &reach, radius), None))
+        }
+        Err(e) => Err(e),
     }
 }

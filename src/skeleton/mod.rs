@@ -69,6 +69,7 @@ use crate::surface::SurfacePoint;
 use crate::{Error, Euclidean, Field, Metric};
 use balls::Balls;
 use glam::DVec3;
+use grassfire::{burn_from_border, curves_reached_at_once};
 
 /// The pruning threshold the command line uses by default, in % of the bounding-box
 /// diagonal of what is skeletonized: branches whose erosion thickness is less go. It is
@@ -260,12 +261,13 @@ impl Skeleton {
     /// per vertex; `None`: the grassfire's distances).
     fn of_fire<M: Metric>(fire: &Grassfire<M>, radius: Option<&[f64]>) -> Skeleton {
         let solver = fire.solver();
-        let reach = fire.field().vertex_distances();
+        let distance = fire.field().vertex_distances();
+        let reach = curves_reached_at_once(solver.mesh(), distance);
         Skeleton::thinned(
             solver.mesh(),
             solver.metric(),
-            reach,
-            radius.unwrap_or(reach),
+            &reach,
+            radius.unwrap_or(distance),
         )
     }
 
@@ -633,8 +635,11 @@ fn edge_costs<M: Metric>(mesh: &TriMesh, metric: &M, wires: &[[u32; 2]]) -> Vec<
 #[non_exhaustive]
 pub enum Burn {
     /// Its grassfire distance from the axis's own border, on the sheets (geodesic, by
-    /// the engine of the [`Options`]): the curves follow the middle of each sheet. The
-    /// default: the closest to mean-curvature-flow skeletons on the shared axes.
+    /// the engine of the [`Options`]): the curves follow the middle of each sheet. A
+    /// vertex of the axis's curves only may burn at once (a curve is all border): a
+    /// curve burns from its free ends along its length, and its significance is the
+    /// length burnt. The default: the closest to mean-curvature-flow skeletons on the
+    /// shared axes.
     #[default]
     Boundary,
     /// Its medial radius: the time eroding the shape from its surface takes to reach
@@ -765,25 +770,5 @@ impl Skeleton {
             Burn::Radius => (Skeleton::from_reach(mesh, &Euclidean, &axis.radii), None),
             Burn::Boundary => burn_from_border(mesh, Euclidean, options, Some(&axis.radii))?,
         })
-    }
-}
-
-/// The unpruned skeleton of `mesh` burnt from its border, with the grassfire's field;
-/// without a border, punctured (no fire reaches: every reach is `inf`) and no field.
-/// Tubularity against `radius` (one per vertex; `None`: the grassfire's distances).
-fn burn_from_border<M: Metric + Clone>(
-    mesh: &TriMesh,
-    metric: M,
-    options: &Options,
-    radius: Option<&[f64]>,
-) -> Result<(Skeleton, Option<Field<M>>), Error> {
-    match Grassfire::burn(mesh, metric.clone(), options) {
-        Ok(fire) => Ok((Skeleton::of_fire(&fire, radius), Some(fire.into_field()))),
-        Err(Error::NoBoundary) => {
-            let unreached = vec![f64::INFINITY; mesh.vertex_count()];
-            let radius = radius.unwrap_or(&unreached);
-            Ok((Skeleton::thinned(mesh, &metric, &unreached, radius), None))
-        }
-        Err(e) => Err(e),
     }
 }
