@@ -189,3 +189,65 @@ pub fn turning_per_length(lines: &[Vec<[f64; 3]>]) -> f64 {
     }
     angle / length.max(f64::MIN_POSITIVE)
 }
+
+/// A skeleton rebuilt polyline by polyline (see [`Skeleton::polylines`]): each point of
+/// the old one kept at most once (polylines share their tips and junctions), new points
+/// added between them, and each polyline's edges chained as it is walked.
+pub(super) struct Rebuild<'s> {
+    from: &'s Skeleton,
+    points: Vec<SkeletonPoint>,
+    /// Per old point, its index in `points` once kept.
+    new_id: Vec<u32>,
+    edges: Vec<[u32; 2]>,
+    /// Where the polyline being walked has come to.
+    last: u32,
+}
+
+impl<'s> Rebuild<'s> {
+    pub(super) fn new(from: &'s Skeleton) -> Rebuild<'s> {
+        Rebuild {
+            from,
+            points: Vec::new(),
+            new_id: vec![u32::MAX; from.points.len()],
+            edges: Vec::new(),
+            last: u32::MAX,
+        }
+    }
+
+    fn keep(&mut self, i: u32) -> u32 {
+        if self.new_id[i as usize] == u32::MAX {
+            self.new_id[i as usize] = self.points.len() as u32;
+            self.points.push(self.from.points[i as usize]);
+        }
+        self.new_id[i as usize]
+    }
+
+    /// Starts a polyline at the old point `i`.
+    pub(super) fn start(&mut self, i: u32) {
+        self.last = self.keep(i);
+    }
+
+    /// Continues the polyline to the old point `i`.
+    pub(super) fn then_old(&mut self, i: u32) {
+        let id = self.keep(i);
+        self.edges.push([self.last, id]);
+        self.last = id;
+    }
+
+    /// Continues the polyline to a new point.
+    pub(super) fn then_new(&mut self, point: SkeletonPoint) {
+        let id = self.points.len() as u32;
+        self.points.push(point);
+        self.edges.push([self.last, id]);
+        self.last = id;
+    }
+
+    /// The skeleton rebuilt (its counts of punctured faces and cycles as the old one's).
+    pub(super) fn finish(self) -> Skeleton {
+        Skeleton {
+            points: self.points,
+            edges: self.edges,
+            ..*self.from
+        }
+    }
+}

@@ -4,7 +4,7 @@
 //! the shape's cross-section.
 
 use super::balls::Balls;
-use super::geometry::{nearby_faces, share_a_face, vertex_of};
+use super::geometry::{nearby_faces, share_a_face, vertex_of, Rebuild};
 use super::thinning::Ordered;
 use super::{Skeleton, SkeletonPoint};
 use crate::mesh::io::MedialAxis;
@@ -118,18 +118,9 @@ impl Skeleton {
         if spacing.is_nan() || spacing <= 0.0 {
             return self.clone();
         }
-        let mut points: Vec<SkeletonPoint> = Vec::new();
-        let mut new_id = vec![u32::MAX; self.points.len()];
-        let mut keep = |i: u32, points: &mut Vec<SkeletonPoint>| -> u32 {
-            if new_id[i as usize] == u32::MAX {
-                new_id[i as usize] = points.len() as u32;
-                points.push(self.points[i as usize]);
-            }
-            new_id[i as usize]
-        };
-        let mut edges = Vec::new();
+        let mut rebuilt = Rebuild::new(self);
         for line in self.polylines() {
-            let first = keep(line[0], &mut points);
+            rebuilt.start(line[0]);
             if line.len() < 2 {
                 continue;
             }
@@ -148,11 +139,8 @@ impl Skeleton {
             let on = |k: usize| self.points[line[k] as usize].on;
             if (1..line.len()).any(|k| !share_a_face(mesh, on(k - 1), on(k))) {
                 // Along line elements: the points as they are.
-                let mut previous = first;
                 for &i in &line[1..] {
-                    let id = keep(i, &mut points);
-                    edges.push([previous, id]);
-                    previous = id;
+                    rebuilt.then_old(i);
                 }
                 continue;
             }
@@ -160,7 +148,6 @@ impl Skeleton {
                 .iter()
                 .map(|&i| nearby_faces(mesh, self.points[i as usize].on))
                 .collect();
-            let mut previous = first;
             let mut segment = 0;
             for step in 1..steps {
                 let s = length * step as f64 / steps as f64;
@@ -184,25 +171,17 @@ impl Skeleton {
                     at[segment].lerp(at[segment + 1], t),
                 )
                 .unwrap_or((self.points[line[near] as usize].on, at[near]));
-                let id = points.len() as u32;
-                points.push(SkeletonPoint {
+                rebuilt.then_new(SkeletonPoint {
                     position: position.to_array(),
                     on,
                     significance: a.significance.min(b.significance),
                     tubularity: a.tubularity.min(b.tubularity),
                     radius: None,
                 });
-                edges.push([previous, id]);
-                previous = id;
             }
-            let last = keep(line[line.len() - 1], &mut points);
-            edges.push([previous, last]);
+            rebuilt.then_old(line[line.len() - 1]);
         }
-        Skeleton {
-            points,
-            edges,
-            ..*self
-        }
+        rebuilt.finish()
     }
 
     /// Where each point at `at` goes when the skeleton is smoothed at the scale of the

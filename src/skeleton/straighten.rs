@@ -2,6 +2,7 @@
 //! junctions replaced by the shortest path through its own points that may step across
 //! a fold, from a point to another inside its medial ball.
 
+use super::geometry::Rebuild;
 use super::placement::AxisLookup;
 use super::thinning::Ordered;
 use super::{Skeleton, SkeletonPoint};
@@ -50,18 +51,9 @@ impl Skeleton {
             .filter(|w| w[0] == w[1])
             .map(|w| w[0])
             .collect();
-        let mut points: Vec<SkeletonPoint> = Vec::new();
-        let mut new_id = vec![u32::MAX; self.points.len()];
-        let mut keep = |i: u32, points: &mut Vec<SkeletonPoint>| -> u32 {
-            if new_id[i as usize] == u32::MAX {
-                new_id[i as usize] = points.len() as u32;
-                points.push(self.points[i as usize]);
-            }
-            new_id[i as usize]
-        };
-        let mut edges = Vec::new();
+        let mut rebuilt = Rebuild::new(self);
         for line in &lines {
-            let first = keep(line[0], &mut points);
+            rebuilt.start(line[0]);
             let straight = line.len() > 2
                 && line[0] != line[line.len() - 1]
                 && !shared.contains(&end_pair(line));
@@ -78,7 +70,6 @@ impl Skeleton {
             } else {
                 (0..line.len()).collect()
             };
-            let mut previous = first;
             for pair in steps.windows(2) {
                 let (a, b) = (pair[0], pair[1]);
                 // Points along a step that skips some, on the axis near the segment.
@@ -92,26 +83,17 @@ impl Skeleton {
                     let Some((on, position)) = lookup.onto_sheets(mesh, from.on, target) else {
                         continue;
                     };
-                    let id = points.len() as u32;
-                    points.push(SkeletonPoint {
+                    rebuilt.then_new(SkeletonPoint {
                         position: position.to_array(),
                         on,
                         radius: None,
                         ..*from
                     });
-                    edges.push([previous, id]);
-                    previous = id;
                 }
-                let id = keep(line[b], &mut points);
-                edges.push([previous, id]);
-                previous = id;
+                rebuilt.then_old(line[b]);
             }
         }
-        Skeleton {
-            points,
-            edges,
-            ..*self
-        }
+        rebuilt.finish()
     }
 }
 
