@@ -22,7 +22,7 @@ impl Skeleton {
     /// The skeleton with its branches' folds taken out: each branch (a polyline between
     /// tips and junctions) becomes the shortest path from its first point to its last
     /// that goes from point to point along it or steps across a fold: from a point to
-    /// one inside its medial ball (its `radius`; so the step stays inside the solid)
+    /// one inside its medial ball (the point's radius: the step stays inside the solid)
     /// that the branch reaches only after at least [`Skeleton::FOLD`] times the step's
     /// length. A step that skips points is filled every `spacing` or so with the points
     /// of the axis's sheets (`mesh`, through `lookup`) nearest the segment.
@@ -72,9 +72,13 @@ impl Skeleton {
             };
             for pair in steps.windows(2) {
                 let (a, b) = (pair[0], pair[1]);
-                // Points along a step that skips some, on the axis near the segment.
-                let fill = ((at[a].distance(at[b]) / spacing).ceil() as usize).max(1);
-                let fill = if b > a + 1 { fill } else { 1 };
+                // Points along a step that skips some, on the axis near the segment (a
+                // step is at most a ball long: a few hundred spacings at the most).
+                let fill = if b > a + 1 && spacing > 0.0 {
+                    ((at[a].distance(at[b]) / spacing).ceil() as usize).max(1)
+                } else {
+                    1
+                };
                 for k in 1..fill {
                     let t = k as f64 / fill as f64;
                     let near = if t < 0.5 { a } else { b };
