@@ -374,24 +374,41 @@ fn graph_distances(neighbours: &[Vec<(u32, f64)>], sources: &[u32], limit: f64) 
     distance
 }
 
-/// A bounded Dijkstra search over a skeleton's graph, its buffers kept between runs.
-struct Search {
+/// A bounded Dijkstra search over a graph given as weighted adjacency lists (a
+/// skeleton's, or a branch's steps), its buffers kept between runs.
+pub(super) struct Search {
     distance: Vec<f64>,
+    /// Per point reached, the one it was reached from (`u32::MAX` at a source).
+    previous: Vec<u32>,
     touched: Vec<u32>,
     heap: BinaryHeap<Reverse<(Ordered, u32)>>,
 }
 
 impl Search {
-    fn new(points: usize) -> Search {
+    pub(super) fn new(points: usize) -> Search {
         Search {
             distance: vec![f64::INFINITY; points],
+            previous: vec![u32::MAX; points],
             touched: Vec::new(),
             heap: BinaryHeap::new(),
         }
     }
 
+    /// The shortest path the last run found from its sources to `to` (reached), as
+    /// points from a source to `to`.
+    pub(super) fn path_to(&self, to: u32) -> Vec<u32> {
+        let mut path = vec![to];
+        let mut at = to;
+        while self.previous[at as usize] != u32::MAX {
+            at = self.previous[at as usize];
+            path.push(at);
+        }
+        path.reverse();
+        path
+    }
+
     /// Calls `visit(point, distance)` once for every point within `limit` of `from`.
-    fn run(
+    pub(super) fn run(
         &mut self,
         neighbours: &[Vec<(u32, f64)>],
         from: u32,
@@ -410,6 +427,7 @@ impl Search {
     ) {
         for &i in &self.touched {
             self.distance[i as usize] = f64::INFINITY;
+            self.previous[i as usize] = u32::MAX;
         }
         self.touched.clear();
         for &s in sources {
@@ -429,6 +447,7 @@ impl Search {
                         self.touched.push(j);
                     }
                     self.distance[j as usize] = dj;
+                    self.previous[j as usize] = i;
                     self.heap.push(Reverse((Ordered(dj), j)));
                 }
             }

@@ -3,15 +3,13 @@
 //! a fold, from a point to another inside its medial ball.
 
 use super::geometry::Rebuild;
-use super::placement::AxisLookup;
-use super::thinning::Ordered;
+use super::placement::{AxisLookup, Search};
 use super::{Skeleton, SkeletonPoint};
 use crate::mesh::TriMesh;
 use glam::DVec3;
 use rstar::primitives::GeomWithData;
 use rstar::RTree;
-use std::cmp::Reverse;
-use std::collections::{BinaryHeap, HashSet};
+use std::collections::HashSet;
 
 impl Skeleton {
     /// How many times longer than a step across it the way round a fold must be for the
@@ -123,51 +121,29 @@ fn shortest_steps(at: &[DVec3], reach: &[f64]) -> Vec<usize> {
             .collect(),
     );
     let n = at.len();
-    let mut distance = vec![f64::INFINITY; n];
-    let mut previous = vec![usize::MAX; n];
-    let mut heap = BinaryHeap::new();
-    distance[0] = 0.0;
-    heap.push(Reverse((Ordered(0.0), 0)));
-    while let Some(Reverse((Ordered(d), i))) = heap.pop() {
-        if d > distance[i] {
-            continue;
+    let mut steps: Vec<Vec<(u32, f64)>> = vec![Vec::new(); n];
+    for i in 0..n {
+        if i + 1 < n {
+            let length = at[i].distance(at[i + 1]);
+            steps[i].push((i as u32 + 1, length));
+            steps[i + 1].push((i as u32, length));
         }
-        if i == n - 1 {
-            break;
-        }
-        let mut relax = |j: usize, fold: f64| {
-            let step = at[i].distance(at[j]);
-            if (along[j] - along[i]).abs() < fold * step {
-                return;
-            }
-            let dj = d + step;
-            if dj < distance[j] {
-                distance[j] = dj;
-                previous[j] = i;
-                heap.push(Reverse((Ordered(dj), j)));
-            }
-        };
-        for j in [i.wrapping_sub(1), i + 1] {
-            if j < n {
-                relax(j, 0.0);
-            }
-        }
-        let r = reach[i];
-        if r > 0.0 {
-            for near in tree.locate_within_distance(at[i].to_array(), r * r) {
-                relax(near.data, Skeleton::FOLD);
+        if reach[i] > 0.0 {
+            for near in tree.locate_within_distance(at[i].to_array(), reach[i] * reach[i]) {
+                let (j, step) = (near.data, at[i].distance(at[near.data]));
+                if j != i && (along[j] - along[i]).abs() >= Skeleton::FOLD * step {
+                    steps[i].push((j as u32, step));
+                }
             }
         }
     }
-    let mut steps = vec![n - 1];
-    while let Some(&i) = steps.last() {
-        if i == 0 {
-            break;
-        }
-        steps.push(previous[i]);
-    }
-    steps.reverse();
-    steps
+    let mut search = Search::new(n);
+    search.run(&steps, 0, f64::INFINITY, |_, _| {});
+    search
+        .path_to(n as u32 - 1)
+        .into_iter()
+        .map(|i| i as usize)
+        .collect()
 }
 
 #[cfg(test)]
