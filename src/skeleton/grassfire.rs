@@ -1,4 +1,5 @@
-//! The grassfire: a distance field burnt into a surface from its whole boundary.
+//! The grassfire: a distance field burnt into a surface from its whole boundary, and
+//! the skeleton thinned in the order it burns.
 
 use super::Skeleton;
 use crate::mesh::TriMesh;
@@ -111,7 +112,8 @@ pub(super) fn curves_reached_at_once(mesh: &TriMesh, distance: &[f64]) -> Vec<f6
 }
 
 /// The unpruned skeleton of `mesh` burnt from its border, with the grassfire's field;
-/// without a border, punctured (no fire reaches: every reach is `inf`) and no field.
+/// without a border, punctured (no fire reaches the sheets: their reach is `inf`; the
+/// curves burn from their free ends at once) and no field.
 /// Tubularity against `radius` (one per vertex; `None`: the grassfire's distances).
 pub(super) fn burn_from_border<M: Metric + Clone>(
     mesh: &TriMesh,

@@ -252,7 +252,8 @@ impl Skeleton {
 
     /// The unpruned skeleton of a grassfire's surface, each vertex reached when the
     /// grassfire reaches it: [`Skeleton::from_reach`] with its vertex distances, under
-    /// its metric.
+    /// its metric; a vertex of line elements only, at once (a curve is all border; see
+    /// [`Burn::Boundary`]).
     pub fn from_grassfire<M: Metric>(fire: &Grassfire<M>) -> Skeleton {
         Skeleton::of_fire(fire, None)
     }
