@@ -294,6 +294,17 @@ mod tests {
     }
 
     #[test]
+    fn a_right_angle_stays() {
+        // An L on a sheet whose balls (radius 0.5) reach round the corner: the way
+        // round is at most √2 times a step across, short of a fold.
+        let (axis, id) = sheet(4.0, 4.0, 0.5, |_, _| false);
+        let l = path(&axis, &id, &[[0.5, 0.5], [3.5, 0.5], [3.5, 3.5]], 0.5);
+        let kept = straightened(&axis, &l);
+        assert_eq!(kept.points.len(), l.points.len());
+        assert!((length(&kept) - length(&l)).abs() < 1e-12);
+    }
+
+    #[test]
     fn steps_stay_within_the_balls_round_a_bend() {
         // A U: two arms 1 wide, 1 apart, joined at x > 8; balls of radius 0.4.
         let (axis, id) = sheet(9.0, 3.0, 0.4, |x, y| x < 8.0 && (1.0..2.0).contains(&y));
