@@ -304,13 +304,23 @@ def test_skeleton_of_a_medial_axis():
         geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune="-1")
     with pytest.raises(geotracks.GeotracksError, match="burn"):
         geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", burn="fire")
-    # Tips trimmed to their last ball: fewer points, the same cycles.
+    def length(sk):
+        return np.linalg.norm(sk.points[sk.edges[:, 0]] - sk.points[sk.edges[:, 1]], axis=1).sum()
+
+    def degrees(sk):
+        return np.bincount(sk.edges.ravel(), minlength=len(sk.points))
+
+    # Tips trimmed to their last ball: shorter, the same cycles and tips.
     trimmed = geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune="2%", trim_tips=True)
-    assert len(trimmed.points) < p and cycles(trimmed) == trimmed.b1
-    # Centred: the same graph's shape, points off the axis, each inside a ball.
+    assert length(trimmed) < length(sk) and cycles(trimmed) == trimmed.b1
+    assert np.sum(degrees(trimmed) == 1) == np.sum(degrees(sk) == 1)
+    # Centred: the same graph's shape (tips, junctions, cycles), points off the axis,
+    # each inside a ball.
     centred = geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune="2%", centred=True)
     assert cycles(centred) == centred.b1
-    assert len(centred.points) == p and np.all(centred.radii >= 0)
+    for degree in (1, 3):
+        assert np.sum(degrees(centred) == degree) == np.sum(degrees(sk) == degree)
+    assert np.all(centred.radii >= 0)
 
 
 def test_isolines_lie_on_their_level():

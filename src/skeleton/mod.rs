@@ -53,6 +53,7 @@ mod grassfire;
 pub mod medial;
 mod placement;
 mod protrusion;
+mod simplify;
 mod straighten;
 mod thinning;
 mod tips;

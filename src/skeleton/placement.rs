@@ -1,7 +1,7 @@
 //! Where a medial-axis skeleton's points go once thinned: each branch's folds taken
 //! out, resampled evenly along each polyline, smoothed at the scale of the shape's
-//! thickness (through junctions), and then kept on the axis or moved to the centre of
-//! the shape's cross-section.
+//! thickness (through junctions), then kept on the axis or moved to the centre of the
+//! shape's cross-section, and last thinned to the points the curve needs.
 
 use super::balls::Balls;
 use super::geometry::{nearby_faces, share_a_face, vertex_of, Rebuild};
@@ -53,7 +53,11 @@ impl Skeleton {
     ///    smoothed on it ([`Skeleton::smoothed`], [`Skeleton::SMOOTHING`] rounds), with
     ///    the radius interpolated there; for [`Placement::Centred`], moved to the centre
     ///    of the shape's cross-section and smoothed again, with the radius of the largest
-    ///    ball centred there inside the shape.
+    ///    ball centred there inside the shape;
+    /// 5. thinned to the points the curve needs ([`Skeleton::simplified`]): a point
+    ///    within [`Skeleton::SIMPLIFYING_RADII`] medial radii, and one resampling step,
+    ///    of the polyline without it goes, and with it the zig-zag that the axis's
+    ///    roughness leaves between points so close together.
     ///
     /// An axis of curves only keeps its points (they lie on its curves) and gets radii.
     pub fn placed(self, axis: &MedialAxis, placement: Placement) -> Skeleton {
@@ -78,7 +82,7 @@ impl Skeleton {
             Placement::Centred => vec![true; at.len()],
         };
         let smooth = skeleton.smoothed_by_radius(&at, &movable);
-        match placement {
+        let placed = match placement {
             Placement::OnAxis => skeleton
                 .moved_onto(mesh, &lookup, &smooth)
                 .smoothed(mesh, Skeleton::SMOOTHING)
@@ -103,7 +107,8 @@ impl Skeleton {
                     .collect();
                 skeleton.with_points(points)
             }
-        }
+        };
+        placed.simplified(Skeleton::SIMPLIFYING_RADII, spacing)
     }
 
     /// The skeleton with every polyline between tips and junctions resampled at even
