@@ -133,7 +133,8 @@ const SKELETON_EXAMPLES: &str =
     "  geotracks skeleton cow.ma --prune 5% --tubular 1 -o cow_skeleton.obj --field cow_fire.ply
   geotracks skeleton axis.ma --burn radius --prune 0.05 -o skeleton.json
   geotracks skeleton cow.ma -o cow.obj --png cow.png --view 30,20
-  geotracks skeleton spot.obj -o spot_skeleton.obj   # a closed surface: its medial axis first";
+  geotracks skeleton spot.obj -o spot_skeleton.obj   # a closed surface: its medial axis first, points centred
+  geotracks skeleton spot.obj --on-axis -o spot_on_axis.obj";
 
 const MEDIAL_AXIS_EXAMPLES: &str = "  geotracks medial-axis spot.obj -o spot.ma --png spot_axis.png
   geotracks medial-axis part.stl --spacing 0.5 --angle 75 -o part.ma

@@ -40,6 +40,41 @@ fn the_medial_axis_of_spot_reads_back_and_skeletonizes() {
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     assert_eq!(graph["components"], 1);
     assert_eq!(graph["cycles"], 0);
+    // From a mesh its points are centred by default; from the axis written as a file,
+    // they stay on it.
+    let read = |path: &std::path::Path| std::fs::read_to_string(path).unwrap();
+    let placed = |input: &str, flag: Option<&str>, name: &str| {
+        let path = dir.path().join(name);
+        let mut args = vec!["skeleton", input, "-o", path.to_str().unwrap()];
+        args.extend(flag);
+        geotracks_ok(&args);
+        read(&path)
+    };
+    let default = read(&json);
+    assert_eq!(default, placed(SPOT, Some("--centred"), "centred.json"));
+    assert_ne!(default, placed(SPOT, Some("--on-axis"), "on_axis.json"));
+    let ma = ma.to_str().unwrap();
+    assert_eq!(
+        placed(ma, None, "axis.json"),
+        placed(ma, Some("--on-axis"), "axis_on_axis.json")
+    );
+    assert_ne!(
+        placed(ma, None, "axis.json"),
+        placed(ma, Some("--centred"), "axis_centred.json")
+    );
+    let both = dir.path().join("both.json");
+    assert_fails(
+        &[
+            "skeleton",
+            SPOT,
+            "--centred",
+            "--on-axis",
+            "-o",
+            both.to_str().unwrap(),
+        ],
+        &both,
+        "cannot be used with",
+    );
 }
 
 #[test]

@@ -134,7 +134,7 @@ fn number_after(argv: &[String], flag: &str, default: f64) -> Result<f64, String
 }
 
 /// `eval DATA_DIR --skeletons [PRUNE_PERCENT] [--k K] [--radius] [--tubular T]
-/// [--protrusion P] [--trim-tips] [--from-meshes [ANGLE] [--span S]] [--centred]`.
+/// [--protrusion P] [--trim-tips] [--from-meshes [ANGLE] [--span S]] [--centred | --on-axis]`.
 fn skeletons_main(argv: &[String], at: usize) -> Result<(), String> {
     let data = argv
         .get(1)
@@ -184,10 +184,13 @@ fn skeletons_main(argv: &[String], at: usize) -> Result<(), String> {
         }
         None => skeletons::Axes::Files,
     };
+    // As the command line places them: centred from a mesh, on a given axis.
     let placement = if argv.iter().any(|a| a == "--centred") {
         geotracks::skeleton::Placement::Centred
-    } else {
+    } else if argv.iter().any(|a| a == "--on-axis") {
         geotracks::skeleton::Placement::OnAxis
+    } else {
+        geotracks::skeleton::Placement::default_for(matches!(axes, skeletons::Axes::FromMeshes(..)))
     };
     skeletons::skeletons(
         std::path::Path::new(data),

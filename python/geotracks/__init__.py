@@ -594,7 +594,7 @@ def skeleton(
     angle: float = 60.0,
     span: float = 1.5,
     weld: bool = False,
-    centred: bool = False,
+    centred: Optional[bool] = None,
     protrusion: float = 0.5,
     trim_tips: bool = False,
 ) -> Skeleton:
@@ -617,11 +617,14 @@ def skeleton(
     :param burn: ``"boundary"`` (the grassfire from the axis's border) or ``"radius"``
         (each point burns at its medial radius).
     :param spacing, angle, span, weld: for a surface mesh, as in :func:`medial_axis`.
-    :param centred: move the points off the axis to the centre of the shape's
-        cross-section there (the cut of the medial balls by the plane across the
+    :param centred: ``True`` moves the points off the axis to the centre of the
+        shape's cross-section there (the cut of the medial balls by the plane across the
         curve), as a mean-curvature-flow skeleton lies; radii are then those of the
-        largest balls centred there. By default the points stay on the axis; an axis of
-        curves only keeps its points on its curves either way.
+        largest balls centred there. ``False`` keeps them on the axis. By default
+        (``None``), a surface mesh's skeleton is centred (its computed axis zig-zags
+        round the true one where a limb is only a few samples across) and a ``.ma``
+        file's stays on its axis. An axis of curves only keeps its points on its curves
+        either way.
     """
     return Skeleton(
         *_skeleton(
@@ -634,7 +637,7 @@ def skeleton(
             _real(angle, "angle"),
             _real(span, "span"),
             bool(weld),
-            bool(centred),
+            None if centred is None else bool(centred),
             _real(protrusion, "protrusion"),
             bool(trim_tips),
         )

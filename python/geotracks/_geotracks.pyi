@@ -141,7 +141,7 @@ def skeleton(
     angle: float = 60.0,
     span: float = 1.5,
     weld: bool = False,
-    centred: bool = False,
+    centred: bool | None = None,
     protrusion: float = 0.5,
     trim_tips: bool = False,
 ) -> tuple[

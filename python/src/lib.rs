@@ -577,9 +577,11 @@ fn medial_axis<'py>(
 /// joins) and at `protrusion` (the least reach out of the rest's medial balls over that
 /// radius), burnt from the border (`burn="boundary"`) or by medial radius (`"radius"`),
 /// its points on the axis or, with `centred`, at the centre of the shape's
-/// cross-section: `(points (p, 3), radii (p,), significance (p,), edges (e, 2), b1)`.
+/// cross-section (by default, centred for a surface mesh and on the axis for a `.ma`
+/// file, `Placement::default_for`): `(points (p, 3), radii (p,), significance (p,),
+/// edges (e, 2), b1)`.
 #[pyfunction]
-#[pyo3(signature = (axis, prune="5%", burn="boundary", k=5.0, tubular=geotracks::skeleton::DEFAULT_MIN_TUBULARITY, spacing=None, angle=geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_ANGLE_DEGREES, span=geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_SPAN, weld=false, centred=false, protrusion=geotracks::skeleton::DEFAULT_MIN_PROTRUSION, trim_tips=false))]
+#[pyo3(signature = (axis, prune="5%", burn="boundary", k=5.0, tubular=geotracks::skeleton::DEFAULT_MIN_TUBULARITY, spacing=None, angle=geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_ANGLE_DEGREES, span=geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_SPAN, weld=false, centred=None, protrusion=geotracks::skeleton::DEFAULT_MIN_PROTRUSION, trim_tips=false))]
 #[allow(clippy::type_complexity, clippy::too_many_arguments)] // five named arrays, as the Python wrapper documents; the keywords are Python's
 fn skeleton<'py>(
     py: Python<'py>,
@@ -592,7 +594,7 @@ fn skeleton<'py>(
     angle: f64,
     span: f64,
     weld: bool,
-    centred: bool,
+    centred: Option<bool>,
     protrusion: f64,
     trim_tips: bool,
 ) -> PyResult<(
@@ -633,10 +635,10 @@ fn skeleton<'py>(
             };
             let options = Options::DEFAULT.with_k(k).with_method(Method::Tracks);
             let max_cycles = solid_cycles.unwrap_or(usize::MAX);
-            let placement = if centred {
-                Placement::Centred
-            } else {
-                Placement::OnAxis
+            let placement = match centred {
+                Some(true) => Placement::Centred,
+                Some(false) => Placement::OnAxis,
+                None => Placement::default_for(solid_cycles.is_some()),
             };
             let (skeleton, _) = medial_axis_skeleton_with_cycles(
                 &axis, burn, &options, pruning, max_cycles, placement,

@@ -318,6 +318,8 @@ def test_skeleton_of_a_medial_axis():
     # each inside a ball.
     centred = geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune="2%", centred=True)
     assert cycles(centred) == centred.b1
+    on_axis = geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune="2%", centred=False)
+    assert np.array_equal(on_axis.points, sk.points)
     for degree in (1, 3):
         assert np.sum(degrees(centred) == degree) == np.sum(degrees(sk) == degree)
     assert np.all(centred.radii >= 0)
@@ -479,6 +481,11 @@ def test_medial_axis_and_skeleton_of_a_surface():
     sk = geotracks.skeleton(DATA / "spot.obj")
     assert sk.b1 == 0
     assert len(sk.edges) == len(sk.points) - 1
+    # From a mesh the points are centred by default (a .ma file's stay on its axis).
+    centred = geotracks.skeleton(DATA / "spot.obj", centred=True)
+    on_axis = geotracks.skeleton(DATA / "spot.obj", centred=False)
+    assert np.array_equal(sk.points, centred.points)
+    assert not np.array_equal(sk.points, on_axis.points)
     # A stricter span keeps less of the axis.
     strict = geotracks.medial_axis(DATA / "spot.obj", span=3.0)
     assert len(strict.faces) < len(axis.faces)
