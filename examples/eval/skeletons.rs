@@ -218,6 +218,7 @@ pub fn skeletons(
     println!("\nAgainst CGAL's mean-curvature-flow skeleton of the shape, at --prune {prune_percent} %, --tubular {tubular} and --protrusion {protrusion}{}, points {}: both sampled every 0.2 % of the diagonal; distances in % of the diagonal.\n", if trim_tips { ", tips trimmed (--trim-tips)" } else { "" }, match placement { Placement::OnAxis => "on the axis", Placement::Centred => "centred" });
     println!("| axis | reference → ours mean / max | ours → reference mean / max | tips ours / reference | junctions ours / reference | length ours / reference | turning per length ours / reference | reference → axis mean / max |");
     println!("|---|---:|---:|---:|---:|---:|---:|---:|");
+    let mut targets = Vec::new();
     for (name, ours, reference, diagonal, floor) in comparisons {
         let ours_segments = segments_of(&ours.polyline_positions());
         let step = 0.002 * diagonal;
@@ -246,7 +247,17 @@ pub fn skeletons(
                 pct(max)
             ))
         );
+        let reference_length: f64 = reference.segments.iter().map(|(a, b)| a.distance(*b)).sum();
+        targets.push(Targets {
+            name,
+            excess: floor.map(|(mean, _)| pct(to_ours_mean - mean)),
+            max: pct(to_ours_max),
+            to_reference: pct(to_ref_mean),
+            tips: ours.tip_count() as f64 / reference.tips.max(1) as f64,
+            length: ours.length() / reference_length,
+        });
     }
+    print_targets(&targets);
     println!("\nWhere the distances come from: the branches (polylines between tips and junctions) that add most to each mean, with their share of it (branch samples × distance / all samples, in % of the diagonal; reference → ours less the branch's own distance to the axis, which no skeleton on the axis can remove).\n");
     println!("| axis | direction | branch (ends) | samples | mean distance | to the axis | share of the mean |");
     println!("|---|---|---|---:|---:|---:|---:|");
@@ -287,6 +298,49 @@ pub fn skeletons(
 
 /// Rows of the breakdown per axis and direction.
 const BREAKDOWN_ROWS: usize = 5;
+
+/// One skeleton's measures against the targets for skeletons as good as MCF's.
+struct Targets {
+    name: String,
+    /// Reference → ours mean less the reference's own mean distance to the axis (what
+    /// no skeleton on the axis can remove), in % of the diagonal; unknown without axis.
+    excess: Option<f64>,
+    /// Reference → ours max, in % of the diagonal.
+    max: f64,
+    /// Ours → reference mean, in % of the diagonal.
+    to_reference: f64,
+    /// Tips, ours over the reference's.
+    tips: f64,
+    /// Length, ours over the reference's.
+    length: f64,
+}
+
+/// The targets' table: reference → ours mean less the floor ≤ 0.5 %, its max ≤ 4 %,
+/// ours → reference mean ≤ 2 %, tips and length within 2× and 1.25× of the
+/// reference's (either way).
+fn print_targets(targets: &[Targets]) {
+    let mark = |ok: bool| if ok { "✓" } else { "✗" };
+    let within = |ratio: f64, factor: f64| ratio <= factor && ratio >= 1.0 / factor;
+    println!("\nAgainst the targets (reference → ours mean less the floor ≤ 0.5 %, its max ≤ 4 %; ours → reference mean ≤ 2 %; tips within 2× and length within 1.25× of the reference's):\n");
+    println!("| axis | mean − floor | max | ours → reference | tips | length |");
+    println!("|---|---:|---:|---:|---:|---:|");
+    for t in targets {
+        println!(
+            "| {} | {} | {:.2} % {} | {:.2} % {} | {:.2}× {} | {:.2}× {} |",
+            t.name,
+            t.excess
+                .map_or("–".into(), |e| format!("{e:.2} % {}", mark(e <= 0.5))),
+            t.max,
+            mark(t.max <= 4.0),
+            t.to_reference,
+            mark(t.to_reference <= 2.0),
+            t.tips,
+            mark(within(t.tips, 2.0)),
+            t.length,
+            mark(within(t.length, 1.25)),
+        );
+    }
+}
 
 /// One branch of a skeleton, measured against the other skeleton.
 struct Branch {
