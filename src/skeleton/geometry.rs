@@ -190,6 +190,32 @@ pub fn turning_per_length(lines: &[Vec<[f64; 3]>]) -> f64 {
     angle / length.max(f64::MIN_POSITIVE)
 }
 
+impl Skeleton {
+    /// The positions of the points of `line` (a polyline of [`Skeleton::polylines`]).
+    pub(super) fn line_positions(&self, line: &[u32]) -> Vec<DVec3> {
+        line.iter()
+            .map(|&i| self.points[i as usize].position.into())
+            .collect()
+    }
+}
+
+/// The length along the polyline `at` to each of its points (0 at the first).
+pub(super) fn lengths_along(at: &[DVec3]) -> Vec<f64> {
+    let mut along = Vec::with_capacity(at.len());
+    along.push(0.0);
+    for w in at.windows(2) {
+        along.push(along[along.len() - 1] + w[0].distance(w[1]));
+    }
+    along
+}
+
+/// The fewest edges a polyline of `points` points keeps when it is rebuilt (resampled
+/// or simplified): as many as it had, up to 3, so that a loop stays a loop and two
+/// branches between the same two points stay apart.
+pub(super) fn least_edges(points: usize) -> usize {
+    points.saturating_sub(1).min(3)
+}
+
 /// A skeleton rebuilt polyline by polyline (see [`Skeleton::polylines`]): each point of
 /// the old one kept at most once (polylines share their tips and junctions), new points
 /// added between them, and each polyline's edges chained as it is walked.

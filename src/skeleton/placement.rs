@@ -4,7 +4,7 @@
 //! shape's cross-section, and last thinned to the points the curve needs.
 
 use super::balls::Balls;
-use super::geometry::{nearby_faces, share_a_face, vertex_of, Rebuild};
+use super::geometry::{least_edges, lengths_along, nearby_faces, share_a_face, vertex_of, Rebuild};
 use super::thinning::Ordered;
 use super::{Skeleton, SkeletonPoint};
 use crate::mesh::io::MedialAxis;
@@ -157,18 +157,10 @@ impl Skeleton {
             if line.len() < 2 {
                 continue;
             }
-            let at: Vec<DVec3> = line
-                .iter()
-                .map(|&i| self.points[i as usize].position.into())
-                .collect();
-            let mut along = vec![0.0];
-            for w in at.windows(2) {
-                along.push(along[along.len() - 1] + w[0].distance(w[1]));
-            }
+            let at = self.line_positions(&line);
+            let along = lengths_along(&at);
             let length = along[along.len() - 1];
-            // At least as many steps as the polyline had, up to 3, so that a loop stays
-            // a loop and two paths between the same junctions stay apart.
-            let steps = ((length / spacing).round() as usize).max((line.len() - 1).min(3));
+            let steps = ((length / spacing).round() as usize).max(least_edges(line.len()));
             let on = |k: usize| self.points[line[k] as usize].on;
             if (1..line.len()).any(|k| !share_a_face(mesh, on(k - 1), on(k))) {
                 // Along line elements: the points as they are.

@@ -16,7 +16,7 @@
 //! line strings (`geo`) with one tolerance, and here the tolerance varies along the
 //! curve with the radius, in 3D.
 
-use super::geometry::Rebuild;
+use super::geometry::{least_edges, Rebuild};
 use super::Skeleton;
 use glam::DVec3;
 
@@ -43,10 +43,7 @@ impl Skeleton {
         let mut rebuilt = Rebuild::new(self);
         for line in self.polylines() {
             rebuilt.start(line[0]);
-            let at: Vec<DVec3> = line
-                .iter()
-                .map(|&i| self.points[i as usize].position.into())
-                .collect();
+            let at = self.line_positions(&line);
             let tolerance: Vec<f64> = line
                 .iter()
                 .map(|&i| (radii * self.points[i as usize].radius.unwrap_or(0.0)).min(most))
@@ -63,7 +60,7 @@ impl Skeleton {
 
 /// Per point of a polyline, whether the simplified polyline keeps it: its ends, every
 /// point farther than its `tolerance` from the segment between the points kept around
-/// it, and enough others that it keeps at least as many edges as it had, up to 3.
+/// it, and enough others that it keeps [`least_edges`].
 fn kept(at: &[DVec3], tolerance: &[f64]) -> Vec<bool> {
     let n = at.len();
     let mut keep = vec![false; n];
@@ -90,7 +87,7 @@ fn kept(at: &[DVec3], tolerance: &[f64]) -> Vec<bool> {
             ranges.push((k, b));
         }
     }
-    let edges = (n - 1).min(3);
+    let edges = least_edges(n);
     if keep.iter().filter(|&&k| k).count() < edges + 1 {
         for j in 1..edges {
             keep[j * (n - 1) / edges] = true;

@@ -2,7 +2,7 @@
 //! junctions replaced by the shortest path through its own points that may step across
 //! a fold, from a point to another inside its medial ball.
 
-use super::geometry::Rebuild;
+use super::geometry::{lengths_along, Rebuild};
 use super::placement::{AxisLookup, Search};
 use super::{Skeleton, SkeletonPoint};
 use crate::mesh::TriMesh;
@@ -55,10 +55,7 @@ impl Skeleton {
             let straight = line.len() > 2
                 && line[0] != line[line.len() - 1]
                 && !shared.contains(&end_pair(line));
-            let at: Vec<DVec3> = line
-                .iter()
-                .map(|&i| self.points[i as usize].position.into())
-                .collect();
+            let at = self.line_positions(line);
             let steps = if straight {
                 let reach: Vec<f64> = line
                     .iter()
@@ -110,10 +107,7 @@ fn end_pair(line: &[u32]) -> [u32; 2] {
 /// within its `reach` that the polyline reaches only after [`Skeleton::FOLD`] times as
 /// long a way.
 fn shortest_steps(at: &[DVec3], reach: &[f64]) -> Vec<usize> {
-    let mut along = vec![0.0];
-    for w in at.windows(2) {
-        along.push(along[along.len() - 1] + w[0].distance(w[1]));
-    }
+    let along = lengths_along(at);
     let tree = RTree::bulk_load(
         at.iter()
             .enumerate()
