@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{grid, sphere, torus};
+use common::{along_edges, grid, sphere, torus};
 use geotracks::mesh::io::{read_medial_axis, write_medial_axis, MedialAxis};
 use geotracks::mesh::TriMesh;
 use geotracks::skeleton::medial::solid_cycles;
@@ -169,18 +169,11 @@ fn a_stubby_box_keeps_its_axis() {
     // Through the middle (smoothed at its thickness, 1, it leans toward the corners
     // its ends run to), out to both ends: some edge passes within 0.25 of the box's
     // middle line at x (a straight run keeps only the points it needs).
+    let curve = along_edges(&skeleton, 0.05);
     let near = |x: f64| {
-        skeleton.edges.iter().any(|&[a, b]| {
-            let (p, q) = (
-                skeleton.points[a as usize].position,
-                skeleton.points[b as usize].position,
-            );
-            (0..=20).any(|k| {
-                let t = f64::from(k) / 20.0;
-                let at = |i: usize| p[i] + t * (q[i] - p[i]);
-                (at(0) - x).abs() < 0.1 && (at(1) - 1.0).hypot(at(2) - 1.0) < 0.25
-            })
-        })
+        curve
+            .iter()
+            .any(|p| (p.x - x).abs() < 0.1 && (p.y - 1.0).hypot(p.z - 1.0) < 0.25)
     };
     assert!(near(1.2) && near(1.5) && near(1.8));
     let tips = tip_positions(&skeleton);

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::rectangle;
+use common::{along_edges, rectangle};
 use geotracks::glam::DVec3;
 use geotracks::mesh::io::MedialAxis;
 use geotracks::skeleton::{
@@ -17,19 +17,6 @@ const K5: Options = Options::DEFAULT.with_k(5.0);
 /// How much the skeleton's polylines turn per unit of length, times `scale`.
 fn turning(skeleton: &Skeleton, scale: f64) -> f64 {
     turning_per_length(&skeleton.polyline_positions()) * scale
-}
-
-/// Points along the skeleton's edges, at most `step` apart: the curves themselves, for
-/// checks that must not depend on how many points a straight run keeps.
-fn along_edges(skeleton: &Skeleton, step: f64) -> Vec<DVec3> {
-    let mut along = Vec::new();
-    for &[a, b] in &skeleton.edges {
-        let p = DVec3::from(skeleton.points[a as usize].position);
-        let q = DVec3::from(skeleton.points[b as usize].position);
-        let n = ((p.distance(q) / step).ceil() as usize).max(1);
-        along.extend((0..=n).map(|k| p.lerp(q, k as f64 / n as f64)));
-    }
-    along
 }
 
 /// A deterministic wobble in [-1, 1]: three incommensurate waves.

@@ -1001,3 +1001,16 @@ pub fn two_islands() -> TriMesh {
     )
     .unwrap()
 }
+
+/// Points along the skeleton's edges, at most `step` apart: the curves themselves, for
+/// checks that must not depend on how many points a straight run keeps.
+pub fn along_edges(skeleton: &geotracks::skeleton::Skeleton, step: f64) -> Vec<DVec3> {
+    let mut along = Vec::new();
+    for &[a, b] in &skeleton.edges {
+        let p = DVec3::from(skeleton.points[a as usize].position);
+        let q = DVec3::from(skeleton.points[b as usize].position);
+        let n = ((p.distance(q) / step).ceil() as usize).max(1);
+        along.extend((0..=n).map(|k| p.lerp(q, k as f64 / n as f64)));
+    }
+    along
+}
