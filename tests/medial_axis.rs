@@ -4,6 +4,7 @@
 
 mod common;
 
+use common::plate_meshes::{boxes, l_plate};
 use common::{along_edges, grid, sphere, torus};
 use geotracks::mesh::io::{read_medial_axis, write_medial_axis, MedialAxis};
 use geotracks::mesh::TriMesh;
@@ -318,52 +319,12 @@ fn a_voxel_plates_axis_has_no_holes_and_a_branch_along_every_arm() {
     assert!(skeleton.tip_count() <= 8, "{} tips", skeleton.tip_count());
 }
 
-/// The closed surface of each box `lo`..`hi`, wound outward, as one mesh: boxes that
-/// overlap give a surface whose parts run through each other.
-fn boxes(boxes: &[([f64; 3], [f64; 3])]) -> TriMesh {
-    let mut positions = Vec::new();
-    let mut triangles = Vec::new();
-    for (lo, hi) in boxes {
-        let base = positions.len() as u32;
-        positions
-            .extend((0..8).map(|i| [0, 1, 2].map(|k| if i >> k & 1 == 1 { hi[k] } else { lo[k] })));
-        for q in [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ] {
-            let [a, b, c, d] = q.map(|i| base + i);
-            triangles.extend([[a, b, c], [a, c, d]]);
-        }
-    }
-    TriMesh::new(positions, triangles).unwrap()
-}
-
 #[test]
 fn a_part_of_few_large_faces_names_the_spacing_it_needs_and_gets_its_arms_at_one() {
     // An L-shaped plate, 4 × 3 with arms 1 wide, 0.5 thick, in 20 triangles (a machined
     // part's mesh): the mean edge length (the default spacing) is longer than the plate
     // is thick.
-    let outline = [
-        [0.0, 0.0],
-        [4.0, 0.0],
-        [4.0, 1.0],
-        [1.0, 1.0],
-        [1.0, 3.0],
-        [0.0, 3.0],
-    ];
-    let mut positions: Vec<[f64; 3]> = outline.iter().map(|p| [p[0], p[1], 0.0]).collect();
-    positions.extend(outline.iter().map(|p| [p[0], p[1], 0.5]));
-    let mut triangles = vec![[0, 2, 1], [0, 3, 2], [0, 5, 4], [0, 4, 3]];
-    triangles.extend([[6, 7, 8], [6, 8, 9], [6, 10, 11], [6, 9, 10]]);
-    for i in 0..6 {
-        let j = (i + 1) % 6;
-        triangles.extend([[i, j, j + 6], [i, j + 6, i + 6]]);
-    }
-    let mesh = TriMesh::new(positions, triangles).unwrap();
+    let mesh = l_plate();
     match medial_axis(&mesh, &MedialAxisOptions::default()) {
         Err(Error::MedialAxis(e @ MedialAxisError::Empty { spacing, .. })) => {
             assert!((spacing - mesh.mean_edge_length()).abs() < 1e-12);

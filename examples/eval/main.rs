@@ -43,6 +43,15 @@
 //! cargo run --release --example eval -- ../shared/data --skeletons [7] [--k 5] [--radius] [--tubular 1] [--protrusion 0.5] [--trim-tips] [--from-meshes [ANGLE] [--span S]]
 //! ```
 //!
+//! With `--plates` (no data needed) it builds plates of a few large faces (a board, an
+//! L-shaped plate, a table of boxes) and counts their skeletons' tips and length from
+//! their meshes at spacings 0.15 to 0.03, against what each should have (the guide's
+//! Plates section):
+//!
+//! ```text
+//! cargo run --release --example eval -- --plates
+//! ```
+//!
 //! With `--engines` it measures each engine against every exact reference, with its time,
 //! work and memory (the wave engine's tables in the guide's Accuracy page):
 //!
@@ -99,6 +108,7 @@ use std::time::Instant;
 
 mod engines;
 mod isolines;
+mod plates;
 mod plot;
 #[path = "../shared_data/mod.rs"]
 mod shared_data;
@@ -111,6 +121,8 @@ fn main() {
         engines::child(&argv[2..])
     } else if argv.iter().any(|a| a == "--engines") {
         engines::main(&argv)
+    } else if argv.iter().any(|a| a == "--plates") {
+        plates::plates()
     } else if let Some(at) = argv.iter().position(|a| a == "--skeletons") {
         skeletons_main(&argv, at)
     } else {

@@ -100,6 +100,9 @@ pub fn book(
     (TriMesh::new(positions, triangles).unwrap(), id)
 }
 
+/// Plates of a few large faces (also measured by `eval --plates`).
+#[path = "../../examples/plate_meshes/mod.rs"]
+pub mod plate_meshes;
 /// Rough relief for terrain tests.
 pub mod relief;
 #[path = "../../examples/shared_data/mod.rs"]
