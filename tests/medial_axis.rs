@@ -185,51 +185,6 @@ fn a_stubby_box_keeps_its_axis() {
 }
 
 #[test]
-fn a_stubby_box_whose_axis_has_a_hole_keeps_its_axis() {
-    // A box 4 × 2 × 2 in 12 triangles cut so that its sampled axis has a small hole
-    // where the fires meet (b1 = 1: checked first, as it is the case this pins). The
-    // trunk's halves end on the loop round it and are short for the box's thickness;
-    // the trunk is taken on the tree the skeleton becomes once the loop opens, and
-    // kept.
-    let positions = vec![
-        [0.0, 0.0, 0.0],
-        [4.0, 0.0, 0.0],
-        [4.0, 2.0, 0.0],
-        [0.0, 2.0, 0.0],
-        [0.0, 0.0, 2.0],
-        [4.0, 0.0, 2.0],
-        [4.0, 2.0, 2.0],
-        [0.0, 2.0, 2.0],
-    ];
-    let triangles = vec![
-        [0, 2, 1],
-        [0, 3, 2],
-        [4, 5, 6],
-        [4, 6, 7],
-        [0, 1, 5],
-        [0, 5, 4],
-        [1, 2, 6],
-        [1, 6, 5],
-        [2, 3, 7],
-        [2, 7, 6],
-        [3, 0, 4],
-        [3, 4, 7],
-    ];
-    let mesh = TriMesh::new(positions, triangles).unwrap();
-    let axis = axis(&mesh, 0.1);
-    assert_eq!(axis.betti_numbers().b1, 1);
-    let skeleton = skeleton_of(&axis, solid_cycles(&mesh), Placement::OnAxis);
-    assert_eq!((skeleton.component_count(), skeleton.cycle_count()), (1, 0));
-    assert_eq!(skeleton.tip_count(), 2);
-    assert!(skeleton.length() > 2.0, "length {}", skeleton.length());
-    let tips = tip_positions(&skeleton);
-    assert!(
-        tips.iter().any(|t| t[0] < 1.2) && tips.iter().any(|t| t[0] > 2.8),
-        "{tips:?}"
-    );
-}
-
-#[test]
 fn a_torus_has_its_core_circle_as_axis_and_skeleton() {
     let (big, small) = (2.0, 0.5);
     let mesh = torus(64, 16, big, small);
@@ -336,6 +291,43 @@ fn a_part_of_few_large_faces_names_the_spacing_it_needs_and_gets_its_arms_at_one
     }
     let (_, skeleton) = one_tree(&mesh, 0.1);
     assert_tip_near_each(&skeleton, &[[4.0, 0.5], [0.5, 3.0]], 0.6);
+}
+
+#[test]
+fn plates_of_large_faces_get_a_branch_per_arm_and_no_comb() {
+    // Each large face is sampled on its plane's lattice, so the two sides of a plate
+    // have their samples in pairs straight across it (on each face's own barycentric
+    // grid, the board had 19 tips at 0.05 and the L-shaped plate 19, a comb across
+    // their middle sheets).
+    let board = boxes(&[([-1.0, 0.9, -0.6], [1.0, 1.1, 0.6])]);
+    for spacing in [0.05, 0.03] {
+        let (_, skeleton) = one_tree(&board, spacing);
+        let tips = skeleton.tip_count();
+        assert!((2..=4).contains(&tips), "{tips} tips at spacing {spacing}");
+        // Its middle sheet's medial axis: a segment along x at z = 0 (x within ±0.4),
+        // on to corners of the sheet at its ends.
+        for p in &skeleton.points {
+            assert!((p.position[1] - 1.0).abs() < 0.1, "{:?}", p.position);
+        }
+        let curve = along_edges(&skeleton, 0.02);
+        for k in -4..=4 {
+            let x = 0.1 * f64::from(k);
+            assert!(
+                curve
+                    .iter()
+                    .any(|p| (p.x - x).abs() < 0.05 && p.z.abs() < 0.15),
+                "no skeleton near the board's middle at x = {x}, spacing {spacing}"
+            );
+        }
+        for t in tip_positions(&skeleton) {
+            assert!(t[0].abs() > 0.6, "tip {t:?} short of the board's ends");
+        }
+    }
+    for spacing in [0.1, 0.05] {
+        let (_, skeleton) = one_tree(&l_plate(), spacing);
+        assert_eq!(skeleton.tip_count(), 2, "at spacing {spacing}");
+        assert_tip_near_each(&skeleton, &[[4.0, 0.5], [0.5, 3.0]], 0.6);
+    }
 }
 
 #[test]

@@ -4,7 +4,7 @@
 use super::winding::WindingNumbers;
 use super::MedialAxisError;
 use crate::mesh::TriMesh;
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
 /// Points on the surface with the outward unit normal there.
@@ -145,7 +145,8 @@ fn runs([a, b, c]: [u32; 3], u: u32, v: u32) -> bool {
 
 /// The vertices with their angle-weighted outward normals, and, where a face's side is
 /// longer than `spacing`, points added along its sides and across it (a regular
-/// barycentric grid) so that no sample is farther than about `spacing` from the next:
+/// barycentric grid; on a large face, its plane's lattice, [`lattice_points`]) so that
+/// no sample is farther than about `spacing` from the next:
 /// poles need samples denser than the shape's features, and a mesh's large flat faces
 /// (a machined part's) have them only at their corners.
 pub(super) fn samples(mesh: &TriMesh, triangles: &[[u32; 3]], spacing: f64) -> Samples {
@@ -191,6 +192,17 @@ pub(super) fn samples(mesh: &TriMesh, triangles: &[[u32; 3]], spacing: f64) -> S
     for (f, &t) in triangles.iter().enumerate() {
         let pieces = face_pieces(mesh, f as u32, spacing);
         let n = face_normal(t);
+        if pieces >= LATTICE_PIECES && n != DVec3::ZERO {
+            lattice_points(t.map(p), n, spacing, |point, y, i_lo, i_hi| {
+                let mut i = i_lo;
+                while i <= i_hi {
+                    samples.points.push(point(i, y).to_array());
+                    samples.normals.push(n);
+                    i += 1.0;
+                }
+            });
+            continue;
+        }
         for i in 1..pieces {
             for j in 1..pieces - i {
                 let (bi, bj) = (f64::from(i), f64::from(j));
@@ -204,6 +216,91 @@ pub(super) fn samples(mesh: &TriMesh, triangles: &[[u32; 3]], spacing: f64) -> S
     samples
 }
 
+/// The fewest pieces along its longest side for a face to get the points of its plane's
+/// lattice ([`lattice_points`]) rather than a barycentric grid: 6, a face at least five
+/// spacings across, where grids of faces side by side or across a plate can be offset
+/// over long runs. The smaller faces of a mesh of a smooth shape keep their grids (the
+/// shared cow's and Spot's faces are cut into 5 pieces at most at their default
+/// spacing, so their axes are unchanged).
+const LATTICE_PIECES: u32 = 6;
+
+/// The points of a square lattice of step `spacing` in the plane of the triangle
+/// `corners` (unit normal `normal`) that lie inside it at least half a step from its
+/// sides (which have points of their own), row by row: `row(point, y, i_lo, i_hi)` for
+/// each row `y` that has some, whose points are `point(i, y)` for `i` from `i_lo` to
+/// `i_hi` (whole numbers), so that they can be counted without being made.
+///
+/// The lattice is the plane's own: its axes and origin depend on the plane alone (its
+/// normal up to sign, and its offset), so the faces of one flat patch share it, and so
+/// do two parallel faces across a plate, whose points then stand in pairs straight
+/// across it. Why: each face's barycentric grid runs along its own sides, so the two
+/// triangles of one rectangle, or the two sides of a plate, get grids offset from each
+/// other, and the Voronoi sheet between offset grids comes in strips a hair wide, which
+/// the skeleton's thinning leaves as a comb of branches across a plate (the guide's
+/// Plates section). Points in pairs give the sheet of squares that a voxel plate has.
+fn lattice_points(
+    corners: [DVec3; 3],
+    normal: DVec3,
+    spacing: f64,
+    mut row: impl FnMut(&dyn Fn(f64, f64) -> DVec3, f64, f64, f64),
+) {
+    if normal == DVec3::ZERO || spacing.is_nan() || spacing <= 0.0 {
+        return;
+    }
+    // The normal up to its sign: its largest component made positive.
+    let m = if normal[normal.abs().max_position()] < 0.0 {
+        -normal
+    } else {
+        normal
+    };
+    // The plane's axes: across the world axis least along the normal.
+    let least = [DVec3::X, DVec3::Y, DVec3::Z][m.abs().min_position()];
+    let u = least.cross(m).normalize();
+    let w = m.cross(u);
+    let offset = m.dot(corners[0]);
+    let flat = corners.map(|c| DVec2::new(u.dot(c), w.dot(c)));
+    let orientation = (flat[1] - flat[0]).perp_dot(flat[2] - flat[0]).signum();
+    let margin = 0.5 * spacing;
+    let (lo, hi) = (
+        flat[0].min(flat[1]).min(flat[2]),
+        flat[0].max(flat[1]).max(flat[2]),
+    );
+    // Row by row: on row y, each side bounds x on one side (a point is inside when it
+    // is at least `margin` inside every side), so only the lattice points found are
+    // visited, however thin the triangle.
+    let (j0, j1) = ((lo.y / spacing).ceil(), (hi.y / spacing).floor());
+    let mut j = j0;
+    while j <= j1 {
+        let y = j * spacing;
+        let (mut x_lo, mut x_hi) = (lo.x, hi.x);
+        for s in 0..3 {
+            let (a, b) = (flat[s], flat[(s + 1) % 3]);
+            let side = b - a;
+            let length = side.length();
+            if length == 0.0 {
+                continue;
+            }
+            // Inside by `margin`: orientation × cross(side, x − a) / length ≥ margin,
+            // linear in x: coef × x + rest ≥ margin.
+            let coef = -orientation * side.y / length;
+            let rest = orientation * (side.x * (y - a.y) + side.y * a.x) / length;
+            let bound = (margin - rest) / coef;
+            if coef > 0.0 {
+                x_lo = x_lo.max(bound);
+            } else if coef < 0.0 {
+                x_hi = x_hi.min(bound);
+            } else if rest < margin {
+                x_hi = f64::NEG_INFINITY;
+            }
+        }
+        let (i_lo, i_hi) = ((x_lo / spacing).ceil(), (x_hi / spacing).floor());
+        if i_lo <= i_hi {
+            row(&|i, y| i * spacing * u + y * w + offset * m, y, i_lo, i_hi);
+        }
+        j += 1.0;
+    }
+}
+
 /// How many samples [`samples`] makes for `spacing`, without making them.
 pub(super) fn sample_count(mesh: &TriMesh, spacing: f64) -> u64 {
     let edges: u64 = (0..mesh.edge_count() as u32)
@@ -212,7 +309,22 @@ pub(super) fn sample_count(mesh: &TriMesh, spacing: f64) -> u64 {
     let faces: u64 = (0..mesh.face_count() as u32)
         .map(|f| {
             let n = u64::from(face_pieces(mesh, f, spacing));
-            (n - 1) * n.saturating_sub(2) / 2
+            if n >= u64::from(LATTICE_PIECES) {
+                let corners = mesh.face_vertices(f).map(|v| mesh.position(v));
+                let normal = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+                let mut count = 0.0;
+                lattice_points(
+                    corners,
+                    normal.normalize_or_zero(),
+                    spacing,
+                    |_, _, lo, hi| {
+                        count += hi - lo + 1.0;
+                    },
+                );
+                count as u64
+            } else {
+                (n - 1) * n.saturating_sub(2) / 2
+            }
         })
         .sum();
     mesh.vertex_count() as u64 + edges + faces
