@@ -331,6 +331,19 @@ fn plates_of_large_faces_get_a_branch_per_arm_and_no_comb() {
 }
 
 #[test]
+fn a_plate_far_from_the_origin_gives_a_skeleton_without_hanging_or_panicking() {
+    // At x = 10^15 a spacing of 0.05 is finer than the coordinates can tell apart. The
+    // lattice's rows and columns are counted in whole steps (adding one to a number that
+    // large may change nothing: the sampling looped for ever), and the trunk found once
+    // the axis's holes are cut is mapped back to the uncut skeleton by position (the cut
+    // renumbers the points: the pruning read past their end and panicked).
+    let mesh = boxes(&[([1e15 - 1.0, 0.9, -0.6], [1e15 + 1.0, 1.1, 0.6])]);
+    let axis = axis(&mesh, 0.05);
+    let skeleton = skeleton_of(&axis, solid_cycles(&mesh), Placement::OnAxis);
+    assert_eq!(skeleton.component_count(), 1);
+}
+
+#[test]
 fn parts_that_run_through_each_other_give_the_axis_of_their_union() {
     // A cross of two bars, each a closed box of its own: the faces of each run through
     // the other's inside. The solid is their union, one piece with four arms.

@@ -733,9 +733,9 @@ pub fn medial_axis_skeleton_with_cycles(
         skeleton.with_cycles_cut(max_cycles, |i| radius[i], filled, protrusion, prune)
     };
     // The trunk is the tree's as it will be once its loops open (cut where narrowest,
-    // nothing pruned, so the points keep their indices): a stubby solid whose axis has
-    // a small hole where the fires met keeps it.
-    let trunk = open(skeleton.clone(), 0.0, 0.0).trunk();
+    // nothing pruned): a stubby solid whose axis has a small hole where the fires met
+    // keeps it.
+    let trunk = trunk_once_opened(&skeleton, open(skeleton.clone(), 0.0, 0.0));
     let skeleton = skeleton.pruned_tubular_but(pruning.tubularity, &trunk);
     let skeleton =
         skeleton.pruned_protruding(pruning.protrusion, |i| radius_at(skeleton.points[i].on));
@@ -748,6 +748,25 @@ pub fn medial_axis_skeleton_with_cycles(
         skeleton
     };
     Ok((skeleton.placed(axis, placement), field))
+}
+
+/// Per point of `skeleton`, whether it lies on the trunk of `opened`, the same skeleton
+/// with its loops cut. A cut takes out whole branches, so `opened`'s points are some of
+/// `skeleton`'s, at the same positions, but numbered afresh: they are found by position.
+fn trunk_once_opened(skeleton: &Skeleton, opened: Skeleton) -> Vec<bool> {
+    let index: std::collections::HashMap<[u64; 3], usize> = skeleton
+        .points
+        .iter()
+        .enumerate()
+        .map(|(i, p)| (p.position.map(f64::to_bits), i))
+        .collect();
+    let mut trunk = vec![false; skeleton.points.len()];
+    for (p, on) in opened.points.iter().zip(opened.trunk()) {
+        if let (true, Some(&i)) = (on, index.get(&p.position.map(f64::to_bits))) {
+            trunk[i] = true;
+        }
+    }
+    trunk
 }
 
 impl Skeleton {

@@ -194,11 +194,9 @@ pub(super) fn samples(mesh: &TriMesh, triangles: &[[u32; 3]], spacing: f64) -> S
         let n = face_normal(t);
         if pieces >= LATTICE_PIECES && n != DVec3::ZERO {
             lattice_points(t.map(p), n, spacing, |point, y, i_lo, i_hi| {
-                let mut i = i_lo;
-                while i <= i_hi {
-                    samples.points.push(point(i, y).to_array());
+                for k in 0..=(i_hi - i_lo) as u64 {
+                    samples.points.push(point(i_lo + k as f64, y).to_array());
                     samples.normals.push(n);
-                    i += 1.0;
                 }
             });
             continue;
@@ -228,7 +226,7 @@ const LATTICE_PIECES: u32 = 6;
 /// `corners` (unit normal `normal`) that lie inside it at least half a step from its
 /// sides (which have points of their own), row by row: `row(point, y, i_lo, i_hi)` for
 /// each row `y` that has some, whose points are `point(i, y)` for `i` from `i_lo` to
-/// `i_hi` (whole numbers), so that they can be counted without being made.
+/// `i_hi` (whole numbers, finite), so that they can be counted without being made.
 ///
 /// The lattice is the plane's own: its axes and origin depend on the plane alone (its
 /// normal up to sign, and its offset), so the faces of one flat patch share it, and so
@@ -269,9 +267,13 @@ fn lattice_points(
     // is at least `margin` inside every side), so only the lattice points found are
     // visited, however thin the triangle.
     let (j0, j1) = ((lo.y / spacing).ceil(), (hi.y / spacing).floor());
-    let mut j = j0;
-    while j <= j1 {
-        let y = j * spacing;
+    if !(j0.is_finite() && j1.is_finite()) || j1 < j0 {
+        return;
+    }
+    // Counted in whole steps: far from the origin, adding 1 to a row's number may not
+    // change it (the rows are as many as the face is spacings tall).
+    for r in 0..=(j1 - j0) as u64 {
+        let y = (j0 + r as f64) * spacing;
         let (mut x_lo, mut x_hi) = (lo.x, hi.x);
         for s in 0..3 {
             let (a, b) = (flat[s], flat[(s + 1) % 3]);
@@ -294,10 +296,9 @@ fn lattice_points(
             }
         }
         let (i_lo, i_hi) = ((x_lo / spacing).ceil(), (x_hi / spacing).floor());
-        if i_lo <= i_hi {
+        if i_lo <= i_hi && i_lo.is_finite() && i_hi.is_finite() {
             row(&|i, y| i * spacing * u + y * w + offset * m, y, i_lo, i_hi);
         }
-        j += 1.0;
     }
 }
 
