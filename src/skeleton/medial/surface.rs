@@ -192,10 +192,10 @@ pub(super) fn samples(mesh: &TriMesh, triangles: &[[u32; 3]], spacing: f64) -> S
     for (f, &t) in triangles.iter().enumerate() {
         let pieces = face_pieces(mesh, f as u32, spacing);
         let n = face_normal(t);
-        if pieces >= LATTICE_PIECES && n != DVec3::ZERO {
-            lattice_points(t.map(p), n, spacing, |point, y, i_lo, i_hi| {
+        if on_lattice(pieces, n) {
+            lattice_points(t.map(p), n, spacing, |point, i_lo, i_hi| {
                 for k in 0..=(i_hi - i_lo) as u64 {
-                    samples.points.push(point(i_lo + k as f64, y).to_array());
+                    samples.points.push(point(i_lo + k as f64).to_array());
                     samples.normals.push(n);
                 }
             });
@@ -222,11 +222,18 @@ pub(super) fn samples(mesh: &TriMesh, triangles: &[[u32; 3]], spacing: f64) -> S
 /// spacing, so their axes are unchanged).
 const LATTICE_PIECES: u32 = 6;
 
+/// Whether a face cut into `pieces` along its longest side, with unit normal `normal`,
+/// is sampled on its plane's lattice ([`lattice_points`]) rather than a barycentric
+/// grid: [`samples`] and [`sample_count`] decide alike.
+fn on_lattice(pieces: u32, normal: DVec3) -> bool {
+    pieces >= LATTICE_PIECES && normal != DVec3::ZERO
+}
+
 /// The points of a square lattice of step `spacing` in the plane of the triangle
 /// `corners` (unit normal `normal`) that lie inside it at least half a step from its
-/// sides (which have points of their own), row by row: `row(point, y, i_lo, i_hi)` for
-/// each row `y` that has some, whose points are `point(i, y)` for `i` from `i_lo` to
-/// `i_hi` (whole numbers, finite), so that they can be counted without being made.
+/// sides (which have points of their own), row by row: `row(point, i_lo, i_hi)` for
+/// each row that has some, whose points are `point(i)` for `i` from `i_lo` to `i_hi`
+/// (whole numbers, finite), so that they can be counted without being made.
 ///
 /// The lattice is the plane's own: its axes and origin depend on the plane alone (its
 /// normal up to sign, and its offset), so the faces of one flat patch share it, and so
@@ -235,12 +242,13 @@ const LATTICE_PIECES: u32 = 6;
 /// triangles of one rectangle, or the two sides of a plate, get grids offset from each
 /// other, and the Voronoi sheet between offset grids comes in strips a hair wide, which
 /// the skeleton's thinning leaves as a comb of branches across a plate (the guide's
-/// Plates section). Points in pairs give the sheet of squares that a voxel plate has.
+/// Plates section). Within half a step of a face's sides, where the sides' own points
+/// are, the pairs do not hold.
 fn lattice_points(
     corners: [DVec3; 3],
     normal: DVec3,
     spacing: f64,
-    mut row: impl FnMut(&dyn Fn(f64, f64) -> DVec3, f64, f64, f64),
+    mut row: impl FnMut(&dyn Fn(f64) -> DVec3, f64, f64),
 ) {
     if normal == DVec3::ZERO || spacing.is_nan() || spacing <= 0.0 {
         return;
@@ -297,7 +305,7 @@ fn lattice_points(
         }
         let (i_lo, i_hi) = ((x_lo / spacing).ceil(), (x_hi / spacing).floor());
         if i_lo <= i_hi && i_lo.is_finite() && i_hi.is_finite() {
-            row(&|i, y| i * spacing * u + y * w + offset * m, y, i_lo, i_hi);
+            row(&|i| i * spacing * u + y * w + offset * m, i_lo, i_hi);
         }
     }
 }
@@ -309,19 +317,17 @@ pub(super) fn sample_count(mesh: &TriMesh, spacing: f64) -> u64 {
         .sum();
     let faces: u64 = (0..mesh.face_count() as u32)
         .map(|f| {
-            let n = u64::from(face_pieces(mesh, f, spacing));
-            if n >= u64::from(LATTICE_PIECES) {
-                let corners = mesh.face_vertices(f).map(|v| mesh.position(v));
-                let normal = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+            let pieces = face_pieces(mesh, f, spacing);
+            let n = u64::from(pieces);
+            let corners = mesh.face_vertices(f).map(|v| mesh.position(v));
+            let normal = (corners[1] - corners[0])
+                .cross(corners[2] - corners[0])
+                .normalize_or_zero();
+            if on_lattice(pieces, normal) {
                 let mut count = 0.0;
-                lattice_points(
-                    corners,
-                    normal.normalize_or_zero(),
-                    spacing,
-                    |_, _, lo, hi| {
-                        count += hi - lo + 1.0;
-                    },
-                );
+                lattice_points(corners, normal, spacing, |_, lo, hi| {
+                    count += hi - lo + 1.0;
+                });
                 count as u64
             } else {
                 (n - 1) * n.saturating_sub(2) / 2
