@@ -1,9 +1,9 @@
 //! `eval --plates`: the skeletons of plates made of a few large faces, built here, from
 //! their meshes at several sampling spacings, as `geotracks skeleton MESH --spacing S`
-//! makes them (axis computed, skeleton centred, default pruning). Their faces' samples
-//! lie on grids, which is where a plate's skeleton grows a comb of extra branches
-//! (the guide's "Plates" section): the tips counted here against what each shape's
-//! skeleton should have are the measure of it.
+//! makes them (axis computed, skeleton centred, default pruning). Sampled on grids,
+//! such plates' skeletons grew a comb of extra branches (the guide's "Plates"
+//! section): the tips counted here against what each shape's skeleton should have are
+//! the measure of it.
 
 #[path = "../plate_meshes/mod.rs"]
 mod plate_meshes;
