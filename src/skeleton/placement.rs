@@ -252,10 +252,10 @@ impl Skeleton {
     fn centred(&self, lookup: &AxisLookup, at: &[DVec3]) -> Vec<DVec3> {
         let neighbours = self.adjacency();
         let degree = self.degrees();
-        let nodes: Vec<u32> = (0..self.points.len() as u32)
-            .filter(|&i| degree[i as usize] != 2)
+        let tips: Vec<u32> = (0..self.points.len() as u32)
+            .filter(|&i| degree[i as usize] == 1)
             .collect();
-        let to_node = graph_distances(&self.weighted_adjacency(at), &nodes, f64::INFINITY);
+        let to_tip = graph_distances(&self.weighted_adjacency(at), &tips, f64::INFINITY);
         let mut section = Section::new();
         // The tangent spans two steps along the curve either way (one at a tip or a
         // junction): the point two steps from `from` through `first`.
@@ -284,10 +284,14 @@ impl Skeleton {
                     .find_map(|&half| section.centroid(lookup, at[i], tangent, half * r))
                     .unwrap_or(at[i]);
                 // A section that reaches a neighbouring part pulls its centroid out of
-                // the branch: the move is kept within the point's own ball, and fades
-                // in over two radii from tips and junctions, where the plane across the
-                // curve cuts the other branches.
-                let fade = (to_node[i] / (2.0 * r)).min(1.0);
+                // the branch: the move is kept within the point's own ball. It fades in
+                // over two radii from the tips, which stay. Near a junction the plane
+                // across the curve cuts the other branches too, and the pull towards
+                // them is kept: it brings the branches together where the solid's
+                // parts merge, as a mean-curvature-flow skeleton's junctions lie, and
+                // lets a thick trunk between junctions less than four of its radii
+                // apart reach the centre of its section (it stayed on the sheet).
+                let fade = (to_tip[i] / (2.0 * r)).min(1.0);
                 let moved = centre - at[i];
                 if moved.length() > r {
                     at[i]
