@@ -26,6 +26,21 @@ pub(super) struct InnerAxis {
     pub inner_vertices: usize,
 }
 
+/// What makes a Voronoi facet a spike toward the surface, made by the sampling rather
+/// than by the shape (see [`inner_axis`]).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct SpikeFilter {
+    /// The smallest angle (radians) under which one of a facet's vertices must see its
+    /// Delaunay edge `p q`; the deepest vertex must see it under half that.
+    pub min_angle: f64,
+    /// The shortest edge `p q` between samples on one side of the surface.
+    pub min_span: f64,
+    /// The thinnest part whose two sides' samples (facing each other: their normals
+    /// turned by more than 180° less `min_angle`) keep the facet between them, however
+    /// close they are: its thickness between them, along their normals.
+    pub min_across: f64,
+}
+
 /// The longest a ring of tetrahedra around one edge can be before the walk is taken for
 /// a broken triangulation (a ring has a handful; thousands only on a sphere's centre).
 const MAX_RING: usize = 1 << 16;
@@ -102,7 +117,9 @@ fn inner_centres(samples: &Samples, dt: &Delaunay, solid: &WindingNumbers) -> Ve
 
 /// The inner Voronoi diagram's facets and edges; a facet is a spike when no vertex of
 /// it sees its Delaunay edge under `min_angle`, when its deepest vertex sees it under
-/// less than half that, or when the edge is shorter than `min_span`. Near the surface,
+/// less than half that, or when the edge is shorter than `min_span` (for samples that
+/// face each other, on two sides of a thin part: when the part is thinner than
+/// `min_across` between them). Near the surface,
 /// where the balls are small, any two samples a few spacings apart are seen wide: a
 /// spike between them passes the first test there, but where it reaches the axis, at
 /// its deepest vertex, it sees them narrow. Sampled finer than a mesh's faces, the
@@ -111,7 +128,7 @@ fn inner_complex(
     samples: &Samples,
     dt: &Delaunay,
     centres: &[Option<DVec3>],
-    (min_angle, min_span): (f64, f64),
+    filter: SpikeFilter,
 ) -> Complex {
     let point = |v: u32| DVec3::from_array(samples.points[v as usize]);
     let mut complex = Complex {
@@ -152,11 +169,28 @@ fn inner_complex(
                 .map(centre)
                 .max_by(|a, b| a.distance(p).total_cmp(&b.distance(p)))
                 .map_or(0.0, seen_from);
+            // Two samples a spacing or so apart are neighbours on the surface, and
+            // the facet between them is the sampling's; unless they face each other:
+            // then they are the two sides of a part about that thin (a horn, a tail),
+            // and the facet is its axis.
+            let (np, nq) = (
+                samples.normals[tet[i] as usize],
+                samples.normals[tet[j] as usize],
+            );
+            let spike_by_span = if np.angle_between(nq) > std::f64::consts::PI - filter.min_angle {
+                // How thick the part is between them: along their normals, not
+                // aslant (two samples of a plate's two sides a spacing apart).
+                (q - p).dot(np - nq).abs() / 2.0 < filter.min_across
+            } else {
+                p.distance(q) < filter.min_span
+            };
             let start = complex.corners.len();
             complex.corners.extend_from_slice(&ring);
             complex.facets.push(Facet {
                 corners: start..complex.corners.len(),
-                spike: widest < min_angle || deepest < min_angle / 2.0 || p.distance(q) < min_span,
+                spike: widest < filter.min_angle
+                    || deepest < filter.min_angle / 2.0
+                    || spike_by_span,
             });
         }
     }
@@ -166,9 +200,10 @@ fn inner_complex(
 
 /// The medial axis of the inner Voronoi diagram of the samples (inside: by `solid`): its
 /// facets whose Delaunay edge `p q` is seen from one of their vertices `c` under at
-/// least `min_angle` (radians, `∠ p c q`), from their deepest vertex under at least
-/// half that, and is at least `min_span` long, with the others collapsed away where
-/// they can be.
+/// least `filter.min_angle` (radians, `∠ p c q`), from their deepest vertex under at
+/// least half that, and is at least `filter.min_span` long (when `p` and `q` face
+/// each other across a thin part: the part is at least `filter.min_across` thick
+/// there), with the others collapsed away where they can be.
 ///
 /// On a surface sampled densely enough, the inner Voronoi diagram has the solid's
 /// topology (its facets, edges and vertices inside; those of the surface's own
@@ -182,11 +217,10 @@ pub(super) fn inner_axis(
     samples: &Samples,
     dt: &Delaunay,
     solid: &WindingNumbers,
-    min_angle: f64,
-    min_span: f64,
+    filter: SpikeFilter,
 ) -> InnerAxis {
     let centres = inner_centres(samples, dt, solid);
-    let complex = inner_complex(samples, dt, &centres, (min_angle, min_span));
+    let complex = inner_complex(samples, dt, &centres, filter);
     let (alive, uses, gone) = collapse_spikes(&complex);
     let mut out = InnerAxis {
         positions: Vec::new(),
