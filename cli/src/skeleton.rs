@@ -68,15 +68,13 @@ pub struct SkeletonArgs {
     burn: BurnArg,
     /// Move the skeleton's points off the axis to the centre of the shape's
     /// cross-section there (the cut of the medial balls by the plane across the curve),
-    /// as a mean-curvature-flow skeleton lies. The default for a surface mesh, whose
-    /// computed axis carries the noise of the surface's sampling; a .ma file's points
-    /// stay on its axis unless this is given. An axis of curves only (no sheets) keeps
-    /// its points on its curves either way.
+    /// as a mean-curvature-flow skeleton lies: the default. An axis of curves only (no
+    /// sheets) keeps its points on its curves either way.
     #[arg(long, conflicts_with = "on_axis")]
     centred: bool,
-    /// Keep the skeleton's points on the medial axis: the default for a .ma file; for a
-    /// surface mesh, on the axis computed from it (which zig-zags round the true one
-    /// where a limb is only a few samples across).
+    /// Keep the skeleton's points on the medial axis: a .ma file's, or the one computed
+    /// from a surface mesh (which zig-zags round the true one where a limb is only a
+    /// few samples across).
     #[arg(long)]
     on_axis: bool,
     /// Output: OBJ polylines (`v` and `l` lines; junctions shared) or a JSON graph
@@ -146,8 +144,7 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
         match (args.centred, args.on_axis) {
             (true, _) => Placement::Centred,
             (_, true) => Placement::OnAxis,
-            // From a mesh (the solid's cycles known), the axis is computed.
-            _ => Placement::default_for(solid_cycles.is_some()),
+            _ => Placement::default(),
         },
     )?;
     drop(spinner);

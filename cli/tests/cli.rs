@@ -1205,7 +1205,7 @@ fn skeleton_writes_a_connected_obj_graph_and_the_field() {
     let ply_bytes = std::fs::read(&ply).unwrap();
     assert!(ply_bytes.starts_with(b"ply\n"));
     // … and, unpruned (by length, tubularity and protrusion), is in the skeleton whole;
-    // the JSON graph says so.
+    // the JSON graph says so (its points where the axis has them: on the axis).
     let json = dir.path().join("skeleton.json");
     let length_and_tubularity_off = |more: &[&str]| {
         let mut args = vec!["skeleton", SHEET_FINS, "--prune", "0", "--tubular", "0"];
@@ -1216,7 +1216,7 @@ fn skeleton_writes_a_connected_obj_graph_and_the_field() {
     };
     let unpruned =
         |more: &[&str]| length_and_tubularity_off(&[&["--protrusion", "0"], more].concat());
-    let graph = unpruned(&[]);
+    let graph = unpruned(&["--on-axis"]);
     let positions: Vec<Vec<f64>> = graph["points"]
         .as_array()
         .unwrap()

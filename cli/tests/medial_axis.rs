@@ -40,8 +40,8 @@ fn the_medial_axis_of_spot_reads_back_and_skeletonizes() {
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     assert_eq!(graph["components"], 1);
     assert_eq!(graph["cycles"], 0);
-    // From a mesh its points are centred by default; from the axis written as a file,
-    // they stay on it.
+    // Its points are centred by default, from the mesh and from the axis written as a
+    // file alike.
     let read = |path: &std::path::Path| std::fs::read_to_string(path).unwrap();
     let placed = |input: &str, flag: Option<&str>, name: &str| {
         let path = dir.path().join(name);
@@ -56,11 +56,11 @@ fn the_medial_axis_of_spot_reads_back_and_skeletonizes() {
     let ma = ma.to_str().unwrap();
     assert_eq!(
         placed(ma, None, "axis.json"),
-        placed(ma, Some("--on-axis"), "axis_on_axis.json")
+        placed(ma, Some("--centred"), "axis_centred.json")
     );
     assert_ne!(
         placed(ma, None, "axis.json"),
-        placed(ma, Some("--centred"), "axis_centred.json")
+        placed(ma, Some("--on-axis"), "axis_on_axis.json")
     );
     let both = dir.path().join("both.json");
     assert_fails(

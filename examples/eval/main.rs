@@ -196,13 +196,11 @@ fn skeletons_main(argv: &[String], at: usize) -> Result<(), String> {
         }
         None => skeletons::Axes::Files,
     };
-    // As the command line places them: centred from a mesh, on a given axis.
-    let placement = if argv.iter().any(|a| a == "--centred") {
-        geotracks::skeleton::Placement::Centred
-    } else if argv.iter().any(|a| a == "--on-axis") {
+    // As the command line places them: centred unless told otherwise.
+    let placement = if argv.iter().any(|a| a == "--on-axis") {
         geotracks::skeleton::Placement::OnAxis
     } else {
-        geotracks::skeleton::Placement::default_for(matches!(axes, skeletons::Axes::FromMeshes(..)))
+        geotracks::skeleton::Placement::Centred
     };
     skeletons::skeletons(
         std::path::Path::new(data),

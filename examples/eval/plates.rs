@@ -75,7 +75,7 @@ pub fn plates() -> Result<(), String> {
                         &options,
                         pruning,
                         cycles,
-                        Placement::default_for(true),
+                        Placement::Centred,
                     )
                     .map_err(|e| format!("{name} at spacing {spacing}: {e}"))?
                     .0;

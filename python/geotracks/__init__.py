@@ -620,11 +620,10 @@ def skeleton(
     :param centred: ``True`` moves the points off the axis to the centre of the
         shape's cross-section there (the cut of the medial balls by the plane across the
         curve), as a mean-curvature-flow skeleton lies; radii are then those of the
-        largest balls centred there. ``False`` keeps them on the axis. By default
-        (``None``), a surface mesh's skeleton is centred (its computed axis zig-zags
-        round the true one where a limb is only a few samples across) and a ``.ma``
-        file's stays on its axis. An axis of curves only keeps its points on its curves
-        either way.
+        largest balls centred there. ``False`` keeps them on the axis (a computed one
+        zig-zags round the true one where a limb is only a few samples across). By
+        default (``None``), centred, for a ``.ma`` file and a surface mesh alike. An
+        axis of curves only keeps its points on its curves either way.
     """
     return Skeleton(
         *_skeleton(

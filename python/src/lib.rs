@@ -576,9 +576,8 @@ fn medial_axis<'py>(
 /// at `tubular` (the least erosion thickness over the medial radius where a branch
 /// joins) and at `protrusion` (the least reach out of the rest's medial balls over that
 /// radius), burnt from the border (`burn="boundary"`) or by medial radius (`"radius"`),
-/// its points on the axis or, with `centred`, at the centre of the shape's
-/// cross-section (by default, centred for a surface mesh and on the axis for a `.ma`
-/// file, `Placement::default_for`): `(points (p, 3), radii (p,), significance (p,),
+/// its points at the centre of the shape's cross-section or, with `centred=False`, on
+/// the axis (`None`: `Placement::default()`, centred): `(points (p, 3), radii (p,), significance (p,),
 /// edges (e, 2), b1)`.
 #[pyfunction]
 #[pyo3(signature = (axis, prune="5%", burn="boundary", k=5.0, tubular=geotracks::skeleton::DEFAULT_MIN_TUBULARITY, spacing=None, angle=geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_ANGLE_DEGREES, span=geotracks::skeleton::medial::MedialAxisOptions::DEFAULT_MIN_SPAN, weld=false, centred=None, protrusion=geotracks::skeleton::DEFAULT_MIN_PROTRUSION, trim_tips=false))]
@@ -638,7 +637,7 @@ fn skeleton<'py>(
             let placement = match centred {
                 Some(true) => Placement::Centred,
                 Some(false) => Placement::OnAxis,
-                None => Placement::default_for(solid_cycles.is_some()),
+                None => Placement::default(),
             };
             let (skeleton, _) = medial_axis_skeleton_with_cycles(
                 &axis, burn, &options, pruning, max_cycles, placement,

@@ -314,15 +314,16 @@ def test_skeleton_of_a_medial_axis():
     trimmed = geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune="2%", trim_tips=True)
     assert length(trimmed) < length(sk) and cycles(trimmed) == trimmed.b1
     assert np.sum(degrees(trimmed) == 1) == np.sum(degrees(sk) == 1)
-    # Centred: the same graph's shape (tips, junctions, cycles), points off the axis,
-    # each inside a ball.
+    # Centred by default; on the axis, the same graph's shape (tips, junctions,
+    # cycles), its points elsewhere; radii inside the balls either way.
     centred = geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune="2%", centred=True)
-    assert cycles(centred) == centred.b1
+    assert np.array_equal(centred.points, sk.points)
     on_axis = geotracks.skeleton(DATA / "ma" / "sheet_fins.ma", prune="2%", centred=False)
-    assert np.array_equal(on_axis.points, sk.points)
+    assert cycles(on_axis) == on_axis.b1
+    assert not np.array_equal(on_axis.points, sk.points)
     for degree in (1, 3):
-        assert np.sum(degrees(centred) == degree) == np.sum(degrees(sk) == degree)
-    assert np.all(centred.radii >= 0)
+        assert np.sum(degrees(on_axis) == degree) == np.sum(degrees(sk) == degree)
+    assert np.all(centred.radii >= 0) and np.all(on_axis.radii >= 0)
 
 
 def test_isolines_lie_on_their_level():
@@ -481,7 +482,7 @@ def test_medial_axis_and_skeleton_of_a_surface():
     sk = geotracks.skeleton(DATA / "spot.obj")
     assert sk.b1 == 0
     assert len(sk.edges) == len(sk.points) - 1
-    # From a mesh the points are centred by default (a .ma file's stay on its axis).
+    # From a mesh, too, the points are centred by default.
     centred = geotracks.skeleton(DATA / "spot.obj", centred=True)
     on_axis = geotracks.skeleton(DATA / "spot.obj", centred=False)
     assert np.array_equal(sk.points, centred.points)

@@ -17,50 +17,36 @@ use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
 /// Where a medial-axis skeleton's points lie.
+///
+/// Centred is the default, for an axis given as such and one computed from a surface
+/// mesh alike: on the shared axes and meshes it comes closer to the mean-curvature-flow
+/// skeletons on every measure but Spot's length (`eval --skeletons [--from-meshes]
+/// [--on-axis]`, on the guide's Accuracy page). A computed axis is the Voronoi diagram
+/// of samples of the surface: round a limb only a few samples across it zig-zags by up
+/// to half the limb's radius, and a curve on it follows; the cross-section is the cut
+/// of the union of the balls, which that noise hardly moves. On a given axis, a wide
+/// sheet's curve runs along the ridge where the fires met, which can lie anywhere
+/// across the solid's section (on the cow's body, up its back).
+///
+/// ```
+/// use geotracks::skeleton::Placement;
+/// assert_eq!(Placement::default(), Placement::Centred);
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Placement {
-    /// On the medial axis (the default, and [`Placement::default_for`] an axis given as
-    /// such): every point is a point of the axis's sheets or curves, the curve smoothed
-    /// at the shape's thickness and put back on the axis.
-    #[default]
+    /// On the medial axis: every point is a point of the axis's sheets or curves, the
+    /// curve smoothed at the shape's thickness and put back on the axis.
     OnAxis,
-    /// At the centre of the shape's cross-section: each point moves to the centroid of
-    /// the cut of the medial balls by the plane across the curve there (the piece of the
-    /// cut around the point), as a mean-curvature-flow skeleton lies (and
-    /// [`Placement::default_for`] an axis computed from a surface mesh). Points leave the
-    /// axis (a wide sheet's curve moves to the middle of the solid's section); the
-    /// radius is then that of the largest ball centred there inside the shape, and
-    /// [`SkeletonPoint::on`] the point of the axis it was placed from. An axis of
-    /// curves only has no cross-sections to centre in: its points stay on its curves.
+    /// At the centre of the shape's cross-section (the default): each point moves to the
+    /// centroid of the cut of the medial balls by the plane across the curve there (the
+    /// piece of the cut around the point), as a mean-curvature-flow skeleton lies.
+    /// Points leave the axis (a wide sheet's curve moves to the middle of the solid's
+    /// section); the radius is then that of the largest ball centred there inside the
+    /// shape, and [`SkeletonPoint::on`] the point of the axis it was placed from. An
+    /// axis of curves only has no cross-sections to centre in: its points stay on its
+    /// curves.
+    #[default]
     Centred,
-}
-
-impl Placement {
-    /// Where the points go by default (the command line's and Python's choice):
-    /// [`Placement::Centred`] for an axis `computed` from a surface mesh
-    /// ([`medial_axis_of_file`](crate::skeleton::medial::medial_axis_of_file) says so
-    /// by knowing the solid's cycles), [`Placement::OnAxis`] for an axis given as such.
-    ///
-    /// A computed axis is the Voronoi diagram of samples of the surface: round a limb
-    /// only a few samples across it zig-zags by up to half the limb's radius, and a
-    /// curve on it follows (the cow's mesh: turning per length, times the diagonal, 52
-    /// on the axis, 16.9 centred, 8.2 in its mean-curvature-flow skeleton; measured
-    /// by `eval --skeletons --from-meshes [--on-axis]`, on the guide's Accuracy page).
-    /// The cross-section is the cut of the union of the balls, which that noise hardly
-    /// moves.
-    ///
-    /// ```
-    /// use geotracks::skeleton::Placement;
-    /// assert_eq!(Placement::default_for(true), Placement::Centred);
-    /// assert_eq!(Placement::default_for(false), Placement::OnAxis);
-    /// ```
-    pub fn default_for(computed: bool) -> Placement {
-        if computed {
-            Placement::Centred
-        } else {
-            Placement::OnAxis
-        }
-    }
 }
 
 impl Skeleton {

@@ -342,10 +342,7 @@ pub fn solid_cycles(mesh: &TriMesh) -> usize {
 /// that is known: a `.ma` file (by its extension, any case) is read as it is
 /// ([`read_medial_axis`](crate::mesh::io::read_medial_axis); no limit), any other mesh
 /// file is read (welding vertices at identical positions if `weld`) and its
-/// [`medial_axis`] computed with `options` (the limit: [`solid_cycles`]). The limit
-/// being known says the axis was computed: place its skeleton with
-/// [`Placement::default_for`](crate::skeleton::Placement::default_for)`(limit.is_some())`,
-/// as the command line does.
+/// [`medial_axis`] computed with `options` (the limit: [`solid_cycles`]).
 ///
 /// # Errors
 /// The reader's ([`Error::Mesh`]) or [`medial_axis`]'s.
