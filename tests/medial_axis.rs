@@ -385,16 +385,32 @@ fn plates_of_large_faces_get_a_branch_per_arm_and_no_comb() {
 }
 
 #[test]
-fn a_plate_far_from_the_origin_gives_a_skeleton_without_hanging_or_panicking() {
-    // At x = 10^15 a spacing of 0.05 is finer than the coordinates can tell apart. The
-    // lattice's rows and columns are counted in whole steps (adding one to a number that
-    // large may change nothing: the sampling looped for ever), and the trunk found once
-    // the axis's holes are cut is mapped back to the uncut skeleton by position (the cut
-    // renumbers the points: the pruning read past their end and panicked).
-    let mesh = boxes(&[([1e15 - 1.0, 0.9, -0.6], [1e15 + 1.0, 1.1, 0.6])]);
-    let axis = axis(&mesh, 0.05);
-    let skeleton = skeleton_of(&axis, solid_cycles(&mesh), Placement::OnAxis);
+fn a_plate_far_from_the_origin_is_refused_where_its_coordinates_cannot_place_the_samples() {
+    // At x = 10^15 a spacing of 0.05 is finer than the coordinates can tell apart (the
+    // sampling looped for ever, then gave an axis of noise whose pruning panicked):
+    // refused, naming the finest spacing they allow.
+    let far = boxes(&[([1e15 - 1.0, 0.9, -0.6], [1e15 + 1.0, 1.1, 0.6])]);
+    let options = MedialAxisOptions::default().with_spacing(Some(0.05));
+    match medial_axis(&far, &options) {
+        Err(Error::MedialAxis(e @ MedialAxisError::SpacingBelowResolution { least, .. })) => {
+            assert!(least > 1e5 && least < 1e6, "{least}");
+            let message = e.to_string();
+            assert!(
+                message.contains("0.05") && message.contains("origin"),
+                "{message}"
+            );
+        }
+        other => panic!("expected the spacing refused, got {other:?}"),
+    }
+    // A million units out, the same board gets the skeleton it gets at the origin.
+    let near = boxes(&[([1e6 - 1.0, 0.9, -0.6], [1e6 + 1.0, 1.1, 0.6])]);
+    let skeleton = skeleton_of(&axis(&near, 0.05), solid_cycles(&near), Placement::OnAxis);
     assert_eq!(skeleton.component_count(), 1);
+    assert!(
+        (2..=4).contains(&skeleton.tip_count()),
+        "{} tips",
+        skeleton.tip_count()
+    );
 }
 
 #[test]

@@ -252,6 +252,22 @@ pub enum MedialAxisError {
         /// The limit.
         max: u64,
     },
+    /// The spacing is finer than the mesh's coordinates can place points: far from the
+    /// origin, rounding moves a sample by more than the small steps the method takes
+    /// against the spacing (a thousandth of it, to tell the surface's two sides apart),
+    /// and the axis would be noise.
+    #[error(
+        "samples every {spacing} are finer than coordinates as large as {magnitude} can \
+         place: use a spacing of at least {least}, or move the mesh near the origin"
+    )]
+    SpacingBelowResolution {
+        /// The spacing asked for (or the default).
+        spacing: f64,
+        /// The largest coordinate's magnitude.
+        magnitude: f64,
+        /// The finest spacing those coordinates allow.
+        least: f64,
+    },
     /// The samples span no volume (a flat surface), or fewer than four are distinct.
     #[error("the surface encloses no volume: {0}")]
     Flat(String),
@@ -282,13 +298,30 @@ pub enum MedialAxisError {
 /// [`MedialAxisError::NonOrientableSurface`] for a surface that bounds no solid,
 /// [`MedialAxisError::InvalidOption`] for a spacing that is not positive and finite or
 /// an angle outside (0, 180), [`MedialAxisError::TooManySamples`] for a spacing too
-/// fine, [`MedialAxisError::Flat`] for a surface with no volume and
+/// fine, [`MedialAxisError::SpacingBelowResolution`] for one finer than the
+/// coordinates' rounding allows, [`MedialAxisError::Flat`] for a surface with no volume and
 /// [`MedialAxisError::Empty`] when nothing inside passes the angle test.
 pub fn medial_axis(mesh: &TriMesh, options: &MedialAxisOptions) -> Result<MedialAxis, Error> {
     options.validate()?;
     let angle = options.min_angle_degrees;
     // The mean edge length of a mesh, which has a face of non-zero area: positive.
     let spacing = options.spacing.unwrap_or_else(|| mesh.mean_edge_length());
+    // Samples step a thousandth of the spacing outward (below) to tell which faces lie
+    // inside the solid: that step must stay a thousand times the coordinates' rounding.
+    let magnitude = mesh
+        .positions()
+        .iter()
+        .flat_map(|p| p.to_array())
+        .fold(0.0, |m: f64, x| m.max(x.abs()));
+    let least = 1e6 * f64::EPSILON * magnitude;
+    if spacing < least {
+        return Err(MedialAxisError::SpacingBelowResolution {
+            spacing,
+            magnitude,
+            least,
+        }
+        .into());
+    }
     let count = surface::sample_count(mesh, spacing);
     if count > options.max_samples {
         return Err(MedialAxisError::TooManySamples {
