@@ -1235,6 +1235,11 @@ fn skeleton_writes_a_connected_obj_graph_and_the_field() {
     );
     assert_eq!(covered["components"], 2);
     assert_eq!(covered["cycles"], 0);
+    // Centred (the default), every point has a radius, the separate curve's too (its
+    // balls are not the sheets': they gave it 0).
+    for p in covered["points"].as_array().unwrap() {
+        assert!(p["radius"].as_f64().unwrap() > 0.0, "{p}");
+    }
     // A picture of it, of the size asked for; a bad view leaves no file.
     let png = dir.path().join("skeleton.png");
     geotracks_ok(&[

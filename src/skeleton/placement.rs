@@ -110,15 +110,19 @@ impl Skeleton {
                     .points
                     .iter()
                     .zip(&smooth)
-                    .map(|(p, &at)| SkeletonPoint {
-                        position: at.to_array(),
-                        radius: Some(inscribed_radius(
-                            axis,
-                            &lookup,
-                            at,
-                            3.0 * p.radius.unwrap_or(0.0),
-                        )),
-                        ..*p
+                    .map(|(p, &at)| {
+                        let reach = 3.0 * p.radius.unwrap_or(0.0);
+                        // A point of a curve away from every sheet (its balls are not
+                        // the sheets') keeps the radius the axis gives it there.
+                        let radius = match inscribed_radius(axis, &lookup, at, reach) {
+                            r if r > 0.0 => Some(r),
+                            _ => p.radius,
+                        };
+                        SkeletonPoint {
+                            position: at.to_array(),
+                            radius,
+                            ..*p
+                        }
                     })
                     .collect();
                 skeleton.with_points(points)
