@@ -20,7 +20,7 @@ use std::collections::BinaryHeap;
 ///
 /// Centred is the default, for an axis given as such and one computed from a surface
 /// mesh alike: on the shared axes and meshes it comes closer to the mean-curvature-flow
-/// skeletons on every measure but Spot's length (`eval --skeletons [--from-meshes]
+/// skeletons on every target but Spot's length (`eval --skeletons [--from-meshes]
 /// [--on-axis]`, on the guide's Accuracy page). A computed axis is the Voronoi diagram
 /// of samples of the surface: round a limb only a few samples across it zig-zags by up
 /// to half the limb's radius, and a curve on it follows; the cross-section is the cut

@@ -23,8 +23,8 @@
 //!    its deepest vertex (the largest ball, where a spike meets the axis) sees it
 //!    under less than half that, or when `p` and `q` are less than
 //!    [`MedialAxisOptions::min_span`] spacings apart (a medial ball touches the surface
-//!    at two far-apart points), or [`MedialAxisOptions::MIN_ACROSS`] when they face
-//!    each other across a thin part. Spikes are removed only through a free edge, one after
+//!    at two far-apart points); when they face each other across a thin part, when
+//!    the part is thinner than [`MedialAxisOptions::MIN_ACROSS`] spacings. Spikes are removed only through a free edge, one after
 //!    the other (elementary collapses), so the filter opens no hole and splits
 //!    nothing: the axis keeps the topology of the inner Voronoi diagram, which is the
 //!    solid's where the sampling is dense for the shape (where a part is only a few
@@ -99,9 +99,9 @@ pub struct MedialAxisOptions {
     /// they can go without changing the axis's topology). Larger cleans more and eats
     /// the axis back more where the shape thins out (tips of limbs). Two samples that
     /// face each other (their normals turned by more than 180° less the angle) are the
-    /// two sides of a thin part, not neighbours: their facet needs only
-    /// [`MedialAxisOptions::MIN_ACROSS`] spacings (or this, if smaller), and a horn
-    /// or a tail about a spacing thick keeps its axis.
+    /// two sides of a thin part, not neighbours: their facet stays if the part is at
+    /// least [`MedialAxisOptions::MIN_ACROSS`] spacings thick between them (or this,
+    /// if smaller), and a horn or a tail about a spacing thick keeps its axis.
     pub min_span: f64,
     /// The most samples the surface may get: a `spacing` that needs more is refused
     /// before any work.
@@ -115,13 +115,15 @@ impl MedialAxisOptions {
     /// The default shortest span, in units of the spacing.
     pub const DEFAULT_MIN_SPAN: f64 = 1.5;
 
-    /// The shortest distance, in units of the spacing, between two samples that face
-    /// each other across a part, for the facet between them to stay (see
-    /// [`MedialAxisOptions::min_span`]). A part thinner than half a spacing is not
+    /// The thinnest part, in units of the spacing, whose two sides' samples (facing
+    /// each other) keep the facet between them: its thickness between them, measured
+    /// along their normals (see [`MedialAxisOptions::min_span`]). A thinner part is not
     /// resolved by the sampling: its few facets are a crude sketch of its axis, and
     /// going, they leave the part without one (or the whole axis empty, an error that
     /// names the spacing to lower). On the shared cow's mesh, sampled at its mean edge
-    /// length, the horns are 0.7 to 1.2 spacings across.
+    /// length, the horns are 0.7 to 1.2 spacings across. Measured, not derived: at ½,
+    /// an L-shaped plate 0.5 thick sampled every 1.7 kept an axis along one arm only;
+    /// at 1, the cow's horns lost theirs.
     pub const MIN_ACROSS: f64 = 0.75;
 
     /// Sets [`MedialAxisOptions::min_span`].
