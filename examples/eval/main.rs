@@ -200,7 +200,7 @@ fn skeletons_main(argv: &[String], at: usize) -> Result<(), String> {
     let placement = if argv.iter().any(|a| a == "--on-axis") {
         geotracks::skeleton::Placement::OnAxis
     } else {
-        geotracks::skeleton::Placement::Centred
+        geotracks::skeleton::Placement::default()
     };
     skeletons::skeletons(
         std::path::Path::new(data),

@@ -151,7 +151,7 @@ fn runs([a, b, c]: [u32; 3], u: u32, v: u32) -> bool {
 /// (a machined part's) have them only at their corners.
 pub(super) fn samples(mesh: &TriMesh, triangles: &[[u32; 3]], spacing: f64) -> Samples {
     let p = |v: u32| mesh.position(v);
-    let face_normal = |[a, b, c]: [u32; 3]| (p(b) - p(a)).cross(p(c) - p(a)).normalize_or_zero();
+    let face_normal = |t: [u32; 3]| unit_normal(t.map(p));
     let mut normals = vec![DVec3::ZERO; mesh.vertex_count()];
     for &t in triangles {
         let n = face_normal(t);
@@ -221,6 +221,12 @@ pub(super) fn samples(mesh: &TriMesh, triangles: &[[u32; 3]], spacing: f64) -> S
 /// shared cow's and Spot's faces are cut into 5 pieces at most at their default
 /// spacing, so their axes are unchanged).
 const LATTICE_PIECES: u32 = 6;
+
+/// The unit normal of the triangle `corners` (by their order), or zero if it is
+/// degenerate.
+fn unit_normal([a, b, c]: [DVec3; 3]) -> DVec3 {
+    (b - a).cross(c - a).normalize_or_zero()
+}
 
 /// Whether a face cut into `pieces` along its longest side, with unit normal `normal`,
 /// is sampled on its plane's lattice ([`lattice_points`]) rather than a barycentric
@@ -320,9 +326,7 @@ pub(super) fn sample_count(mesh: &TriMesh, spacing: f64) -> u64 {
             let pieces = face_pieces(mesh, f, spacing);
             let n = u64::from(pieces);
             let corners = mesh.face_vertices(f).map(|v| mesh.position(v));
-            let normal = (corners[1] - corners[0])
-                .cross(corners[2] - corners[0])
-                .normalize_or_zero();
+            let normal = unit_normal(corners);
             if on_lattice(pieces, normal) {
                 let mut count = 0.0;
                 lattice_points(corners, normal, spacing, |_, lo, hi| {
