@@ -55,6 +55,7 @@ mod placement;
 mod protrusion;
 mod simplify;
 mod straighten;
+mod strands;
 mod thinning;
 mod tips;
 mod trunk;

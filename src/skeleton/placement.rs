@@ -57,20 +57,22 @@ impl Skeleton {
 
     /// The skeleton of a medial axis with its points placed (thinning leaves them on the
     /// axis's vertices, and the ridge where its fires met wanders across a wide sheet):
-    /// 1. each branch's folds taken out: where the branch runs away and back, by at
+    /// 1. branches that leave a junction side by side joined into one strand
+    ///    ([`Skeleton::with_strands_joined`]): the junction moves to where they part;
+    /// 2. each branch's folds taken out: where the branch runs away and back, by at
     ///    least [`Skeleton::FOLD`] times the distance across, it steps across instead,
     ///    within the medial ball it steps from, on the axis's sheets;
-    /// 2. resampled every [`Skeleton::RESAMPLING`] of the diagonal
+    /// 3. resampled every [`Skeleton::RESAMPLING`] of the diagonal
     ///    ([`Skeleton::resampled`]);
-    /// 3. smoothed through junctions: each point moves to the Gaussian-weighted mean of
+    /// 4. smoothed through junctions: each point moves to the Gaussian-weighted mean of
     ///    the points near it along the graph, σ = [`Skeleton::SMOOTHING_RADII`] medial
     ///    radii there (a curve cannot say more about a shape than its thickness);
-    /// 4. for [`Placement::OnAxis`], put back on the nearest point of the axis and
+    /// 5. for [`Placement::OnAxis`], put back on the nearest point of the axis and
     ///    smoothed on it ([`Skeleton::smoothed`], [`Skeleton::SMOOTHING`] rounds), with
     ///    the radius interpolated there; for [`Placement::Centred`], moved to the centre
     ///    of the shape's cross-section and smoothed again, with the radius of the largest
     ///    ball centred there inside the shape;
-    /// 5. thinned to the points the curve needs ([`Skeleton::simplified`]): a point
+    /// 6. thinned to the points the curve needs ([`Skeleton::simplified`]): a point
     ///    within [`Skeleton::SIMPLIFYING_RADII`] medial radii, and one resampling step,
     ///    of the polyline without it goes, and with it the zig-zag that the axis's
     ///    roughness leaves between points so close together.
@@ -84,6 +86,7 @@ impl Skeleton {
         let spacing = Skeleton::RESAMPLING * axis.diagonal();
         let skeleton = self
             .with_radii(Some(mesh), &axis.radii)
+            .with_strands_joined()
             .straightened(mesh, &lookup, spacing)
             .resampled(mesh, spacing)
             .with_radii(Some(mesh), &axis.radii);
