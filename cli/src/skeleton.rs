@@ -43,8 +43,9 @@ pub struct SkeletonArgs {
     #[arg(long, default_value = "tracks")]
     method: Method,
     /// Prune branches that stood less than T as curves after the fire reached them
-    /// (their erosion thickness): a length in the axis's units, or a percentage of its
-    /// bounding box diagonal (`2%`); 0 keeps everything, `inf` only what never burns.
+    /// (their erosion thickness), and, once placed, branches from tips shorter than T: a
+    /// length in the axis's units, or a percentage of its bounding box diagonal (`2%`);
+    /// 0 keeps everything, `inf` only what never burns.
     #[arg(long, value_name = "T", default_value_t = format!("{DEFAULT_PRUNE_PERCENT}%"))]
     prune: String,
     /// Also prune branches whose erosion thickness is less than R times the medial

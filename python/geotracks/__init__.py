@@ -603,7 +603,8 @@ def skeleton(
     as ``geotracks skeleton`` makes it.
 
     :param prune: a length, or a percentage of the bounding-box diagonal (``"5%"``, the
-        default); branches whose erosion thickness is less go whole.
+        default); branches whose erosion thickness is less go whole, and once the
+        skeleton is placed, branches from tips shorter than that.
     :param tubular: branches whose erosion thickness is less than this many times the
         medial radius where they join the rest go whole too (a bump short for its
         thickness before a thin limb of the same length); 0 keeps them.

@@ -99,7 +99,8 @@ pub const DEFAULT_MIN_PROTRUSION: f64 = 0.5;
 /// tips are cut back to their last ball.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Pruning {
-    /// The least erosion thickness a branch keeps, a length ([`Skeleton::pruned`]).
+    /// The least erosion thickness a branch keeps, a length ([`Skeleton::pruned`]), and
+    /// the least length of a placed branch from a tip ([`Skeleton::without_short_tips`]).
     pub erosion_thickness: f64,
     /// The least tubularity ([`Skeleton::pruned_tubular`]).
     pub tubularity: f64,
@@ -685,7 +686,8 @@ pub fn medial_axis_skeleton(
 ///    from the body goes whole, a limb the hole joined to another part is cut where the
 ///    loop is narrowest, and what the cuts leave is pruned by erosion thickness;
 /// 3. pruned by protrusion again (the pieces the cuts left), its tips cut back to their
-///    last ball if `pruning` says so ([`Skeleton::tips_trimmed`]), and placed.
+///    last ball if `pruning` says so ([`Skeleton::tips_trimmed`]), placed, and rid of
+///    branches from tips shorter than the threshold ([`Skeleton::without_short_tips`]).
 ///
 /// The thinned axis has the axis's b₁ cycles; the solid has a tunnel only where the
 /// balls leave a hole open. Approximate axes have holes where a sheet is thin (where a
@@ -748,7 +750,9 @@ pub fn medial_axis_skeleton_with_cycles(
     } else {
         skeleton
     };
-    Ok((skeleton.placed(axis, placement), field))
+    // Placed, a branch that zig-zagged through thin sheets is shorter than it stood.
+    let placed = skeleton.placed(axis, placement);
+    Ok((placed.without_short_tips(prune), field))
 }
 
 /// Per point of `skeleton`, whether it lies on the trunk of `opened`, the same skeleton

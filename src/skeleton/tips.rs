@@ -1,4 +1,5 @@
-//! Where a branch ends: at the centre of the last medial ball that reaches its tip.
+//! Where branches end: at the centre of the last medial ball that reaches a tip (an
+//! option), and which short ones go once the skeleton is placed.
 
 use super::Skeleton;
 use glam::DVec3;
@@ -48,6 +49,48 @@ impl Skeleton {
             }
         }
         self.keep(|i| !removed[i])
+    }
+}
+
+impl Skeleton {
+    /// The skeleton without the branches from a tip shorter than `threshold` (placed
+    /// length, polyline by polyline), shortest first, each branch's length taken again
+    /// once its neighbour went (two branches that met at a junction become one). A
+    /// component that is one path keeps it, and no cycle opens (a branch from a tip is
+    /// on none).
+    #[must_use]
+    pub fn without_short_tips(&self, threshold: f64) -> Skeleton {
+        let mut skeleton = self.clone();
+        let position = |s: &Skeleton, i: u32| DVec3::from(s.points[i as usize].position);
+        loop {
+            let degree = skeleton.degrees();
+            let shortest = skeleton
+                .polylines()
+                .into_iter()
+                .filter(|line| {
+                    let (a, b) = (line[0] as usize, line[line.len() - 1] as usize);
+                    line.len() > 1 && (degree[a] == 1) != (degree[b] == 1)
+                })
+                .map(|line| {
+                    let length: f64 = line
+                        .windows(2)
+                        .map(|w| position(&skeleton, w[0]).distance(position(&skeleton, w[1])))
+                        .sum();
+                    (length, line)
+                })
+                .filter(|(length, _)| *length < threshold)
+                .min_by(|a, b| a.0.total_cmp(&b.0));
+            let Some((_, mut line)) = shortest else {
+                return skeleton;
+            };
+            if degree[line[0] as usize] != 1 {
+                line.reverse();
+            }
+            // The branch less the junction it joins.
+            let gone: std::collections::HashSet<u32> =
+                line[..line.len() - 1].iter().copied().collect();
+            skeleton = skeleton.keep(|i| !gone.contains(&(i as u32)));
+        }
     }
 }
 
@@ -110,5 +153,69 @@ mod tests {
             skeleton,
             "balls that reach no point"
         );
+    }
+
+    /// A path through `points` with straight edges (no radii needed).
+    fn with_branches(paths: &[&[[f64; 3]]]) -> Skeleton {
+        let mut points: Vec<[f64; 3]> = Vec::new();
+        let mut edges = Vec::new();
+        let id = |p: [f64; 3], points: &mut Vec<[f64; 3]>| match points.iter().position(|&q| q == p)
+        {
+            Some(i) => i as u32,
+            None => {
+                points.push(p);
+                points.len() as u32 - 1
+            }
+        };
+        for path in paths {
+            let ids: Vec<u32> = path.iter().map(|&p| id(p, &mut points)).collect();
+            edges.extend(ids.windows(2).map(|w| [w[0], w[1]]));
+        }
+        Skeleton::from_curves(&points, &edges, None)
+    }
+
+    #[test]
+    fn short_branches_from_tips_go_shortest_first_and_the_rest_stays() {
+        // A trunk from x = 0 to 10; at x = 5 a limb 3 long and a spur 0.4 long; at the
+        // trunk's end two prongs, 0.3 and 0.45 long.
+        let skeleton = with_branches(&[
+            &[[0.0, 0.0, 0.0], [5.0, 0.0, 0.0], [10.0, 0.0, 0.0]],
+            &[[5.0, 0.0, 0.0], [5.0, 3.0, 0.0]],
+            &[[5.0, 0.0, 0.0], [5.0, -0.4, 0.0]],
+            &[[10.0, 0.0, 0.0], [10.3, 0.0, 0.0]],
+            &[[10.0, 0.0, 0.0], [10.0, 0.45, 0.0]],
+        ]);
+        assert_eq!(skeleton.tip_count(), 5);
+        let pruned = skeleton.without_short_tips(0.5);
+        // The spur and the shorter prong go; the longer prong then continues the trunk,
+        // which is long, and stays.
+        assert_eq!(pruned.tip_count(), 3);
+        assert!(
+            (pruned.length() - (10.0 + 3.0 + 0.45)).abs() < 1e-9,
+            "{}",
+            pruned.length()
+        );
+        assert_eq!(pruned.component_count(), 1);
+        assert_eq!(skeleton.without_short_tips(0.0), skeleton);
+    }
+
+    #[test]
+    fn a_short_path_and_a_loop_stay() {
+        let path = with_branches(&[&[[0.0, 0.0, 0.0], [0.2, 0.0, 0.0]]]);
+        assert_eq!(path.without_short_tips(1.0), path);
+        // A square loop with a short spur: the spur goes, the loop stays.
+        let looped = with_branches(&[
+            &[
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [1.0, 1.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.0, 0.0, 0.0],
+            ],
+            &[[1.0, 0.0, 0.0], [1.2, -0.1, 0.0]],
+        ]);
+        let pruned = looped.without_short_tips(1.0);
+        assert_eq!((pruned.cycle_count(), pruned.tip_count()), (1, 0));
+        assert!((pruned.length() - 4.0).abs() < 1e-9);
     }
 }
