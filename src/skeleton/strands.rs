@@ -42,7 +42,8 @@ impl Skeleton {
             .collect();
         let at: Vec<DVec3> = self.points.iter().map(|p| p.position.into()).collect();
         let mut skeleton = self.clone();
-        // Each join takes at least one edge out of the graph.
+        // Bounded by the edge count: a join never adds an edge (a run of one long edge
+        // swaps it for another, the junction moving out along the other branch).
         for _ in 0..self.edges.len() {
             let Some(join) = longest_run(&skeleton, &at, &radius) else {
                 break;
