@@ -277,3 +277,38 @@ impl<'s> Rebuild<'s> {
         }
     }
 }
+
+/// For tests: a skeleton of straight edges along `paths` of `(position, radius)`; a
+/// position given twice (bit for bit) is one point, so paths join where they meet.
+#[cfg(test)]
+pub(super) fn graph_of_paths<P: AsRef<[([f64; 3], f64)]>>(paths: &[P]) -> Skeleton {
+    let mut points: Vec<SkeletonPoint> = Vec::new();
+    let mut edges = Vec::new();
+    for path in paths {
+        let ids: Vec<u32> = path
+            .as_ref()
+            .iter()
+            .map(
+                |&(position, radius)| match points.iter().position(|q| q.position == position) {
+                    Some(i) => i as u32,
+                    None => {
+                        points.push(SkeletonPoint {
+                            position,
+                            on: SurfacePoint::Vertex(0),
+                            significance: 1.0,
+                            tubularity: 1.0,
+                            radius: Some(radius),
+                        });
+                        points.len() as u32 - 1
+                    }
+                },
+            )
+            .collect();
+        edges.extend(ids.windows(2).map(|w| [w[0], w[1]]));
+    }
+    Skeleton {
+        points,
+        edges,
+        ..Skeleton::default()
+    }
+}

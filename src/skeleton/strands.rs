@@ -56,7 +56,8 @@ impl Skeleton {
             skeleton
                 .edges
                 .retain(|&[a, b]| !gone.contains(&[a.min(b), a.max(b)]));
-            skeleton.edges.push([join.onto, join.rest]);
+            let rest = join.run[join.run.len() - 1];
+            skeleton.edges.push([join.onto, rest]);
         }
         // The runs' inner points lost their edges.
         let degree = skeleton.degrees();
@@ -66,12 +67,11 @@ impl Skeleton {
 }
 
 /// A run to take out: the points of a branch from its junction to where it parts from
-/// the other (`run`, the last one staying), and the point of the other branch that the
-/// rest joins (`onto`).
+/// the other (`run`; the last one stays, and the rest of the branch hangs from it), and
+/// the point of the other branch that it joins (`onto`).
 struct Join {
     run: Vec<u32>,
     onto: u32,
-    rest: u32,
     length: f64,
 }
 
@@ -80,9 +80,10 @@ struct Join {
 fn longest_run(skeleton: &Skeleton, at: &[DVec3], radius: &[f64]) -> Option<Join> {
     let lines = skeleton.polylines();
     let degree = skeleton.degrees();
-    // Per junction, its branches as they leave it.
-    let mut leaving: std::collections::HashMap<u32, Vec<Vec<u32>>> =
-        std::collections::HashMap::new();
+    // Per junction, its branches as they leave it; in the junctions' order, so that of
+    // two runs equally long (a symmetric shape's) the same one goes on every run.
+    let mut leaving: std::collections::BTreeMap<u32, Vec<Vec<u32>>> =
+        std::collections::BTreeMap::new();
     for line in lines
         .iter()
         .filter(|l| l.len() > 2 && l[0] != l[l.len() - 1])
@@ -149,7 +150,6 @@ fn run_along(along: &[u32], branch: &[u32], at: &[DVec3], radius: &[f64]) -> Opt
     Some(Join {
         run: branch[..=end].to_vec(),
         onto: along[matched],
-        rest: branch[end],
         length,
     })
 }
@@ -188,43 +188,7 @@ fn nearest_ahead(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::skeleton::SkeletonPoint;
-    use crate::surface::SurfacePoint;
-
-    /// Builds a skeleton from polylines of `(position, radius)`; a point given twice
-    /// (bit for bit) is one point.
-    fn skeleton(lines: &[Vec<([f64; 3], f64)>]) -> Skeleton {
-        let mut points: Vec<SkeletonPoint> = Vec::new();
-        let mut edges = Vec::new();
-        let index = |p: [f64; 3], r: f64, points: &mut Vec<SkeletonPoint>| match points
-            .iter()
-            .position(|q| q.position == p)
-        {
-            Some(i) => i as u32,
-            None => {
-                points.push(SkeletonPoint {
-                    position: p,
-                    on: SurfacePoint::Vertex(0),
-                    significance: 1.0,
-                    tubularity: 1.0,
-                    radius: Some(r),
-                });
-                points.len() as u32 - 1
-            }
-        };
-        for line in lines {
-            let ids: Vec<u32> = line
-                .iter()
-                .map(|&(p, r)| index(p, r, &mut points))
-                .collect();
-            edges.extend(ids.windows(2).map(|w| [w[0], w[1]]));
-        }
-        Skeleton {
-            points,
-            edges,
-            ..Skeleton::default()
-        }
-    }
+    use crate::skeleton::geometry::graph_of_paths;
 
     /// Points every 0.05 from `a` to `b`, both included, all of radius `r`.
     fn segment(a: [f64; 3], b: [f64; 3], r: f64) -> Vec<([f64; 3], f64)> {
@@ -261,7 +225,7 @@ mod tests {
             segment([-1.0, 0.2, 0.0], [along, 0.2, 0.0], 0.9),
             segment([along, 0.2, 0.0], [along, 3.0, 0.0], 0.3),
         ]);
-        skeleton(&[trunk, limb])
+        graph_of_paths(&[trunk, limb])
     }
 
     #[test]
@@ -300,7 +264,7 @@ mod tests {
             segment([1.0, 0.2, 0.0], [1.4, 0.2, 0.0], 0.9),
             segment([1.4, 0.2, 0.0], [1.4, 3.0, 0.0], 0.9),
         ]);
-        let before = skeleton(&[trunk, up, slanted, short]);
+        let before = graph_of_paths(&[trunk, up, slanted, short]);
         let joined = before.with_strands_joined();
         assert!(joined == before, "{:?}", junctions(&joined));
     }
@@ -319,7 +283,7 @@ mod tests {
             segment([-1.0, 0.2, 0.0], [1.0, 0.2, 0.0], 0.9),
             segment([1.0, 0.2, 0.0], [1.0, 0.0, 0.0], 0.9),
         ]);
-        let before = skeleton(&[stems[0].clone(), stems[1].clone(), straight, beside]);
+        let before = graph_of_paths(&[stems[0].clone(), stems[1].clone(), straight, beside]);
         let joined = before.with_strands_joined();
         assert_eq!(joined.cycle_count(), 1);
         assert_eq!((joined.tip_count(), joined.component_count()), (2, 1));

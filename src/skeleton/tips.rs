@@ -1,6 +1,7 @@
 //! Where branches end: at the centre of the last medial ball that reaches a tip (an
 //! option), and which short ones go once the skeleton is placed.
 
+use super::geometry::lengths_along;
 use super::Skeleton;
 use glam::DVec3;
 
@@ -61,7 +62,6 @@ impl Skeleton {
     #[must_use]
     pub fn without_short_tips(&self, threshold: f64) -> Skeleton {
         let mut skeleton = self.clone();
-        let position = |s: &Skeleton, i: u32| DVec3::from(s.points[i as usize].position);
         loop {
             let degree = skeleton.degrees();
             let shortest = skeleton
@@ -72,11 +72,8 @@ impl Skeleton {
                     line.len() > 1 && (degree[a] == 1) != (degree[b] == 1)
                 })
                 .map(|line| {
-                    let length: f64 = line
-                        .windows(2)
-                        .map(|w| position(&skeleton, w[0]).distance(position(&skeleton, w[1])))
-                        .sum();
-                    (length, line)
+                    let along = lengths_along(&skeleton.line_positions(&line));
+                    (along[along.len() - 1], line)
                 })
                 .filter(|(length, _)| *length < threshold)
                 .min_by(|a, b| a.0.total_cmp(&b.0));
@@ -155,23 +152,14 @@ mod tests {
         );
     }
 
-    /// A path through `points` with straight edges (no radii needed).
+    /// Straight edges along `paths`, which join where they meet (radius 1: the lengths
+    /// are what counts).
     fn with_branches(paths: &[&[[f64; 3]]]) -> Skeleton {
-        let mut points: Vec<[f64; 3]> = Vec::new();
-        let mut edges = Vec::new();
-        let id = |p: [f64; 3], points: &mut Vec<[f64; 3]>| match points.iter().position(|&q| q == p)
-        {
-            Some(i) => i as u32,
-            None => {
-                points.push(p);
-                points.len() as u32 - 1
-            }
-        };
-        for path in paths {
-            let ids: Vec<u32> = path.iter().map(|&p| id(p, &mut points)).collect();
-            edges.extend(ids.windows(2).map(|w| [w[0], w[1]]));
-        }
-        Skeleton::from_curves(&points, &edges, None)
+        let paths: Vec<Vec<([f64; 3], f64)>> = paths
+            .iter()
+            .map(|path| path.iter().map(|&p| (p, 1.0)).collect())
+            .collect();
+        crate::skeleton::geometry::graph_of_paths(&paths)
     }
 
     #[test]
