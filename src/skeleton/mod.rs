@@ -750,7 +750,7 @@ pub fn medial_axis_skeleton_with_cycles(
     } else {
         skeleton
     };
-    // Placed, a branch that zig-zagged through thin sheets is shorter than it stood.
+    // Placed, a branch that zig-zagged (or ends a longer one) is shorter than it stood.
     let placed = skeleton.placed(axis, placement);
     Ok((placed.without_short_tips(prune), field))
 }

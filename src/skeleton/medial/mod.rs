@@ -23,8 +23,9 @@
 //!    its deepest vertex (the largest ball, where a spike meets the axis) sees it
 //!    under less than half that, or when `p` and `q` are less than
 //!    [`MedialAxisOptions::min_span`] spacings apart (a medial ball touches the surface
-//!    at two far-apart points); when they face each other across a thin part, when
-//!    the part is thinner than [`MedialAxisOptions::MIN_ACROSS`] spacings. Spikes are removed only through a free edge, one after
+//!    at two far-apart points; for two samples facing each other across a thin part,
+//!    when the part is thinner than [`MedialAxisOptions::MIN_ACROSS`] spacings).
+//!    Spikes are removed only through a free edge, one after
 //!    the other (elementary collapses), so the filter opens no hole and splits
 //!    nothing: the axis keeps the topology of the inner Voronoi diagram, which is the
 //!    solid's where the sampling is dense for the shape (where a part is only a few
