@@ -197,13 +197,36 @@ fn a_spheroid_sampled_finer_than_its_faces_keeps_its_axis_straight() {
         .collect();
     let mesh = TriMesh::new(positions, unit.triangles().to_vec()).unwrap();
     // Its axis keeps a few small holes there (the solid has none): they are cut.
-    let skeleton = skeleton_of(&axis(&mesh, 0.04), 0, Placement::OnAxis);
-    assert_eq!((skeleton.component_count(), skeleton.cycle_count()), (1, 0));
+    // Untrimmed, the skeleton is the axis's extent; trimmed (the default), its ends
+    // come in by no more than their radii.
+    let axis = axis(&mesh, 0.04);
+    let pruning = Pruning {
+        trim_tips: false,
+        ..Pruning::default_for(axis.diagonal())
+    };
+    let untrimmed =
+        medial_axis_skeleton_with_cycles(&axis, Burn::Boundary, &K5, pruning, 0, Placement::OnAxis)
+            .unwrap()
+            .0;
+    let skeleton = skeleton_of(&axis, 0, Placement::OnAxis);
+    for skeleton in [&untrimmed, &skeleton] {
+        assert_eq!((skeleton.component_count(), skeleton.cycle_count()), (1, 0));
+    }
     let axis_length = 2.0 * 8.0 / 3.0;
-    let length = skeleton.length();
+    let length = untrimmed.length();
     assert!(
         length > 0.8 * axis_length && length < 2.0 * axis_length,
         "length {length} against the axis's {axis_length}"
+    );
+    let degrees = untrimmed.degrees();
+    let ends: f64 = (0..untrimmed.points.len())
+        .filter(|&i| degrees[i] == 1)
+        .map(|i| untrimmed.points[i].radius.unwrap())
+        .sum();
+    let trimmed = skeleton.length();
+    assert!(
+        trimmed < length && trimmed >= length - ends - 1e-9,
+        "trimmed {trimmed}, untrimmed {length}, the ends' radii {ends}"
     );
     for p in &skeleton.points {
         let off = p.position[1].hypot(p.position[2]);

@@ -59,10 +59,11 @@ pub struct SkeletonArgs {
     /// that stand out less than P of its thickness go, limbs stay; 0 keeps everything.
     #[arg(long, value_name = "P", default_value_t = DEFAULT_MIN_PROTRUSION, value_parser = parse_ratio)]
     protrusion: f64,
-    /// Cut each branch from a tip back to the centre of the last medial ball that
-    /// reaches its tip, where a mean-curvature-flow skeleton's tips lie; by default the
-    /// branches run out to where the axis meets the surface.
-    #[arg(long)]
+    /// Whether each placed branch from a tip is cut back to the innermost medial ball
+    /// that holds its end, by no more than the end's radius, near where a
+    /// mean-curvature-flow skeleton's tips lie; `--trim-tips false` lets the branches
+    /// run out to where the axis meets the surface.
+    #[arg(long, value_name = "BOOL", default_value_t = true, num_args = 0..=1, default_missing_value = "true", action = clap::ArgAction::Set)]
     trim_tips: bool,
     /// When each point may burn.
     #[arg(long, value_enum, default_value = "boundary")]

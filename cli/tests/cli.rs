@@ -1403,8 +1403,9 @@ fn skeleton_opens_a_hole_its_balls_fill() {
     }
 }
 
-/// `--trim-tips` cuts branches back from their tips and keeps the graph's shape: the
-/// same components, cycles and tips, a shorter skeleton.
+/// Trimmed tips (the default, `--trim-tips` too) are branches cut back from their tips
+/// that keep the graph's shape: the same components, cycles and tips as with
+/// `--trim-tips false`, a shorter skeleton.
 #[test]
 fn skeleton_trim_tips_shortens_and_keeps_the_graph() {
     let dir = tempfile::tempdir().unwrap();
@@ -1440,10 +1441,11 @@ fn skeleton_trim_tips_shortens_and_keeps_the_graph() {
         let counts = ["components", "cycles", "tips"].map(|k| graph[k].clone());
         (counts, length)
     };
-    let (counts, length) = run(&[]);
+    let (counts, length) = run(&["--trim-tips", "false"]);
     let (trimmed_counts, trimmed) = run(&["--trim-tips"]);
     assert_eq!(trimmed_counts, counts);
     assert!(trimmed < length - 0.05, "{trimmed} against {length}");
+    assert_eq!(run(&[]), (trimmed_counts, trimmed), "trimmed by default");
 }
 
 /// Every command's `--help` ends with examples (and so does the tool's).

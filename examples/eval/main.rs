@@ -40,7 +40,7 @@
 //! from `DATA_DIR/meshes/<name>.obj` instead, at that angle and span):
 //!
 //! ```text
-//! cargo run --release --example eval -- ../shared/data --skeletons [7] [--k 5] [--radius] [--tubular 1] [--protrusion 0.5] [--trim-tips] [--from-meshes [ANGLE] [--span S]]
+//! cargo run --release --example eval -- ../shared/data --skeletons [7] [--k 5] [--radius] [--tubular 1] [--protrusion 0.5] [--keep-tips] [--from-meshes [ANGLE] [--span S]]
 //! ```
 //!
 //! With `--plates` (no data needed) it builds plates of a few large faces (a board, an
@@ -146,7 +146,7 @@ fn number_after(argv: &[String], flag: &str, default: f64) -> Result<f64, String
 }
 
 /// `eval DATA_DIR --skeletons [PRUNE_PERCENT] [--k K] [--radius] [--tubular T]
-/// [--protrusion P] [--trim-tips] [--from-meshes [ANGLE] [--span S]] [--centred | --on-axis]`.
+/// [--protrusion P] [--keep-tips] [--from-meshes [ANGLE] [--span S]] [--centred | --on-axis]`.
 fn skeletons_main(argv: &[String], at: usize) -> Result<(), String> {
     let data = argv
         .get(1)
@@ -208,7 +208,7 @@ fn skeletons_main(argv: &[String], at: usize) -> Result<(), String> {
             prune_percent: prune,
             tubular,
             protrusion,
-            trim_tips: argv.iter().any(|a| a == "--trim-tips"),
+            trim_tips: !argv.iter().any(|a| a == "--keep-tips"),
         },
         k,
         burn,

@@ -215,7 +215,7 @@ pub fn skeletons(
             comparisons.push((name.clone(), at_default, reference, diagonal, floor));
         }
     }
-    println!("\nAgainst CGAL's mean-curvature-flow skeleton of the shape, at --prune {prune_percent} %, --tubular {tubular} and --protrusion {protrusion}{}, points {}: both sampled every 0.2 % of the diagonal; distances in % of the diagonal.\n", if trim_tips { ", tips trimmed (--trim-tips)" } else { "" }, match placement { Placement::OnAxis => "on the axis", Placement::Centred => "centred" });
+    println!("\nAgainst CGAL's mean-curvature-flow skeleton of the shape, at --prune {prune_percent} %, --tubular {tubular} and --protrusion {protrusion}{}, points {}: both sampled every 0.2 % of the diagonal; distances in % of the diagonal.\n", if trim_tips { "" } else { ", tips not trimmed (--keep-tips)" }, match placement { Placement::OnAxis => "on the axis", Placement::Centred => "centred" });
     println!("| axis | reference → ours mean / max | ours → reference mean / max | tips ours / reference | junctions ours / reference | length ours / reference | turning per length ours / reference | reference → axis mean / max |");
     println!("|---|---:|---:|---:|---:|---:|---:|---:|");
     let mut targets = Vec::new();

@@ -596,7 +596,7 @@ def skeleton(
     weld: bool = False,
     centred: Optional[bool] = None,
     protrusion: float = 0.5,
-    trim_tips: bool = False,
+    trim_tips: bool = True,
 ) -> Skeleton:
     """The curve skeleton of a medial axis file (``.ma``), or of a closed surface mesh
     file (OBJ, PLY, OFF, STL) through its :func:`medial_axis`, with the axis's topology,
@@ -612,9 +612,10 @@ def skeleton(
         skeleton's balls by less than this many times the medial radius where they
         join go whole, least protrusive first (spurs inside the body, low bumps); 0
         keeps them.
-    :param trim_tips: cut each branch from a tip back to the centre of the last medial
-        ball that reaches its tip, where a mean-curvature-flow skeleton's tips lie; by
-        default branches run out to where the axis meets the surface.
+    :param trim_tips: cut each placed branch from a tip back to the innermost medial
+        ball that holds its end, by no more than the end's radius, near where a
+        mean-curvature-flow skeleton's tips lie (the default); ``False`` lets branches
+        run out to where the axis meets the surface.
     :param burn: ``"boundary"`` (the grassfire from the axis's border) or ``"radius"``
         (each point burns at its medial radius).
     :param spacing, angle, span, weld: for a surface mesh, as in :func:`medial_axis`.

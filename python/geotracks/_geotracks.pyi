@@ -143,7 +143,7 @@ def skeleton(
     weld: bool = False,
     centred: bool | None = None,
     protrusion: float = 0.5,
-    trim_tips: bool = False,
+    trim_tips: bool = True,
 ) -> tuple[
     npt.NDArray[np.float64],
     npt.NDArray[np.float64],

@@ -253,6 +253,12 @@ impl<'s> Rebuild<'s> {
         self.last = self.keep(i);
     }
 
+    /// Starts a polyline at a new point.
+    pub(super) fn start_new(&mut self, point: SkeletonPoint) {
+        self.last = self.points.len() as u32;
+        self.points.push(point);
+    }
+
     /// Continues the polyline to the old point `i`.
     pub(super) fn then_old(&mut self, i: u32) {
         let id = self.keep(i);

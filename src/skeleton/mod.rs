@@ -96,7 +96,7 @@ pub const DEFAULT_MIN_PROTRUSION: f64 = 0.5;
 
 /// How [`medial_axis_skeleton`] prunes a skeleton: three thresholds, each removing whole
 /// branches from their tips and never opening a loop (0 turns one off), and whether the
-/// tips are cut back to their last ball.
+/// placed tips are cut back to the last ball that holds them.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Pruning {
     /// The least erosion thickness a branch keeps, a length ([`Skeleton::pruned`]), and
@@ -106,10 +106,10 @@ pub struct Pruning {
     pub tubularity: f64,
     /// The least protrusion ([`Skeleton::pruned_protruding`]).
     pub protrusion: f64,
-    /// Whether each branch from a tip is cut back to the centre of the last medial ball
-    /// that reaches its tip ([`Skeleton::tips_trimmed`]), where a mean-curvature-flow
-    /// skeleton's tips lie, rather than running out to where the axis meets the
-    /// surface. Off in the defaults.
+    /// Whether each placed branch from a tip is cut back to the innermost ball that
+    /// holds its end, by no more than the end's radius ([`Skeleton::tips_trimmed`]),
+    /// near where a mean-curvature-flow skeleton's tips lie, rather than running out to
+    /// where the axis meets the surface. On in the defaults.
     pub trim_tips: bool,
 }
 
@@ -123,14 +123,14 @@ impl Pruning {
     };
 
     /// The command line's defaults ([`DEFAULT_PRUNE_PERCENT`] of `diagonal`,
-    /// [`DEFAULT_MIN_TUBULARITY`], [`DEFAULT_MIN_PROTRUSION`]) for an axis whose
-    /// bounding box has that diagonal.
+    /// [`DEFAULT_MIN_TUBULARITY`], [`DEFAULT_MIN_PROTRUSION`], tips trimmed) for an axis
+    /// whose bounding box has that diagonal.
     pub fn default_for(diagonal: f64) -> Pruning {
         Pruning {
             erosion_thickness: DEFAULT_PRUNE_PERCENT / 100.0 * diagonal,
             tubularity: DEFAULT_MIN_TUBULARITY,
             protrusion: DEFAULT_MIN_PROTRUSION,
-            trim_tips: false,
+            trim_tips: true,
         }
     }
 }
@@ -685,9 +685,10 @@ pub fn medial_axis_skeleton(
 ///    a sixth of that radius may pass unseen), opened ([`Skeleton::with_cycles_cut`]): a strand the hole split
 ///    from the body goes whole, a limb the hole joined to another part is cut where the
 ///    loop is narrowest, and what the cuts leave is pruned by erosion thickness;
-/// 3. pruned by protrusion again (the pieces the cuts left), its tips cut back to their
-///    last ball if `pruning` says so ([`Skeleton::tips_trimmed`]), placed, and rid of
-///    branches from tips shorter than the threshold ([`Skeleton::without_short_tips`]).
+/// 3. pruned by protrusion again (the pieces the cuts left), placed
+///    ([`Skeleton::placed`]), rid of branches from tips shorter than the threshold
+///    ([`Skeleton::without_short_tips`]), and its tips cut back to the last ball that
+///    holds them if `pruning` says so ([`Skeleton::tips_trimmed`]).
 ///
 /// The thinned axis has the axis's b₁ cycles; the solid has a tunnel only where the
 /// balls leave a hole open. Approximate axes have holes where a sheet is thin (where a
@@ -745,14 +746,15 @@ pub fn medial_axis_skeleton_with_cycles(
     let skeleton = open(skeleton, pruning.protrusion, prune);
     let skeleton =
         skeleton.pruned_protruding(pruning.protrusion, |i| radius_at(skeleton.points[i].on));
-    let skeleton = if pruning.trim_tips {
-        skeleton.tips_trimmed(|i| radius_at(skeleton.points[i].on))
-    } else {
-        skeleton
-    };
     // Placed, a branch that zig-zagged (or ends a longer one) is shorter than it stood.
-    let placed = skeleton.placed(axis, placement);
-    Ok((placed.without_short_tips(prune), field))
+    let placed = skeleton.placed(axis, placement).without_short_tips(prune);
+    let placed = match (pruning.trim_tips, placement, &axis.surface) {
+        (false, ..) => placed,
+        // On the axis, a new end goes on it too.
+        (true, Placement::OnAxis, Some(mesh)) => placed.tips_trimmed(Some(mesh)),
+        (true, ..) => placed.tips_trimmed(None),
+    };
+    Ok((placed, field))
 }
 
 /// Per point of `skeleton`, whether it lies on the trunk of `opened`, the same skeleton

@@ -1,59 +1,124 @@
 //! Where branches end: at the centre of the last medial ball that reaches a tip (an
 //! option), and which short ones go once the skeleton is placed.
 
-use super::geometry::lengths_along;
-use super::Skeleton;
+use super::geometry::{lengths_along, nearby_faces, Rebuild};
+use super::{Skeleton, SkeletonPoint};
+use crate::mesh::TriMesh;
+use crate::surface::SurfacePoint;
 use glam::DVec3;
 
-impl Skeleton {
-    /// The skeleton with each branch from a tip cut back to the innermost point whose
-    /// medial ball (`radius` per point) still holds the tip, walking in from the tip while
-    /// the balls do: thinning leaves a branch running out to where the axis meets the
-    /// surface, with balls shrinking to nothing, and the last ball that reaches that
-    /// far is where the shape's end is centred (as a mean-curvature-flow skeleton's
-    /// tip lies). A branch keeps at least one point besides the one it joins, and a
-    /// component that is one path is cut from both ends, never past its middle.
-    ///
-    /// The rule takes the tip for the shape's end: on an axis whose branch stops short
-    /// of the surface it cuts up to a radius more than the shape has there, and where
-    /// the balls shrink faster than the branch runs (a pointed end) it cuts nothing.
-    #[must_use]
-    pub fn tips_trimmed(&self, radius: impl Fn(usize) -> f64) -> Skeleton {
-        let degree = self.degrees();
-        let mut removed = vec![false; self.points.len()];
-        let position = |i: u32| DVec3::from(self.points[i as usize].position);
-        for mut line in self.polylines() {
-            let tip = |i: u32| degree[i as usize] == 1;
-            let (first, last) = (line[0], line[line.len() - 1]);
-            // A component that is one path is cut from both ends, to its middle at most.
-            let both = tip(first) && tip(last);
-            for from_tip in [tip(first), tip(last)] {
-                if from_tip {
-                    // The branch from the tip, less the point it joins.
-                    let branch = &line[..line.len() - 1];
-                    let most = if both {
-                        branch.len().div_ceil(2)
-                    } else {
-                        branch.len()
-                    };
-                    let end = position(branch[0]);
-                    let held = branch
-                        .iter()
-                        .take_while(|&&p| position(p).distance(end) <= radius(p as usize))
-                        .count();
-                    let cut = held.saturating_sub(1).min(most - 1);
-                    for &p in &branch[..cut] {
-                        removed[p as usize] = true;
-                    }
-                }
-                line.reverse();
-            }
-        }
-        self.keep(|i| !removed[i])
-    }
+/// Where a polyline is cut: on its edge from point `edge` to the next, at `t` of the way.
+#[derive(Clone, Copy)]
+struct Cut {
+    edge: usize,
+    t: f64,
 }
 
 impl Skeleton {
+    /// The placed skeleton with each branch from a tip ending a little inside where it
+    /// ran out: at the innermost point whose medial ball (the points' radii, linear
+    /// along each edge) still holds the old end, walking in while the balls do, and
+    /// never more than the end's own radius in. Thinning runs a branch out to where the
+    /// axis meets the surface (a flat foot's rim, an ear's edge), where a
+    /// mean-curvature-flow skeleton's tip lies inside the shape by about its thickness
+    /// there. A ball on a thin stalk keeps its centre (the stalk's balls do not reach
+    /// it), and a limb tapering to a point loses at most the radius its tip has.
+    ///
+    /// A branch from a tip to a junction keeps at least half its length, and a
+    /// component that is one path a tenth of it, in its middle; no point goes but those
+    /// cut off, so the graph keeps its tips, junctions and cycles. Points without a
+    /// radius cut nothing. With `surface` (a skeleton placed on it, as on a medial
+    /// axis's sheets), a new end is put on the nearest point of the faces near the
+    /// point it was cut next to (at that point, on a curve away from every face);
+    /// without, it keeps that point's `on`.
+    ///
+    /// ```
+    /// use geotracks::skeleton::Skeleton;
+    /// // A limb of radius 0.3 up to y = 2 from the middle of a trunk of radius 1.
+    /// let points = [[-2.0, 0.0, 0.0], [0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]];
+    /// let edges = [[0, 1], [1, 2], [1, 3]];
+    /// let radii = [1.0, 1.0, 1.0, 0.3];
+    /// let skeleton = Skeleton::from_curves(&points, &edges, None).with_radii(None, &radii);
+    /// let trimmed = skeleton.tips_trimmed(None);
+    /// assert_eq!(trimmed.tip_count(), 3);
+    /// // The limb's end moves in by its radius; the trunk's ends by 1.
+    /// assert!((trimmed.length() - (1.0 + 1.0 + 1.7)).abs() < 1e-9);
+    /// ```
+    pub fn tips_trimmed(&self, surface: Option<&TriMesh>) -> Skeleton {
+        let degree = self.degrees();
+        let mut rebuilt = Rebuild::new(self);
+        for line in self.polylines() {
+            let tip = |i: u32| degree[i as usize] == 1;
+            let (first, last) = (line[0], line[line.len() - 1]);
+            if line.len() < 2 || !(tip(first) || tip(last)) {
+                rebuilt.start(first);
+                for &i in &line[1..] {
+                    rebuilt.then_old(i);
+                }
+                continue;
+            }
+            let at = self.line_positions(&line);
+            let radius: Vec<f64> = line
+                .iter()
+                .map(|&i| self.points[i as usize].radius.unwrap_or(0.0))
+                .collect();
+            let both = tip(first) && tip(last);
+            let most = if both { 0.45 } else { 0.5 };
+            let start = tip(first).then(|| ball_cut(&at, &radius, most)).flatten();
+            let mut reversed_at = at.clone();
+            reversed_at.reverse();
+            let mut reversed_radius = radius.clone();
+            reversed_radius.reverse();
+            // The end's cut seen from the start: on edge n - 2 - edge, at 1 - t.
+            let end = tip(last)
+                .then(|| ball_cut(&reversed_at, &reversed_radius, most))
+                .flatten()
+                .map(|cut| Cut {
+                    edge: line.len() - 2 - cut.edge,
+                    t: 1.0 - cut.t,
+                });
+            let point_at = |cut: Cut| {
+                let (a, b) = (
+                    &self.points[line[cut.edge] as usize],
+                    &self.points[line[cut.edge + 1] as usize],
+                );
+                let near = if cut.t < 0.5 { a } else { b };
+                let position = at[cut.edge].lerp(at[cut.edge + 1], cut.t);
+                let (on, position) = match surface {
+                    Some(mesh) => {
+                        SurfacePoint::nearest_among(mesh, nearby_faces(mesh, near.on), position)
+                            .unwrap_or((near.on, DVec3::from(near.position)))
+                    }
+                    None => (near.on, position),
+                };
+                SkeletonPoint {
+                    position: position.to_array(),
+                    on,
+                    significance: a.significance.min(b.significance),
+                    tubularity: a.tubularity.min(b.tubularity),
+                    radius: Some(
+                        radius[cut.edge] + cut.t * (radius[cut.edge + 1] - radius[cut.edge]),
+                    ),
+                }
+            };
+            // Old points strictly after the start's cut and strictly before the end's.
+            let from = start.map_or(0, |c| c.edge + 1);
+            let to = end.map_or(line.len() - 1, |c| c.edge);
+            match start {
+                Some(cut) => rebuilt.start_new(point_at(cut)),
+                None => rebuilt.start(first),
+            }
+            let skip_first = usize::from(start.is_none());
+            for &i in line.iter().take(to + 1).skip(from + skip_first) {
+                rebuilt.then_old(i);
+            }
+            if let Some(cut) = end {
+                rebuilt.then_new(point_at(cut));
+            }
+        }
+        rebuilt.finish()
+    }
+
     /// The skeleton without the branches from a tip shorter than `threshold` (placed
     /// length, polyline by polyline), shortest first, each branch's length taken again
     /// once its neighbour went (two branches that met at a junction become one). A
@@ -91,65 +156,141 @@ impl Skeleton {
     }
 }
 
+/// Where a branch from its tip (`at[0]`) is cut: at the innermost point whose ball
+/// (`radius`, linear along each edge) holds the tip, walking in while the balls do, no
+/// further in than the tip's own radius nor than `most` of the branch's length; `None`
+/// where that is the tip itself.
+fn ball_cut(at: &[DVec3], radius: &[f64], most: f64) -> Option<Cut> {
+    let along = lengths_along(at);
+    let limit = (most * along[along.len() - 1]).min(radius[0]);
+    if limit.is_nan() || limit <= 0.0 {
+        return None;
+    }
+    let tip = at[0];
+    // How far the ball at point k reaches past the tip (held while not negative).
+    let past = |k: usize| radius[k] - at[k].distance(tip);
+    let mut cut = None;
+    for k in 1..at.len() {
+        let (before, now) = (past(k - 1), past(k));
+        let span = along[k] - along[k - 1];
+        // Along this edge the balls hold the tip up to `t` (all of it, or to where the
+        // linear reach crosses zero).
+        let t = if now >= 0.0 {
+            1.0
+        } else if before > now {
+            before / (before - now)
+        } else {
+            0.0
+        };
+        if along[k - 1] + t * span >= limit {
+            let t = if span > 0.0 {
+                (limit - along[k - 1]) / span
+            } else {
+                0.0
+            };
+            return Some(Cut { edge: k - 1, t });
+        }
+        cut = Some(Cut { edge: k - 1, t });
+        if now < 0.0 {
+            break;
+        }
+    }
+    cut.filter(|cut| cut.edge > 0 || cut.t > 0.0)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// A trunk along x from -2 to 2 (radius 1) with a limb of radius 0.3 up y from its
-    /// middle to y = 2.5; points every 0.05.
-    fn trunk_and_limb() -> (Skeleton, Vec<f64>) {
-        let mut points: Vec<[f64; 3]> = (-40..=40)
-            .map(|i| [f64::from(i) * 0.05, 0.0, 0.0])
-            .collect();
-        let mut radii = vec![1.0; points.len()];
-        let mut edges: Vec<[u32; 2]> = (0..80).map(|i| [i, i + 1]).collect();
-        let mut previous = 40;
-        for j in 1..=50 {
-            let y = f64::from(j) * 0.05;
-            points.push([0.0, y, 0.0]);
-            radii.push(0.3);
-            edges.push([previous, points.len() as u32 - 1]);
-            previous = points.len() as u32 - 1;
-        }
-        (Skeleton::from_curves(&points, &edges, None), radii)
+    /// Points every `step` from `from` to `to`, their radius linear from `r0` to `r1`.
+    fn run(from: [f64; 3], to: [f64; 3], r0: f64, r1: f64, step: f64) -> Vec<([f64; 3], f64)> {
+        let (a, b) = (DVec3::from(from), DVec3::from(to));
+        let n = (a.distance(b) / step).round() as usize;
+        (0..=n)
+            .map(|i| {
+                let t = i as f64 / n as f64;
+                let at = if i == n { b } else { a.lerp(b, t) };
+                (at.to_array(), r0 + t * (r1 - r0))
+            })
+            .collect()
     }
 
     #[test]
-    fn a_limb_ends_where_its_last_ball_reaches_the_tip() {
-        let (skeleton, radii) = trunk_and_limb();
-        let trimmed = skeleton.tips_trimmed(|i| radii[i]);
-        assert_eq!((trimmed.tip_count(), trimmed.component_count()), (3, 1));
+    fn a_limb_ends_a_radius_in_and_the_graph_keeps_its_shape() {
+        // A trunk along x from -2 to 2 (radius 1) with a limb of radius 0.3 up y from
+        // its middle to y = 2.5.
+        let skeleton = crate::skeleton::geometry::graph_of_paths(&[
+            run([-2.0, 0.0, 0.0], [0.0, 0.0, 0.0], 1.0, 1.0, 0.05),
+            run([0.0, 0.0, 0.0], [2.0, 0.0, 0.0], 1.0, 1.0, 0.05),
+            run([0.0, 0.0, 0.0], [0.0, 2.5, 0.0], 1.0, 0.3, 0.05),
+        ]);
+        let trimmed = skeleton.tips_trimmed(None);
+        assert_eq!(
+            (trimmed.tip_count(), trimmed.component_count()),
+            (3, 1),
+            "the same graph"
+        );
         let top = trimmed
             .points
             .iter()
             .map(|p| p.position[1])
             .fold(0.0, f64::max);
-        // The ball at y = 2.2 is the last that reaches the tip at 2.5 …
-        assert!((top - 2.2).abs() < 0.06, "the limb ends at {top}");
-        // … and the trunk's ends, whose balls reach 1 past them, keep at least half of
-        // it each: a path is never cut past its middle, and here joins the limb.
+        assert!((top - 2.2).abs() < 1e-9, "the limb ends at {top}");
+        // The trunk's ends, radius 1, go in by 1: its halves keep half their length.
         let xs = trimmed.points.iter().map(|p| p.position[0]);
         let (lo, hi) = xs.fold((0.0, 0.0), |(lo, hi): (f64, f64), x| (lo.min(x), hi.max(x)));
-        assert!(lo < -0.9 && hi > 0.9 && lo > -1.1 && hi < 1.1, "{lo} {hi}");
+        assert!(
+            (lo + 1.0).abs() < 1e-9 && (hi - 1.0).abs() < 1e-9,
+            "{lo} {hi}"
+        );
+        // The new ends carry the radius there.
+        let end = trimmed
+            .points
+            .iter()
+            .find(|p| p.position[1] == top)
+            .unwrap();
+        assert!(
+            end.radius.is_some_and(|r| r > 0.3 && r < 0.4),
+            "{:?}",
+            end.radius
+        );
     }
 
     #[test]
-    fn a_path_is_cut_from_both_ends_to_its_middle_at_most() {
+    fn a_ball_on_a_stalk_keeps_its_centre() {
+        // A stalk of radius 0.1 from x = 0 to 3, ending in a ball of radius 1.
+        let mut stalk = run([0.0, 0.0, 0.0], [2.9, 0.0, 0.0], 0.1, 0.1, 0.1);
+        stalk.push(([3.0, 0.0, 0.0], 1.0));
+        let skeleton = crate::skeleton::geometry::graph_of_paths(&[
+            run([0.0, -1.0, 0.0], [0.0, 1.0, 0.0], 0.1, 0.1, 0.1),
+            stalk,
+        ]);
+        let far = |s: &Skeleton| s.points.iter().map(|p| p.position[0]).fold(0.0, f64::max);
+        let trimmed = skeleton.tips_trimmed(None);
+        assert!(far(&trimmed) > 2.85, "the stalk ends at {}", far(&trimmed));
+        assert_eq!(trimmed.tip_count(), 3);
+    }
+
+    #[test]
+    fn a_path_keeps_its_middle_and_no_radius_cuts_nothing() {
+        let thick = crate::skeleton::geometry::graph_of_paths(&[run(
+            [0.0, 0.0, 0.0],
+            [10.0, 0.0, 0.0],
+            100.0,
+            100.0,
+            1.0,
+        )]);
+        let trimmed = thick.tips_trimmed(None);
+        assert_eq!((trimmed.tip_count(), trimmed.component_count()), (2, 1));
+        assert!(
+            (trimmed.length() - 1.0).abs() < 1e-9,
+            "{}",
+            trimmed.length()
+        );
         let points: Vec<[f64; 3]> = (0..=10).map(|i| [f64::from(i), 0.0, 0.0]).collect();
         let edges: Vec<[u32; 2]> = (0..10).map(|i| [i, i + 1]).collect();
-        let skeleton = Skeleton::from_curves(&points, &edges, None);
-        let trimmed = skeleton.tips_trimmed(|_| 100.0);
-        assert_eq!(trimmed.component_count(), 1);
-        assert!(!trimmed.points.is_empty() && trimmed.points.len() <= 3);
-        assert!(trimmed
-            .points
-            .iter()
-            .all(|p| (4.0..=6.0).contains(&p.position[0])));
-        assert_eq!(
-            skeleton.tips_trimmed(|_| 0.5),
-            skeleton,
-            "balls that reach no point"
-        );
+        let bare = Skeleton::from_curves(&points, &edges, None);
+        assert_eq!(bare.tips_trimmed(None), bare);
     }
 
     /// Straight edges along `paths`, which join where they meet (radius 1: the lengths
