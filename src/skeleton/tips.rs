@@ -1,5 +1,5 @@
-//! Where branches end: at the centre of the last medial ball that reaches a tip (an
-//! option), and which short ones go once the skeleton is placed.
+//! Where branches end once the skeleton is placed: which short ones go, and how far in
+//! from where the axis ran out each tip ends.
 
 use super::geometry::{lengths_along, nearby_faces, Rebuild};
 use super::{Skeleton, SkeletonPoint};
@@ -158,8 +158,9 @@ impl Skeleton {
 
 /// Where a branch from its tip (`at[0]`) is cut: at the innermost point whose ball
 /// (`radius`, linear along each edge) holds the tip, walking in while the balls do, no
-/// further in than the tip's own radius nor than `most` of the branch's length; `None`
-/// where that is the tip itself.
+/// further in than the tip's own radius nor than `most` (below 1) of the branch's
+/// length; `None` where that is the tip itself. A cut at an inner point is given as the
+/// start of the edge after it, so that the point it falls on is the cut's.
 fn ball_cut(at: &[DVec3], radius: &[f64], most: f64) -> Option<Cut> {
     let along = lengths_along(at);
     let limit = (most * along[along.len() - 1]).min(radius[0]);
@@ -169,33 +170,42 @@ fn ball_cut(at: &[DVec3], radius: &[f64], most: f64) -> Option<Cut> {
     let tip = at[0];
     // How far the ball at point k reaches past the tip (held while not negative).
     let past = |k: usize| radius[k] - at[k].distance(tip);
-    let mut cut = None;
+    let cut = |edge: usize, t: f64| {
+        let cut = if t >= 1.0 {
+            Cut {
+                edge: edge + 1,
+                t: 0.0,
+            }
+        } else {
+            Cut { edge, t }
+        };
+        (cut.edge > 0 || cut.t > 0.0).then_some(cut)
+    };
     for k in 1..at.len() {
         let (before, now) = (past(k - 1), past(k));
         let span = along[k] - along[k - 1];
-        // Along this edge the balls hold the tip up to `t` (all of it, or to where the
-        // linear reach crosses zero).
-        let t = if now >= 0.0 {
-            1.0
-        } else if before > now {
-            before / (before - now)
-        } else {
-            0.0
-        };
-        if along[k - 1] + t * span >= limit {
-            let t = if span > 0.0 {
+        if along[k] >= limit {
+            // The limit falls on this edge: cut there, or where the balls let go first.
+            let at_limit = if span > 0.0 {
                 (limit - along[k - 1]) / span
             } else {
                 0.0
             };
-            return Some(Cut { edge: k - 1, t });
+            let let_go = if now >= 0.0 {
+                1.0
+            } else {
+                before.max(0.0) / (before - now)
+            };
+            return cut(k - 1, at_limit.min(let_go));
         }
-        cut = Some(Cut { edge: k - 1, t });
         if now < 0.0 {
-            break;
+            // Along this edge the balls hold the tip up to where their reach, linear,
+            // crosses zero.
+            return cut(k - 1, before.max(0.0) / (before - now));
         }
     }
-    cut.filter(|cut| cut.edge > 0 || cut.t > 0.0)
+    // Only where lengths are not numbers.
+    None
 }
 
 #[cfg(test)]
@@ -243,6 +253,12 @@ mod tests {
             (lo + 1.0).abs() < 1e-9 && (hi - 1.0).abs() < 1e-9,
             "{lo} {hi}"
         );
+        // A cut on a point takes its place: no edge of length 0.
+        let length = |&[a, b]: &[u32; 2]| {
+            DVec3::from(trimmed.points[a as usize].position)
+                .distance(trimmed.points[b as usize].position.into())
+        };
+        assert!(trimmed.edges.iter().all(|e| length(e) > 1e-9));
         // The new ends carry the radius there.
         let end = trimmed
             .points
