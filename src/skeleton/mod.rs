@@ -748,13 +748,11 @@ pub fn medial_axis_skeleton_with_cycles(
         skeleton.pruned_protruding(pruning.protrusion, |i| radius_at(skeleton.points[i].on));
     // Placed, a branch that zig-zagged (or ends a longer one) is shorter than it stood.
     let placed = skeleton.placed(axis, placement).without_short_tips(prune);
-    let placed = match (pruning.trim_tips, placement, &axis.surface) {
-        (false, ..) => placed,
-        // On the axis, a new end goes on it too.
-        (true, Placement::OnAxis, Some(mesh)) => placed.tips_trimmed(Some(mesh)),
-        (true, ..) => placed.tips_trimmed(None),
-    };
-    Ok((placed, field))
+    // On the axis, a new end goes on it too.
+    let on_axis = placement == Placement::OnAxis;
+    let surface = axis.surface.as_ref().filter(|_| on_axis);
+    let trimmed = pruning.trim_tips.then(|| placed.tips_trimmed(surface));
+    Ok((trimmed.unwrap_or(placed), field))
 }
 
 /// Per point of `skeleton`, whether it lies on the trunk of `opened`, the same skeleton
