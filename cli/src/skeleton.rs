@@ -59,12 +59,14 @@ pub struct SkeletonArgs {
     /// that stand out less than P of its thickness go, limbs stay; 0 keeps everything.
     #[arg(long, value_name = "P", default_value_t = DEFAULT_MIN_PROTRUSION, value_parser = parse_ratio)]
     protrusion: f64,
-    /// Whether each placed branch from a tip is cut back to the innermost medial ball
-    /// that holds its end, by no more than the end's radius, near where a
-    /// mean-curvature-flow skeleton's tips lie; `--trim-tips false` lets the branches
-    /// run out to where the axis meets the surface.
-    #[arg(long, value_name = "BOOL", default_value_t = true, num_args = 0..=1, default_missing_value = "true", action = clap::ArgAction::Set)]
+    /// Cut each placed branch from a tip back to the innermost medial ball that holds
+    /// its end, by no more than the end's radius, near where a mean-curvature-flow
+    /// skeleton's tips lie: the default.
+    #[arg(long, conflicts_with = "keep_tips")]
     trim_tips: bool,
+    /// Let the branches from tips run out to where the axis meets the surface.
+    #[arg(long)]
+    keep_tips: bool,
     /// When each point may burn.
     #[arg(long, value_enum, default_value = "boundary")]
     burn: BurnArg,
@@ -140,7 +142,7 @@ pub fn run(args: &SkeletonArgs) -> CliResult {
             erosion_thickness: prune,
             tubularity: args.tubular,
             protrusion: args.protrusion,
-            trim_tips: args.trim_tips,
+            trim_tips: !args.keep_tips,
         },
         solid_cycles.unwrap_or(usize::MAX),
         match (args.centred, args.on_axis) {

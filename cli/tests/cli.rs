@@ -1405,7 +1405,7 @@ fn skeleton_opens_a_hole_its_balls_fill() {
 
 /// Trimmed tips (the default, `--trim-tips` too) are branches cut back from their tips
 /// that keep the graph's shape: the same components, cycles and tips as with
-/// `--trim-tips false`, a shorter skeleton.
+/// `--keep-tips`, a shorter skeleton; the two options exclude each other.
 #[test]
 fn skeleton_trim_tips_shortens_and_keeps_the_graph() {
     let dir = tempfile::tempdir().unwrap();
@@ -1441,11 +1441,21 @@ fn skeleton_trim_tips_shortens_and_keeps_the_graph() {
         let counts = ["components", "cycles", "tips"].map(|k| graph[k].clone());
         (counts, length)
     };
-    let (counts, length) = run(&["--trim-tips", "false"]);
+    let (counts, length) = run(&["--keep-tips"]);
     let (trimmed_counts, trimmed) = run(&["--trim-tips"]);
     assert_eq!(trimmed_counts, counts);
     assert!(trimmed < length - 0.05, "{trimmed} against {length}");
     assert_eq!(run(&[]), (trimmed_counts, trimmed), "trimmed by default");
+    let both = dir.path().join("both.obj");
+    let out = geotracks(&[
+        "skeleton",
+        axis,
+        "--trim-tips",
+        "--keep-tips",
+        "-o",
+        both.to_str().unwrap(),
+    ]);
+    assert!(!out.status.success() && !both.exists());
 }
 
 /// Every command's `--help` ends with examples (and so does the tool's).
