@@ -44,6 +44,7 @@ impl Skeleton {
     /// // The limb's end moves in by its radius; the trunk's ends by 1.
     /// assert!((trimmed.length() - (1.0 + 1.0 + 1.7)).abs() < 1e-9);
     /// ```
+    #[must_use]
     pub fn tips_trimmed(&self, surface: Option<&TriMesh>) -> Skeleton {
         let degree = self.degrees();
         let mut rebuilt = Rebuild::new(self);
