@@ -216,6 +216,27 @@ pub(super) fn least_edges(points: usize) -> usize {
     points.saturating_sub(1).min(3)
 }
 
+impl SkeletonPoint {
+    /// A new point at `position` (`on` the surface there) between the points `a` and `b`
+    /// of a polyline: it takes the lower significance and tubularity of the two, so that
+    /// a threshold that keeps it keeps both.
+    pub(super) fn between(
+        a: &SkeletonPoint,
+        b: &SkeletonPoint,
+        position: DVec3,
+        on: SurfacePoint,
+        radius: Option<f64>,
+    ) -> SkeletonPoint {
+        SkeletonPoint {
+            position: position.to_array(),
+            on,
+            significance: a.significance.min(b.significance),
+            tubularity: a.tubularity.min(b.tubularity),
+            radius,
+        }
+    }
+}
+
 /// A skeleton rebuilt polyline by polyline (see [`Skeleton::polylines`]): each point of
 /// the old one kept at most once (polylines share their tips and junctions), new points
 /// added between them, and each polyline's edges chained as it is walked.
@@ -264,6 +285,13 @@ impl<'s> Rebuild<'s> {
         let id = self.keep(i);
         self.edges.push([self.last, id]);
         self.last = id;
+    }
+
+    /// Continues the polyline through the old `points`, in order.
+    pub(super) fn then_olds(&mut self, points: &[u32]) {
+        for &i in points {
+            self.then_old(i);
+        }
     }
 
     /// Continues the polyline to a new point.

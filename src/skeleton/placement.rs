@@ -159,9 +159,7 @@ impl Skeleton {
             let on = |k: usize| self.points[line[k] as usize].on;
             if (1..line.len()).any(|k| !share_a_face(mesh, on(k - 1), on(k))) {
                 // Along line elements: the points as they are.
-                for &i in &line[1..] {
-                    rebuilt.then_old(i);
-                }
+                rebuilt.then_olds(&line[1..]);
                 continue;
             }
             let faces: Vec<Vec<u32>> = line
@@ -191,13 +189,7 @@ impl Skeleton {
                     at[segment].lerp(at[segment + 1], t),
                 )
                 .unwrap_or((self.points[line[near] as usize].on, at[near]));
-                rebuilt.then_new(SkeletonPoint {
-                    position: position.to_array(),
-                    on,
-                    significance: a.significance.min(b.significance),
-                    tubularity: a.tubularity.min(b.tubularity),
-                    radius: None,
-                });
+                rebuilt.then_new(SkeletonPoint::between(a, b, position, on, None));
             }
             rebuilt.then_old(line[line.len() - 1]);
         }

@@ -53,9 +53,7 @@ impl Skeleton {
             let (first, last) = (line[0], line[line.len() - 1]);
             if line.len() < 2 || !(tip(first) || tip(last)) {
                 rebuilt.start(first);
-                for &i in &line[1..] {
-                    rebuilt.then_old(i);
-                }
+                rebuilt.then_olds(&line[1..]);
                 continue;
             }
             let at = self.line_positions(&line);
@@ -66,13 +64,13 @@ impl Skeleton {
             let both = tip(first) && tip(last);
             let most = if both { 0.45 } else { 0.5 };
             let start = tip(first).then(|| ball_cut(&at, &radius, most)).flatten();
-            let mut reversed_at = at.clone();
-            reversed_at.reverse();
-            let mut reversed_radius = radius.clone();
-            reversed_radius.reverse();
             // The end's cut seen from the start: on edge n - 2 - edge, at 1 - t.
             let end = tip(last)
-                .then(|| ball_cut(&reversed_at, &reversed_radius, most))
+                .then(|| {
+                    let reversed_at: Vec<DVec3> = at.iter().rev().copied().collect();
+                    let reversed_radius: Vec<f64> = radius.iter().rev().copied().collect();
+                    ball_cut(&reversed_at, &reversed_radius, most)
+                })
                 .flatten()
                 .map(|cut| Cut {
                     edge: line.len() - 2 - cut.edge,
@@ -92,27 +90,18 @@ impl Skeleton {
                     }
                     None => (near.on, position),
                 };
-                SkeletonPoint {
-                    position: position.to_array(),
-                    on,
-                    significance: a.significance.min(b.significance),
-                    tubularity: a.tubularity.min(b.tubularity),
-                    radius: Some(
-                        radius[cut.edge] + cut.t * (radius[cut.edge + 1] - radius[cut.edge]),
-                    ),
-                }
+                let r = radius[cut.edge] + cut.t * (radius[cut.edge + 1] - radius[cut.edge]);
+                SkeletonPoint::between(a, b, position, on, Some(r))
             };
-            // Old points strictly after the start's cut and strictly before the end's.
-            let from = start.map_or(0, |c| c.edge + 1);
+            // Then the old points after the start (or its cut) up to the end's cut (or
+            // the end).
+            let from = start.map_or(1, |c| c.edge + 1);
             let to = end.map_or(line.len() - 1, |c| c.edge);
             match start {
                 Some(cut) => rebuilt.start_new(point_at(cut)),
                 None => rebuilt.start(first),
             }
-            let skip_first = usize::from(start.is_none());
-            for &i in line.iter().take(to + 1).skip(from + skip_first) {
-                rebuilt.then_old(i);
-            }
+            rebuilt.then_olds(&line[from..=to]);
             if let Some(cut) = end {
                 rebuilt.then_new(point_at(cut));
             }
